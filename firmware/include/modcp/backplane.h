@@ -1,0 +1,117 @@
+/* modcp — the CPU–CP backplane interface (SPEC §6).
+ *
+ * The only thing the CP side and the CPU side share. Two single-producer /
+ * single-consumer rings of 32-byte blocks, one per direction. A block is "requested"
+ * when the producer publishes it (head++) and "acknowledged" when the consumer has
+ * copied it out (tail++). Every block carries a per-direction sequence number that the
+ * consumer checks, the message kind, FIRST/LAST flags and the job tag.
+ *
+ * Safe between two threads, or between an interrupt and a main loop, on any target
+ * where 32-bit C11 atomics are lock-free (Cortex-M3/M4, x86-64, aarch64).
+ *
+ * Messages (first block of a message carries its header in data[]):
+ *   CPU -> CP  PARAMS   the parameter record (data = record bytes, several blocks)
+ *   CPU -> CP  INIT     modcp_bp_init_t (work area, area sizes, record CRC)
+ *   CP -> CPU  INIT_ACK modcp_bp_ack_t (event: NONE = ready)
+ *   CP -> CPU  JOB      first block modcp_bp_job_t, then the write data
+ *   CPU -> CP  REPLY    first block modcp_bp_reply_t, then the read data
+ * A job is cancelled by the CP writing its tag to `abort_tag` (after a timeout); the
+ * CPU side does not execute a job whose tag equals abort_tag, and the CP drops
+ * REPLY blocks whose tag is not the tag of its current job. */
+#ifndef MODCP_BACKPLANE_H
+#define MODCP_BACKPLANE_H
+
+#include <stdatomic.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "modcp/events.h"
+#include "modcp/map.h"
+
+#define MODCP_BLOCK_SIZE 32u
+#ifndef MODCP_BP_DEPTH
+#define MODCP_BP_DEPTH 4u /* blocks per direction; power of two */
+#endif
+
+enum {
+    MODCP_BP_PARAMS = 1,
+    MODCP_BP_INIT = 2,
+    MODCP_BP_INIT_ACK = 3,
+    MODCP_BP_JOB = 4,
+    MODCP_BP_REPLY = 5,
+};
+
+enum { MODCP_BLK_FIRST = 0x01, MODCP_BLK_LAST = 0x02 };
+
+typedef struct {
+    uint8_t data[MODCP_BLOCK_SIZE];
+    uint8_t len;   /* valid bytes in data, 0 ... 32 */
+    uint8_t kind;  /* MODCP_BP_* */
+    uint8_t flags; /* MODCP_BLK_* */
+    uint8_t tag;   /* job tag (JOB / REPLY), 0 otherwise */
+    uint8_t seq;   /* per-direction sequence number, +1 per block, wraps */
+} modcp_block_t;
+
+typedef struct {
+    modcp_block_t slot[MODCP_BP_DEPTH];
+    _Atomic uint32_t head; /* producer: blocks published */
+    _Atomic uint32_t tail; /* consumer: blocks acknowledged */
+} modcp_ring_t;
+
+typedef struct {
+    modcp_ring_t to_cpu;       /* CP -> CPU */
+    modcp_ring_t to_cp;        /* CPU -> CP */
+    _Atomic uint32_t abort_tag; /* tag of the last job the CP gave up on (0x100 = none) */
+} modcp_backplane_t;
+
+/* Job operations. */
+enum {
+    MODCP_JOB_READ = 1,     /* read count bytes / T,C elements (FC01/02/03/04) */
+    MODCP_JOB_WRITE = 2,    /* write bytes (FC06/16) */
+    MODCP_JOB_BITWRITE = 3, /* read-modify-write of count bits from operand.bit (FC05/15) */
+};
+
+/* JOB header, first block of a job (serialised little-endian into data[]). */
+typedef struct {
+    uint8_t op; /* MODCP_JOB_* */
+    modcp_operand_t opnd;
+    uint16_t len; /* data bytes that follow (write) or are expected back (read) */
+} modcp_bp_job_t;
+
+/* REPLY header. */
+typedef struct {
+    modcp_event_t event; /* NONE = done; else (0E)38H, (0E)39H, (0E)3AH, (0E)57H ... */
+    uint16_t error_nr;   /* FB ERROR_NR (10..19) when event = (0E)57H */
+    uint16_t len;        /* data bytes that follow */
+} modcp_bp_reply_t;
+
+/* INIT payload. */
+typedef struct {
+    modcp_areas_t areas;
+    uint16_t record_crc; /* CRC of the PARAMS record the CP must hold */
+} modcp_bp_init_t;
+
+/* INIT_ACK payload. */
+typedef struct {
+    modcp_event_t event; /* NONE = CP ready and initialised, else why not */
+} modcp_bp_ack_t;
+
+void modcp_bp_init(modcp_backplane_t *bp);
+
+/* Producer side: publish one block (seq is filled in from *seq, which is then
+ * incremented). Returns false (nothing written) when the ring is full. */
+bool modcp_ring_put(modcp_ring_t *r, const modcp_block_t *b, uint8_t *seq);
+/* Consumer side: copy out and acknowledge the oldest block. Returns false when empty. */
+bool modcp_ring_get(modcp_ring_t *r, modcp_block_t *b);
+/* Blocks free for the producer. */
+uint32_t modcp_ring_space(const modcp_ring_t *r);
+
+/* Header (de)serialisation into block data; return bytes used / false if short. */
+uint8_t modcp_bp_job_encode(const modcp_bp_job_t *j, uint8_t *d);
+bool modcp_bp_job_decode(const uint8_t *d, uint8_t len, modcp_bp_job_t *j);
+uint8_t modcp_bp_reply_encode(const modcp_bp_reply_t *r, uint8_t *d);
+bool modcp_bp_reply_decode(const uint8_t *d, uint8_t len, modcp_bp_reply_t *r);
+uint8_t modcp_bp_init_encode(const modcp_bp_init_t *i, uint8_t *d);
+bool modcp_bp_init_decode(const uint8_t *d, uint8_t len, modcp_bp_init_t *i);
+
+#endif

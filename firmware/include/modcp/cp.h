@@ -1,0 +1,58 @@
+/* modcp — the CP side wired together: one object, no globals, several instances
+ * possible. A port creates a modcp_cp_t, calls modcp_cp_init() with its HAL and the
+ * backplane, and then feeds events:
+ *   UART rx interrupt     -> modcp_cp_on_rx() / modcp_cp_on_line_error()
+ *   one-shot timer        -> modcp_cp_on_timer()
+ *   transmission complete -> modcp_cp_on_tx_done()
+ *   CP task (often)       -> modcp_cp_poll()  (backplane, job timeouts, LEDs)
+ * The CP is configured by the PARAMS record the CPU side sends over the backplane;
+ * until then (or with an invalid record) it is not ready and the line is ignored.
+ * Until the FB's INIT arrives every request gets exception 04 and (0E)56H. */
+#ifndef MODCP_CP_H
+#define MODCP_CP_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "modcp/backplane.h"
+#include "modcp/diag.h"
+#include "modcp/hal.h"
+#include "modcp/job.h"
+#include "modcp/link.h"
+#include "modcp/map.h"
+#include "modcp/params.h"
+#include "modcp/pdu.h"
+
+#define MODCP_CP_BUF (MODCP_PARAMS_RECORD_MAX > MODCP_ADU_MAX ? MODCP_PARAMS_RECORD_MAX : MODCP_ADU_MAX)
+
+typedef struct modcp_cp {
+    const modcp_hal_t *hal;
+    modcp_backplane_t *bp;
+    modcp_params_t params;
+    bool configured;   /* valid PARAMS applied */
+    bool fb_ready;     /* INIT received and acknowledged */
+    uint16_t record_crc;
+    modcp_event_t param_event; /* first fatal parameter event, NONE if configured */
+    modcp_areas_t areas;
+    modcp_diag_t diag;
+    modcp_link_t link;
+    modcp_pdu_t pdu;
+    modcp_job_t job;
+    modcp_frame_t frame; /* request being processed */
+    bool ack_pending;
+    modcp_event_t ack_event;
+    uint8_t buf[MODCP_CP_BUF]; /* frame buffer; holds the PARAMS record while it arrives */
+} modcp_cp_t;
+
+void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp);
+
+void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us);
+void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us);
+void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us);
+void modcp_cp_on_tx_done(modcp_cp_t *cp, uint32_t now_us);
+void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us);
+
+/* Ready: configured and the FB initialised. */
+bool modcp_cp_ready(const modcp_cp_t *cp);
+
+#endif

@@ -1,0 +1,15 @@
+/* modcp — Modbus CRC-16 (poly 0xA001 reflected, init 0xFFFF, low byte first on the
+ * wire; 256-entry table) and the ASCII LRC (two's complement of the byte sum). */
+#ifndef MODCP_CRC_H
+#define MODCP_CRC_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define MODCP_CRC_INIT 0xFFFFu
+
+uint16_t modcp_crc16_update(uint16_t crc, const uint8_t *p, size_t n);
+uint16_t modcp_crc16(const uint8_t *p, size_t n);
+uint8_t modcp_lrc(const uint8_t *p, size_t n);
+
+#endif

@@ -1,0 +1,65 @@
+/* modcp — diagnostics store (SPEC §7). Everyone reports events here; nobody else
+ * stores them.
+ *  - diagnostic buffer: the last 9 events, newest first (001 §8.3)
+ *  - SYSTAT: first 6 events since the last read, F/U/B flags (004 §7.4), clear on read
+ *  - STATUS word: last event, class in bits 12..8, number in 7..0 (001 §8.1)
+ *  - per-event counters and the Modbus serial-line counters (FC08 0B..12) */
+#ifndef MODCP_DIAG_H
+#define MODCP_DIAG_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "modcp/events.h"
+
+#define MODCP_DIAG_BUFFER 9
+#define MODCP_SYSTAT_EVENTS 6
+#define MODCP_COMM_LOG 64
+
+enum { MODCP_SYSTAT_F = 0x01, MODCP_SYSTAT_U = 0x02, MODCP_SYSTAT_B = 0x04 };
+enum { MODCP_SYSTAT_RUN = 0x02, MODCP_SYSTAT_FAULT = 0x05 };
+
+/* Modbus serial-line counters (Modbus over Serial Line V1.02 §6.1). */
+typedef enum {
+    MODCP_CNT_BUS_MSG = 0,   /* 0B: messages the slave detected on the bus (CRC ok) */
+    MODCP_CNT_BUS_CRC,       /* 0C: CRC errors */
+    MODCP_CNT_EXCEPTION,     /* 0D: exception responses returned */
+    MODCP_CNT_SLAVE_MSG,     /* 0E: messages addressed to us (incl. broadcast) */
+    MODCP_CNT_NO_RESPONSE,   /* 0F: messages not answered (broadcast, listen-only) */
+    MODCP_CNT_NAK,           /* 10 */
+    MODCP_CNT_BUSY,          /* 11 */
+    MODCP_CNT_CHAR_OVERRUN,  /* 12: character overruns */
+    MODCP_CNT_COUNT
+} modcp_counter_t;
+
+typedef struct {
+    modcp_event_t buffer[MODCP_DIAG_BUFFER]; /* newest first */
+    uint8_t buffer_len;
+    modcp_event_t systat[MODCP_SYSTAT_EVENTS];
+    uint8_t systat_len;
+    uint8_t systat_flags; /* MODCP_SYSTAT_F | U | B */
+    uint16_t status;      /* last event as STATUS word */
+    uint16_t counters[MODCP_CNT_COUNT];
+    uint32_t events_total;
+    uint16_t frames_too_long;
+    uint16_t char_errors;
+    uint16_t breaks;
+    uint16_t t15_discards;
+} modcp_diag_t;
+
+void modcp_diag_init(modcp_diag_t *d);
+/* Record an event (NONE is ignored). */
+void modcp_diag_event(modcp_diag_t *d, modcp_event_t ev);
+/* Increment a serial-line counter (wraps at 65535 -> 0, as the spec's counters). */
+void modcp_diag_count(modcp_diag_t *d, modcp_counter_t c);
+void modcp_diag_clear_counters(modcp_diag_t *d);
+/* SYSTAT image (16 bytes as 004 §7.4: state, 0, flags, 0, 6 event words high byte
+ * first); clears the SYSTAT events and flags. run: CP state RUN (else fault). */
+void modcp_diag_read_systat(modcp_diag_t *d, bool run, uint8_t out[16]);
+
+/* Text and remedy of an event in English (for the simulator / console; not used on
+ * the hot path). Unknown events give "unknown event". */
+const char *modcp_event_text(modcp_event_t ev);
+const char *modcp_event_remedy(modcp_event_t ev);
+
+#endif

@@ -1,0 +1,104 @@
+/* modcp — the CPU side's communication FB (FB 80 / FB 180 model, 004 §4, 001 §2).
+ *
+ * The user program calls modcp_fb_call() once per cycle. The FB
+ *  - sends the parameter record (PARAMS) at its first call, like the CPU re-sending
+ *    the CP parameters at every start;
+ *  - on a rising edge of CP_START: clears its outputs, records the real area sizes,
+ *    sends PARAMS + INIT and waits for INIT_ACK; retries every retry interval while the
+ *    CP answers "not ready" or does not answer, until START_TIME; then CP_START_OK, or
+ *    CP_START_ERROR with ERROR_NR 2 / ERROR_INFO = the CP's event;
+ *  - executes jobs: reads and register writes against plcmem, FC05/15 bit writes by
+ *    read-modify-write; sets CP_START_NDR for one call when a write job arrived.
+ *
+ * Consistency: a job is executed only when all of its blocks are in, and it is
+ * executed completely inside one call (reads take a snapshot of all job data in
+ * that call), so every job is consistent as a whole, not only per 32-byte block. */
+#ifndef MODCP_FB_H
+#define MODCP_FB_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "modcp/backplane.h"
+#include "modcp/plcmem.h"
+
+#ifndef MODCP_FB_JOB_MAX
+#define MODCP_FB_JOB_MAX 1024u /* the largest job (CP 341 transfer limit) */
+#endif
+#define MODCP_FB_RETRY_MS 200u /* init retry interval */
+
+/* FB error numbers (004 §7.6). */
+enum {
+    MODCP_FB_ERR_NONE = 0,
+    MODCP_FB_ERR_INIT = 2,       /* CP initialisation timeout or error */
+    MODCP_FB_ERR_PROC_CODE = 10, /* illegal processing code */
+    MODCP_FB_ERR_START = 11,     /* illegal start address */
+    MODCP_FB_ERR_AMOUNT0 = 12,   /* amount = 0 */
+    MODCP_FB_ERR_AMOUNT = 13,    /* amount too large */
+    MODCP_FB_ERR_M_END = 14,
+    MODCP_FB_ERR_Q_END = 15,
+    MODCP_FB_ERR_T_END = 16,
+    MODCP_FB_ERR_C_END = 17,
+    MODCP_FB_ERR_AREA = 18, /* illegal memory area */
+};
+
+typedef struct {
+    bool cp_start; /* IN: rising edge starts the initialisation */
+} modcp_fb_in_t;
+
+typedef struct {
+    bool cp_start_ok;
+    bool cp_start_error;
+    bool cp_start_ndr; /* a write job was executed in this call */
+    uint16_t error_nr;
+    uint16_t error_info;
+} modcp_fb_out_t;
+
+typedef enum {
+    MODCP_FBST_STOPPED = 0, /* no init yet */
+    MODCP_FBST_INIT_SEND,   /* (re)sending PARAMS + INIT */
+    MODCP_FBST_INIT_WAIT,   /* waiting for INIT_ACK */
+    MODCP_FBST_RUN,         /* initialised, executing jobs */
+    MODCP_FBST_FAILED,      /* CP_START_ERROR */
+} modcp_fbst_t;
+
+typedef struct {
+    modcp_backplane_t *bp;
+    modcp_plcmem_t *mem;
+    const uint8_t *record; /* parameter record handed to the CP */
+    uint16_t record_len;
+    uint16_t work_db; /* the FB's work area (instance DB number), 0 = none */
+    uint32_t start_time_ms;
+    /* state */
+    uint8_t state; /* modcp_fbst_t */
+    bool last_start;
+    bool params_pending; /* PARAMS still to send */
+    uint16_t params_pos;
+    bool init_sent;
+    uint32_t init_t0_ms;  /* CP_START edge */
+    uint32_t retry_t0_ms; /* last attempt */
+    modcp_fb_out_t out;
+    uint8_t tx_seq, rx_seq;
+    bool rx_synced;
+    /* job being received / reply being sent */
+    modcp_bp_job_t job;
+    uint8_t job_tag;
+    bool job_active; /* header in, collecting data */
+    uint16_t job_pos;
+    bool reply_pending;
+    modcp_bp_reply_t reply;
+    uint16_t reply_pos;
+    bool reply_hdr_sent;
+    uint32_t jobs_done;
+    uint8_t buf[MODCP_FB_JOB_MAX];
+} modcp_fb_t;
+
+void modcp_fb_init(modcp_fb_t *fb, modcp_backplane_t *bp, modcp_plcmem_t *mem,
+                   const uint8_t *record, uint16_t record_len, uint16_t work_db,
+                   uint32_t start_time_ms);
+
+/* One call per CPU cycle. */
+void modcp_fb_call(modcp_fb_t *fb, const modcp_fb_in_t *in, modcp_fb_out_t *out,
+                   uint32_t now_ms);
+
+#endif

@@ -1,0 +1,97 @@
+/* modcp — serial link layer: frame boundaries, CRC, transmit and RS485 direction.
+ * RTU framing lives in rtu.c (ASCII framing in ascii.c, same interface); the
+ * transmit side, turnaround and driver-enable handling are shared.
+ *
+ * Receive: every byte (byte, now_us) restarts the end-of-frame timer (t3.5 from the
+ * parameters). When the timer expires the frame is checked: address (own or 0,
+ * others ignored without checking), length, CRC ((08)36H and silence on mismatch).
+ * Bytes that arrive while a request is being processed or its reply is pending are
+ * not stored; their frame is followed, and if it is for us, (08)37H is reported.
+ * Frames longer than the buffer are discarded and counted ((08)16H).
+ *
+ * Buffer: one buffer holds the request and then, in place, the reply. */
+#ifndef MODCP_LINK_H
+#define MODCP_LINK_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "modcp/diag.h"
+#include "modcp/hal.h"
+#include "modcp/params.h"
+
+#define MODCP_ADU_MAX 264u /* FC15 with 2040 bits: 1+1+2+2+1+255+2 */
+
+typedef enum {
+    MODCP_LINK_IDLE = 0,  /* waiting for the first byte of a frame */
+    MODCP_LINK_RX,        /* receiving, storing */
+    MODCP_LINK_SKIP,      /* receiving, not storing (other address, error, overflow) */
+    MODCP_LINK_BUSY,      /* a request is being processed; buffer owned by the PDU */
+    MODCP_LINK_TURNAROUND,/* reply ready, waiting for the turnaround delay */
+    MODCP_LINK_TX,        /* transmitting */
+} modcp_link_state_t;
+
+typedef struct {
+    uint8_t addr;        /* 0 = broadcast */
+    uint8_t *pdu;        /* function code + data, inside the link buffer */
+    uint16_t pdu_len;
+    uint16_t pdu_cap;    /* room for the reply PDU at pdu[] */
+} modcp_frame_t;
+
+typedef struct {
+    const modcp_hal_t *hal;
+    modcp_diag_t *diag;
+    uint8_t *buf;
+    uint16_t cap;
+    /* configuration */
+    uint8_t framing;  /* modcp_framing_t */
+    uint8_t own_addr;
+    bool suppress;    /* interference suppression (also RS485) */
+    bool rs485;
+    uint32_t t35_us;
+    uint32_t t15_us;  /* 0 = no t1.5 check */
+    uint32_t turnaround_us;
+    uint32_t ascii_timeout_us;
+    bool enabled;     /* configured; a disabled link ignores the line */
+    /* receive state */
+    uint8_t state;    /* modcp_link_state_t */
+    uint16_t len;     /* bytes stored */
+    uint16_t count;   /* bytes seen in the current frame */
+    uint16_t crc;     /* running CRC over the current frame */
+    uint8_t first;    /* first byte of the current frame */
+    bool rx_bad;      /* character error / BREAK / t1.5 violation inside the frame */
+    bool rx_overflow;
+    uint32_t last_us; /* time of the last received byte */
+    bool busy_rx;     /* a frame is being followed while BUSY/TURNAROUND/TX */
+    /* ASCII receive state (ascii.c) */
+    uint8_t hex_hi;
+    bool hex_half;
+    bool got_cr;
+    /* transmit */
+    uint16_t tx_len;
+} modcp_link_t;
+
+void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag, uint8_t *buf,
+                     uint16_t cap);
+/* Apply parameters (framing, address, timing, interface) and enable. */
+void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p);
+/* Stop listening (CP not ready). */
+void modcp_link_disable(modcp_link_t *l);
+
+void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
+void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
+/* Timer expiry. Returns true when a valid frame for us or broadcast is ready in *f;
+ * the link is then BUSY until modcp_link_reply() or modcp_link_done(). */
+bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f);
+/* Send the reply PDU that was written to f->pdu[0 .. pdu_len). */
+void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us);
+/* Request finished without a reply (broadcast, error). */
+void modcp_link_done(modcp_link_t *l);
+void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us);
+
+/* RTU / ASCII framing internals, called by link.c (not for other modules). */
+void modcp_rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
+bool modcp_rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f);
+uint16_t modcp_rtu_encode(modcp_link_t *l, uint16_t pdu_len);
+
+#endif

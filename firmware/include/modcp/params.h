@@ -1,0 +1,203 @@
+/* modcp — the CP's parameter record (SPEC §2).
+ *
+ * modcp_params_t is the in-memory form. The binary record (what the CPU side hands
+ * to the CP, what modcp-conf writes) is a portable little-endian serialisation of it:
+ *   "MCPR" magic, u16 version, u16 payload length, payload, u16 CRC-16 (Modbus CRC
+ *   over everything before it).
+ * Validation returns one issue per bad field with the manual's event number. */
+#ifndef MODCP_PARAMS_H
+#define MODCP_PARAMS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "modcp/events.h"
+
+#define MODCP_PARAMS_VERSION 1u
+#define MODCP_PARAMS_RECORD_MAX 512u /* upper bound of the serialised record */
+
+typedef enum { MODCP_PARITY_NONE = 0, MODCP_PARITY_ODD = 1, MODCP_PARITY_EVEN = 2 } modcp_parity_t;
+typedef enum { MODCP_FRAMING_RTU = 0, MODCP_FRAMING_ASCII = 1 } modcp_framing_t;
+typedef enum { MODCP_OPMODE_NORMAL = 0, MODCP_OPMODE_SUPPRESS = 1 } modcp_opmode_t;
+typedef enum { MODCP_EOF_MANUAL = 0, MODCP_EOF_MODBUS = 1 } modcp_eof_timing_t;
+typedef enum { MODCP_IFACE_RS232 = 0, MODCP_IFACE_RS422 = 1, MODCP_IFACE_RS485 = 2 } modcp_iface_t;
+typedef enum { MODCP_FSET_CP341 = 0, MODCP_FSET_EXTENDED = 1 } modcp_fset_t;
+typedef enum { MODCP_CPU_CP341 = 0, MODCP_CPU_CP441 = 1 } modcp_cpu_model_t; /* job limit 1024 / 450 */
+
+/* Controller memory areas. */
+typedef enum {
+    MODCP_AREA_NONE = 0,
+    MODCP_AREA_I = 1,
+    MODCP_AREA_Q = 2,
+    MODCP_AREA_M = 3,
+    MODCP_AREA_T = 4,
+    MODCP_AREA_C = 5,
+    MODCP_AREA_DB = 6,
+} modcp_area_t;
+
+/* A bit window: Modbus bit addresses from..to (inclusive) map onto area starting at
+ * byte `start` (M, Q, I, DB bytes) or element `start` (T, C, 16 bits each).
+ * For DB windows `db` is the DB number. area == MODCP_AREA_NONE: window unused. */
+typedef struct {
+    uint8_t area;
+    uint16_t from;
+    uint16_t to;
+    uint16_t start;
+    uint16_t db;
+} modcp_bitwin_t;
+
+#define MODCP_COIL_WINDOWS 6  /* FC01/05/15: M, Q, T, C + two DB-bit windows */
+#define MODCP_INPUT_WINDOWS 4 /* FC02: M, I + two DB-bit windows */
+
+typedef struct {
+    uint16_t min;
+    uint16_t max; /* 0 = area not writable */
+} modcp_limit_t;
+
+/* 32-bit register range (003 §4.5): registers from..to map onto DB `db`, one register
+ * = 4 bytes; kind int16 uses DBW (2 bytes) of a 4-byte slot as the manual does. */
+typedef enum { MODCP_R32_INT16 = 0, MODCP_R32_INT32 = 1, MODCP_R32_FLOAT = 2 } modcp_r32_kind_t;
+typedef struct {
+    uint16_t from;
+    uint16_t to;
+    uint16_t db;
+} modcp_r32range_t;
+
+/* An operand a scanner register points at (word operands: MW, IW, QW, DBn.DBWm, T, C). */
+typedef struct {
+    uint8_t area;    /* modcp_area_t; NONE = unused entry */
+    uint16_t db;     /* DB number for MODCP_AREA_DB */
+    uint16_t offset; /* byte offset (M, I, Q, DB) or element number (T, C) */
+} modcp_operand_ref_t;
+
+#define MODCP_SCANNER_MAX 16
+#define MODCP_ID_STRING_MAX 16
+
+typedef struct {
+    /* character frame */
+    uint32_t baud;      /* 300 ... 115200 */
+    uint8_t data_bits;  /* RTU 8; ASCII 7 (8 allowed) */
+    uint8_t parity;     /* modcp_parity_t */
+    uint8_t stop_bits;  /* 1, 2 */
+    /* protocol */
+    uint8_t slave_addr; /* 1 ... 255 */
+    uint8_t framing;    /* modcp_framing_t */
+    uint8_t opmode;     /* modcp_opmode_t */
+    uint8_t f_mul;      /* 1 ... 10 */
+    uint8_t eof_timing; /* modcp_eof_timing_t */
+    uint8_t t15_check;  /* 0 off, 1 on */
+    uint16_t ascii_timeout_ms; /* 1 ... 6500 */
+    /* interface */
+    uint8_t iface;            /* modcp_iface_t */
+    uint16_t turnaround_ms;   /* RS485: delay before the reply, 0 ... 100 */
+    uint8_t rs232_auto;       /* RS232 automatic secondary signals: 0 off, 1 on */
+    uint16_t rts_on_delay_ms; /* data output waiting time (RTS on -> CTS expected) */
+    uint16_t rts_off_delay_ms; /* time to RTS off after the last character */
+    /* mapping */
+    modcp_bitwin_t coils[MODCP_COIL_WINDOWS];   /* FC01/05/15 */
+    modcp_bitwin_t inputs[MODCP_INPUT_WINDOWS]; /* FC02 */
+    uint16_t hr_base_db; /* FC03/06/16, 1 ... 65535 */
+    uint16_t ir_base_db; /* FC04, 1 ... 65535 */
+    uint8_t regs32;      /* 32-bit registers on (replaces the DB offset scheme of FC03/06/16) */
+    modcp_r32range_t r32[3]; /* indexed by modcp_r32_kind_t */
+    /* write limits */
+    modcp_limit_t lim_db; /* resulting DB numbers */
+    modcp_limit_t lim_m;  /* flag bytes */
+    modcp_limit_t lim_q;  /* output bytes */
+    /* function set and CPU link */
+    uint8_t fset;           /* modcp_fset_t */
+    uint8_t cpu_model;      /* modcp_cpu_model_t */
+    uint16_t job_limit;     /* bytes per CPU job; 0 = the model's limit (1024 / 450) */
+    uint16_t cpu_timeout_ms; /* CPU job timeout */
+    uint16_t start_time_ms;  /* FB init time (START_TIME) */
+    uint16_t commloss_ms;    /* 0 off, 100 ... 30000 */
+    /* indirection scanner (extended set) */
+    uint16_t scan_start; /* first scanner register address */
+    uint8_t scan_count;  /* 0 = off, 1 ... 16 */
+    modcp_operand_ref_t scan[MODCP_SCANNER_MAX];
+    /* device identification (extended set), NUL-terminated */
+    char vendor[MODCP_ID_STRING_MAX + 1];
+    char product[MODCP_ID_STRING_MAX + 1];
+    char revision[MODCP_ID_STRING_MAX + 1];
+    char app_name[MODCP_ID_STRING_MAX + 1];
+} modcp_params_t;
+
+/* Field identifiers, used in validation issues so tools can name section/key. */
+typedef enum {
+    MODCP_PF_RECORD = 0,
+    MODCP_PF_BAUD,
+    MODCP_PF_DATA_BITS,
+    MODCP_PF_PARITY,
+    MODCP_PF_STOP_BITS,
+    MODCP_PF_SLAVE_ADDR,
+    MODCP_PF_FRAMING,
+    MODCP_PF_OPMODE,
+    MODCP_PF_FMUL,
+    MODCP_PF_EOF_TIMING,
+    MODCP_PF_T15_CHECK,
+    MODCP_PF_ASCII_TIMEOUT,
+    MODCP_PF_IFACE,
+    MODCP_PF_TURNAROUND,
+    MODCP_PF_RS232_AUTO,
+    MODCP_PF_RTS_ON_DELAY,
+    MODCP_PF_RTS_OFF_DELAY,
+    MODCP_PF_COILS,  /* index = window */
+    MODCP_PF_INPUTS, /* index = window */
+    MODCP_PF_HR_BASE,
+    MODCP_PF_IR_BASE,
+    MODCP_PF_REGS32,
+    MODCP_PF_R32,    /* index = kind */
+    MODCP_PF_LIM_DB,
+    MODCP_PF_LIM_M,
+    MODCP_PF_LIM_Q,
+    MODCP_PF_FSET,
+    MODCP_PF_CPU_MODEL,
+    MODCP_PF_JOB_LIMIT,
+    MODCP_PF_CPU_TIMEOUT,
+    MODCP_PF_START_TIME,
+    MODCP_PF_COMMLOSS,
+    MODCP_PF_SCANNER, /* index = entry, 0xFF = start/count */
+    MODCP_PF_ID_STRING,
+    MODCP_PF_COUNT
+} modcp_param_field_t;
+
+typedef struct {
+    uint8_t field;       /* modcp_param_field_t */
+    uint8_t index;       /* window / range / entry index where the field is an array */
+    modcp_event_t event; /* the manual's event, e.g. MODCP_EV_SLAVE_ADDR */
+    bool fatal;          /* true: CP stays not ready; false: corrected (e.g. f_MUL -> 1) */
+    uint32_t value;      /* the offending value */
+} modcp_param_issue_t;
+
+/* Defaults of SPEC §2 (no mapping windows, all writes disabled). */
+void modcp_params_defaults(modcp_params_t *p);
+
+/* Validate. Writes up to max issues to out (may be NULL with max 0) and returns the
+ * total number of issues found. Never modifies p. */
+size_t modcp_params_validate(const modcp_params_t *p, modcp_param_issue_t *out, size_t max);
+
+/* Validate and make the effective copy: corrects non-fatal fields (f_MUL -> 1, ASCII
+ * timeout -> 1000 ms). Returns the first fatal event, or MODCP_EV_NONE when usable;
+ * *first_warning (may be NULL) receives the first non-fatal event. */
+modcp_event_t modcp_params_apply(const modcp_params_t *in, modcp_params_t *out,
+                                 modcp_event_t *first_warning);
+
+/* Serialise to buf (cap bytes). Returns the record length, or 0 if cap is too small. */
+size_t modcp_params_encode(const modcp_params_t *p, uint8_t *buf, size_t cap);
+
+/* Parse a record. Returns MODCP_EV_NONE or MODCP_EV_PARAM_RECORD (bad magic, version,
+ * length or CRC); p is fully written only on success. Does not validate field values. */
+modcp_event_t modcp_params_decode(const uint8_t *buf, size_t len, modcp_params_t *p);
+
+/* Effective CPU job limit in bytes (job_limit or the model's 1024 / 450). */
+uint16_t modcp_params_job_limit(const modcp_params_t *p);
+
+/* End-of-frame gap in microseconds for RTU (manual table x f_MUL, or the Modbus rule). */
+uint32_t modcp_params_t35_us(const modcp_params_t *p);
+/* t1.5 in microseconds (1.5 character times of 11 bits; 750 us above 19200 baud). */
+uint32_t modcp_params_t15_us(const modcp_params_t *p);
+/* One character time in microseconds (start + data + parity + stop bits). */
+uint32_t modcp_params_char_us(const modcp_params_t *p);
+
+#endif

@@ -1,0 +1,55 @@
+/* modcp — PDU engine: decode and validate requests, decide between an immediate reply
+ * (FC08, exceptions), a CPU job, or silence (broadcast); encode replies. */
+#ifndef MODCP_PDU_H
+#define MODCP_PDU_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "modcp/backplane.h"
+#include "modcp/diag.h"
+#include "modcp/map.h"
+#include "modcp/params.h"
+
+typedef enum {
+    MODCP_PDU_NO_REPLY = 0, /* nothing to send (broadcast, silent discard) */
+    MODCP_PDU_REPLY,        /* reply PDU ready in place, length in *out_len */
+    MODCP_PDU_JOB,          /* start the job in s->job (see wdata / rdata) */
+} modcp_pdu_action_t;
+
+/* What the engine reads from the CP. */
+typedef struct {
+    const modcp_params_t *p;
+    const modcp_areas_t *areas;
+    modcp_diag_t *diag;
+    bool fb_ready; /* CPU side initialised */
+} modcp_pdu_env_t;
+
+typedef struct {
+    /* the request in progress */
+    uint8_t fc;
+    bool broadcast;
+    uint16_t addr;
+    uint16_t qty;
+    uint8_t shift;       /* FC01/02: bit offset of the first bit in the first byte read */
+    uint8_t r32_kind;    /* 32-bit scheme: modcp_r32_kind_t + 1, 0 = 16-bit */
+    modcp_bp_job_t job;  /* the job to run for MODCP_PDU_JOB */
+    const uint8_t *wdata; /* job write data (inside the request) */
+    uint8_t *rdata;      /* where the job's read data must land (inside the PDU buffer) */
+    uint16_t rcap;
+} modcp_pdu_t;
+
+/* Handle a request PDU (pdu[0] = function code) received for addr (0 = broadcast).
+ * The buffer has room for cap bytes of reply PDU; replies are written in place. */
+modcp_pdu_action_t modcp_pdu_request(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t addr,
+                                     uint8_t *pdu, uint16_t len, uint16_t cap, uint16_t *out_len);
+
+/* The job started for the current request finished with ev (NONE = success; rlen
+ * data bytes landed at s->rdata). Encodes the reply or exception 04. */
+modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env,
+                                      modcp_event_t ev, uint8_t *pdu, uint16_t *out_len);
+
+/* Encode an exception reply for fc with code; returns the PDU length (2). */
+uint16_t modcp_pdu_exception(uint8_t *pdu, uint8_t fc, uint8_t code);
+
+#endif

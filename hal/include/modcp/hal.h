@@ -1,0 +1,41 @@
+/* modcp — the hardware abstraction the core sees. A port implements these callbacks
+ * (one struct, one context pointer) and feeds the core's event functions from its
+ * interrupts: modcp_cp_on_rx(), modcp_cp_on_line_error(), modcp_cp_on_timer(),
+ * modcp_cp_on_tx_done() and modcp_cp_poll() (see modcp/cp.h). Time is always passed
+ * in by the port (microseconds, free-running, wrapping at 2^32). */
+#ifndef MODCP_HAL_H
+#define MODCP_HAL_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+/* Line errors reported with a received character (or alone for BREAK). */
+enum {
+    MODCP_LINE_PARITY = 0x01,
+    MODCP_LINE_FRAMING = 0x02,
+    MODCP_LINE_OVERRUN = 0x04,
+    MODCP_LINE_BREAK = 0x08,
+};
+
+typedef enum { MODCP_LED_SF = 0, MODCP_LED_TXD = 1, MODCP_LED_RXD = 2 } modcp_led_t;
+
+typedef enum { MODCP_SIG_RTS = 0, MODCP_SIG_DTR = 1 } modcp_signal_t;
+
+typedef struct modcp_hal {
+    void *ctx;
+    /* Start sending len bytes. buf stays valid and unchanged until the port calls
+     * modcp_cp_on_tx_done(), which it must do when the last stop bit has left the
+     * shift register (transmission complete), not when the data register empties. */
+    void (*uart_tx)(void *ctx, const uint8_t *buf, uint16_t len);
+    /* Arm the one-shot timer to call modcp_cp_on_timer() after `us` microseconds,
+     * replacing any armed one; us == 0 disarms. */
+    void (*timer_arm)(void *ctx, uint32_t us);
+    /* RS485 driver enable (DE). May be NULL (RS232 / RS422). */
+    void (*set_de)(void *ctx, bool on);
+    /* LEDs SF / TXD / RXD. May be NULL. */
+    void (*set_led)(void *ctx, modcp_led_t led, bool on);
+    /* RS232 output signals RTS / DTR. May be NULL. */
+    void (*set_signal)(void *ctx, modcp_signal_t sig, bool on);
+} modcp_hal_t;
+
+#endif

@@ -1,0 +1,3 @@
+/* keeps the support library non-empty */
+int modcp_test_support_empty(void);
+int modcp_test_support_empty(void) { return 0; }
