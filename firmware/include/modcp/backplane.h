@@ -58,10 +58,32 @@ typedef struct {
     _Atomic uint32_t tail; /* consumer: blocks acknowledged */
 } modcp_ring_t;
 
+/* CP status area: published by the CP side (seqlock), read by the CPU side, so the
+ * user program sees the CP's state and diagnostics without touching the CP. */
+enum {
+    MODCP_CPST_CONFIGURED = 0x0001, /* valid parameters applied */
+    MODCP_CPST_READY = 0x0002,      /* configured and FB initialised */
+    MODCP_CPST_SF = 0x0004,         /* group error LED */
+    MODCP_CPST_COMMLOSS = 0x0008,   /* comm-loss supervision expired */
+    MODCP_CPST_LISTEN_ONLY = 0x0010, /* FC08 sub 04 listen-only mode */
+};
+
+typedef struct {
+    uint32_t flags;        /* MODCP_CPST_* */
+    uint32_t events_total; /* events since start (changes whenever an event is added) */
+    modcp_event_t buffer[9]; /* diagnostic buffer, newest first */
+    uint8_t buffer_len;
+    uint16_t status;        /* STATUS word of the last event */
+    uint16_t counters[8];   /* Modbus serial-line counters (modcp_counter_t order) */
+    modcp_event_t param_event; /* why the CP is not configured (NONE if it is) */
+} modcp_cp_status_t;
+
 typedef struct {
     modcp_ring_t to_cpu;       /* CP -> CPU */
     modcp_ring_t to_cp;        /* CPU -> CP */
     _Atomic uint32_t abort_tag; /* tag of the last job the CP gave up on (0x100 = none) */
+    _Atomic uint32_t status_seq; /* seqlock: odd while the CP writes `status` */
+    modcp_cp_status_t status;
 } modcp_backplane_t;
 
 /* Job operations. */
@@ -97,6 +119,11 @@ typedef struct {
 } modcp_bp_ack_t;
 
 void modcp_bp_init(modcp_backplane_t *bp);
+
+/* CP side: publish the status area. */
+void modcp_bp_publish_status(modcp_backplane_t *bp, const modcp_cp_status_t *st);
+/* CPU side: read a consistent copy; false if the CP was writing (try again). */
+bool modcp_bp_read_status(const modcp_backplane_t *bp, modcp_cp_status_t *out);
 
 /* Producer side: publish one block (seq is filled in from *seq, which is then
  * incremented). Returns false (nothing written) when the ring is full. */

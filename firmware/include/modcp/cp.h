@@ -23,7 +23,6 @@
 #include "modcp/params.h"
 #include "modcp/pdu.h"
 
-#define MODCP_CP_BUF (MODCP_PARAMS_RECORD_MAX > MODCP_ADU_MAX ? MODCP_PARAMS_RECORD_MAX : MODCP_ADU_MAX)
 
 typedef struct modcp_cp {
     const modcp_hal_t *hal;
@@ -39,9 +38,14 @@ typedef struct modcp_cp {
     modcp_pdu_t pdu;
     modcp_job_t job;
     modcp_frame_t frame; /* request being processed */
-    bool ack_pending;
+    bool request_pending; /* a request waits for its job */
+    bool ack_pending;     /* an INIT_ACK could not be sent yet */
+    uint32_t status_flags; /* extra MODCP_CPST_* flags (comm loss, listen only) */
+    bool published;
+    modcp_cp_status_t last_status; /* what was last published on the backplane */
     modcp_event_t ack_event;
-    uint8_t buf[MODCP_CP_BUF]; /* frame buffer; holds the PARAMS record while it arrives */
+    uint8_t buf[MODCP_ADU_MAX];                /* frame buffer: request, then reply */
+    uint8_t record[MODCP_PARAMS_RECORD_MAX];   /* PARAMS record as it arrives */
 } modcp_cp_t;
 
 void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp);

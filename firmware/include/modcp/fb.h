@@ -91,6 +91,7 @@ typedef struct {
     bool reply_hdr_sent;
     uint32_t jobs_done;
     uint8_t buf[MODCP_FB_JOB_MAX];
+    modcp_event_t init_event; /* last event the CP answered INIT with (ERROR_INFO of 2) */
 } modcp_fb_t;
 
 void modcp_fb_init(modcp_fb_t *fb, modcp_backplane_t *bp, modcp_plcmem_t *mem,

@@ -50,6 +50,8 @@ typedef struct {
     bool rs485;
     uint32_t t35_us;
     uint32_t t15_us;  /* 0 = no t1.5 check */
+    uint32_t char_us; /* one character time; byte timestamps are character ends, so the
+                         silence between two bytes is their distance minus char_us */
     uint32_t turnaround_us;
     uint32_t ascii_timeout_us;
     bool enabled;     /* configured; a disabled link ignores the line */
@@ -91,6 +93,8 @@ void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us);
 
 /* RTU / ASCII framing internals, called by link.c (not for other modules). */
 void modcp_rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
+/* A line error in place of a character (counted and reported by link.c). */
+void modcp_rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
 bool modcp_rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f);
 uint16_t modcp_rtu_encode(modcp_link_t *l, uint16_t pdu_len);
 

@@ -15,7 +15,7 @@
 #include "modcp/events.h"
 
 #define MODCP_PARAMS_VERSION 1u
-#define MODCP_PARAMS_RECORD_MAX 512u /* upper bound of the serialised record */
+#define MODCP_PARAMS_RECORD_MAX 400u /* upper bound of the serialised record */
 
 typedef enum { MODCP_PARITY_NONE = 0, MODCP_PARITY_ODD = 1, MODCP_PARITY_EVEN = 2 } modcp_parity_t;
 typedef enum { MODCP_FRAMING_RTU = 0, MODCP_FRAMING_ASCII = 1 } modcp_framing_t;
@@ -55,8 +55,9 @@ typedef struct {
     uint16_t max; /* 0 = area not writable */
 } modcp_limit_t;
 
-/* 32-bit register range (003 §4.5): registers from..to map onto DB `db`, one register
- * = 4 bytes; kind int16 uses DBW (2 bytes) of a 4-byte slot as the manual does. */
+/* 32-bit register range (003 §4.5): registers from..to map onto DB `db`; int32 and
+ * float registers are 4 bytes (DBD), int16 registers 2 bytes (DBW), as in the manual's
+ * examples (3050 -> DBW100). */
 typedef enum { MODCP_R32_INT16 = 0, MODCP_R32_INT32 = 1, MODCP_R32_FLOAT = 2 } modcp_r32_kind_t;
 typedef struct {
     uint16_t from;

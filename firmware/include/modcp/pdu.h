@@ -33,6 +33,8 @@ typedef struct {
     uint16_t qty;
     uint8_t shift;       /* FC01/02: bit offset of the first bit in the first byte read */
     uint8_t r32_kind;    /* 32-bit scheme: modcp_r32_kind_t + 1, 0 = 16-bit */
+    uint8_t bitval;      /* FC05: the coil value as a 1-bit write job */
+    uint16_t reply_len;  /* FC06: length of the echo */
     modcp_bp_job_t job;  /* the job to run for MODCP_PDU_JOB */
     const uint8_t *wdata; /* job write data (inside the request) */
     uint8_t *rdata;      /* where the job's read data must land (inside the PDU buffer) */

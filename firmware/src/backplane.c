@@ -1,0 +1,160 @@
+/* modcp — the CPU–CP backplane: two SPSC rings of 32-byte blocks and the message
+ * header (de)serialisers (SPEC §6).
+ *
+ * Ring protocol. head counts the blocks the producer has published, tail the blocks
+ * the consumer has acknowledged; both only grow and wrap at 2^32, the slot of block n
+ * is n % MODCP_BP_DEPTH (a power of two, so the wrap is seamless). Only the producer
+ * writes head and the slot contents, only the consumer writes tail:
+ *   put: read tail (acquire: the consumer is done with the slot), fill the slot,
+ *        publish head + 1 (release: the slot contents become visible with it);
+ *   get: read head (acquire: pairs with the producer's release), copy the slot out,
+ *        acknowledge tail + 1 (release: the slot may now be reused).
+ *
+ * Header layouts in block data[], all fields little-endian, fixed offsets:
+ *   JOB   (11 bytes)  0 op | 1 area | 2 bit | 3..4 db | 5..6 offset | 7..8 count |
+ *                     9..10 len
+ *   REPLY (6 bytes)   0..1 event | 2..3 error_nr | 4..5 len
+ *   INIT  (14 bytes)  0..1 i_bytes | 2..3 q_bytes | 4..5 m_bytes | 6..7 timers |
+ *                     8..9 counters | 10..11 work_db | 12..13 record_crc
+ *   INIT_ACK (2 bytes) 0..1 event       (written/read by job.c and fb.c)
+ * Decoders accept a longer block (trailing bytes ignored) and refuse a shorter one. */
+#include "modcp/backplane.h"
+
+#include <string.h>
+
+#define BP_JOB_HDR_LEN 11u
+#define BP_REPLY_HDR_LEN 6u
+#define BP_INIT_LEN 14u
+#define BP_NO_ABORT 0x100u
+
+_Static_assert((MODCP_BP_DEPTH & (MODCP_BP_DEPTH - 1u)) == 0u && MODCP_BP_DEPTH > 0u,
+               "MODCP_BP_DEPTH must be a power of two");
+
+void modcp_bp_init(modcp_backplane_t *bp)
+{
+    memset(bp, 0, sizeof *bp);
+    atomic_store_explicit(&bp->to_cpu.head, 0u, memory_order_relaxed);
+    atomic_store_explicit(&bp->to_cpu.tail, 0u, memory_order_relaxed);
+    atomic_store_explicit(&bp->to_cp.head, 0u, memory_order_relaxed);
+    atomic_store_explicit(&bp->to_cp.tail, 0u, memory_order_relaxed);
+    atomic_store_explicit(&bp->abort_tag, BP_NO_ABORT, memory_order_release);
+}
+
+bool modcp_ring_put(modcp_ring_t *r, const modcp_block_t *b, uint8_t *seq)
+{
+    uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
+    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_acquire);
+    if ((uint32_t)(head - tail) >= MODCP_BP_DEPTH) {
+        return false;
+    }
+    modcp_block_t *slot = &r->slot[head & (MODCP_BP_DEPTH - 1u)];
+    *slot = *b;
+    slot->seq = *seq;
+    *seq = (uint8_t)(*seq + 1u);
+    atomic_store_explicit(&r->head, head + 1u, memory_order_release);
+    return true;
+}
+
+bool modcp_ring_get(modcp_ring_t *r, modcp_block_t *b)
+{
+    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_relaxed);
+    uint32_t head = atomic_load_explicit(&r->head, memory_order_acquire);
+    if (head == tail) {
+        return false;
+    }
+    *b = r->slot[tail & (MODCP_BP_DEPTH - 1u)];
+    atomic_store_explicit(&r->tail, tail + 1u, memory_order_release);
+    return true;
+}
+
+uint32_t modcp_ring_space(const modcp_ring_t *r)
+{
+    uint32_t head = atomic_load_explicit(&r->head, memory_order_acquire);
+    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_acquire);
+    uint32_t used = head - tail;
+    return used >= MODCP_BP_DEPTH ? 0u : MODCP_BP_DEPTH - used;
+}
+
+static void put16(uint8_t *d, uint16_t v)
+{
+    d[0] = (uint8_t)(v & 0xFFu);
+    d[1] = (uint8_t)(v >> 8);
+}
+
+static uint16_t get16(const uint8_t *d)
+{
+    return (uint16_t)((unsigned)d[0] | ((unsigned)d[1] << 8));
+}
+
+uint8_t modcp_bp_job_encode(const modcp_bp_job_t *j, uint8_t *d)
+{
+    d[0] = j->op;
+    d[1] = j->opnd.area;
+    d[2] = j->opnd.bit;
+    put16(d + 3, j->opnd.db);
+    put16(d + 5, j->opnd.offset);
+    put16(d + 7, j->opnd.count);
+    put16(d + 9, j->len);
+    return (uint8_t)BP_JOB_HDR_LEN;
+}
+
+bool modcp_bp_job_decode(const uint8_t *d, uint8_t len, modcp_bp_job_t *j)
+{
+    if (len < BP_JOB_HDR_LEN) {
+        return false;
+    }
+    j->op = d[0];
+    j->opnd.area = d[1];
+    j->opnd.bit = d[2];
+    j->opnd.db = get16(d + 3);
+    j->opnd.offset = get16(d + 5);
+    j->opnd.count = get16(d + 7);
+    j->len = get16(d + 9);
+    return true;
+}
+
+uint8_t modcp_bp_reply_encode(const modcp_bp_reply_t *r, uint8_t *d)
+{
+    put16(d, r->event);
+    put16(d + 2, r->error_nr);
+    put16(d + 4, r->len);
+    return (uint8_t)BP_REPLY_HDR_LEN;
+}
+
+bool modcp_bp_reply_decode(const uint8_t *d, uint8_t len, modcp_bp_reply_t *r)
+{
+    if (len < BP_REPLY_HDR_LEN) {
+        return false;
+    }
+    r->event = get16(d);
+    r->error_nr = get16(d + 2);
+    r->len = get16(d + 4);
+    return true;
+}
+
+uint8_t modcp_bp_init_encode(const modcp_bp_init_t *i, uint8_t *d)
+{
+    put16(d, i->areas.i_bytes);
+    put16(d + 2, i->areas.q_bytes);
+    put16(d + 4, i->areas.m_bytes);
+    put16(d + 6, i->areas.timers);
+    put16(d + 8, i->areas.counters);
+    put16(d + 10, i->areas.work_db);
+    put16(d + 12, i->record_crc);
+    return (uint8_t)BP_INIT_LEN;
+}
+
+bool modcp_bp_init_decode(const uint8_t *d, uint8_t len, modcp_bp_init_t *i)
+{
+    if (len < BP_INIT_LEN) {
+        return false;
+    }
+    i->areas.i_bytes = get16(d);
+    i->areas.q_bytes = get16(d + 2);
+    i->areas.m_bytes = get16(d + 4);
+    i->areas.timers = get16(d + 6);
+    i->areas.counters = get16(d + 8);
+    i->areas.work_db = get16(d + 10);
+    i->record_crc = get16(d + 12);
+    return true;
+}

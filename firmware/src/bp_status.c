@@ -1,0 +1,26 @@
+/* modcp — the CP status area on the backplane: a single-writer seqlock. The CP side
+ * publishes, the CPU side copies; neither ever waits for the other. */
+#include <string.h>
+
+#include "modcp/backplane.h"
+
+void modcp_bp_publish_status(modcp_backplane_t *bp, const modcp_cp_status_t *st)
+{
+    uint32_t seq = atomic_load_explicit(&bp->status_seq, memory_order_relaxed);
+    atomic_store_explicit(&bp->status_seq, seq + 1u, memory_order_relaxed);
+    atomic_thread_fence(memory_order_release);
+    memcpy(&bp->status, st, sizeof *st);
+    atomic_store_explicit(&bp->status_seq, seq + 2u, memory_order_release);
+}
+
+bool modcp_bp_read_status(const modcp_backplane_t *bp, modcp_cp_status_t *out)
+{
+    uint32_t s1 = atomic_load_explicit(&bp->status_seq, memory_order_acquire);
+    if ((s1 & 1u) != 0u) {
+        return false;
+    }
+    memcpy(out, &bp->status, sizeof *out);
+    atomic_thread_fence(memory_order_acquire);
+    uint32_t s2 = atomic_load_explicit(&bp->status_seq, memory_order_relaxed);
+    return s1 == s2;
+}

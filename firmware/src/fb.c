@@ -1,0 +1,379 @@
+/* modcp — the CPU side's communication FB (FB 80 / FB 180 model, 004 §4, §7.6).
+ *
+ * One call per CPU cycle does, in this order:
+ *   1. CP_START edge: clear the outputs and start the initialisation (PARAMS + INIT);
+ *   2. continue pushing a pending REPLY (as many blocks as fit);
+ *   3. read CP blocks: INIT_ACK while waiting for it, JOB blocks into buf; a job whose
+ *      LAST block is in is executed at once, completely, inside this call (no new
+ *      blocks are read while a reply is still going out, buf holds its data);
+ *   4. initialisation: START_TIME check, retry every MODCP_FB_RETRY_MS while the CP
+ *      answers "not ready" or is silent, push PARAMS then INIT.
+ *
+ * Consistency guarantee (SPEC §6): a job is executed only when all of its blocks are
+ * in, and in a single call, so with the CPU executing the user program and the FB in
+ * one thread the whole job — not only each 32-byte block — is consistent.
+ *
+ * Job validation by the FB (004 §7.6), replied as (0E)57H + ERROR_NR and shown on
+ * ERROR_NR / ERROR_INFO (they stay until the next CP_START edge):
+ *   10 unknown op (INFO = op) · 12 count or len 0 (INFO = count) · 13 len above
+ *   MODCP_FB_JOB_MAX, or fewer data bytes than the bit count needs (INFO = len / count)
+ *   · 18 area not allowed for the op: READ I Q M T C DB, WRITE Q M DB, BITWRITE M Q DB
+ *   (INFO 0) · 11 BITWRITE start bit > 7 (INFO = start byte) · 14 / 15 BITWRITE past
+ *   the end of M / Q (INFO = last byte addressed).
+ * Other replies: (0E)56H FB not in RUN, (0E)3AH BITWRITE with the work DB missing,
+ * (0E)38H / (0E)39H from plcmem, (0E)33H write data not as announced. A job whose tag
+ * is the backplane's abort_tag was given up by the CP: neither executed nor answered. */
+#include "modcp/fb.h"
+
+#include <stddef.h>
+#include <string.h>
+
+#include "modcp/crc.h"
+
+void modcp_fb_init(modcp_fb_t *fb, modcp_backplane_t *bp, modcp_plcmem_t *mem,
+                   const uint8_t *record, uint16_t record_len, uint16_t work_db,
+                   uint32_t start_time_ms)
+{
+    memset(fb, 0, sizeof *fb);
+    fb->bp = bp;
+    fb->mem = mem;
+    fb->record = record;
+    fb->record_len = record != NULL ? record_len : 0u;
+    fb->work_db = work_db;
+    fb->start_time_ms = start_time_ms;
+    fb->state = MODCP_FBST_STOPPED;
+    fb->params_pending = fb->record_len > 0u; /* the CPU sends the CP parameters at start */
+}
+
+static bool put_block(modcp_fb_t *fb, uint8_t kind, uint8_t flags, uint8_t tag,
+                      const uint8_t *data, uint8_t len)
+{
+    modcp_block_t b;
+    memset(&b, 0, sizeof b);
+    if (len > 0u) {
+        memcpy(b.data, data, len);
+    }
+    b.len = len;
+    b.kind = kind;
+    b.flags = flags;
+    b.tag = tag;
+    return modcp_ring_put(&fb->bp->to_cp, &b, &fb->tx_seq);
+}
+
+/* ---- replies ---------------------------------------------------------------------- */
+
+static void pump_reply(modcp_fb_t *fb)
+{
+    while (fb->reply_pending) {
+        if (!fb->reply_hdr_sent) {
+            uint8_t d[MODCP_BLOCK_SIZE];
+            uint8_t n = modcp_bp_reply_encode(&fb->reply, d);
+            bool last = fb->reply.len == 0u;
+            uint8_t flags = (uint8_t)(MODCP_BLK_FIRST | (last ? MODCP_BLK_LAST : 0u));
+            if (!put_block(fb, MODCP_BP_REPLY, flags, fb->job_tag, d, n)) {
+                return;
+            }
+            fb->reply_hdr_sent = true;
+            fb->reply_pos = 0;
+            if (last) {
+                fb->reply_pending = false;
+            }
+            continue;
+        }
+        uint32_t rest = (uint32_t)fb->reply.len - fb->reply_pos;
+        uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
+        bool last = n == rest;
+        if (!put_block(fb, MODCP_BP_REPLY, last ? MODCP_BLK_LAST : 0u, fb->job_tag,
+                       fb->buf + fb->reply_pos, n)) {
+            return;
+        }
+        fb->reply_pos = (uint16_t)(fb->reply_pos + n);
+        if (last) {
+            fb->reply_pending = false;
+        }
+    }
+}
+
+static void reply(modcp_fb_t *fb, modcp_event_t ev, uint16_t error_nr, uint16_t len)
+{
+    fb->reply.event = ev;
+    fb->reply.error_nr = error_nr;
+    fb->reply.len = ev == MODCP_EV_NONE ? len : 0u;
+    fb->reply_pos = 0;
+    fb->reply_hdr_sent = false;
+    fb->reply_pending = true;
+    fb->jobs_done++;
+}
+
+static void reply_fb_error(modcp_fb_t *fb, uint16_t error_nr, uint32_t info)
+{
+    fb->out.error_nr = error_nr;
+    fb->out.error_info = (uint16_t)(info > 0xFFFFu ? 0xFFFFu : info);
+    reply(fb, MODCP_EV_FB_ERROR, error_nr, 0);
+}
+
+/* ---- job execution ---------------------------------------------------------------- */
+
+static bool area_allowed(uint8_t op, uint8_t area)
+{
+    switch (area) {
+    case MODCP_AREA_Q:
+    case MODCP_AREA_M:
+    case MODCP_AREA_DB:
+        return true;
+    case MODCP_AREA_I:
+    case MODCP_AREA_T:
+    case MODCP_AREA_C:
+        return op == MODCP_JOB_READ;
+    default:
+        return false;
+    }
+}
+
+static void exec_bitwrite(modcp_fb_t *fb)
+{
+    const modcp_operand_t *o = &fb->job.opnd;
+    if (o->bit > 7u) {
+        reply_fb_error(fb, MODCP_FB_ERR_START, o->offset);
+        return;
+    }
+    if (fb->job.len < ((uint32_t)o->count + 7u) / 8u) {
+        reply_fb_error(fb, MODCP_FB_ERR_AMOUNT, o->count);
+        return;
+    }
+    uint32_t end = (uint32_t)o->offset + ((uint32_t)o->bit + o->count - 1u) / 8u;
+    if (o->area == MODCP_AREA_M && end >= fb->mem->m_size) {
+        reply_fb_error(fb, MODCP_FB_ERR_M_END, end);
+        return;
+    }
+    if (o->area == MODCP_AREA_Q && end >= fb->mem->q_size) {
+        reply_fb_error(fb, MODCP_FB_ERR_Q_END, end);
+        return;
+    }
+    modcp_event_t ev = modcp_plcmem_write_bits(fb->mem, o, fb->buf);
+    if (ev == MODCP_EV_NONE) {
+        fb->out.cp_start_ndr = true;
+    }
+    reply(fb, ev, 0, 0);
+}
+
+static void execute(modcp_fb_t *fb)
+{
+    if (atomic_load_explicit(&fb->bp->abort_tag, memory_order_acquire) == (uint32_t)fb->job_tag) {
+        return; /* the CP timed out on this job: nothing is written, nobody waits */
+    }
+    if (fb->state != MODCP_FBST_RUN) {
+        reply(fb, MODCP_EV_FB_NOT_RUNNING, 0, 0);
+        return;
+    }
+    const modcp_bp_job_t *jb = &fb->job;
+    uint8_t op = jb->op;
+    if (op != MODCP_JOB_READ && op != MODCP_JOB_WRITE && op != MODCP_JOB_BITWRITE) {
+        reply_fb_error(fb, MODCP_FB_ERR_PROC_CODE, op);
+        return;
+    }
+    if (op == MODCP_JOB_BITWRITE && fb->work_db != 0u &&
+        modcp_plcmem_db(fb->mem, fb->work_db) == NULL) {
+        reply(fb, MODCP_EV_WORK_DB, 0, 0); /* the job cannot be placed in the work area */
+        return;
+    }
+    if (jb->opnd.count == 0u || jb->len == 0u) {
+        reply_fb_error(fb, MODCP_FB_ERR_AMOUNT0, jb->opnd.count);
+        return;
+    }
+    if (jb->len > MODCP_FB_JOB_MAX) {
+        reply_fb_error(fb, MODCP_FB_ERR_AMOUNT, jb->len);
+        return;
+    }
+    uint16_t expect = op == MODCP_JOB_READ ? 0u : jb->len;
+    if (fb->job_pos != expect) {
+        reply(fb, MODCP_EV_XFER_STATE, 0, 0); /* data not as announced: execute nothing */
+        return;
+    }
+    if (!area_allowed(op, jb->opnd.area)) {
+        reply_fb_error(fb, MODCP_FB_ERR_AREA, 0);
+        return;
+    }
+    modcp_event_t ev;
+    switch (op) {
+    case MODCP_JOB_READ:
+        ev = modcp_plcmem_read(fb->mem, &jb->opnd, fb->buf, jb->len);
+        reply(fb, ev, 0, jb->len);
+        break;
+    case MODCP_JOB_WRITE:
+        ev = modcp_plcmem_write(fb->mem, &jb->opnd, fb->buf, jb->len);
+        if (ev == MODCP_EV_NONE) {
+            fb->out.cp_start_ndr = true;
+        }
+        reply(fb, ev, 0, 0);
+        break;
+    default:
+        exec_bitwrite(fb);
+        break;
+    }
+}
+
+/* A JOB block; true when the job is complete (LAST block in). */
+static bool rx_job(modcp_fb_t *fb, const modcp_block_t *b)
+{
+    if ((b->flags & MODCP_BLK_FIRST) != 0u) {
+        modcp_bp_job_t h;
+        if (!modcp_bp_job_decode(b->data, b->len, &h)) {
+            fb->job_active = false;
+            return false;
+        }
+        fb->job = h;
+        fb->job_tag = b->tag;
+        fb->job_pos = 0;
+        fb->job_active = true;
+    } else {
+        if (!fb->job_active || b->tag != fb->job_tag) {
+            return false; /* remainder of a job we never saw the start of */
+        }
+        uint32_t cap = fb->job.len < MODCP_FB_JOB_MAX ? fb->job.len : MODCP_FB_JOB_MAX;
+        if (fb->job_pos < cap) {
+            uint32_t n = cap - fb->job_pos;
+            if (b->len < n) {
+                n = b->len;
+            }
+            memcpy(fb->buf + fb->job_pos, b->data, n);
+        }
+        uint32_t total = (uint32_t)fb->job_pos + b->len; /* count all, store what fits */
+        fb->job_pos = (uint16_t)(total > 0xFFFFu ? 0xFFFFu : total);
+    }
+    if ((b->flags & MODCP_BLK_LAST) == 0u) {
+        return false;
+    }
+    fb->job_active = false;
+    return true;
+}
+
+static void rx_blocks(modcp_fb_t *fb)
+{
+    modcp_block_t b;
+    while (!fb->reply_pending && modcp_ring_get(&fb->bp->to_cpu, &b)) {
+        if (fb->rx_synced && b.seq != fb->rx_seq) {
+            fb->job_active = false; /* a block went missing: never execute that job */
+        }
+        fb->rx_synced = true;
+        fb->rx_seq = (uint8_t)(b.seq + 1u);
+        if (b.len > MODCP_BLOCK_SIZE) {
+            fb->job_active = false;
+            continue;
+        }
+        if (b.kind == MODCP_BP_INIT_ACK) {
+            if (fb->state == MODCP_FBST_INIT_WAIT) {
+                modcp_event_t ev = b.len >= 2u
+                                       ? (modcp_event_t)((unsigned)b.data[0] |
+                                                         ((unsigned)b.data[1] << 8))
+                                       : MODCP_EV_XFER_STATE;
+                if (ev == MODCP_EV_NONE) {
+                    fb->state = MODCP_FBST_RUN;
+                    fb->out.cp_start_ok = true;
+                    fb->out.cp_start_error = false;
+                } else {
+                    fb->init_event = ev; /* not ready: retried on the next interval */
+                }
+            }
+        } else if (b.kind == MODCP_BP_JOB) {
+            if (rx_job(fb, &b)) {
+                execute(fb);
+                pump_reply(fb);
+            }
+        }
+        /* PARAMS / INIT / REPLY travel the other way: ignored */
+    }
+}
+
+/* ---- initialisation --------------------------------------------------------------- */
+
+static void start_attempt(modcp_fb_t *fb, uint32_t now_ms)
+{
+    fb->state = MODCP_FBST_INIT_SEND;
+    fb->params_pending = fb->record_len > 0u;
+    fb->params_pos = 0;
+    fb->init_sent = false;
+    fb->retry_t0_ms = now_ms;
+}
+
+/* Push PARAMS blocks; true when the whole record is out. */
+static bool push_params(modcp_fb_t *fb)
+{
+    while (fb->params_pending) {
+        uint32_t rest = (uint32_t)fb->record_len - fb->params_pos;
+        uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
+        bool last = n == rest;
+        uint8_t flags = (uint8_t)((fb->params_pos == 0u ? MODCP_BLK_FIRST : 0u) |
+                                  (last ? MODCP_BLK_LAST : 0u));
+        if (!put_block(fb, MODCP_BP_PARAMS, flags, 0, fb->record + fb->params_pos, n)) {
+            return false;
+        }
+        fb->params_pos = (uint16_t)(fb->params_pos + n);
+        if (last) {
+            fb->params_pending = false;
+        }
+    }
+    return true;
+}
+
+static void send_init(modcp_fb_t *fb)
+{
+    modcp_bp_init_t init;
+    modcp_plcmem_areas(fb->mem, &init.areas); /* the real area sizes */
+    init.areas.work_db = fb->work_db;
+    init.record_crc = fb->record_len > 0u ? modcp_crc16(fb->record, fb->record_len) : 0u;
+    uint8_t d[MODCP_BLOCK_SIZE];
+    uint8_t n = modcp_bp_init_encode(&init, d);
+    if (put_block(fb, MODCP_BP_INIT, MODCP_BLK_FIRST | MODCP_BLK_LAST, 0, d, n)) {
+        fb->init_sent = true;
+        fb->state = MODCP_FBST_INIT_WAIT;
+    }
+}
+
+static void run_init(modcp_fb_t *fb, uint32_t now_ms)
+{
+    if (fb->state != MODCP_FBST_INIT_SEND && fb->state != MODCP_FBST_INIT_WAIT) {
+        if (fb->params_pending) {
+            (void)push_params(fb); /* PARAMS of the first call */
+        }
+        return;
+    }
+    if ((uint32_t)(now_ms - fb->init_t0_ms) >= fb->start_time_ms) {
+        fb->state = MODCP_FBST_FAILED;
+        fb->params_pending = false;
+        fb->out.cp_start_ok = false;
+        fb->out.cp_start_error = true;
+        fb->out.error_nr = MODCP_FB_ERR_INIT;
+        fb->out.error_info = fb->init_event;
+        return;
+    }
+    if (fb->state == MODCP_FBST_INIT_WAIT &&
+        (uint32_t)(now_ms - fb->retry_t0_ms) >= MODCP_FB_RETRY_MS) {
+        start_attempt(fb, now_ms);
+    }
+    if (fb->state == MODCP_FBST_INIT_SEND && push_params(fb) && !fb->init_sent) {
+        send_init(fb);
+    }
+}
+
+void modcp_fb_call(modcp_fb_t *fb, const modcp_fb_in_t *in, modcp_fb_out_t *out,
+                   uint32_t now_ms)
+{
+    bool start = in != NULL && in->cp_start;
+    fb->out.cp_start_ndr = false;
+    if (start && !fb->last_start) {
+        memset(&fb->out, 0, sizeof fb->out);
+        fb->init_event = MODCP_EV_NONE;
+        fb->init_t0_ms = now_ms;
+        start_attempt(fb, now_ms);
+    }
+    fb->last_start = start;
+
+    pump_reply(fb);
+    rx_blocks(fb);
+    run_init(fb, now_ms);
+
+    if (out != NULL) {
+        *out = fb->out;
+    }
+}

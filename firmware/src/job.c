@@ -1,0 +1,289 @@
+/* modcp — CP side of the backplane (SPEC §6, 004 §4.6).
+ *
+ * A job goes out as one header block (kind JOB, FIRST, the job's tag, data = the
+ * encoded modcp_bp_job_t; also LAST when no data follows) and ceil(len / 32) data
+ * blocks of 32 bytes (the last one shorter and flagged LAST). Each poll pushes as many
+ * blocks as the ring has room for.
+ *
+ * The header of a new job is only pushed once the CPU-bound ring is empty, i.e. once
+ * the CPU side has consumed every block of the previous job. In normal operation this
+ * costs nothing (the previous job was answered, so it was consumed); after a timeout
+ * it guarantees that at most one job's blocks are ever queued, so the single
+ * abort_tag cancels every job the CP gave up on. Because of that, a new job's tag
+ * that equals abort_tag (255 jobs later) may clear abort_tag safely.
+ *
+ * Incoming blocks: the sequence number is checked (the first block seen syncs, a gap
+ * counts a protocol error and resyncs); REPLY blocks are accepted only with the tag
+ * of the job that is waiting, everything else (stale replies after a timeout) is
+ * dropped. PARAMS / INIT messages from the CPU side are independent of the job and
+ * may interleave with its blocks. */
+#include "modcp/job.h"
+
+#include <stddef.h>
+#include <string.h>
+
+#define JOB_NO_ABORT 0x100u
+
+void modcp_job_init(modcp_job_t *j, modcp_backplane_t *bp, uint8_t *msgbuf, uint16_t msgcap)
+{
+    memset(j, 0, sizeof *j);
+    j->bp = bp;
+    j->msgbuf = msgbuf;
+    j->msgcap = msgbuf != NULL ? msgcap : 0u;
+    j->state = MODCP_JOBST_IDLE;
+}
+
+bool modcp_job_busy(const modcp_job_t *j)
+{
+    return j->state != MODCP_JOBST_IDLE;
+}
+
+modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const uint8_t *wdata,
+                              uint8_t *rbuf, uint16_t rcap, uint16_t limit, uint32_t timeout_us,
+                              uint32_t now_us)
+{
+    if (modcp_job_busy(j)) {
+        return MODCP_EV_INTERNAL_SEND;
+    }
+    if (hdr->len > limit) {
+        return MODCP_EV_JOB_LENGTH;
+    }
+    if (hdr->op == MODCP_JOB_READ) {
+        if (rcap < hdr->len || (rbuf == NULL && hdr->len > 0u)) {
+            return MODCP_EV_JOB_LENGTH;
+        }
+    } else if (wdata == NULL && hdr->len > 0u) {
+        return MODCP_EV_INTERNAL_SEND; /* nothing to send: the caller's mistake */
+    }
+    j->tag = (uint8_t)(j->tag >= 255u ? 1u : j->tag + 1u);
+    j->hdr = *hdr;
+    j->hdr_sent = false;
+    j->wdata = wdata;
+    j->wpos = 0;
+    j->rbuf = rbuf;
+    j->rcap = rbuf != NULL ? rcap : 0u;
+    j->rlen = 0;
+    j->rexpect = 0;
+    j->t0_us = now_us;
+    j->timeout_us = timeout_us;
+    j->event = MODCP_EV_NONE;
+    j->error_nr = 0;
+    j->state = MODCP_JOBST_SENDING;
+    return MODCP_EV_NONE;
+}
+
+/* Tell the CPU side not to execute the current job. Only needed when its header went
+ * out: otherwise nothing of it is queued, and abort_tag keeps cancelling the job that
+ * may still sit in the ring. */
+static void cancel(modcp_job_t *j)
+{
+    if (j->hdr_sent) {
+        atomic_store_explicit(&j->bp->abort_tag, (uint32_t)j->tag, memory_order_release);
+    }
+}
+
+void modcp_job_abort(modcp_job_t *j)
+{
+    if (modcp_job_busy(j)) {
+        cancel(j);
+    }
+    j->state = MODCP_JOBST_IDLE;
+}
+
+static bool put_block(modcp_job_t *j, uint8_t kind, uint8_t flags, uint8_t tag,
+                      const uint8_t *data, uint8_t len)
+{
+    modcp_block_t b;
+    memset(&b, 0, sizeof b);
+    if (len > 0u) {
+        memcpy(b.data, data, len);
+    }
+    b.len = len;
+    b.kind = kind;
+    b.flags = flags;
+    b.tag = tag;
+    return modcp_ring_put(&j->bp->to_cpu, &b, &j->tx_seq);
+}
+
+bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev)
+{
+    uint8_t d[2] = {(uint8_t)(ev & 0xFFu), (uint8_t)(ev >> 8)};
+    return put_block(j, MODCP_BP_INIT_ACK, MODCP_BLK_FIRST | MODCP_BLK_LAST, 0, d, 2);
+}
+
+static bool sends_data(const modcp_job_t *j)
+{
+    return j->hdr.op != MODCP_JOB_READ;
+}
+
+/* Push as many of the job's blocks as fit. */
+static void push_blocks(modcp_job_t *j)
+{
+    if (!j->hdr_sent) {
+        if (modcp_ring_space(&j->bp->to_cpu) < MODCP_BP_DEPTH) {
+            return; /* previous blocks not consumed yet (see the top of this file) */
+        }
+        if (atomic_load_explicit(&j->bp->abort_tag, memory_order_acquire) == (uint32_t)j->tag) {
+            atomic_store_explicit(&j->bp->abort_tag, JOB_NO_ABORT, memory_order_release);
+        }
+        uint8_t d[MODCP_BLOCK_SIZE];
+        uint8_t n = modcp_bp_job_encode(&j->hdr, d);
+        bool last = !sends_data(j) || j->hdr.len == 0u;
+        uint8_t flags = (uint8_t)(MODCP_BLK_FIRST | (last ? MODCP_BLK_LAST : 0u));
+        if (!put_block(j, MODCP_BP_JOB, flags, j->tag, d, n)) {
+            return;
+        }
+        j->hdr_sent = true;
+        if (last) {
+            j->state = MODCP_JOBST_WAITING;
+            return;
+        }
+    }
+    while (j->wpos < j->hdr.len) {
+        uint32_t rest = (uint32_t)j->hdr.len - j->wpos;
+        uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
+        bool last = (uint32_t)j->wpos + n == j->hdr.len;
+        if (!put_block(j, MODCP_BP_JOB, last ? MODCP_BLK_LAST : 0u, j->tag, j->wdata + j->wpos,
+                       n)) {
+            return;
+        }
+        j->wpos = (uint16_t)(j->wpos + n);
+    }
+    j->state = MODCP_JOBST_WAITING;
+}
+
+static modcp_jobp_t finish(modcp_job_t *j, modcp_event_t ev, uint16_t error_nr)
+{
+    j->event = ev;
+    j->error_nr = error_nr;
+    j->state = MODCP_JOBST_IDLE;
+    return MODCP_JOBP_DONE;
+}
+
+/* The REPLY's data is complete: exactly the announced bytes, and for a read exactly
+ * the bytes the job asked for, all of them stored. */
+static modcp_jobp_t finish_reply(modcp_job_t *j)
+{
+    bool ok = j->rlen == j->rexpect && j->rlen <= j->rcap &&
+              (j->hdr.op != MODCP_JOB_READ || j->rexpect == j->hdr.len);
+    return finish(j, ok ? MODCP_EV_NONE : MODCP_EV_XFER_STATE, 0);
+}
+
+static modcp_jobp_t rx_reply(modcp_job_t *j, const modcp_block_t *b)
+{
+    if (!modcp_job_busy(j) || b->tag != j->tag) {
+        return MODCP_JOBP_NOTHING; /* stale reply of a job we gave up on */
+    }
+    if ((b->flags & MODCP_BLK_FIRST) != 0u) {
+        modcp_bp_reply_t r;
+        if (j->state == MODCP_JOBST_RECEIVING || !modcp_bp_reply_decode(b->data, b->len, &r)) {
+            j->proto_errors++;
+            return finish(j, MODCP_EV_XFER_STATE, 0);
+        }
+        if (r.event != MODCP_EV_NONE) {
+            return finish(j, r.event, r.error_nr);
+        }
+        j->rexpect = r.len;
+        j->rlen = 0;
+        j->state = MODCP_JOBST_RECEIVING;
+        if ((b->flags & MODCP_BLK_LAST) != 0u) {
+            return finish_reply(j);
+        }
+        return MODCP_JOBP_NOTHING;
+    }
+    if (j->state != MODCP_JOBST_RECEIVING) {
+        j->proto_errors++; /* data before the header */
+        return finish(j, MODCP_EV_XFER_STATE, 0);
+    }
+    uint32_t room = j->rlen < j->rcap ? (uint32_t)j->rcap - j->rlen : 0u;
+    uint32_t n = b->len < room ? b->len : room;
+    if (n > 0u) {
+        memcpy(j->rbuf + j->rlen, b->data, n);
+    }
+    /* count everything that arrived (saturating), store only what fits */
+    uint32_t total = (uint32_t)j->rlen + b->len;
+    j->rlen = (uint16_t)(total > 0xFFFFu ? 0xFFFFu : total);
+    if ((b->flags & MODCP_BLK_LAST) != 0u) {
+        return finish_reply(j);
+    }
+    return MODCP_JOBP_NOTHING;
+}
+
+static modcp_jobp_t rx_params(modcp_job_t *j, const modcp_block_t *b)
+{
+    if ((b->flags & MODCP_BLK_FIRST) != 0u) {
+        j->msgkind = MODCP_BP_PARAMS;
+        j->msglen = 0;
+        j->msg_overflow = false;
+    } else if (j->msgkind != MODCP_BP_PARAMS) {
+        j->proto_errors++; /* continuation without a start */
+        return MODCP_JOBP_NOTHING;
+    }
+    if ((uint32_t)j->msglen + b->len > j->msgcap) {
+        j->msg_overflow = true;
+    } else if (b->len > 0u) {
+        memcpy(j->msgbuf + j->msglen, b->data, b->len);
+        j->msglen = (uint16_t)(j->msglen + b->len);
+    }
+    if ((b->flags & MODCP_BLK_LAST) == 0u) {
+        return MODCP_JOBP_NOTHING;
+    }
+    j->msgkind = 0;
+    if (j->msg_overflow) {
+        j->msglen = 0;
+    }
+    return MODCP_JOBP_PARAMS;
+}
+
+static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b)
+{
+    if (!j->rx_synced) {
+        j->rx_synced = true;
+    } else if (b->seq != j->rx_seq) {
+        j->proto_errors++;
+        if (j->msgkind != 0u) {
+            j->msg_overflow = true; /* a message lost a block: report it empty */
+        }
+    }
+    j->rx_seq = (uint8_t)(b->seq + 1u);
+    if (b->len > MODCP_BLOCK_SIZE) {
+        j->proto_errors++;
+        return MODCP_JOBP_NOTHING;
+    }
+    switch (b->kind) {
+    case MODCP_BP_REPLY:
+        return rx_reply(j, b);
+    case MODCP_BP_PARAMS:
+        return rx_params(j, b);
+    case MODCP_BP_INIT:
+        if (!modcp_bp_init_decode(b->data, b->len, &j->init)) {
+            j->proto_errors++;
+            return MODCP_JOBP_NOTHING;
+        }
+        return MODCP_JOBP_INIT;
+    default:
+        j->proto_errors++; /* JOB / INIT_ACK travel the other way */
+        return MODCP_JOBP_NOTHING;
+    }
+}
+
+modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us)
+{
+    modcp_block_t b;
+    while (modcp_ring_get(&j->bp->to_cp, &b)) {
+        modcp_jobp_t r = rx_block(j, &b);
+        if (r != MODCP_JOBP_NOTHING) {
+            return r;
+        }
+    }
+    if (modcp_job_busy(j) && (uint32_t)(now_us - j->t0_us) >= j->timeout_us) {
+        cancel(j);
+        return finish(j, j->hdr.op == MODCP_JOB_BITWRITE ? MODCP_EV_FB_TIMEOUT
+                                                         : MODCP_EV_XFER_TIMEOUT,
+                      0);
+    }
+    if (j->state == MODCP_JOBST_SENDING) {
+        push_blocks(j);
+    }
+    return MODCP_JOBP_NOTHING;
+}

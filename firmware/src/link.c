@@ -1,0 +1,214 @@
+/* modcp — serial link layer: configuration, dispatch to the framing (RTU in rtu.c),
+ * line-error accounting, transmit, turnaround and RS485 driver enable (SPEC §3).
+ *
+ * RS485: DE is switched on before the first byte (before the turnaround delay, so the
+ * line is driven to idle while we wait) and released only in modcp_link_on_tx_done(),
+ * which the port calls on *transmission complete* of the last stop bit. */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "modcp/link.h"
+
+static void arm(const modcp_link_t *l, uint32_t us)
+{
+    if (l->hal != NULL && l->hal->timer_arm != NULL) {
+        l->hal->timer_arm(l->hal->ctx, us);
+    }
+}
+
+static void set_de(const modcp_link_t *l, bool on)
+{
+    if (l->hal != NULL && l->hal->set_de != NULL) {
+        l->hal->set_de(l->hal->ctx, on);
+    }
+}
+
+static void start_tx(modcp_link_t *l)
+{
+    l->state = MODCP_LINK_TX;
+    if (l->hal != NULL && l->hal->uart_tx != NULL) {
+        l->hal->uart_tx(l->hal->ctx, l->buf, l->tx_len);
+    }
+}
+
+static void reset_rx(modcp_link_t *l)
+{
+    l->state = MODCP_LINK_IDLE;
+    l->len = 0;
+    l->count = 0;
+    l->crc = 0;
+    l->first = 0;
+    l->rx_bad = false;
+    l->rx_overflow = false;
+    l->last_us = 0;
+    l->busy_rx = false;
+    l->hex_hi = 0;
+    l->hex_half = false;
+    l->got_cr = false;
+    l->tx_len = 0;
+}
+
+/* Back to receiving after a request. If a frame that started while we were busy is
+ * still arriving (RTU: less than t3.5 since its last character), follow its tail in
+ * SKIP so it is never taken for a new request. Without a time (have_now false) the
+ * timer is armed for a full t3.5 and its expiry or the next character decides. */
+static void resume_rx(modcp_link_t *l, uint32_t now_us, bool have_now)
+{
+    if (l->busy_rx) {
+        uint32_t gap = have_now ? now_us - l->last_us : 0u;
+        if (gap < l->t35_us) {
+            l->busy_rx = false;
+            l->state = MODCP_LINK_SKIP;
+            l->rx_bad = true; /* only its tail was seen: not counted */
+            l->rx_overflow = false;
+            l->len = 0;
+            l->count = 1;
+            arm(l, l->t35_us - gap);
+            return;
+        }
+    }
+    l->busy_rx = false;
+    l->state = MODCP_LINK_IDLE;
+}
+
+void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag, uint8_t *buf,
+                     uint16_t cap)
+{
+    memset(l, 0, sizeof *l);
+    l->hal = hal;
+    l->diag = diag;
+    l->buf = buf;
+    l->cap = buf != NULL ? cap : 0u;
+    l->enabled = false;
+    l->state = MODCP_LINK_IDLE;
+}
+
+void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
+{
+    arm(l, 0);
+    set_de(l, false);
+    reset_rx(l);
+    l->framing = p->framing;
+    l->own_addr = p->slave_addr;
+    l->rs485 = p->iface == (uint8_t)MODCP_IFACE_RS485;
+    l->suppress = p->opmode == (uint8_t)MODCP_OPMODE_SUPPRESS || l->rs485;
+    l->t35_us = modcp_params_t35_us(p);
+    l->t15_us = p->t15_check != 0u ? modcp_params_t15_us(p) : 0u;
+    l->char_us = modcp_params_char_us(p);
+    l->turnaround_us = l->rs485 ? (uint32_t)p->turnaround_ms * 1000u : 0u;
+    l->ascii_timeout_us = (uint32_t)p->ascii_timeout_ms * 1000u;
+    switch (p->framing) {
+    case MODCP_FRAMING_RTU:
+        l->enabled = l->cap >= 4u;
+        break;
+    default:
+        /* ASCII: ascii.c plugs in here (modcp_ascii_*); until then the link stays off. */
+        l->enabled = false;
+        break;
+    }
+}
+
+void modcp_link_disable(modcp_link_t *l)
+{
+    arm(l, 0);
+    set_de(l, false);
+    reset_rx(l);
+    l->enabled = false;
+}
+
+void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    if (!l->enabled) {
+        return;
+    }
+    if (l->framing == (uint8_t)MODCP_FRAMING_RTU) {
+        modcp_rtu_on_byte(l, b, now_us);
+    }
+}
+
+void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
+{
+    if (!l->enabled || line_errors == 0u) {
+        return;
+    }
+    if (l->diag != NULL) {
+        if ((line_errors & MODCP_LINE_BREAK) != 0u) {
+            l->diag->breaks = (uint16_t)(l->diag->breaks + 1u);
+            if (!l->suppress) {
+                modcp_diag_event(l->diag, MODCP_EV_BREAK);
+            }
+        } else {
+            l->diag->char_errors = (uint16_t)(l->diag->char_errors + 1u);
+            if (!l->suppress) {
+                modcp_diag_event(l->diag, MODCP_EV_CHAR_ERROR);
+            }
+        }
+        if ((line_errors & MODCP_LINE_OVERRUN) != 0u) {
+            modcp_diag_count(l->diag, MODCP_CNT_CHAR_OVERRUN);
+        }
+    }
+    if (l->framing == (uint8_t)MODCP_FRAMING_RTU) {
+        modcp_rtu_on_error(l, line_errors, now_us);
+    }
+}
+
+bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
+{
+    if (!l->enabled) {
+        return false;
+    }
+    if (l->state == MODCP_LINK_TURNAROUND) {
+        start_tx(l);
+        return false;
+    }
+    if (l->framing == (uint8_t)MODCP_FRAMING_RTU) {
+        return modcp_rtu_on_timer(l, now_us, f);
+    }
+    return false;
+}
+
+void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us)
+{
+    (void)now_us;
+    if (!l->enabled || l->state != MODCP_LINK_BUSY) {
+        return;
+    }
+    l->tx_len = modcp_rtu_encode(l, pdu_len); /* ASCII: ascii.c's encoder here */
+    if (l->tx_len == 0u) {
+        if (l->diag != NULL) {
+            modcp_diag_event(l->diag, MODCP_EV_INTERNAL_SEND); /* reply does not fit */
+        }
+        modcp_link_done(l);
+        return;
+    }
+    if (l->rs485) {
+        set_de(l, true);
+    }
+    if (l->rs485 && l->turnaround_us > 0u) {
+        l->state = MODCP_LINK_TURNAROUND;
+        arm(l, l->turnaround_us);
+        return;
+    }
+    start_tx(l);
+}
+
+void modcp_link_done(modcp_link_t *l)
+{
+    if (l->state != MODCP_LINK_BUSY) {
+        return;
+    }
+    resume_rx(l, 0, false);
+}
+
+void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us)
+{
+    if (l->state != MODCP_LINK_TX) {
+        return;
+    }
+    if (l->rs485) {
+        set_de(l, false);
+    }
+    resume_rx(l, now_us, true);
+}

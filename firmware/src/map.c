@@ -1,0 +1,285 @@
+/* modcp — mapping engine: Modbus addresses -> controller operands (004 §3, 003 §4).
+ *
+ * Bits (FC01/05/15 on the coil windows, FC02 on the input windows), checked in
+ * this order:
+ *   1. the window holding addr ......................... else (0E)51H
+ *   2. FC05/15 on a T/C window ........................... (0E)55H
+ *   3. T/C: (addr - from) % 16 != 0 ...................... (0E)50H
+ *   4. T/C: qty % 16 != 0, or more than 16 elements with the CP 341 model
+ *      ................................................... (08)32H
+ *   5. addr + qty - 1 > to, or the last byte / element beyond the controller's
+ *      area (modcp_areas_t; DB bits: beyond byte 65535) .. (0E)54H
+ *   6. writes: every touched M / Q byte inside lim_m / lim_q (max 0 = not
+ *      writable); a DB-bit window: its DB inside lim_db and not the FB's work DB
+ *      ................................................... (0E)52H
+ *   SPEC §4 ("every byte or DB that a write touches must lie inside its MIN/MAX")
+ *   decides over 003 §4.6, where DB-bit coils ignore the DB limits.
+ *
+ * Registers, 16-bit scheme (004 §3.4): base 0 (not configured) -> (0E)51H;
+ * DB = base + (reg >> 9) > 65535 -> (0E)53H; word + qty > 512 -> (0E)39H;
+ * writes (FC06/16/22/23) outside lim_db or to the work DB -> (0E)52H.
+ *
+ * Registers, 32-bit scheme (003 §4.5; params.regs32, FC03/06/16/23):
+ * the range holding reg (an all-zero range is unused) -> else (0E)51H;
+ * reg + qty - 1 > to -> (0E)54H; writes: lim_db / work DB -> (0E)52H (SPEC §4 again
+ * applies the DB limits in this mode too, where 003 leaves the three DBs writable).
+ * int16: DBW = (reg - from) * 2, 2 bytes per register; int32 / float:
+ * DBD = (reg - from) * 4, 4 bytes per register. out->bit = kind + 1.
+ * FC22 (mask write, a 16-bit operation) with regs32 set: decision of modcp, the
+ * int16 range only; an address in the int32 / float range -> (0E)51H.
+ *
+ * qty 0 (the PDU engine never passes it) -> (08)32H; an fc the function does not
+ * serve -> (08)31H. a == NULL: controller sizes and work DB unknown, not checked. */
+#include "modcp/map.h"
+
+#include <stddef.h>
+
+#define TC_MAX_CP341 16u   /* 004 §3.3: CP 341 reads at most 16 timers / counters */
+#define WORDS_PER_DB 512u  /* 004 §3.4 */
+
+static bool is_write_fc(uint8_t fc)
+{
+    return fc == 5u || fc == 6u || fc == 15u || fc == 16u || fc == 22u || fc == 23u;
+}
+
+static bool is_tc(uint8_t area)
+{
+    return area == MODCP_AREA_T || area == MODCP_AREA_C;
+}
+
+static bool coil_area(uint8_t area)
+{
+    return area == MODCP_AREA_M || area == MODCP_AREA_Q || is_tc(area) ||
+           area == MODCP_AREA_DB;
+}
+
+static bool input_area(uint8_t area)
+{
+    return area == MODCP_AREA_M || area == MODCP_AREA_I || area == MODCP_AREA_DB;
+}
+
+/* Size of the controller area in bytes (M, Q, I) or elements (T, C); DB: 65536. */
+static uint32_t area_size(const modcp_areas_t *a, uint8_t area)
+{
+    if (a == NULL || area == MODCP_AREA_DB) {
+        return 0x10000u;
+    }
+    switch (area) {
+    case MODCP_AREA_I:
+        return a->i_bytes;
+    case MODCP_AREA_Q:
+        return a->q_bytes;
+    case MODCP_AREA_M:
+        return a->m_bytes;
+    case MODCP_AREA_T:
+        return a->timers;
+    case MODCP_AREA_C:
+        return a->counters;
+    default:
+        return 0u;
+    }
+}
+
+static bool limit_ok(const modcp_limit_t *l, uint32_t first, uint32_t last)
+{
+    return l->max != 0u && first >= l->min && last <= l->max;
+}
+
+static bool db_write_ok(const modcp_params_t *p, const modcp_areas_t *a, uint32_t db)
+{
+    if (a != NULL && a->work_db != 0u && db == a->work_db) {
+        return false; /* the FB's work area is never writable (004 §3.5) */
+    }
+    return db >= 1u && limit_ok(&p->lim_db, db, db);
+}
+
+modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
+                             uint16_t addr, uint16_t qty, modcp_operand_t *out)
+{
+    const modcp_bitwin_t *wins;
+    size_t nwin;
+    bool coils;
+
+    if (fc == 1u || fc == 5u || fc == 15u) {
+        wins = p->coils;
+        nwin = MODCP_COIL_WINDOWS;
+        coils = true;
+    } else if (fc == 2u) {
+        wins = p->inputs;
+        nwin = MODCP_INPUT_WINDOWS;
+        coils = false;
+    } else {
+        return MODCP_EV_ILLEGAL_FC;
+    }
+    if (qty == 0u) {
+        return MODCP_EV_QUANTITY;
+    }
+
+    const modcp_bitwin_t *w = NULL;
+    for (size_t i = 0; i < nwin; i++) {
+        const modcp_bitwin_t *c = &wins[i];
+        bool usable = coils ? coil_area(c->area) : input_area(c->area);
+        if (usable && c->from <= addr && addr <= c->to) {
+            w = c;
+            break;
+        }
+    }
+    if (w == NULL) {
+        return MODCP_EV_NO_WINDOW;
+    }
+
+    const bool write = is_write_fc(fc);
+    const uint32_t rel = (uint32_t)addr - (uint32_t)w->from;
+    const uint32_t end_addr = (uint32_t)addr + (uint32_t)qty - 1u;
+    uint32_t first; /* first byte / element */
+    uint32_t last;  /* last byte / element */
+
+    if (is_tc(w->area)) {
+        if (write) {
+            return MODCP_EV_AREA_READONLY;
+        }
+        if (rel % 16u != 0u) {
+            return MODCP_EV_TC_ALIGN;
+        }
+        if (qty % 16u != 0u ||
+            (p->cpu_model == MODCP_CPU_CP341 && (uint32_t)qty / 16u > TC_MAX_CP341)) {
+            return MODCP_EV_QUANTITY;
+        }
+        first = (uint32_t)w->start + rel / 16u;
+        last = first + (uint32_t)qty / 16u - 1u;
+    } else {
+        first = (uint32_t)w->start + rel / 8u;
+        last = (uint32_t)w->start + (rel + (uint32_t)qty - 1u) / 8u;
+    }
+    if (end_addr > w->to || last >= area_size(a, w->area)) {
+        return MODCP_EV_PAST_END;
+    }
+
+    if (write) {
+        bool ok;
+        switch (w->area) {
+        case MODCP_AREA_M:
+            ok = limit_ok(&p->lim_m, first, last);
+            break;
+        case MODCP_AREA_Q:
+            ok = limit_ok(&p->lim_q, first, last);
+            break;
+        case MODCP_AREA_DB:
+            ok = db_write_ok(p, a, w->db);
+            break;
+        default:
+            ok = false;
+            break;
+        }
+        if (!ok) {
+            return MODCP_EV_WRITE_DENIED;
+        }
+    }
+
+    out->area = w->area;
+    out->db = w->area == MODCP_AREA_DB ? w->db : 0u;
+    out->offset = (uint16_t)first;
+    if (is_tc(w->area)) {
+        out->bit = 0u;
+        out->count = (uint16_t)(qty / 16u);
+    } else {
+        out->bit = (uint8_t)(rel % 8u);
+        out->count = qty;
+    }
+    return MODCP_EV_NONE;
+}
+
+static modcp_event_t map_regs32(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
+                                uint16_t reg, uint16_t qty, modcp_operand_t *out)
+{
+    size_t kind = 3u;
+    for (size_t k = 0; k < 3u; k++) {
+        const modcp_r32range_t *r = &p->r32[k];
+        bool unused = r->from == 0u && r->to == 0u && r->db == 0u;
+        if (!unused && r->from <= reg && reg <= r->to) {
+            kind = k;
+            break;
+        }
+    }
+    if (kind == 3u || (fc == 22u && kind != MODCP_R32_INT16)) {
+        return MODCP_EV_NO_WINDOW;
+    }
+    const modcp_r32range_t *r = &p->r32[kind];
+    const uint32_t per = kind == MODCP_R32_INT16 ? 2u : 4u;
+    const uint32_t offset = ((uint32_t)reg - (uint32_t)r->from) * per;
+    const uint32_t bytes = (uint32_t)qty * per;
+    if ((uint32_t)reg + (uint32_t)qty - 1u > r->to || offset + bytes > 0x10000u ||
+        bytes > 0xFFFFu) {
+        return MODCP_EV_PAST_END;
+    }
+    if (is_write_fc(fc) && !db_write_ok(p, a, r->db)) {
+        return MODCP_EV_WRITE_DENIED;
+    }
+    out->area = MODCP_AREA_DB;
+    out->bit = (uint8_t)(kind + 1u);
+    out->db = r->db;
+    out->offset = (uint16_t)offset;
+    out->count = (uint16_t)bytes;
+    return MODCP_EV_NONE;
+}
+
+modcp_event_t modcp_map_regs(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
+                             uint16_t reg, uint16_t qty, modcp_operand_t *out)
+{
+    uint16_t base;
+    switch (fc) {
+    case 3u:
+    case 6u:
+    case 16u:
+    case 22u:
+    case 23u:
+        base = p->hr_base_db;
+        break;
+    case 4u:
+        base = p->ir_base_db;
+        break;
+    default:
+        return MODCP_EV_ILLEGAL_FC;
+    }
+    if (qty == 0u) {
+        return MODCP_EV_QUANTITY;
+    }
+    if (p->regs32 != 0u && fc != 4u) {
+        return map_regs32(p, a, fc, reg, qty, out);
+    }
+    if (base == 0u) {
+        return MODCP_EV_NO_WINDOW; /* register functions not configured */
+    }
+    const uint32_t db = (uint32_t)base + ((uint32_t)reg >> 9);
+    const uint32_t word = (uint32_t)reg & 0x1FFu;
+    if (db > 0xFFFFu) {
+        return MODCP_EV_DB_OVERFLOW;
+    }
+    if (word + (uint32_t)qty > WORDS_PER_DB) {
+        return MODCP_EV_DB_ACCESS; /* would cross into the next DB */
+    }
+    if (is_write_fc(fc) && !db_write_ok(p, a, db)) {
+        return MODCP_EV_WRITE_DENIED;
+    }
+    out->area = MODCP_AREA_DB;
+    out->bit = 0u;
+    out->db = (uint16_t)db;
+    out->offset = (uint16_t)(word * 2u);
+    out->count = (uint16_t)((uint32_t)qty * 2u);
+    return MODCP_EV_NONE;
+}
+
+bool modcp_map_reg_of(uint16_t base_db, uint16_t db, uint16_t dbw, uint16_t *reg)
+{
+    if (base_db == 0u || db < base_db) {
+        return false;
+    }
+    const uint32_t off = (uint32_t)db - (uint32_t)base_db;
+    if (off > 127u || (dbw & 1u) != 0u || dbw > 1022u) {
+        return false;
+    }
+    if (reg != NULL) {
+        *reg = (uint16_t)(off * WORDS_PER_DB + (uint32_t)dbw / 2u);
+    }
+    return true;
+}

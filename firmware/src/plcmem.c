@@ -1,0 +1,189 @@
+/* modcp — controller memory model (CPU side only).
+ *
+ * Every access is checked completely before anything is copied, in uint32 arithmetic
+ * (offset + length cannot wrap), so a refused access never writes a single byte.
+ * T and C elements travel high byte first (controller byte order). */
+#include "modcp/plcmem.h"
+
+#include <stddef.h>
+#include <string.h>
+
+modcp_db_t *modcp_plcmem_db(const modcp_plcmem_t *mem, uint16_t number)
+{
+    if (mem->dbs == NULL) {
+        return NULL;
+    }
+    uint32_t lo = 0;
+    uint32_t hi = mem->db_count; /* search [lo, hi) */
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2u;
+        uint16_t n = mem->dbs[mid].number;
+        if (n == number) {
+            return &mem->dbs[mid];
+        }
+        if (n < number) {
+            lo = mid + 1u;
+        } else {
+            hi = mid;
+        }
+    }
+    return NULL;
+}
+
+void modcp_plcmem_areas(const modcp_plcmem_t *mem, modcp_areas_t *out)
+{
+    out->i_bytes = mem->i_size;
+    out->q_bytes = mem->q_size;
+    out->m_bytes = mem->m_size;
+    out->timers = mem->t_count;
+    out->counters = mem->c_count;
+    out->work_db = 0;
+}
+
+/* The byte storage of an I / Q / M / DB operand covering [offset, offset + len), or
+ * NULL with *ev set. */
+static uint8_t *byte_area(const modcp_plcmem_t *mem, const modcp_operand_t *op, uint32_t len,
+                          modcp_event_t *ev)
+{
+    uint8_t *base = NULL;
+    uint32_t size = 0;
+    modcp_event_t err = MODCP_EV_AREA_ACCESS;
+    switch (op->area) {
+    case MODCP_AREA_I:
+        base = mem->i;
+        size = mem->i_size;
+        break;
+    case MODCP_AREA_Q:
+        base = mem->q;
+        size = mem->q_size;
+        break;
+    case MODCP_AREA_M:
+        base = mem->m;
+        size = mem->m_size;
+        break;
+    case MODCP_AREA_DB: {
+        const modcp_db_t *db = modcp_plcmem_db(mem, op->db);
+        err = MODCP_EV_DB_ACCESS;
+        if (db != NULL) {
+            base = db->data;
+            size = db->size;
+        }
+        break;
+    }
+    default:
+        break;
+    }
+    if (base == NULL || (uint32_t)op->offset + len > size) {
+        *ev = err;
+        return NULL;
+    }
+    *ev = MODCP_EV_NONE;
+    return base + op->offset;
+}
+
+/* The element storage of a T / C operand covering n elements, or NULL. */
+static uint16_t *word_area(const modcp_plcmem_t *mem, const modcp_operand_t *op, uint32_t n)
+{
+    uint16_t *base = NULL;
+    uint32_t count = 0;
+    if (op->area == MODCP_AREA_T) {
+        base = mem->t;
+        count = mem->t_count;
+    } else if (op->area == MODCP_AREA_C) {
+        base = mem->c;
+        count = mem->c_count;
+    }
+    if (base == NULL || (uint32_t)op->offset + n > count) {
+        return NULL;
+    }
+    return base + op->offset;
+}
+
+static bool is_word_area(uint8_t area)
+{
+    return area == MODCP_AREA_T || area == MODCP_AREA_C;
+}
+
+modcp_event_t modcp_plcmem_read(const modcp_plcmem_t *mem, const modcp_operand_t *op,
+                                uint8_t *out, uint16_t len)
+{
+    if (is_word_area(op->area)) {
+        if ((len & 1u) != 0u) {
+            return MODCP_EV_AREA_ACCESS; /* half an element */
+        }
+        uint32_t n = (uint32_t)len / 2u;
+        const uint16_t *w = word_area(mem, op, n);
+        if (w == NULL) {
+            return MODCP_EV_AREA_ACCESS;
+        }
+        for (uint32_t k = 0; k < n; k++) {
+            out[2u * k] = (uint8_t)(w[k] >> 8);
+            out[2u * k + 1u] = (uint8_t)(w[k] & 0xFFu);
+        }
+        return MODCP_EV_NONE;
+    }
+    modcp_event_t ev;
+    const uint8_t *src = byte_area(mem, op, len, &ev);
+    if (src == NULL) {
+        return ev;
+    }
+    if (len > 0u) {
+        memcpy(out, src, len);
+    }
+    return MODCP_EV_NONE;
+}
+
+modcp_event_t modcp_plcmem_write(modcp_plcmem_t *mem, const modcp_operand_t *op,
+                                 const uint8_t *in, uint16_t len)
+{
+    if (is_word_area(op->area)) {
+        if ((len & 1u) != 0u) {
+            return MODCP_EV_AREA_ACCESS;
+        }
+        uint32_t n = (uint32_t)len / 2u;
+        uint16_t *w = word_area(mem, op, n);
+        if (w == NULL) {
+            return MODCP_EV_AREA_ACCESS;
+        }
+        for (uint32_t k = 0; k < n; k++) {
+            w[k] = (uint16_t)(((unsigned)in[2u * k] << 8) | (unsigned)in[2u * k + 1u]);
+        }
+        return MODCP_EV_NONE;
+    }
+    modcp_event_t ev;
+    uint8_t *dst = byte_area(mem, op, len, &ev);
+    if (dst == NULL) {
+        return ev;
+    }
+    if (len > 0u) {
+        memcpy(dst, in, len);
+    }
+    return MODCP_EV_NONE;
+}
+
+modcp_event_t modcp_plcmem_write_bits(modcp_plcmem_t *mem, const modcp_operand_t *op,
+                                      const uint8_t *bits)
+{
+    if (is_word_area(op->area)) {
+        return MODCP_EV_AREA_ACCESS; /* T / C are words, never bit-written */
+    }
+    /* absolute bit index relative to op->offset (op->bit may exceed 7) */
+    uint32_t first = op->bit;
+    uint32_t count = op->count;
+    uint32_t span = count == 0u ? 0u : (first + count - 1u) / 8u + 1u; /* bytes touched */
+    modcp_event_t ev;
+    uint8_t *dst = byte_area(mem, op, span, &ev);
+    if (dst == NULL) {
+        return ev;
+    }
+    for (uint32_t k = 0; k < count; k++) {
+        uint32_t pos = first + k;
+        uint8_t mask = (uint8_t)(1u << (pos & 7u));
+        if (((unsigned)bits[k / 8u] >> (k & 7u)) & 1u) {
+            dst[pos / 8u] = (uint8_t)(dst[pos / 8u] | mask);
+        } else {
+            dst[pos / 8u] = (uint8_t)(dst[pos / 8u] & (uint8_t)~mask);
+        }
+    }
+    return MODCP_EV_NONE;
+}

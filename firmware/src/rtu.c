@@ -1,0 +1,256 @@
+/* modcp — RTU framing (004 §5, SPEC §3.1): frame boundaries by the t3.5 gap, address
+ * filter, running CRC, t1.5 check, frames that arrive while a request is in progress.
+ *
+ * Every received character (or line error in place of one) restarts the end-of-frame
+ * timer; the frame is checked only when the timer expires. Time stamps are the ends of
+ * characters, as the UART receive interrupt sees them.
+ *
+ * Decisions where the manual is silent:
+ *  - A byte that arrives in SKIP after a gap >= t3.5 (the expiry is late or the SKIP
+ *    was entered without a time, see modcp_link_done) ends the skipped frame and starts
+ *    a new one, so a request is never swallowed by someone else's frame. In RX the
+ *    timer alone decides the end of a frame (a late timer is the port's fault).
+ *  - A line error while our frame already ends in a valid CRC (>= 4 bytes, CRC 0) is
+ *    "after the CRC" (004 §2.2): it is not part of the frame, does not restart t3.5,
+ *    and the frame stays valid (reported in normal mode only, by link.c). This is the
+ *    glitch an RS485 line produces when the master releases its driver.
+ *  - Frames with a character error, BREAK or t1.5 violation inside count in neither
+ *    BUS_MSG nor BUS_CRC: they are counted as char_errors / breaks / t15_discards.
+ *  - The t1.5 check applies to frames for us (RX); frames for other addresses are
+ *    "not checked".
+ *  - RS485 while transmitting: received characters are the echo of our own reply on
+ *    the two-wire line and are ignored (no (08)37H for our own address). */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "modcp/crc.h"
+#include "modcp/link.h"
+
+#define RTU_MIN_FRAME 4u /* address, function, CRC */
+
+static void arm(const modcp_link_t *l, uint32_t us)
+{
+    if (l->hal != NULL && l->hal->timer_arm != NULL) {
+        l->hal->timer_arm(l->hal->ctx, us);
+    }
+}
+
+static void event(const modcp_link_t *l, modcp_event_t ev)
+{
+    if (l->diag != NULL) {
+        modcp_diag_event(l->diag, ev);
+    }
+}
+
+static void count(const modcp_link_t *l, modcp_counter_t c)
+{
+    if (l->diag != NULL) {
+        modcp_diag_count(l->diag, c);
+    }
+}
+
+static void count_char(modcp_link_t *l)
+{
+    if (l->count < UINT16_MAX) {
+        l->count++;
+    }
+}
+
+/* A frame starts with b (or with a line error in place of the first character). */
+static void frame_start(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
+{
+    l->count = 1;
+    l->first = b;
+    l->rx_bad = error;
+    l->rx_overflow = false;
+    l->len = 0;
+    l->last_us = now_us;
+    if (error) {
+        l->crc = MODCP_CRC_INIT;
+        l->state = MODCP_LINK_SKIP;
+    } else {
+        l->crc = modcp_crc16_update(MODCP_CRC_INIT, &b, 1);
+        if (b == l->own_addr || b == 0u) {
+            if (l->cap > 0u && l->buf != NULL) {
+                l->buf[0] = b;
+                l->len = 1;
+            } else {
+                l->rx_overflow = true;
+            }
+            l->state = MODCP_LINK_RX;
+        } else {
+            l->state = MODCP_LINK_SKIP; /* not checked, not answered */
+        }
+    }
+    arm(l, l->t35_us);
+}
+
+/* End of a frame for another address: only the serial-line bus counters. */
+static void skip_end(modcp_link_t *l)
+{
+    if (!l->rx_bad) {
+        count(l, (l->count >= RTU_MIN_FRAME && l->crc == 0u) ? MODCP_CNT_BUS_MSG : MODCP_CNT_BUS_CRC);
+    }
+    l->state = MODCP_LINK_IDLE;
+}
+
+/* t1.5: the silence between two characters of our frame (distance of their ends minus
+ * one character time) must not exceed t1.5. */
+static void check_t15(modcp_link_t *l, uint32_t now_us)
+{
+    if (l->t15_us == 0u || l->rx_bad) {
+        return;
+    }
+    uint32_t dist = now_us - l->last_us;
+    if (dist > l->t15_us + l->char_us) {
+        l->rx_bad = true;
+        if (l->diag != NULL) {
+            l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
+        }
+        if (!l->suppress) {
+            event(l, MODCP_EV_ZVZ);
+        }
+    }
+}
+
+/* A character (or line error) while a request is processed or its reply is pending:
+ * not stored; only frame starts are followed, for (08)37H and for the return to idle. */
+static void busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
+{
+    if (l->rs485 && l->state == MODCP_LINK_TX) {
+        return; /* echo of our own transmission */
+    }
+    if (!l->busy_rx || now_us - l->last_us >= l->t35_us) {
+        l->busy_rx = true;
+        if (!error && b == l->own_addr) {
+            event(l, MODCP_EV_SEQUENCE);
+        }
+    }
+    l->last_us = now_us;
+}
+
+void modcp_rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    switch (l->state) {
+    case MODCP_LINK_IDLE:
+        frame_start(l, b, false, now_us);
+        break;
+    case MODCP_LINK_RX:
+        check_t15(l, now_us);
+        count_char(l);
+        l->crc = modcp_crc16_update(l->crc, &b, 1);
+        if (l->len < l->cap) {
+            l->buf[l->len] = b;
+            l->len++;
+        } else {
+            l->rx_overflow = true;
+        }
+        l->last_us = now_us;
+        arm(l, l->t35_us);
+        break;
+    case MODCP_LINK_SKIP:
+        if (now_us - l->last_us >= l->t35_us) {
+            skip_end(l);
+            frame_start(l, b, false, now_us);
+            break;
+        }
+        count_char(l);
+        l->crc = modcp_crc16_update(l->crc, &b, 1);
+        l->last_us = now_us;
+        arm(l, l->t35_us);
+        break;
+    default: /* BUSY, TURNAROUND, TX */
+        busy_track(l, b, false, now_us);
+        break;
+    }
+}
+
+void modcp_rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
+{
+    (void)line_errors; /* every kind of error has the same effect on framing */
+    switch (l->state) {
+    case MODCP_LINK_IDLE:
+        frame_start(l, 0, true, now_us);
+        break;
+    case MODCP_LINK_RX:
+        if (!l->rx_bad && !l->rx_overflow && l->len >= RTU_MIN_FRAME && l->crc == 0u) {
+            return; /* after the CRC: not part of the frame */
+        }
+        l->rx_bad = true;
+        count_char(l);
+        l->last_us = now_us;
+        arm(l, l->t35_us);
+        break;
+    case MODCP_LINK_SKIP:
+        if (now_us - l->last_us >= l->t35_us) {
+            skip_end(l);
+            frame_start(l, 0, true, now_us);
+            break;
+        }
+        l->rx_bad = true;
+        count_char(l);
+        l->last_us = now_us;
+        arm(l, l->t35_us);
+        break;
+    default:
+        busy_track(l, 0, true, now_us);
+        break;
+    }
+}
+
+bool modcp_rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
+{
+    if (l->state != MODCP_LINK_RX && l->state != MODCP_LINK_SKIP) {
+        return false; /* stale or spurious expiry */
+    }
+    uint32_t gap = now_us - l->last_us;
+    if (gap < l->t35_us) {
+        arm(l, l->t35_us - gap); /* an expiry that raced a character */
+        return false;
+    }
+    if (l->state == MODCP_LINK_SKIP) {
+        skip_end(l);
+        return false;
+    }
+    l->state = MODCP_LINK_IDLE;
+    if (l->rx_bad) {
+        return false; /* already reported (normal mode) or silently discarded */
+    }
+    if (l->rx_overflow) {
+        if (l->diag != NULL) {
+            l->diag->frames_too_long = (uint16_t)(l->diag->frames_too_long + 1u);
+        }
+        event(l, MODCP_EV_FRAME_TOO_LONG);
+        return false;
+    }
+    if (l->len < RTU_MIN_FRAME || l->crc != 0u) {
+        event(l, MODCP_EV_CRC);
+        count(l, MODCP_CNT_BUS_CRC);
+        return false;
+    }
+    count(l, MODCP_CNT_BUS_MSG);
+    count(l, MODCP_CNT_SLAVE_MSG);
+    if (f == NULL) {
+        return false;
+    }
+    f->addr = l->buf[0];
+    f->pdu = &l->buf[1];
+    f->pdu_len = (uint16_t)(l->len - 3u);
+    f->pdu_cap = (uint16_t)(l->cap - 3u);
+    l->state = MODCP_LINK_BUSY;
+    l->busy_rx = false;
+    return true;
+}
+
+uint16_t modcp_rtu_encode(modcp_link_t *l, uint16_t pdu_len)
+{
+    uint32_t n = 1u + (uint32_t)pdu_len; /* address + PDU */
+    if (l->buf == NULL || n + 2u > (uint32_t)l->cap) {
+        return 0;
+    }
+    uint16_t crc = modcp_crc16(l->buf, n);
+    l->buf[n] = (uint8_t)(crc & 0xFFu); /* low byte first */
+    l->buf[n + 1u] = (uint8_t)(crc >> 8);
+    return (uint16_t)(n + 2u);
+}

@@ -1,0 +1,73 @@
+/* Test world: one CP, one FB, the backplane between them, controller memory laid out
+ * for the manual's example parameter set (004 §9), and a fake HAL that records what
+ * the CP transmits. Time is simulated. */
+#ifndef MODCP_TEST_WORLD_H
+#define MODCP_TEST_WORLD_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "modcp/backplane.h"
+#include "modcp/cp.h"
+#include "modcp/fb.h"
+#include "modcp/params.h"
+#include "modcp/plcmem.h"
+
+#define WORLD_DBS 7
+#define WORLD_WORK_DB 80
+
+typedef struct {
+    uint8_t tx[600];
+    uint16_t tx_len;
+    unsigned tx_count;
+    uint32_t timer_us;
+    bool de;
+    unsigned de_on_count;
+} fake_hal_t;
+
+typedef struct {
+    modcp_backplane_t bp;
+    modcp_cp_t cp;
+    modcp_fb_t fb;
+    modcp_plcmem_t mem;
+    modcp_db_t dbs[WORLD_DBS];
+    uint8_t db_data[WORLD_DBS][1024];
+    uint8_t i[256], q[320], m[2600];
+    uint16_t t[240], c[240];
+    fake_hal_t fake;
+    modcp_hal_t hal;
+    modcp_params_t params;
+    uint8_t record[MODCP_PARAMS_RECORD_MAX];
+    uint16_t record_len;
+    uint32_t now_us;
+    bool fb_paused; /* the user program does not call the FB */
+    modcp_fb_out_t fb_out;
+} world_t;
+
+/* The 004 §9 parameter set: slave 5; coils M 0-2047 @ MB1000, Q 2048-2559 @ QB256,
+ * T 4096-4607 @ T100, C 4608-5119 @ C200; inputs M 0-4095 @ MB2000, I 4096-5119 @
+ * IB128; holding base DB 800, input base DB 900; write limits DB 800-899,
+ * MB 1000-1255, QB 256-319 (admit the examples). */
+void world_example_params(modcp_params_t *p);
+
+/* Allocate a world with params p (NULL: the example set), not yet started. */
+world_t *world_new(const modcp_params_t *p);
+void world_free(world_t *w);
+/* Run CP_START and cycles until CP_START_OK or CP_START_ERROR (or max_ms). */
+bool world_start(world_t *w, uint32_t max_ms);
+/* Advance time by us, running FB cycles (1 ms) and CP polls. */
+void world_run(world_t *w, uint32_t us);
+/* Send frame bytes (hex string incl. CRC) to the CP, end it with t3.5 silence and run
+ * until a reply was transmitted or max_ms passed. Returns the reply length (0 = none);
+ * the reply is in w->fake.tx. */
+uint16_t world_request(world_t *w, const char *hex, uint32_t max_ms);
+/* The same with raw bytes (the CRC is appended). */
+uint16_t world_request_raw(world_t *w, const uint8_t *frame, size_t len, uint32_t max_ms);
+/* Reply as "05 03 04 ..." (static buffer). */
+const char *world_reply_hex(const world_t *w);
+/* Newest event of the diagnostic buffer. */
+modcp_event_t world_last_event(const world_t *w);
+uint8_t *world_db(world_t *w, uint16_t number);
+
+#endif

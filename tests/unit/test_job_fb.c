@@ -1,0 +1,1008 @@
+/* The CP-side job module and the CPU-side FB together over one backplane, single
+ * thread: the test alternates modcp_job_poll() (the CP task) and modcp_fb_call() (the
+ * CPU cycle). 004 §4.2 init handshake, §4.4 / §4.5 job limits and 32-byte blocks,
+ * §4.6 generic handshake, §6.5 / §6.8 / §6.9 examples, §7.5 events, §7.6 ERROR_NR. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "modcp/backplane.h"
+#include "modcp/crc.h"
+#include "modcp/fb.h"
+#include "modcp/job.h"
+#include "modcp/plcmem.h"
+
+#define WORK_DB 80
+#define RECORD_LEN 150 /* 5 PARAMS blocks: 4 x 32 + 22 */
+#define START_TIME_MS 5000u
+#define TIMEOUT_US 1000000u
+
+typedef struct {
+    modcp_backplane_t bp;
+    uint8_t i[128], q[512], m[2048];
+    uint16_t t[256], c[256];
+    uint8_t db80[64], db800[1024], db900[64];
+    modcp_db_t dbs[3];
+    modcp_plcmem_t mem;
+    uint8_t record[RECORD_LEN];
+    modcp_fb_t fb;
+    modcp_fb_out_t out;
+    modcp_job_t job;
+    uint8_t msgbuf[400];
+    uint8_t rbuf[1200];
+    uint8_t wbuf[1200];
+    uint32_t now_us; /* CP clock */
+    uint32_t now_ms; /* CPU clock */
+    unsigned ndr_calls;
+} fx_t;
+
+static void fx_fb_init(fx_t *f, uint16_t work_db)
+{
+    modcp_fb_init(&f->fb, &f->bp, &f->mem, f->record, RECORD_LEN, work_db, START_TIME_MS);
+}
+
+static int setup(void **state)
+{
+    fx_t *f = test_calloc(1, sizeof *f);
+    modcp_bp_init(&f->bp);
+    f->dbs[0] = (modcp_db_t){WORK_DB, sizeof f->db80, f->db80};
+    f->dbs[1] = (modcp_db_t){800, sizeof f->db800, f->db800};
+    f->dbs[2] = (modcp_db_t){900, sizeof f->db900, f->db900};
+    f->mem = (modcp_plcmem_t){.i = f->i, .q = f->q, .m = f->m, .t = f->t, .c = f->c,
+                              .i_size = sizeof f->i, .q_size = sizeof f->q, .m_size = sizeof f->m,
+                              .t_count = 256, .c_count = 200, .dbs = f->dbs, .db_count = 3};
+    for (unsigned k = 0; k < RECORD_LEN; k++) {
+        f->record[k] = (uint8_t)(k * 13u + 1u);
+    }
+    fx_fb_init(f, WORK_DB);
+    modcp_job_init(&f->job, &f->bp, f->msgbuf, sizeof f->msgbuf);
+    f->now_us = 1000;
+    f->now_ms = 0;
+    *state = f;
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    test_free(*state);
+    return 0;
+}
+
+/* One CPU cycle with CP_START = start. */
+static void fb(fx_t *f, bool start)
+{
+    modcp_fb_in_t in = {.cp_start = start};
+    modcp_fb_call(&f->fb, &in, &f->out, f->now_ms);
+    if (f->out.cp_start_ndr) {
+        f->ndr_calls++;
+    }
+}
+
+static modcp_jobp_t poll(fx_t *f)
+{
+    return modcp_job_poll(&f->job, f->now_us);
+}
+
+/* Init handshake, the happy path (used by every job test). */
+static void init_ok(fx_t *f)
+{
+    fb(f, true);
+    modcp_jobp_t r;
+    int guard = 0;
+    while ((r = poll(f)) != MODCP_JOBP_INIT) {
+        if (r == MODCP_JOBP_NOTHING) {
+            fb(f, true);
+        }
+        assert_true(++guard < 20);
+    }
+    assert_true(modcp_job_send_ack(&f->job, MODCP_EV_NONE));
+    fb(f, true);
+    assert_true(f->out.cp_start_ok);
+    assert_int_equal(f->fb.state, MODCP_FBST_RUN);
+}
+
+/* Alternate CP poll and FB call until the job is done; returns the number of FB calls. */
+static int run_job(fx_t *f)
+{
+    for (int calls = 0; calls < 200; calls++) {
+        modcp_jobp_t r = poll(f);
+        if (r == MODCP_JOBP_DONE) {
+            assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+            return calls;
+        }
+        assert_int_equal(r, MODCP_JOBP_NOTHING);
+        fb(f, true);
+    }
+    fail_msg("job did not finish");
+    return -1;
+}
+
+static modcp_event_t start(fx_t *f, uint8_t op, uint8_t area, uint16_t db, uint16_t offset,
+                           uint8_t bit, uint16_t count, uint16_t len, uint16_t limit)
+{
+    modcp_bp_job_t h = {.op = op,
+                        .opnd = {.area = area, .bit = bit, .db = db, .offset = offset, .count = count},
+                        .len = len};
+    return modcp_job_start(&f->job, &h, f->wbuf, f->rbuf, sizeof f->rbuf, limit, TIMEOUT_US,
+                           f->now_us);
+}
+
+/* ---- initialisation (004 §4.2) ------------------------------------------------------ */
+
+/* The FB hands the CP its parameters at the first call, before any CP_START. */
+static void test_params_at_first_call(void **state)
+{
+    fx_t *f = *state;
+    fb(f, false);
+    int guard = 0;
+    modcp_jobp_t r;
+    while ((r = poll(f)) == MODCP_JOBP_NOTHING) {
+        fb(f, false);
+        assert_true(++guard < 10);
+    }
+    assert_int_equal(r, MODCP_JOBP_PARAMS);
+    assert_int_equal(f->job.msglen, RECORD_LEN);
+    assert_memory_equal(f->msgbuf, f->record, RECORD_LEN);
+    /* no INIT without CP_START, and nothing more is sent */
+    for (int k = 0; k < 5; k++) {
+        f->now_ms += 100;
+        fb(f, false);
+        assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    }
+    assert_int_equal(atomic_load(&f->bp.to_cp.head), 5);
+    assert_false(f->out.cp_start_ok);
+    assert_false(f->out.cp_start_error);
+    assert_int_equal(f->fb.state, MODCP_FBST_STOPPED);
+}
+
+static void test_init_happy_path(void **state)
+{
+    fx_t *f = *state;
+    fb(f, true); /* rising edge at the first call: PARAMS once, then INIT */
+    assert_false(f->out.cp_start_ok);
+    assert_int_equal(atomic_load(&f->bp.to_cp.head), MODCP_BP_DEPTH); /* 4 PARAMS blocks */
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);                    /* 4 of 5 in */
+    f->now_ms = 1;
+    fb(f, true); /* 5th PARAMS block + INIT */
+    assert_int_equal(poll(f), MODCP_JOBP_PARAMS);
+    assert_int_equal(f->job.msglen, RECORD_LEN);
+    assert_memory_equal(f->msgbuf, f->record, RECORD_LEN);
+    assert_int_equal(poll(f), MODCP_JOBP_INIT);
+    assert_int_equal(f->job.init.areas.i_bytes, 128);
+    assert_int_equal(f->job.init.areas.q_bytes, 512);
+    assert_int_equal(f->job.init.areas.m_bytes, 2048);
+    assert_int_equal(f->job.init.areas.timers, 256);
+    assert_int_equal(f->job.init.areas.counters, 200);
+    assert_int_equal(f->job.init.areas.work_db, WORK_DB);
+    assert_int_equal(f->job.init.record_crc, modcp_crc16(f->record, RECORD_LEN));
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    assert_int_equal(f->job.proto_errors, 0);
+
+    f->now_ms = 2;
+    fb(f, true);
+    assert_false(f->out.cp_start_ok); /* no answer yet */
+    assert_true(modcp_job_send_ack(&f->job, MODCP_EV_NONE));
+    f->now_ms = 3;
+    fb(f, true);
+    assert_true(f->out.cp_start_ok);
+    assert_false(f->out.cp_start_error);
+    assert_int_equal(f->out.error_nr, 0);
+    assert_int_equal(f->out.error_info, 0);
+    assert_int_equal(f->fb.state, MODCP_FBST_RUN);
+    /* nothing is re-sent once running */
+    f->now_ms = 1000;
+    fb(f, true);
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    assert_int_equal(atomic_load(&f->bp.to_cp.head), 6);
+}
+
+/* The CP answers "not ready" (it was still testing itself); the FB repeats PARAMS +
+ * INIT every MODCP_FB_RETRY_MS until START_TIME (004 §4.2 step 6). */
+static void test_init_retry_then_success(void **state)
+{
+    fx_t *f = *state;
+    fb(f, true);
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    fb(f, true);
+    assert_int_equal(poll(f), MODCP_JOBP_PARAMS);
+    assert_int_equal(poll(f), MODCP_JOBP_INIT);
+    assert_true(modcp_job_send_ack(&f->job, MODCP_EV_PARAM_RECORD));
+    uint32_t head = atomic_load(&f->bp.to_cp.head);
+    for (f->now_ms = 1; f->now_ms < MODCP_FB_RETRY_MS; f->now_ms++) {
+        fb(f, true);
+        assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    }
+    assert_int_equal(atomic_load(&f->bp.to_cp.head), head); /* no retry before 200 ms */
+    assert_int_equal(f->fb.init_event, MODCP_EV_PARAM_RECORD);
+    assert_false(f->out.cp_start_ok);
+    assert_false(f->out.cp_start_error);
+
+    fb(f, true); /* t = 200 ms: second attempt */
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    fb(f, true);
+    assert_int_equal(poll(f), MODCP_JOBP_PARAMS);
+    assert_memory_equal(f->msgbuf, f->record, RECORD_LEN);
+    assert_int_equal(poll(f), MODCP_JOBP_INIT);
+    assert_true(modcp_job_send_ack(&f->job, MODCP_EV_NONE));
+    f->now_ms++;
+    fb(f, true);
+    assert_true(f->out.cp_start_ok);
+    assert_false(f->out.cp_start_error);
+    assert_int_equal(f->out.error_nr, 0);
+    assert_int_equal(f->job.proto_errors, 0);
+}
+
+/* CP silent: CP_START_ERROR with ERROR_NR 2 exactly at START_TIME, not 1 ms before
+ * (004 §7.6 10.1.1). ERROR_INFO 0: the CP never reported an event. */
+static void test_init_timeout_cp_silent(void **state)
+{
+    fx_t *f = *state;
+    f->now_ms = 0xFFFFF000u; /* the edge shortly before the clock wraps */
+    uint32_t t0 = f->now_ms;
+    for (; f->now_ms != t0 + START_TIME_MS - 1u; f->now_ms++) {
+        fb(f, true);
+        assert_false(f->out.cp_start_error);
+        assert_false(f->out.cp_start_ok);
+    }
+    fb(f, true); /* START_TIME - 1 */
+    assert_false(f->out.cp_start_error);
+    assert_int_equal(f->out.error_nr, 0);
+    f->now_ms++;
+    fb(f, true); /* START_TIME */
+    assert_true(f->out.cp_start_error);
+    assert_false(f->out.cp_start_ok);
+    assert_int_equal(f->out.error_nr, 2);
+    assert_int_equal(f->out.error_info, 0);
+    assert_int_equal(f->fb.state, MODCP_FBST_FAILED);
+    /* outputs stay; a job now is answered (0E)56H (004 §4.2 step 7) */
+    f->now_ms += 1000;
+    fb(f, true);
+    assert_true(f->out.cp_start_error);
+    assert_int_equal(f->out.error_nr, 2);
+}
+
+/* CP consumes but keeps answering "not ready": retries every 200 ms, then error 2 with
+ * ERROR_INFO = the CP's event; a new CP_START edge clears the outputs and succeeds. */
+static void test_init_nak_until_timeout(void **state)
+{
+    fx_t *f = *state;
+    unsigned inits = 0;
+    for (f->now_ms = 0; f->now_ms < START_TIME_MS; f->now_ms++) {
+        fb(f, true);
+        assert_false(f->out.cp_start_error);
+        modcp_jobp_t r;
+        while ((r = poll(f)) != MODCP_JOBP_NOTHING) {
+            if (r == MODCP_JOBP_INIT) {
+                inits++;
+                assert_true(modcp_job_send_ack(&f->job, MODCP_EV_SLAVE_ADDR));
+            }
+        }
+    }
+    assert_int_equal(inits, START_TIME_MS / MODCP_FB_RETRY_MS); /* 0, 200, ... 4800 */
+    fb(f, true);
+    assert_true(f->out.cp_start_error);
+    assert_int_equal(f->out.error_nr, MODCP_FB_ERR_INIT);
+    assert_int_equal(f->out.error_info, MODCP_EV_SLAVE_ADDR);
+
+    /* CP_START falls and rises again: outputs cleared, init runs again */
+    fb(f, false);
+    while (poll(f) != MODCP_JOBP_NOTHING) {
+    }
+    init_ok(f);
+    assert_false(f->out.cp_start_error);
+    assert_int_equal(f->out.error_nr, 0);
+    assert_int_equal(f->out.error_info, 0);
+}
+
+/* PARAMS larger than the CP's buffer: reported with msglen 0. */
+static void test_params_overflow(void **state)
+{
+    fx_t *f = *state;
+    modcp_job_init(&f->job, &f->bp, f->msgbuf, 100);
+    fb(f, false);
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    fb(f, false);
+    assert_int_equal(poll(f), MODCP_JOBP_PARAMS);
+    assert_int_equal(f->job.msglen, 0);
+}
+
+/* Before init completes every job is answered (0E)56H (004 §4.2 step 7, §4.6 e). */
+static void test_job_before_init(void **state)
+{
+    fx_t *f = *state;
+    fb(f, false);
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    fb(f, false);
+    assert_int_equal(poll(f), MODCP_JOBP_PARAMS);
+    assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_DB, 800, 0, 0, 4, 4, 1024), MODCP_EV_NONE);
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_FB_NOT_RUNNING);
+}
+
+/* ---- jobs: 32-byte blocks, limits (004 §4.4, §4.5) ------------------------------------ */
+
+/* The CP side alone: header block, then ceil(len/32) data blocks, the last shorter. */
+static void test_job_block_layout(void **state)
+{
+    fx_t *f = *state;
+    for (unsigned k = 0; k < 1000; k++) {
+        f->wbuf[k] = (uint8_t)(k ^ 0x5A);
+    }
+    assert_int_equal(start(f, MODCP_JOB_WRITE, MODCP_AREA_DB, 800, 24, 0, 1000, 1000, 1024),
+                     MODCP_EV_NONE);
+    assert_true(modcp_job_busy(&f->job));
+    uint8_t got[1000];
+    unsigned blocks = 0, pos = 0;
+    uint8_t seq = 0;
+    bool last = false;
+    while (!last) {
+        assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+        modcp_block_t b;
+        while (modcp_ring_get(&f->bp.to_cpu, &b)) {
+            assert_int_equal(b.seq, seq);
+            seq++;
+            assert_int_equal(b.kind, MODCP_BP_JOB);
+            assert_int_equal(b.tag, 1); /* the first tag */
+            if (blocks == 0) {
+                assert_int_equal(b.flags, MODCP_BLK_FIRST);
+                modcp_bp_job_t h;
+                assert_true(modcp_bp_job_decode(b.data, b.len, &h));
+                assert_int_equal(h.op, MODCP_JOB_WRITE);
+                assert_int_equal(h.opnd.area, MODCP_AREA_DB);
+                assert_int_equal(h.opnd.db, 800);
+                assert_int_equal(h.opnd.offset, 24);
+                assert_int_equal(h.len, 1000);
+            } else {
+                last = (b.flags & MODCP_BLK_LAST) != 0;
+                assert_int_equal(b.flags & MODCP_BLK_FIRST, 0);
+                assert_int_equal(b.len, last ? 1000 - 31 * 32 : 32); /* 8 */
+                memcpy(got + pos, b.data, b.len);
+                pos += b.len;
+            }
+            blocks++;
+        }
+    }
+    assert_int_equal(blocks, 1 + 32);
+    assert_int_equal(pos, 1000);
+    assert_memory_equal(got, f->wbuf, 1000);
+    assert_int_equal(f->job.state, MODCP_JOBST_WAITING);
+
+    /* the test answers as the CPU side */
+    modcp_bp_reply_t rep = {.event = MODCP_EV_NONE, .error_nr = 0, .len = 0};
+    modcp_block_t b = {.kind = MODCP_BP_REPLY, .flags = MODCP_BLK_FIRST | MODCP_BLK_LAST, .tag = 1};
+    b.len = modcp_bp_reply_encode(&rep, b.data);
+    uint8_t tx = 0;
+    assert_true(modcp_ring_put(&f->bp.to_cp, &b, &tx));
+    assert_int_equal(poll(f), MODCP_JOBP_DONE);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+    assert_false(modcp_job_busy(&f->job));
+}
+
+/* 1024-byte write (CP 341 limit) into DB 800: 1 + 32 blocks, reassembled byte-exact,
+ * CP_START_NDR in exactly one call. */
+static void test_write_1024(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    for (unsigned k = 0; k < 1024; k++) {
+        f->wbuf[k] = (uint8_t)(k * 7u + 3u);
+    }
+    uint32_t head0 = atomic_load(&f->bp.to_cpu.head);
+    f->ndr_calls = 0;
+    assert_int_equal(start(f, MODCP_JOB_WRITE, MODCP_AREA_DB, 800, 0, 0, 1024, 1024, 1024),
+                     MODCP_EV_NONE);
+    int calls = run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+    assert_int_equal(atomic_load(&f->bp.to_cpu.head) - head0, 33);
+    assert_int_equal(calls, 9); /* 4 blocks per CPU cycle: 33 blocks */
+    assert_memory_equal(f->db800, f->wbuf, 1024);
+    assert_int_equal(f->ndr_calls, 1);
+    fb(f, true);
+    assert_false(f->out.cp_start_ndr);
+    assert_int_equal(f->fb.jobs_done, 1);
+}
+
+/* 1024-byte read: the reply is 1 + 32 blocks; rlen and the data exact. */
+static void test_read_1024(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    for (unsigned k = 0; k < 1024; k++) {
+        f->db800[k] = (uint8_t)(k * 11u + 5u);
+    }
+    uint32_t head0 = atomic_load(&f->bp.to_cp.head);
+    f->ndr_calls = 0;
+    assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_DB, 800, 0, 0, 1024, 1024, 1024),
+                     MODCP_EV_NONE);
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+    assert_int_equal(f->job.rlen, 1024);
+    assert_memory_equal(f->rbuf, f->db800, 1024);
+    assert_int_equal(atomic_load(&f->bp.to_cp.head) - head0, 33);
+    assert_int_equal(f->ndr_calls, 0); /* a read is not new data */
+}
+
+/* 004 §6.3 FC03 / §9: DB 800 DBW 160 = 8765 4321 read as 4 bytes; 004 §6.1 T/C words
+ * high byte first. */
+static void test_read_small(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    f->db800[160] = 0x87, f->db800[161] = 0x65, f->db800[162] = 0x43, f->db800[163] = 0x21;
+    assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_DB, 800, 160, 0, 4, 4, 1024),
+                     MODCP_EV_NONE);
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+    assert_int_equal(f->job.rlen, 4);
+    assert_memory_equal(f->rbuf, ((const uint8_t[]){0x87, 0x65, 0x43, 0x21}), 4);
+
+    f->t[100] = 0x1234;
+    assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_T, 0, 100, 0, 1, 2, 1024), MODCP_EV_NONE);
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+    assert_memory_equal(f->rbuf, ((const uint8_t[]){0x12, 0x34}), 2);
+}
+
+/* CP 441-2 model: the transfer limit is 450 bytes (004 §4.5). */
+static void test_job_limit_450(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    assert_int_equal(start(f, MODCP_JOB_WRITE, MODCP_AREA_DB, 800, 0, 0, 451, 451, 450),
+                     MODCP_EV_JOB_LENGTH);
+    assert_false(modcp_job_busy(&f->job));
+    assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_DB, 800, 0, 0, 451, 451, 450),
+                     MODCP_EV_JOB_LENGTH);
+    assert_false(modcp_job_busy(&f->job));
+    /* a read that does not fit the caller's buffer */
+    modcp_bp_job_t h = {.op = MODCP_JOB_READ, .opnd = {.area = MODCP_AREA_DB, .db = 800, .count = 8}, .len = 8};
+    assert_int_equal(modcp_job_start(&f->job, &h, NULL, f->rbuf, 7, 450, TIMEOUT_US, f->now_us),
+                     MODCP_EV_JOB_LENGTH);
+    /* 450 is fine */
+    memset(f->wbuf, 0x3C, 450);
+    assert_int_equal(start(f, MODCP_JOB_WRITE, MODCP_AREA_DB, 800, 0, 0, 450, 450, 450),
+                     MODCP_EV_NONE);
+    /* one job at a time */
+    assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_DB, 800, 0, 0, 4, 4, 450),
+                     MODCP_EV_INTERNAL_SEND);
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+    assert_int_equal(f->db800[449], 0x3C);
+    assert_int_equal(f->db800[450], 0x00);
+}
+
+/* 004 §6.8 FC15 example executed by the FB: CD 09 for 12 bits at M 1144.0, M 1145.4..7
+ * preset to 1 stay 1; CP_START_NDR for exactly the executing call. */
+static void test_bitwrite_fc15_ndr(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    f->m[1145] = 0xF0;
+    f->wbuf[0] = 0xCD;
+    f->wbuf[1] = 0x09;
+    assert_int_equal(start(f, MODCP_JOB_BITWRITE, MODCP_AREA_M, 0, 1144, 0, 12, 2, 1024),
+                     MODCP_EV_NONE);
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    fb(f, true);
+    assert_true(f->out.cp_start_ndr);
+    assert_int_equal(f->m[1144], 0xCD);
+    assert_int_equal(f->m[1145], 0xF9);
+    assert_int_equal(poll(f), MODCP_JOBP_DONE);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+    fb(f, true);
+    assert_false(f->out.cp_start_ndr);
+
+    /* 004 §6.5 FC05 example: Q 257.1 set */
+    f->q[257] = 0x80;
+    f->wbuf[0] = 0x01;
+    assert_int_equal(start(f, MODCP_JOB_BITWRITE, MODCP_AREA_Q, 0, 257, 1, 1, 1, 1024),
+                     MODCP_EV_NONE);
+    f->ndr_calls = 0;
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+    assert_int_equal(f->q[257], 0x82);
+    assert_int_equal(f->ndr_calls, 1);
+}
+
+/* ---- timeouts and cancellation (004 §4.3, (0E)31H / (0E)3BH) ------------------------- */
+
+/* FC16 example data (004 §6.9) for DB 800 DBW 100; the FB is not called: (0E)31H at
+ * exactly timeout_us; afterwards the cancelled write is not executed. */
+static void test_write_timeout_not_executed(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    const uint8_t fc16[] = {0xCD, 0x09, 0xDE, 0x1A, 0xEF, 0x2B};
+    memcpy(f->wbuf, fc16, 6);
+    uint32_t t0 = f->now_us;
+    assert_int_equal(start(f, MODCP_JOB_WRITE, MODCP_AREA_DB, 800, 100, 0, 6, 6, 1024),
+                     MODCP_EV_NONE);
+    uint8_t tag = f->job.tag;
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING); /* header + data pushed */
+    f->now_us = t0 + TIMEOUT_US - 1u;
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    assert_true(modcp_job_busy(&f->job));
+    f->now_us = t0 + TIMEOUT_US;
+    assert_int_equal(poll(f), MODCP_JOBP_DONE);
+    assert_int_equal(f->job.event, MODCP_EV_XFER_TIMEOUT);
+    assert_false(modcp_job_busy(&f->job));
+    assert_int_equal(atomic_load(&f->bp.abort_tag), tag);
+
+    /* the CPU cycle comes back: the job's blocks are consumed, nothing is written */
+    uint32_t cp_head = atomic_load(&f->bp.to_cp.head);
+    f->ndr_calls = 0;
+    fb(f, true);
+    fb(f, true);
+    assert_int_equal(atomic_load(&f->bp.to_cpu.tail), atomic_load(&f->bp.to_cpu.head));
+    uint8_t zero[6] = {0};
+    assert_memory_equal(f->db800 + 100, zero, 6);
+    assert_int_equal(f->ndr_calls, 0);
+    assert_int_equal(atomic_load(&f->bp.to_cp.head), cp_head); /* no reply for it */
+
+    /* the next job works; a stale REPLY with the old tag arriving meanwhile is dropped */
+    f->db800[0] = 0x42;
+    assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_DB, 800, 0, 0, 1, 1, 1024), MODCP_EV_NONE);
+    assert_int_not_equal(f->job.tag, tag);
+    modcp_bp_reply_t stale = {.event = MODCP_EV_NONE, .len = 0};
+    modcp_block_t b = {.kind = MODCP_BP_REPLY, .flags = MODCP_BLK_FIRST | MODCP_BLK_LAST, .tag = tag};
+    b.len = modcp_bp_reply_encode(&stale, b.data);
+    assert_true(modcp_ring_put(&f->bp.to_cp, &b, &f->fb.tx_seq));
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    assert_true(modcp_job_busy(&f->job));
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+    assert_int_equal(f->rbuf[0], 0x42);
+    assert_int_equal(f->job.proto_errors, 0);
+}
+
+/* A 1024-byte read times out while its reply is crossing ((0E)31H in RECEIVING); the
+ * rest of the stale reply is dropped by the CP, and the next job is answered normally. */
+static void test_read_timeout_stale_reply_dropped(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    memset(f->db800, 0x11, 1024);
+    uint32_t t0 = f->now_us;
+    assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_DB, 800, 0, 0, 1024, 1024, 1024),
+                     MODCP_EV_NONE);
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    fb(f, true); /* executes, pushes 4 of 33 reply blocks */
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    assert_int_equal(f->job.state, MODCP_JOBST_RECEIVING);
+    assert_int_equal(f->job.rlen, 96);
+    f->now_us = t0 + TIMEOUT_US; /* the CPU is stuck for a second */
+    assert_int_equal(poll(f), MODCP_JOBP_DONE);
+    assert_int_equal(f->job.event, MODCP_EV_XFER_TIMEOUT);
+
+    memset(f->rbuf, 0, sizeof f->rbuf);
+    for (int k = 0; k < 20 && (f->fb.reply_pending || atomic_load(&f->bp.to_cp.head) !=
+                                                          atomic_load(&f->bp.to_cp.tail));
+         k++) {
+        fb(f, true);
+        assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    }
+    assert_false(f->fb.reply_pending);
+    assert_int_equal(f->rbuf[0], 0); /* nothing stored */
+    assert_false(modcp_job_busy(&f->job));
+    assert_int_equal(f->job.proto_errors, 0);
+
+    f->db800[5] = 0x99;
+    assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_DB, 800, 5, 0, 1, 1, 1024), MODCP_EV_NONE);
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+    assert_int_equal(f->rbuf[0], 0x99);
+}
+
+/* FC05 (004 §6.5) with the FB not called: (0E)3BH; the wrap of the CP clock is harmless;
+ * the cancelled bit write is never executed. */
+static void test_bitwrite_timeout(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    f->now_us = 0xFFFF0000u;
+    uint32_t t0 = f->now_us;
+    f->wbuf[0] = 0x01;
+    assert_int_equal(start(f, MODCP_JOB_BITWRITE, MODCP_AREA_Q, 0, 257, 1, 1, 1, 1024),
+                     MODCP_EV_NONE);
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    f->now_us = t0 + TIMEOUT_US - 1u; /* wrapped past 0 */
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    f->now_us = t0 + TIMEOUT_US;
+    assert_int_equal(poll(f), MODCP_JOBP_DONE);
+    assert_int_equal(f->job.event, MODCP_EV_FB_TIMEOUT);
+    f->ndr_calls = 0;
+    fb(f, true);
+    assert_int_equal(f->q[257], 0x00);
+    assert_int_equal(f->ndr_calls, 0);
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+}
+
+/* Tags run 1..255 and never 0; a tag that was cancelled is usable again 255 jobs later. */
+static void test_tags_cycle_and_reuse(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    /* job with tag 1 times out while the FB sleeps */
+    uint32_t t0 = f->now_us;
+    assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_M, 0, 0, 0, 1, 1, 1024), MODCP_EV_NONE);
+    assert_int_equal(f->job.tag, 1);
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    f->now_us = t0 + TIMEOUT_US;
+    assert_int_equal(poll(f), MODCP_JOBP_DONE);
+    assert_int_equal(atomic_load(&f->bp.abort_tag), 1);
+    f->m[0] = 0x5A;
+    for (unsigned n = 0; n < 300; n++) {
+        uint8_t want = (uint8_t)((n + 1u) % 255u + 1u); /* 2 .. 255, 1, 2 ... */
+        assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_M, 0, 0, 0, 1, 1, 1024), MODCP_EV_NONE);
+        assert_int_equal(f->job.tag, want);
+        f->rbuf[0] = 0;
+        run_job(f);
+        assert_int_equal(f->job.event, MODCP_EV_NONE);
+        assert_int_equal(f->rbuf[0], 0x5A);
+    }
+}
+
+/* modcp_job_abort (CP re-parameterised): the queued job is not executed. */
+static void test_job_abort(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    f->wbuf[0] = 0x77;
+    assert_int_equal(start(f, MODCP_JOB_WRITE, MODCP_AREA_M, 0, 10, 0, 1, 1, 1024), MODCP_EV_NONE);
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    modcp_job_abort(&f->job);
+    assert_false(modcp_job_busy(&f->job));
+    assert_int_equal(atomic_load(&f->bp.abort_tag), f->job.tag);
+    fb(f, true);
+    assert_int_equal(f->m[10], 0);
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+}
+
+/* ---- errors reported by the FB (004 §7.5 (0E)38H/39H/3AH/57H, §7.6 10..18) ----------- */
+
+static void expect_fb_error(fx_t *f, uint16_t nr, uint16_t info)
+{
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_FB_ERROR);
+    assert_int_equal(f->job.error_nr, nr);
+    assert_int_equal(f->out.error_nr, nr);
+    assert_int_equal(f->out.error_info, info);
+    assert_int_equal(f->ndr_calls, 0);
+}
+
+static void test_fb_errors(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    f->ndr_calls = 0;
+    memset(f->wbuf, 0xFF, 64);
+
+    /* 10: illegal processing code, ERROR_INFO = the code */
+    assert_int_equal(start(f, 9, MODCP_AREA_M, 0, 0, 0, 1, 1, 1024), MODCP_EV_NONE);
+    expect_fb_error(f, MODCP_FB_ERR_PROC_CODE, 9);
+    /* 12: amount 0 */
+    assert_int_equal(start(f, MODCP_JOB_BITWRITE, MODCP_AREA_M, 0, 0, 0, 0, 1, 1024), MODCP_EV_NONE);
+    expect_fb_error(f, MODCP_FB_ERR_AMOUNT0, 0);
+    /* 18: bit write to a timer (illegal area for the FB), ERROR_INFO 0 */
+    assert_int_equal(start(f, MODCP_JOB_BITWRITE, MODCP_AREA_T, 0, 0, 0, 16, 2, 1024), MODCP_EV_NONE);
+    expect_fb_error(f, MODCP_FB_ERR_AREA, 0);
+    /* 18: register write to inputs */
+    assert_int_equal(start(f, MODCP_JOB_WRITE, MODCP_AREA_I, 0, 0, 0, 2, 2, 1024), MODCP_EV_NONE);
+    expect_fb_error(f, MODCP_FB_ERR_AREA, 0);
+    /* 14: M 2047.4, 8 bits -> ends in MB 2048 (M has 2048 bytes); ERROR_INFO = end */
+    assert_int_equal(start(f, MODCP_JOB_BITWRITE, MODCP_AREA_M, 0, 2047, 4, 8, 1, 1024),
+                     MODCP_EV_NONE);
+    expect_fb_error(f, MODCP_FB_ERR_M_END, 2048);
+    assert_int_equal(f->m[2047], 0x00);
+    /* 15: Q 511.0, 9 bits -> QB 512 */
+    assert_int_equal(start(f, MODCP_JOB_BITWRITE, MODCP_AREA_Q, 0, 511, 0, 9, 2, 1024),
+                     MODCP_EV_NONE);
+    expect_fb_error(f, MODCP_FB_ERR_Q_END, 512);
+    assert_int_equal(f->q[511], 0x00);
+    /* 13: fewer data bytes than the bit count needs */
+    assert_int_equal(start(f, MODCP_JOB_BITWRITE, MODCP_AREA_M, 0, 0, 0, 9, 1, 1024), MODCP_EV_NONE);
+    expect_fb_error(f, MODCP_FB_ERR_AMOUNT, 9);
+    /* 13: longer than the FB's job buffer (CP allowed 2000): 1100 bytes cross, nothing
+     * is written */
+    assert_int_equal(start(f, MODCP_JOB_WRITE, MODCP_AREA_DB, 800, 0, 0, 1100, 1100, 2000),
+                     MODCP_EV_NONE);
+    expect_fb_error(f, MODCP_FB_ERR_AMOUNT, 1100);
+    assert_int_equal(f->db800[0], 0x00);
+
+    /* later jobs continue (004 §7.6: 10..19 do not stop the FB); outputs keep the error */
+    f->m[3] = 0x0F;
+    assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_M, 0, 3, 0, 1, 1, 1024), MODCP_EV_NONE);
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+    assert_int_equal(f->rbuf[0], 0x0F);
+    assert_int_equal(f->out.error_nr, MODCP_FB_ERR_AMOUNT);
+    assert_int_equal(f->fb.state, MODCP_FBST_RUN);
+}
+
+/* (0E)38H / (0E)39H come from the memory model and are not FB error numbers. */
+static void test_access_errors(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    /* 004 §7.5 (0E)39H: DB 801 does not exist */
+    assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_DB, 801, 0, 0, 4, 4, 1024), MODCP_EV_NONE);
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_DB_ACCESS);
+    assert_int_equal(f->job.error_nr, 0);
+    assert_int_equal(f->job.rlen, 0);
+    /* DB 900 too short for 8 bytes at 60 */
+    memset(f->wbuf, 0xAB, 8);
+    assert_int_equal(start(f, MODCP_JOB_WRITE, MODCP_AREA_DB, 900, 60, 0, 8, 8, 1024),
+                     MODCP_EV_NONE);
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_DB_ACCESS);
+    assert_int_equal(f->db900[60], 0);
+    /* bit write into a missing DB */
+    assert_int_equal(start(f, MODCP_JOB_BITWRITE, MODCP_AREA_DB, 801, 0, 0, 1, 1, 1024),
+                     MODCP_EV_NONE);
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_DB_ACCESS);
+    /* (0E)38H: inputs past the end (FC02) and counters past the end (FC01) */
+    assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_I, 0, 120, 0, 16, 16, 1024), MODCP_EV_NONE);
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_AREA_ACCESS);
+    assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_C, 0, 199, 0, 2, 4, 1024), MODCP_EV_NONE);
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_AREA_ACCESS);
+    assert_int_equal(f->out.error_nr, 0); /* not an FB error */
+}
+
+/* (0E)3AH: the FB's work DB does not exist (004 §7.5) — bit writes cannot be placed. */
+static void test_work_db_missing(void **state)
+{
+    fx_t *f = *state;
+    fx_fb_init(f, 81);
+    init_ok(f);
+    assert_int_equal(f->job.init.areas.work_db, 81);
+    f->wbuf[0] = 0x01;
+    assert_int_equal(start(f, MODCP_JOB_BITWRITE, MODCP_AREA_M, 0, 5, 0, 1, 1, 1024), MODCP_EV_NONE);
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_WORK_DB);
+    assert_int_equal(f->m[5], 0);
+    /* reads and register writes do not need the work DB */
+    assert_int_equal(start(f, MODCP_JOB_WRITE, MODCP_AREA_M, 0, 5, 0, 1, 1, 1024), MODCP_EV_NONE);
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+    assert_int_equal(f->m[5], 0x01);
+}
+
+/* ---- ring protocol checks on the CP side ------------------------------------------- */
+
+static void put_reply(fx_t *f, uint8_t *seq, uint8_t flags, uint8_t tag, const uint8_t *d,
+                      uint8_t len)
+{
+    modcp_block_t b;
+    memset(&b, 0, sizeof b);
+    b.kind = MODCP_BP_REPLY;
+    b.flags = flags;
+    b.tag = tag;
+    b.len = len;
+    memcpy(b.data, d, len);
+    assert_true(modcp_ring_put(&f->bp.to_cp, &b, seq));
+}
+
+/* The test consumes what the CP sent, as the CPU side would. */
+static void drain_to_cpu(fx_t *f)
+{
+    modcp_block_t b;
+    while (modcp_ring_get(&f->bp.to_cpu, &b)) {
+    }
+}
+
+/* A reply shorter than announced, or shorter than the read asked for: (0E)33H. A
+ * sequence gap is counted and resynchronised. */
+static void test_reply_checks(void **state)
+{
+    fx_t *f = *state;
+    uint8_t seq = 10;
+    uint8_t hdr[8];
+    modcp_bp_reply_t r = {.event = MODCP_EV_NONE, .len = 4};
+    const uint8_t two[2] = {1, 2};
+
+    assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_M, 0, 0, 0, 4, 4, 1024), MODCP_EV_NONE);
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    drain_to_cpu(f);
+    put_reply(f, &seq, MODCP_BLK_FIRST, f->job.tag, hdr, modcp_bp_reply_encode(&r, hdr));
+    put_reply(f, &seq, MODCP_BLK_LAST, f->job.tag, two, 2); /* 2 of 4 */
+    assert_int_equal(poll(f), MODCP_JOBP_DONE);
+    assert_int_equal(f->job.event, MODCP_EV_XFER_STATE);
+    assert_int_equal(f->job.proto_errors, 0); /* first block synced at seq 10 */
+
+    assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_M, 0, 0, 0, 4, 4, 1024), MODCP_EV_NONE);
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    r.len = 2; /* announces fewer bytes than the read asked for */
+    put_reply(f, &seq, MODCP_BLK_FIRST, f->job.tag, hdr, modcp_bp_reply_encode(&r, hdr));
+    put_reply(f, &seq, MODCP_BLK_LAST, f->job.tag, two, 2);
+    assert_int_equal(poll(f), MODCP_JOBP_DONE);
+    assert_int_equal(f->job.event, MODCP_EV_XFER_STATE);
+
+    /* FB error carried by the header ends the job at once */
+    assert_int_equal(start(f, MODCP_JOB_BITWRITE, MODCP_AREA_M, 0, 0, 0, 1, 1, 1024), MODCP_EV_NONE);
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    drain_to_cpu(f);
+    modcp_bp_reply_t e = {.event = MODCP_EV_FB_ERROR, .error_nr = 14, .len = 0};
+    seq++; /* gap: one sequence number skipped */
+    put_reply(f, &seq, MODCP_BLK_FIRST | MODCP_BLK_LAST, f->job.tag, hdr,
+              modcp_bp_reply_encode(&e, hdr));
+    assert_int_equal(poll(f), MODCP_JOBP_DONE);
+    assert_int_equal(f->job.event, MODCP_EV_FB_ERROR);
+    assert_int_equal(f->job.error_nr, 14);
+    assert_int_equal(f->job.proto_errors, 1);
+    /* resynchronised: the next block in sequence is no error; a reply without a job is
+     * dropped silently */
+    put_reply(f, &seq, MODCP_BLK_FIRST | MODCP_BLK_LAST, f->job.tag, hdr,
+              modcp_bp_reply_encode(&e, hdr));
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    assert_int_equal(f->job.proto_errors, 1);
+}
+
+/* The test plays the CP towards the FB (blocks pushed by hand). */
+static void cp_put(fx_t *f, uint8_t kind, uint8_t flags, uint8_t tag, const uint8_t *d, uint8_t len)
+{
+    modcp_block_t b;
+    memset(&b, 0, sizeof b);
+    b.kind = kind;
+    b.flags = flags;
+    b.tag = tag;
+    b.len = len;
+    memcpy(b.data, d, len);
+    assert_true(modcp_ring_put(&f->bp.to_cpu, &b, &f->job.tx_seq));
+}
+
+static void cp_put_job(fx_t *f, uint8_t tag, uint8_t op, uint8_t area, uint16_t offset, uint8_t bit,
+                       uint16_t count, uint16_t len, bool last)
+{
+    modcp_bp_job_t h = {.op = op, .opnd = {.area = area, .bit = bit, .offset = offset, .count = count},
+                        .len = len};
+    uint8_t d[MODCP_BLOCK_SIZE];
+    uint8_t n = modcp_bp_job_encode(&h, d);
+    cp_put(f, MODCP_BP_JOB, (uint8_t)(MODCP_BLK_FIRST | (last ? MODCP_BLK_LAST : 0)), tag, d, n);
+}
+
+/* The FB's reply header as the CP would see it; false if there is none. */
+static bool fb_reply(fx_t *f, uint8_t *tag, modcp_bp_reply_t *r)
+{
+    modcp_block_t b;
+    if (!modcp_ring_get(&f->bp.to_cp, &b)) {
+        return false;
+    }
+    assert_int_equal(b.kind, MODCP_BP_REPLY);
+    assert_true(b.flags & MODCP_BLK_FIRST);
+    *tag = b.tag;
+    assert_true(modcp_bp_reply_decode(b.data, b.len, r));
+    return true;
+}
+
+/* SPEC §6: nothing is executed from a job whose data did not arrive complete. */
+static void test_fb_incomplete_jobs(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    const uint8_t data[4] = {1, 2, 3, 4};
+    uint8_t tag;
+    modcp_bp_reply_t r;
+
+    /* announced 4 bytes, 2 arrive: (0E)33H, memory untouched */
+    cp_put_job(f, 10, MODCP_JOB_WRITE, MODCP_AREA_M, 0, 0, 4, 4, false);
+    cp_put(f, MODCP_BP_JOB, MODCP_BLK_LAST, 10, data, 2);
+    fb(f, true);
+    assert_true(fb_reply(f, &tag, &r));
+    assert_int_equal(tag, 10);
+    assert_int_equal(r.event, MODCP_EV_XFER_STATE);
+    assert_int_equal(f->m[0], 0);
+    assert_int_equal(f->ndr_calls, 0);
+
+    /* a block lost on the way (sequence gap): the job is dropped without a reply */
+    cp_put_job(f, 11, MODCP_JOB_WRITE, MODCP_AREA_M, 0, 0, 4, 4, false);
+    f->job.tx_seq++;
+    cp_put(f, MODCP_BP_JOB, MODCP_BLK_LAST, 11, data, 4);
+    fb(f, true);
+    assert_false(fb_reply(f, &tag, &r));
+    assert_int_equal(f->m[0], 0);
+    /* data of a job whose header was never seen is ignored, too */
+    cp_put(f, MODCP_BP_JOB, MODCP_BLK_LAST, 12, data, 4);
+    fb(f, true);
+    assert_false(fb_reply(f, &tag, &r));
+
+    /* a new FIRST abandons an unfinished job; the new one runs */
+    cp_put_job(f, 13, MODCP_JOB_WRITE, MODCP_AREA_M, 0, 0, 4, 4, false);
+    cp_put_job(f, 14, MODCP_JOB_WRITE, MODCP_AREA_M, 8, 0, 4, 4, false);
+    cp_put(f, MODCP_BP_JOB, MODCP_BLK_LAST, 14, data, 4);
+    fb(f, true);
+    assert_true(fb_reply(f, &tag, &r));
+    assert_int_equal(tag, 14);
+    assert_int_equal(r.event, MODCP_EV_NONE);
+    assert_int_equal(f->m[0], 0);
+    assert_memory_equal(f->m + 8, data, 4);
+    assert_int_equal(f->ndr_calls, 1);
+
+    /* 11: illegal start address (bit 8), ERROR_INFO = start byte */
+    cp_put_job(f, 15, MODCP_JOB_BITWRITE, MODCP_AREA_M, 33, 8, 1, 1, false);
+    cp_put(f, MODCP_BP_JOB, MODCP_BLK_LAST, 15, data, 1);
+    fb(f, true);
+    assert_true(fb_reply(f, &tag, &r));
+    assert_int_equal(r.event, MODCP_EV_FB_ERROR);
+    assert_int_equal(r.error_nr, MODCP_FB_ERR_START);
+    assert_int_equal(f->out.error_nr, MODCP_FB_ERR_START);
+    assert_int_equal(f->out.error_info, 33);
+    /* 18: no such area */
+    cp_put_job(f, 16, MODCP_JOB_READ, 0, 0, 0, 1, 1, true);
+    fb(f, true);
+    assert_true(fb_reply(f, &tag, &r));
+    assert_int_equal(r.error_nr, MODCP_FB_ERR_AREA);
+}
+
+/* CP side: a PARAMS message that loses a block is reported empty; blocks of the wrong
+ * kind or a short INIT are protocol errors and reported as nothing. */
+static void test_cp_message_checks(void **state)
+{
+    fx_t *f = *state;
+    uint8_t seq = 0;
+    uint8_t d[MODCP_BLOCK_SIZE];
+    memset(d, 0x33, sizeof d);
+    modcp_block_t b;
+    memset(&b, 0, sizeof b);
+    b.kind = MODCP_BP_PARAMS;
+    b.len = 32;
+    b.flags = MODCP_BLK_FIRST;
+    assert_true(modcp_ring_put(&f->bp.to_cp, &b, &seq));
+    seq++; /* lost block */
+    b.flags = MODCP_BLK_LAST;
+    assert_true(modcp_ring_put(&f->bp.to_cp, &b, &seq));
+    assert_int_equal(poll(f), MODCP_JOBP_PARAMS);
+    assert_int_equal(f->job.msglen, 0);
+    assert_int_equal(f->job.proto_errors, 1);
+
+    b.kind = MODCP_BP_INIT; /* too short for an INIT */
+    b.flags = MODCP_BLK_FIRST | MODCP_BLK_LAST;
+    b.len = 10;
+    assert_true(modcp_ring_put(&f->bp.to_cp, &b, &seq));
+    b.kind = MODCP_BP_JOB; /* wrong direction */
+    assert_true(modcp_ring_put(&f->bp.to_cp, &b, &seq));
+    b.kind = MODCP_BP_PARAMS; /* continuation without a start */
+    b.flags = MODCP_BLK_LAST;
+    assert_true(modcp_ring_put(&f->bp.to_cp, &b, &seq));
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    assert_int_equal(f->job.proto_errors, 4);
+}
+
+int main(void)
+{
+#define T(fn) cmocka_unit_test_setup_teardown(fn, setup, teardown)
+    const struct CMUnitTest tests[] = {
+        T(test_params_at_first_call),
+        T(test_init_happy_path),
+        T(test_init_retry_then_success),
+        T(test_init_timeout_cp_silent),
+        T(test_init_nak_until_timeout),
+        T(test_params_overflow),
+        T(test_job_before_init),
+        T(test_job_block_layout),
+        T(test_write_1024),
+        T(test_read_1024),
+        T(test_read_small),
+        T(test_job_limit_450),
+        T(test_bitwrite_fc15_ndr),
+        T(test_write_timeout_not_executed),
+        T(test_read_timeout_stale_reply_dropped),
+        T(test_bitwrite_timeout),
+        T(test_tags_cycle_and_reuse),
+        T(test_job_abort),
+        T(test_fb_errors),
+        T(test_access_errors),
+        T(test_work_db_missing),
+        T(test_reply_checks),
+        T(test_fb_incomplete_jobs),
+        T(test_cp_message_checks),
+    };
+#undef T
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
