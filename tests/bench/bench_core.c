@@ -1,0 +1,129 @@
+#define _POSIX_C_SOURCE 200809L
+/* Benchmark: instructions per request through the whole modcp core (bytes in with
+ * their CRC, link, PDU, mapping, job over the backplane, FB against memory, reply out),
+ * for the requests named on the command line. Run under callgrind with
+ * --toggle-collect=bench_loop (tools/bench does this); alone it prints wall time. */
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "bench_requests.h"
+#include "modcp/backplane.h"
+#include "modcp/cp.h"
+#include "modcp/fb.h"
+#include "modcp/params.h"
+#include "modcp/plcmem.h"
+
+static modcp_backplane_t bp;
+static modcp_cp_t cp;
+static modcp_fb_t fb;
+static modcp_plcmem_t mem;
+static modcp_db_t dbs[2];
+static uint8_t db800[1024], db900[1024], i_[256], q_[320], m_[2600];
+static uint16_t t_[240], c_[240];
+static uint8_t record[MODCP_PARAMS_RECORD_MAX];
+static uint32_t now_us = 1000000, timer_at;
+static uint16_t tx_len;
+static int tx_done;
+
+static void f_tx(void *ctx, const uint8_t *b, uint16_t n)
+{
+    (void)ctx;
+    (void)b;
+    tx_len = n;
+    tx_done = 1;
+}
+static void f_arm(void *ctx, uint32_t us)
+{
+    (void)ctx;
+    timer_at = us ? now_us + us : 0;
+}
+
+static const modcp_hal_t hal = {.ctx = NULL, .uart_tx = f_tx, .timer_arm = f_arm};
+
+static void setup(void)
+{
+    modcp_params_t p;
+    modcp_params_defaults(&p);
+    p.slave_addr = 5;
+    p.coils[0] = (modcp_bitwin_t){MODCP_AREA_M, 0, 2047, 1000, 0};
+    p.inputs[1] = (modcp_bitwin_t){MODCP_AREA_I, 4096, 5119, 128, 0};
+    p.hr_base_db = 800;
+    p.ir_base_db = 900;
+    p.lim_db = (modcp_limit_t){800, 899};
+    p.lim_m = (modcp_limit_t){1000, 1255};
+    dbs[0] = (modcp_db_t){800, sizeof db800, db800};
+    dbs[1] = (modcp_db_t){900, sizeof db900, db900};
+    mem = (modcp_plcmem_t){.i = i_, .q = q_, .m = m_, .t = t_, .c = c_, .i_size = sizeof i_,
+                           .q_size = sizeof q_, .m_size = sizeof m_, .t_count = 240,
+                           .c_count = 240, .dbs = dbs, .db_count = 2};
+    uint16_t n = (uint16_t)modcp_params_encode(&p, record, sizeof record);
+    modcp_bp_init(&bp);
+    modcp_fb_init(&fb, &bp, &mem, record, n, 0, 5000);
+    modcp_cp_init(&cp, &hal, &bp);
+    modcp_fb_in_t in = {true};
+    modcp_fb_out_t out;
+    for (int k = 0; k < 20 && !modcp_cp_ready(&cp); k++) {
+        modcp_fb_call(&fb, &in, &out, now_us / 1000);
+        modcp_cp_poll(&cp, now_us);
+        now_us += 1000;
+    }
+    if (!modcp_cp_ready(&cp)) {
+        fprintf(stderr, "bench: CP not ready\n");
+        exit(1);
+    }
+}
+
+/* One request: bytes in, end of frame, FB cycles until the reply is out. */
+static void one(const uint8_t *req, size_t len)
+{
+    modcp_fb_in_t in = {true};
+    modcp_fb_out_t out;
+    tx_done = 0;
+    for (size_t k = 0; k < len; k++) {
+        modcp_cp_on_rx(&cp, req[k], now_us);
+        now_us += 1146;
+    }
+    now_us = timer_at;
+    modcp_cp_on_timer(&cp, now_us);
+    while (!tx_done) {
+        modcp_fb_call(&fb, &in, &out, now_us / 1000);
+        modcp_cp_poll(&cp, now_us);
+        now_us += 100;
+    }
+    modcp_cp_on_tx_done(&cp, now_us);
+}
+
+void bench_loop(const uint8_t *req, size_t len, unsigned n);
+__attribute__((noinline)) void bench_loop(const uint8_t *req, size_t len, unsigned n)
+{
+    for (unsigned k = 0; k < n; k++) {
+        one(req, len);
+    }
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 3) {
+        fprintf(stderr, "usage: bench_core NAME COUNT\n");
+        return 2;
+    }
+    const bench_request_t *r = bench_find(argv[1]);
+    unsigned n = (unsigned)strtoul(argv[2], NULL, 0);
+    setup();
+    one(r->frame, r->len); /* warm up, check */
+    if (tx_len != r->reply_len) {
+        fprintf(stderr, "bench_core: %s: reply length %u, expected %u\n", r->name, tx_len,
+                r->reply_len);
+        return 1;
+    }
+    struct timespec a, b;
+    clock_gettime(CLOCK_MONOTONIC, &a);
+    bench_loop(r->frame, r->len, n);
+    clock_gettime(CLOCK_MONOTONIC, &b);
+    double us = ((double)(b.tv_sec - a.tv_sec) * 1e6 + (double)(b.tv_nsec - a.tv_nsec) / 1e3) / n;
+    printf("modcp %s: %.2f us per request (wall, %u requests)\n", r->name, us, n);
+    return 0;
+}
