@@ -13,15 +13,90 @@
 
 static modcp_pdu_env_t env_of(modcp_cp_t *cp)
 {
-    modcp_pdu_env_t e = {&cp->params, &cp->areas, &cp->diag, cp->fb_ready};
+    modcp_pdu_env_t e = {&cp->params, &cp->areas, &cp->diag, cp->fb_ready, &cp->ext};
     return e;
 }
 
-static void set_led(modcp_cp_t *cp, modcp_led_t led, bool on)
+/* ---- line discipline and diagnostics (signals.c, leds.c, cpdiag.c) ---------- */
+
+/* SF: not ready (no / bad parameters, FB not initialised) or a wire break. */
+static bool sf_on(const modcp_cp_t *cp)
 {
-    if (cp->hal != NULL && cp->hal->set_led != NULL) {
-        cp->hal->set_led(cp->hal->ctx, led, on);
+    return !modcp_cp_ready(cp) || cp->cpdiag.wire_break;
+}
+
+/* TXD LED: a call into the link / signals started a transmission. */
+static void tx_watch(modcp_cp_t *cp, bool was_tx)
+{
+    bool is_tx = cp->link.state == MODCP_LINK_TX;
+    if (!was_tx && is_tx) {
+        modcp_leds_tx_start(&cp->leds);
+    } else if (was_tx && !is_tx) {
+        modcp_leds_tx_end(&cp->leds); /* aborted (CTS / DSR OFF) */
     }
+}
+
+/* A character or line error arrived (only while DSR allows reception). */
+static void line_rx(modcp_cp_t *cp, uint32_t now_us)
+{
+    if (cp->link.enabled && !(cp->link.rs485 && cp->link.state == MODCP_LINK_TX)) {
+        modcp_leds_rx(&cp->leds, now_us); /* not the echo of our own RS485 reply */
+    }
+}
+
+/* Hand a reply to the link; with RS232 automatic signals it waits for RTS / CTS. */
+static void line_reply(modcp_cp_t *cp, uint16_t out_len, uint32_t now_us)
+{
+    bool was_tx = cp->link.state == MODCP_LINK_TX;
+    modcp_link_reply(&cp->link, out_len, now_us);
+    modcp_sig_on_reply(&cp->sig, &cp->link, now_us);
+    tx_watch(cp, was_tx);
+}
+
+/* A PARAMS record was taken (ok: applied); irq: its diag_irq, -1 if undecodable. */
+static void line_params(modcp_cp_t *cp, bool ok, int irq)
+{
+    modcp_cpdiag_params(&cp->cpdiag, ok, irq);
+    if (ok) {
+        modcp_sig_configure(&cp->sig, &cp->params);
+        modcp_leds_configure(&cp->leds, cp->link.t35_us);
+    }
+}
+
+/* Status-area fields of the line discipline and diagnostics. */
+static void line_status(const modcp_cp_t *cp, modcp_cp_status_t *st)
+{
+    st->flags |= (cp->cpdiag.wire_break ? MODCP_CPST_WIRE_BREAK : 0u) |
+                 (cp->cpdiag.param_error ? MODCP_CPST_PARAM_ERROR : 0u);
+    st->leds = modcp_leds_bits(&cp->leds);
+    st->signals = modcp_sig_bits(&cp->sig);
+    st->char_errors = cp->diag.char_errors;
+    st->breaks = cp->diag.breaks;
+    st->t15_discards = cp->diag.t15_discards;
+    st->frames_too_long = cp->diag.frames_too_long;
+    st->signal_aborts = cp->sig.aborts;
+    memcpy(st->diag_irq, cp->cpdiag.irq, sizeof st->diag_irq);
+    st->diag_irq_count = cp->cpdiag.irq_count;
+    st->systat_ack = cp->cpdiag.systat_ack;
+    memcpy(st->systat, cp->cpdiag.systat, sizeof st->systat);
+}
+
+/* CP task: SYSTAT requests of the CPU side, LEDs. */
+static void line_poll(modcp_cp_t *cp, uint32_t now_us)
+{
+    if (cp->bp != NULL) {
+        uint32_t req = atomic_load_explicit(&cp->bp->systat_req, memory_order_acquire);
+        modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, modcp_cp_ready(cp));
+    }
+    modcp_cpdiag_backplane(&cp->cpdiag, &cp->diag, cp->job.proto_errors, cp->job.illegal_msgs);
+    modcp_leds_poll(&cp->leds, sf_on(cp), now_us);
+}
+
+void modcp_cp_on_signals(modcp_cp_t *cp, bool cts, bool dsr, uint32_t now_us)
+{
+    bool was_tx = cp->link.state == MODCP_LINK_TX;
+    modcp_sig_on_inputs(&cp->sig, &cp->link, cts, dsr, now_us);
+    tx_watch(cp, was_tx);
 }
 
 void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp)
@@ -34,7 +109,10 @@ void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp
     modcp_link_init(&cp->link, hal, &cp->diag, cp->buf, (uint16_t)sizeof cp->buf);
     modcp_job_init(&cp->job, bp, cp->record, (uint16_t)sizeof cp->record);
     cp->param_event = MODCP_EV_PARAM_RECORD; /* nothing received yet */
-    set_led(cp, MODCP_LED_SF, true);
+    modcp_sig_init(&cp->sig, hal, &cp->diag);   /* RTS, DTR OFF */
+    modcp_leds_init(&cp->leds, hal);            /* SF on, TXD, RXD off */
+    modcp_cpdiag_init(&cp->cpdiag);
+    modcp_ext_init(&cp->ext);
 }
 
 bool modcp_cp_ready(const modcp_cp_t *cp)
@@ -45,11 +123,36 @@ bool modcp_cp_ready(const modcp_cp_t *cp)
 /* Finish the current request with the PDU engine's decision. */
 static void finish(modcp_cp_t *cp, modcp_pdu_action_t a, uint16_t out_len, uint32_t now_us)
 {
+    modcp_pdu_env_t env = env_of(cp);
+    modcp_pdu_finished(&cp->pdu, &env, a, now_us); /* FC11/12 accounting, comm loss */
+    if (cp->ext.delimiter_changed) { /* FC08 sub 03 / 01: the ASCII input delimiter */
+        cp->link.ascii_delim = cp->ext.ascii_delimiter;
+        cp->ext.delimiter_changed = false;
+    }
     if (a == MODCP_PDU_REPLY) {
-        modcp_link_reply(&cp->link, out_len, now_us);
+        line_reply(cp, out_len, now_us);
     } else {
         modcp_link_done(&cp->link);
     }
+}
+
+/* Start the PDU engine's job, or finish the request. A request of the extended set
+ * may need several jobs in sequence: modcp_pdu_complete() then returns the next. */
+static void run_action(modcp_cp_t *cp, modcp_pdu_action_t a, uint16_t out_len, uint32_t now_us)
+{
+    modcp_pdu_env_t env = env_of(cp);
+    while (a == MODCP_PDU_JOB) {
+        uint32_t timeout_us = (uint32_t)cp->params.cpu_timeout_ms * 1000u;
+        modcp_event_t ev = modcp_job_start(&cp->job, &cp->pdu.job, cp->pdu.wdata, cp->pdu.rdata,
+                                           cp->pdu.rcap, modcp_params_job_limit(&cp->params),
+                                           timeout_us, now_us);
+        if (ev == MODCP_EV_NONE) {
+            cp->request_pending = true;
+            return;
+        }
+        a = modcp_pdu_complete(&cp->pdu, &env, ev, cp->frame.pdu, &out_len);
+    }
+    finish(cp, a, out_len, now_us);
 }
 
 static void process_request(modcp_cp_t *cp, uint32_t now_us)
@@ -59,40 +162,51 @@ static void process_request(modcp_cp_t *cp, uint32_t now_us)
     uint16_t out_len = 0;
     modcp_pdu_action_t a =
         modcp_pdu_request(&cp->pdu, &env, f->addr, f->pdu, f->pdu_len, f->pdu_cap, &out_len);
-    if (a == MODCP_PDU_JOB) {
-        uint32_t timeout_us = (uint32_t)cp->params.cpu_timeout_ms * 1000u;
-        modcp_event_t ev = modcp_job_start(&cp->job, &cp->pdu.job, cp->pdu.wdata, cp->pdu.rdata,
-                                           cp->pdu.rcap, modcp_params_job_limit(&cp->params),
-                                           timeout_us, now_us);
-        if (ev == MODCP_EV_NONE) {
-            cp->request_pending = true;
-            modcp_cp_poll(cp, now_us); /* push the first blocks at once */
-            return;
-        }
-        a = modcp_pdu_complete(&cp->pdu, &env, ev, f->pdu, &out_len);
+    run_action(cp, a, out_len, now_us);
+    if (cp->request_pending) {
+        modcp_cp_poll(cp, now_us); /* push the first blocks at once */
     }
-    finish(cp, a, out_len, now_us);
 }
 
 void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
 {
+    if (!modcp_sig_rx_allowed(&cp->sig)) {
+        return; /* RS232 automatic signals: no reception while DSR is OFF */
+    }
+    line_rx(cp, now_us);
+    modcp_cpdiag_good_char(&cp->cpdiag);
     modcp_link_on_byte(&cp->link, byte, now_us);
 }
 
 void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us)
 {
+    if (!modcp_sig_rx_allowed(&cp->sig)) {
+        return;
+    }
+    line_rx(cp, now_us);
+    modcp_cpdiag_line_error(&cp->cpdiag, line_errors, cp->link.enabled && !cp->link.suppress);
     modcp_link_on_error(&cp->link, line_errors, now_us);
 }
 
 void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
 {
+    bool was_tx = cp->link.state == MODCP_LINK_TX;
+    if (modcp_sig_on_timer(&cp->sig, &cp->link, now_us)) {
+        tx_watch(cp, was_tx); /* data output waiting time over: the reply may start */
+        return;
+    }
     if (modcp_link_on_timer(&cp->link, now_us, &cp->frame)) {
         process_request(cp, now_us);
     }
+    tx_watch(cp, was_tx); /* RS485 turnaround over: the reply starts */
 }
 
 void modcp_cp_on_tx_done(modcp_cp_t *cp, uint32_t now_us)
 {
+    modcp_leds_tx_end(&cp->leds);
+    if (modcp_sig_on_tx_done(&cp->sig, &cp->link, now_us)) {
+        return; /* RS232 automatic signals: RTS OFF after its delay, then receive */
+    }
     modcp_link_on_tx_done(&cp->link, now_us);
 }
 
@@ -104,12 +218,14 @@ static void take_params(modcp_cp_t *cp)
         cp->request_pending = false;
     }
     modcp_link_disable(&cp->link);
+    modcp_sig_disable(&cp->sig);
     cp->configured = false;
     cp->fb_ready = false;
-    set_led(cp, MODCP_LED_SF, true);
+    modcp_ext_reset(&cp->ext, &cp->diag); /* comm loss disarmed, listen-only left */
 
     modcp_params_t rec;
     modcp_event_t ev = modcp_params_decode(cp->record, cp->job.msglen, &rec);
+    int irq = ev == MODCP_EV_NONE ? (int)rec.diag_irq : -1;
     modcp_event_t warning = MODCP_EV_NONE;
     if (ev == MODCP_EV_NONE) {
         ev = modcp_params_apply(&rec, &cp->params, &warning);
@@ -119,11 +235,13 @@ static void take_params(modcp_cp_t *cp)
     if (ev != MODCP_EV_NONE) {
         modcp_diag_event(&cp->diag, ev);
         modcp_params_defaults(&cp->params);
+        line_params(cp, false, irq);
         return;
     }
     cp->record_crc = modcp_crc16(cp->record, cp->job.msglen);
     cp->configured = true;
     modcp_link_configure(&cp->link, &cp->params);
+    line_params(cp, true, irq);
 }
 
 /* The FB's INIT: accept it when our parameters are the ones the CPU side holds. */
@@ -138,7 +256,6 @@ static void take_init(modcp_cp_t *cp)
     if (ev == MODCP_EV_NONE) {
         cp->areas = cp->job.init.areas;
         cp->fb_ready = true;
-        set_led(cp, MODCP_LED_SF, false);
     } else {
         cp->fb_ready = false;
     }
@@ -153,13 +270,14 @@ static void publish(modcp_cp_t *cp)
     memset(&st, 0, sizeof st);
     st.flags = (cp->configured ? MODCP_CPST_CONFIGURED : 0u) |
                (modcp_cp_ready(cp) ? MODCP_CPST_READY : 0u) |
-               (modcp_cp_ready(cp) ? 0u : MODCP_CPST_SF) | cp->status_flags;
+               (sf_on(cp) ? MODCP_CPST_SF : 0u) | cp->status_flags;
     st.events_total = cp->diag.events_total;
     memcpy(st.buffer, cp->diag.buffer, sizeof st.buffer);
     st.buffer_len = cp->diag.buffer_len;
     st.status = cp->diag.status;
     memcpy(st.counters, cp->diag.counters, sizeof st.counters);
     st.param_event = cp->param_event;
+    line_status(cp, &st);
     if (cp->published && memcmp(&st, &cp->last_status, sizeof st) == 0) {
         return;
     }
@@ -187,12 +305,15 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
             uint16_t out_len = 0;
             modcp_event_t ev = cp->job.event;
             modcp_pdu_action_t a = modcp_pdu_complete(&cp->pdu, &env, ev, cp->frame.pdu, &out_len);
-            finish(cp, a, out_len, now_us);
+            run_action(cp, a, out_len, now_us); /* the reply, or the next job */
         } else if (r == MODCP_JOBP_PARAMS) {
             take_params(cp);
         } else if (r == MODCP_JOBP_INIT) {
             take_init(cp);
         }
     }
+    line_poll(cp, now_us);
+    cp->status_flags =
+        modcp_ext_poll(&cp->ext, &cp->params, &cp->diag, cp->status_flags, now_us);
     publish(cp);
 }

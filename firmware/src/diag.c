@@ -36,9 +36,15 @@ void modcp_diag_event(modcp_diag_t *d, modcp_event_t ev)
 
 void modcp_diag_count(modcp_diag_t *d, modcp_counter_t c)
 {
-    if ((unsigned)c < MODCP_CNT_COUNT) {
-        d->counters[c]++; /* uint16_t: wraps 65535 -> 0 */
+    if ((unsigned)c >= MODCP_CNT_COUNT) {
+        return;
     }
+    if (c == MODCP_CNT_BUS_MSG || c == MODCP_CNT_SLAVE_MSG) {
+        d->counters[c]++; /* uint16_t: wraps 65535 -> 0 */
+    } else if (d->counters[c] != UINT16_MAX) {
+        d->counters[c]++; /* error counts saturate */
+    }
+    modcp_comm_counted(&d->comm, (unsigned)c);
 }
 
 void modcp_diag_clear_counters(modcp_diag_t *d)

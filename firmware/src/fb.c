@@ -16,9 +16,10 @@
  * Job validation by the FB (004 §7.6), replied as (0E)57H + ERROR_NR and shown on
  * ERROR_NR / ERROR_INFO (they stay until the next CP_START edge):
  *   10 unknown op (INFO = op) · 12 count or len 0 (INFO = count) · 13 len above
- *   MODCP_FB_JOB_MAX, or fewer data bytes than the bit count needs (INFO = len / count)
- *   · 18 area not allowed for the op: READ I Q M T C DB, WRITE Q M DB, BITWRITE M Q DB
- *   (INFO 0) · 11 BITWRITE start bit > 7 (INFO = start byte) · 14 / 15 BITWRITE past
+ *   MODCP_FB_JOB_MAX, or fewer data bytes than the bit count needs (INFO = len / count),
+ *   or a MASKWRITE (FC22) that is not 4 data bytes on one word (INFO = len)
+ *   · 18 area not allowed for the op: READ I Q M T C DB, WRITE / MASKWRITE Q M DB,
+ *   BITWRITE M Q DB (INFO 0) · 11 BITWRITE start bit > 7 (INFO = start byte) · 14 / 15 BITWRITE past
  *   the end of M / Q (INFO = last byte addressed).
  * Other replies: (0E)56H FB not in RUN, (0E)3AH BITWRITE with the work DB missing,
  * (0E)38H / (0E)39H from plcmem, (0E)33H write data not as announced. A job whose tag
@@ -157,6 +158,31 @@ static void exec_bitwrite(modcp_fb_t *fb)
     reply(fb, ev, 0, 0);
 }
 
+/* FC22 mask write (MODCP_JOB_MASKWRITE): the word is read, masked and written back in
+ * this one call, so nothing of the user program runs in between (atomic). */
+static void exec_maskwrite(modcp_fb_t *fb)
+{
+    const modcp_bp_job_t *jb = &fb->job;
+    if (jb->len != 4u || jb->opnd.count != 2u) {
+        reply_fb_error(fb, MODCP_FB_ERR_AMOUNT, jb->len);
+        return;
+    }
+    uint8_t w[2];
+    modcp_event_t ev = modcp_plcmem_read(fb->mem, &jb->opnd, w, 2);
+    if (ev == MODCP_EV_NONE) {
+        for (unsigned k = 0; k < 2u; k++) {
+            uint8_t and_mask = fb->buf[k];
+            uint8_t or_mask = fb->buf[2u + k];
+            w[k] = (uint8_t)((w[k] & and_mask) | (or_mask & (uint8_t)~and_mask));
+        }
+        ev = modcp_plcmem_write(fb->mem, &jb->opnd, w, 2);
+    }
+    if (ev == MODCP_EV_NONE) {
+        fb->out.cp_start_ndr = true;
+    }
+    reply(fb, ev, 0, 0);
+}
+
 static void execute(modcp_fb_t *fb)
 {
     if (atomic_load_explicit(&fb->bp->abort_tag, memory_order_acquire) == (uint32_t)fb->job_tag) {
@@ -168,7 +194,8 @@ static void execute(modcp_fb_t *fb)
     }
     const modcp_bp_job_t *jb = &fb->job;
     uint8_t op = jb->op;
-    if (op != MODCP_JOB_READ && op != MODCP_JOB_WRITE && op != MODCP_JOB_BITWRITE) {
+    if (op != MODCP_JOB_READ && op != MODCP_JOB_WRITE && op != MODCP_JOB_BITWRITE &&
+        op != MODCP_JOB_MASKWRITE) {
         reply_fb_error(fb, MODCP_FB_ERR_PROC_CODE, op);
         return;
     }
@@ -206,6 +233,9 @@ static void execute(modcp_fb_t *fb)
             fb->out.cp_start_ndr = true;
         }
         reply(fb, ev, 0, 0);
+        break;
+    case MODCP_JOB_MASKWRITE:
+        exec_maskwrite(fb);
         break;
     default:
         exec_bitwrite(fb);

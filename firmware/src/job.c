@@ -263,6 +263,7 @@ static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b)
         return MODCP_JOBP_INIT;
     default:
         j->proto_errors++; /* JOB / INIT_ACK travel the other way */
+        j->illegal_msgs++;
         return MODCP_JOBP_NOTHING;
     }
 }

@@ -1,5 +1,6 @@
-/* modcp — serial link layer: configuration, dispatch to the framing (RTU in rtu.c),
- * line-error accounting, transmit, turnaround and RS485 driver enable (SPEC §3).
+/* modcp — serial link layer: configuration, dispatch to the framing (RTU in rtu.c,
+ * ASCII in ascii.c), line-error accounting, transmit, turnaround and RS485 driver
+ * enable (SPEC §3).
  *
  * RS485: DE is switched on before the first byte (before the turnaround delay, so the
  * line is driven to idle while we wait) and released only in modcp_link_on_tx_done(),
@@ -57,15 +58,18 @@ static void reset_rx(modcp_link_t *l)
 static void resume_rx(modcp_link_t *l, uint32_t now_us, bool have_now)
 {
     if (l->busy_rx) {
+        /* ASCII: the character delay time plays the part of t3.5 */
+        const uint32_t quiet =
+            l->framing == (uint8_t)MODCP_FRAMING_ASCII ? l->ascii_timeout_us : l->t35_us;
         uint32_t gap = have_now ? now_us - l->last_us : 0u;
-        if (gap < l->t35_us) {
+        if (gap < quiet) {
             l->busy_rx = false;
             l->state = MODCP_LINK_SKIP;
             l->rx_bad = true; /* only its tail was seen: not counted */
             l->rx_overflow = false;
             l->len = 0;
             l->count = 1;
-            arm(l, l->t35_us - gap);
+            arm(l, quiet - gap);
             return;
         }
     }
@@ -80,7 +84,8 @@ void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag
     l->hal = hal;
     l->diag = diag;
     l->buf = buf;
-    l->cap = buf != NULL ? cap : 0u;
+    l->size = buf != NULL ? cap : 0u;
+    l->cap = l->size < MODCP_ADU_MAX ? l->size : (uint16_t)MODCP_ADU_MAX;
     l->enabled = false;
     l->state = MODCP_LINK_IDLE;
 }
@@ -98,13 +103,18 @@ void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
     l->t15_us = p->t15_check != 0u ? modcp_params_t15_us(p) : 0u;
     l->char_us = modcp_params_char_us(p);
     l->turnaround_us = l->rs485 ? (uint32_t)p->turnaround_ms * 1000u : 0u;
+    l->tx_hold = p->rs232_auto != 0u && p->iface == (uint8_t)MODCP_IFACE_RS232;
     l->ascii_timeout_us = (uint32_t)p->ascii_timeout_ms * 1000u;
     switch (p->framing) {
     case MODCP_FRAMING_RTU:
         l->enabled = l->cap >= 4u;
         break;
+    case MODCP_FRAMING_ASCII: /* ascii.c */
+        l->ascii7 = p->data_bits == 7u;
+        l->ascii_delim = 0x0Au; /* LF until FC08 sub-function 03 changes it */
+        l->enabled = l->cap >= 3u && l->size >= 11u;
+        break;
     default:
-        /* ASCII: ascii.c plugs in here (modcp_ascii_*); until then the link stays off. */
         l->enabled = false;
         break;
     }
@@ -125,6 +135,8 @@ void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
     }
     if (l->framing == (uint8_t)MODCP_FRAMING_RTU) {
         modcp_rtu_on_byte(l, b, now_us);
+    } else {
+        modcp_ascii_on_byte(l, b, now_us);
     }
 }
 
@@ -151,6 +163,8 @@ void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
     }
     if (l->framing == (uint8_t)MODCP_FRAMING_RTU) {
         modcp_rtu_on_error(l, line_errors, now_us);
+    } else {
+        modcp_ascii_on_error(l, line_errors, now_us);
     }
 }
 
@@ -160,22 +174,31 @@ bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         return false;
     }
     if (l->state == MODCP_LINK_TURNAROUND) {
+        uint32_t waited = now_us - l->tx_at_us;
+        if (l->tx_hold) {
+            return false; /* RS232 automatic signals: signals.c releases the reply */
+        }
+        if (waited < l->turnaround_us) {
+            arm(l, l->turnaround_us - waited); /* early expiry: never before turnaround */
+            return false;
+        }
         start_tx(l);
         return false;
     }
     if (l->framing == (uint8_t)MODCP_FRAMING_RTU) {
         return modcp_rtu_on_timer(l, now_us, f);
     }
-    return false;
+    return modcp_ascii_on_timer(l, now_us, f);
 }
 
 void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us)
 {
-    (void)now_us;
     if (!l->enabled || l->state != MODCP_LINK_BUSY) {
         return;
     }
-    l->tx_len = modcp_rtu_encode(l, pdu_len); /* ASCII: ascii.c's encoder here */
+    l->tx_at_us = now_us;
+    l->tx_len = l->framing == (uint8_t)MODCP_FRAMING_ASCII ? modcp_ascii_encode(l, pdu_len)
+                                                           : modcp_rtu_encode(l, pdu_len);
     if (l->tx_len == 0u) {
         if (l->diag != NULL) {
             modcp_diag_event(l->diag, MODCP_EV_INTERNAL_SEND); /* reply does not fit */
@@ -185,6 +208,10 @@ void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us)
     }
     if (l->rs485) {
         set_de(l, true);
+    }
+    if (l->tx_hold) {
+        l->state = MODCP_LINK_TURNAROUND; /* signals.c: RTS, data output waiting time, CTS */
+        return;
     }
     if (l->rs485 && l->turnaround_us > 0u) {
         l->state = MODCP_LINK_TURNAROUND;
@@ -211,4 +238,23 @@ void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us)
         set_de(l, false);
     }
     resume_rx(l, now_us, true);
+}
+
+void modcp_link_tx_release(modcp_link_t *l, bool send, uint32_t now_us)
+{
+    if (l->state != MODCP_LINK_TURNAROUND) {
+        return;
+    }
+    if (send) {
+        start_tx(l);
+    } else {
+        resume_rx(l, now_us, true);
+    }
+}
+
+void modcp_link_rx_discard(modcp_link_t *l)
+{
+    if (l->state == MODCP_LINK_RX) {
+        l->rx_bad = true;
+    }
 }

@@ -39,7 +39,7 @@
  *                  scan_count, area != NONE) that is not a word operand (M, I, Q,
  *                  DB with db != 0 with byte offset <= 65534, T, C), an ID string
  *                  not NUL-terminated within 17 bytes (index 0 vendor, 1 product,
- *                  2 revision, 3 app_name).
+ *                  2 revision, 3 app_name), diag_irq > 1.
  *
  * Values of issues: the offending field value; for from/to problems of a window
  * from << 16 | to; for a bad area the area; for db 0 the db (0); for a T/C size
@@ -51,7 +51,7 @@
  * Binary record (little-endian, fixed widths, fields in declaration order):
  *   "MCPR" | u16 version | u16 payload length | payload | u16 CRC-16 (low byte first)
  * ID strings occupy 16 bytes each (the characters up to the NUL, zero padded; the
- * decoder always terminates them). The record is 315 bytes (RECORD_BYTES);
+ * decoder always terminates them). The record is 316 bytes (RECORD_BYTES);
  * decode accepts trailing bytes after it (the record may sit in a padded block). */
 #include "modcp/params.h"
 
@@ -74,7 +74,7 @@
      MODCP_COIL_WINDOWS * BITWIN_BYTES + MODCP_INPUT_WINDOWS * BITWIN_BYTES + 2u + 2u +   \
      1u /* regs32 */ + 3u * R32_BYTES + 3u * LIMIT_BYTES + 1u + 1u /* fset, cpu */ +     \
      4u * 2u /* job limit, cpu timeout, start time, commloss */ + 2u + 1u /* scan */ +   \
-     MODCP_SCANNER_MAX * SCAN_BYTES + 4u * MODCP_ID_STRING_MAX)
+     MODCP_SCANNER_MAX * SCAN_BYTES + 4u * MODCP_ID_STRING_MAX + 1u /* diag_irq */)
 
 #define RECORD_BYTES (HEADER_BYTES + PAYLOAD_BYTES + CRC_BYTES)
 
@@ -462,6 +462,9 @@ static void run_checks(const modcp_params_t *p, issue_sink_t *s)
             add_fatal(s, MODCP_PF_ID_STRING, i, rec, (uint8_t)ids[i][MODCP_ID_STRING_MAX]);
         }
     }
+    if (p->diag_irq > 1u) {
+        add_fatal(s, MODCP_PF_DIAG_IRQ, 0u, rec, p->diag_irq);
+    }
 }
 
 size_t modcp_params_validate(const modcp_params_t *p, modcp_param_issue_t *out, size_t max)
@@ -646,6 +649,7 @@ size_t modcp_params_encode(const modcp_params_t *p, uint8_t *buf, size_t cap)
     wstr(&w, p->product);
     wstr(&w, p->revision);
     wstr(&w, p->app_name);
+    w8(&w, p->diag_irq);
 
     uint16_t crc = modcp_crc16(buf, w.pos);
     w16(&w, crc);
@@ -729,5 +733,6 @@ modcp_event_t modcp_params_decode(const uint8_t *buf, size_t len, modcp_params_t
     rstr(&r, p->product);
     rstr(&r, p->revision);
     rstr(&r, p->app_name);
+    p->diag_irq = r8(&r);
     return MODCP_EV_NONE;
 }

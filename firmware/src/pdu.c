@@ -7,10 +7,16 @@
  *   ((08)32H..35H, exception 03) -> address mapping ((0E)5xH, exception 02)
  *   -> job on the CPU side (exception 04 on any error it reports).
  * Replies are built in place in the request buffer: every field of the request is
- * read before the first reply byte is written. */
+ * read before the first reply byte is written.
+ * Function set `extended` (SPEC §5.3): listen-only and the FC12 receive event come
+ * first (modcp_pdu_ext_pre); FC08, 11, 12, 17, 22, 23, 43 and scanner addresses of
+ * FC03/06/16 go to pdu_ext.c after the FB check; `cp341` answers them with 01. */
 #include "modcp/pdu.h"
 
 #include <string.h>
+
+#include "modcp/quantity.h" /* limits by framing and register width (003 §5, §8.5) */
+#include "pdu_internal.h"      /* the extended set (SPEC §5.3): pdu_ext.c */
 
 static uint16_t get16(const uint8_t *p)
 {
@@ -24,24 +30,12 @@ uint16_t modcp_pdu_exception(uint8_t *pdu, uint8_t fc, uint8_t code)
     return 2;
 }
 
-/* Record ev and answer with its exception code (04 when it has none). */
+/* Record ev and answer with its exception code (04 when it has none); counts the
+ * exception, also for a broadcast (pdu_ext.c). */
 static modcp_pdu_action_t fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_event_t ev,
                                uint8_t code, uint8_t *pdu, uint16_t *out_len)
 {
-    modcp_diag_event(env->diag, ev);
-    if (s->broadcast) {
-        modcp_diag_count(env->diag, MODCP_CNT_NO_RESPONSE);
-        return MODCP_PDU_NO_REPLY;
-    }
-    if (code == 0u) {
-        code = modcp_event_exception(ev);
-        if (code == 0u) {
-            code = 4;
-        }
-    }
-    *out_len = modcp_pdu_exception(pdu, s->fc, code);
-    modcp_diag_count(env->diag, MODCP_CNT_EXCEPTION);
-    return MODCP_PDU_REPLY;
+    return modcp_pdu_fail(s, env, ev, code, pdu, out_len);
 }
 
 static bool fc_supported(uint8_t fc)
@@ -82,7 +76,7 @@ static modcp_pdu_action_t read_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, 
     }
     s->addr = get16(pdu + 1);
     s->qty = get16(pdu + 3);
-    if (s->qty < 1u || s->qty > 2040u) {
+    if (s->qty < 1u || s->qty > modcp_qty_max(env->p, s->fc, 0u)) {
         return fail(s, env, MODCP_EV_QUANTITY, 3, pdu, out_len);
     }
     modcp_operand_t o;
@@ -112,7 +106,8 @@ static modcp_pdu_action_t read_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, 
     }
     s->addr = get16(pdu + 1);
     s->qty = get16(pdu + 3);
-    if (s->qty < 1u || s->qty > 127u) {
+    s->r32_kind = modcp_regs32_kind(env->p, s->fc, s->addr); /* 003 §4.5: by the start */
+    if (s->qty < 1u || s->qty > modcp_qty_max(env->p, s->fc, s->r32_kind)) {
         return fail(s, env, MODCP_EV_QUANTITY, 3, pdu, out_len);
     }
     modcp_operand_t o;
@@ -151,11 +146,15 @@ static modcp_pdu_action_t write_coil(modcp_pdu_t *s, const modcp_pdu_env_t *env,
 static modcp_pdu_action_t write_reg(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
                                     uint16_t len, uint16_t cap, uint16_t *out_len)
 {
-    if (len != 5u) {
+    if (len < 3u) {
         return fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
     }
     s->addr = get16(pdu + 1);
     s->qty = 1;
+    s->r32_kind = modcp_regs32_kind(env->p, s->fc, s->addr);
+    if (len != 3u + modcp_reg_bytes(s->r32_kind)) { /* int32 / float: 4 data bytes */
+        return fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
+    }
     modcp_operand_t o;
     modcp_event_t ev = modcp_map_regs(env->p, env->areas, s->fc, s->addr, 1, &o);
     if (ev != MODCP_EV_NONE) {
@@ -163,7 +162,7 @@ static modcp_pdu_action_t write_reg(modcp_pdu_t *s, const modcp_pdu_env_t *env, 
     }
     s->r32_kind = o.bit;
     o.bit = 0;
-    s->reply_len = 5; /* echo */
+    s->reply_len = len; /* echo: 5, or 7 for an int32 / float register (003 §4.5) */
     return start_job(s, MODCP_JOB_WRITE, &o, o.count, pdu + 3, pdu, cap);
 }
 
@@ -177,7 +176,7 @@ static modcp_pdu_action_t write_coils(modcp_pdu_t *s, const modcp_pdu_env_t *env
     s->addr = get16(pdu + 1);
     s->qty = get16(pdu + 3);
     uint8_t bc = pdu[5];
-    if (s->qty < 1u || s->qty > 2040u) {
+    if (s->qty < 1u || s->qty > modcp_qty_max(env->p, s->fc, 0u)) {
         return fail(s, env, MODCP_EV_QUANTITY, 3, pdu, out_len);
     }
     if (bc != (s->qty + 7u) / 8u || len != 6u + bc) {
@@ -201,10 +200,11 @@ static modcp_pdu_action_t write_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env,
     s->addr = get16(pdu + 1);
     s->qty = get16(pdu + 3);
     uint8_t bc = pdu[5];
-    if (s->qty < 1u || s->qty > 127u) {
+    s->r32_kind = modcp_regs32_kind(env->p, s->fc, s->addr); /* 003 §4.5: by the start */
+    if (s->qty < 1u || s->qty > modcp_qty_max(env->p, s->fc, s->r32_kind)) {
         return fail(s, env, MODCP_EV_QUANTITY, 3, pdu, out_len);
     }
-    if (bc != 2u * s->qty || len != 6u + bc) {
+    if (bc != (unsigned)modcp_reg_bytes(s->r32_kind) * s->qty || len != 6u + bc) {
         return fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
     }
     modcp_operand_t o;
@@ -246,16 +246,21 @@ modcp_pdu_action_t modcp_pdu_request(modcp_pdu_t *s, const modcp_pdu_env_t *env,
     s->fc = pdu[0];
     s->broadcast = addr == 0u;
 
-    if (s->broadcast && !fc_broadcast_allowed(s->fc)) {
-        modcp_diag_event(env->diag, MODCP_EV_BCAST_FC);
-        modcp_diag_count(env->diag, MODCP_CNT_NO_RESPONSE);
-        return MODCP_PDU_NO_REPLY;
+    modcp_pdu_action_t pre;
+    if (modcp_pdu_ext_pre(s, env, pdu, len, &pre)) {
+        return pre; /* listen-only mode */
     }
-    if (!fc_supported(s->fc)) {
+    if (s->broadcast && !fc_broadcast_allowed(s->fc)) {
+        return fail(s, env, MODCP_EV_BCAST_FC, 1, pdu, out_len); /* silent, counted */
+    }
+    if (!fc_supported(s->fc) && !modcp_pdu_ext_supported(env, s->fc)) {
         return fail(s, env, MODCP_EV_ILLEGAL_FC, 1, pdu, out_len);
     }
     if (!env->fb_ready) {
         return fail(s, env, MODCP_EV_FB_NOT_RUNNING, 4, pdu, out_len);
+    }
+    if (modcp_pdu_ext_claims(env, pdu, len)) {
+        return modcp_pdu_ext_request(s, env, pdu, len, cap, out_len);
     }
     switch (s->fc) {
     case 0x01:
@@ -298,6 +303,9 @@ modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env
                                       modcp_event_t ev, uint8_t *pdu, uint16_t *out_len)
 {
     *out_len = 0;
+    if (s->x.seq != 0u) {
+        return modcp_pdu_ext_complete(s, env, ev, pdu, out_len); /* extended set */
+    }
     if (ev != MODCP_EV_NONE) {
         return fail(s, env, ev, 4, pdu, out_len);
     }

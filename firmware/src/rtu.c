@@ -14,12 +14,19 @@
  *    "after the CRC" (004 §2.2): it is not part of the frame, does not restart t3.5,
  *    and the frame stays valid (reported in normal mode only, by link.c). This is the
  *    glitch an RS485 line produces when the master releases its driver.
- *  - Frames with a character error, BREAK or t1.5 violation inside count in neither
- *    BUS_MSG nor BUS_CRC: they are counted as char_errors / breaks / t15_discards.
+ *  - Frames with a character error, BREAK or t1.5 violation inside count once in
+ *    BUS_CRC (Serial Line V1.02 §6.1: the CRC cannot be evaluated), besides
+ *    char_errors / breaks / t15_discards; never in BUS_MSG.
  *  - The t1.5 check applies to frames for us (RX); frames for other addresses are
  *    "not checked".
  *  - RS485 while transmitting: received characters are the echo of our own reply on
- *    the two-wire line and are ignored (no (08)37H for our own address). */
+ *    the two-wire line and are ignored (no (08)37H for our own address).
+ *  - Interference suppression and RS485 (004 §2.2, §2.3): "the start of a message is
+ *    recognised by a correctly received slave address". A line error or BREAK that is
+ *    not inside a frame (idle line, after a frame's t3.5, while a request is processed
+ *    and no frame is being followed) does not start a frame: it is ignored, so a BREAK
+ *    level or a glitch in the pause can never swallow the next request. In normal
+ *    mode it starts an (erroneous) frame that is skipped to its t3.5. */
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -57,12 +64,27 @@ static void count_char(modcp_link_t *l)
     }
 }
 
+/* The current frame is damaged (character error, BREAK, t1.5): it is discarded and,
+ * once per frame, counted as a bus communication error (Serial Line V1.02 §6.1
+ * counter 2: "in case of an error detected on the character level ... this counter
+ * is also incremented"). */
+static void mark_bad(modcp_link_t *l)
+{
+    if (!l->rx_bad) {
+        l->rx_bad = true;
+        count(l, MODCP_CNT_BUS_CRC);
+    }
+}
+
 /* A frame starts with b (or with a line error in place of the first character). */
 static void frame_start(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
 {
     l->count = 1;
     l->first = b;
-    l->rx_bad = error;
+    l->rx_bad = false;
+    if (error) {
+        mark_bad(l);
+    }
     l->rx_overflow = false;
     l->len = 0;
     l->last_us = now_us;
@@ -104,7 +126,7 @@ static void check_t15(modcp_link_t *l, uint32_t now_us)
     }
     uint32_t dist = now_us - l->last_us;
     if (dist > l->t15_us + l->char_us) {
-        l->rx_bad = true;
+        mark_bad(l);
         if (l->diag != NULL) {
             l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
         }
@@ -112,6 +134,16 @@ static void check_t15(modcp_link_t *l, uint32_t now_us)
             event(l, MODCP_EV_ZVZ);
         }
     }
+}
+
+/* Default branch of the receive automaton (a state RTU never uses, i.e. corrupted):
+ * (0E)11H, back to idle; the character that found it starts a new frame. */
+static void internal_error(modcp_link_t *l)
+{
+    event(l, MODCP_EV_INTERNAL_RECEIVE);
+    l->state = MODCP_LINK_IDLE;
+    l->busy_rx = false;
+    l->len = 0;
 }
 
 /* A character (or line error) while a request is processed or its reply is pending:
@@ -160,8 +192,14 @@ void modcp_rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
         l->last_us = now_us;
         arm(l, l->t35_us);
         break;
-    default: /* BUSY, TURNAROUND, TX */
+    case MODCP_LINK_BUSY:
+    case MODCP_LINK_TURNAROUND:
+    case MODCP_LINK_TX:
         busy_track(l, b, false, now_us);
+        break;
+    default:
+        internal_error(l);
+        frame_start(l, b, false, now_us);
         break;
     }
 }
@@ -171,13 +209,16 @@ void modcp_rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
     (void)line_errors; /* every kind of error has the same effect on framing */
     switch (l->state) {
     case MODCP_LINK_IDLE:
+        if (l->suppress) {
+            break; /* between messages: ignored, a frame starts only with a good character */
+        }
         frame_start(l, 0, true, now_us);
         break;
     case MODCP_LINK_RX:
         if (!l->rx_bad && !l->rx_overflow && l->len >= RTU_MIN_FRAME && l->crc == 0u) {
             return; /* after the CRC: not part of the frame */
         }
-        l->rx_bad = true;
+        mark_bad(l);
         count_char(l);
         l->last_us = now_us;
         arm(l, l->t35_us);
@@ -185,16 +226,26 @@ void modcp_rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
     case MODCP_LINK_SKIP:
         if (now_us - l->last_us >= l->t35_us) {
             skip_end(l);
-            frame_start(l, 0, true, now_us);
+            if (!l->suppress) {
+                frame_start(l, 0, true, now_us);
+            }
             break;
         }
-        l->rx_bad = true;
+        mark_bad(l);
         count_char(l);
         l->last_us = now_us;
         arm(l, l->t35_us);
         break;
-    default:
+    case MODCP_LINK_BUSY:
+    case MODCP_LINK_TURNAROUND:
+    case MODCP_LINK_TX:
+        if (l->suppress && (!l->busy_rx || now_us - l->last_us >= l->t35_us)) {
+            break; /* not inside a frame: ignored, as between messages */
+        }
         busy_track(l, 0, true, now_us);
+        break;
+    default:
+        internal_error(l);
         break;
     }
 }

@@ -11,7 +11,7 @@
 #include "modcp/events.h"
 #include "modcp/params.h"
 
-#define RECORD_LEN 315u /* 8 header + 305 payload + 2 CRC */
+#define RECORD_LEN 316u /* 8 header + 306 payload + 2 CRC */
 
 static void set_win(modcp_bitwin_t *w, uint8_t area, uint16_t from, uint16_t to, uint16_t start,
                     uint16_t db)
@@ -611,6 +611,7 @@ static void params_all_fields(modcp_params_t *p)
     strcpy(p->product, "CP-1");
     strcpy(p->revision, "");
     strcpy(p->app_name, "pump station 7");
+    p->diag_irq = 1;
 }
 
 static void assert_window_equal(const modcp_bitwin_t *a, const modcp_bitwin_t *b)
@@ -677,6 +678,7 @@ static void assert_params_equal(const modcp_params_t *a, const modcp_params_t *b
     assert_string_equal(a->product, b->product);
     assert_string_equal(a->revision, b->revision);
     assert_string_equal(a->app_name, b->app_name);
+    assert_int_equal(a->diag_irq, b->diag_irq);
 }
 
 static void test_record_layout(void **state)
@@ -707,9 +709,10 @@ static void test_record_layout(void **state)
     /* first coil window at offset 8 + 23: area M, from 0, to 2047, start 1000, db 0 */
     static const uint8_t win0[9] = {MODCP_AREA_M, 0x00, 0x00, 0xFF, 0x07, 0xE8, 0x03, 0, 0};
     assert_memory_equal(&buf[31], win0, sizeof win0);
-    /* the ID strings are the last 64 payload bytes: vendor uses all 16 */
-    assert_memory_equal(&buf[RECORD_LEN - 2 - 64], "ACME Automation!", 16);
-    assert_memory_equal(&buf[RECORD_LEN - 2 - 48], "CP-1\0\0\0\0\0\0\0\0\0\0\0\0", 16);
+    /* the ID strings are the 64 payload bytes before diag_irq: vendor uses all 16 */
+    assert_memory_equal(&buf[RECORD_LEN - 3 - 64], "ACME Automation!", 16);
+    assert_memory_equal(&buf[RECORD_LEN - 3 - 48], "CP-1\0\0\0\0\0\0\0\0\0\0\0\0", 16);
+    assert_int_equal(buf[RECORD_LEN - 3], 1); /* diag_irq: the last payload byte */
     /* CRC-16 over everything before it, low byte first */
     uint16_t crc = modcp_crc16(buf, RECORD_LEN - 2);
     assert_int_equal(buf[RECORD_LEN - 2], crc & 0xFF);
@@ -819,7 +822,7 @@ static void test_record_id_strings(void **state)
     memcpy(p.vendor, "ab\0cdefghijklmno", 17);
     n = modcp_params_encode(&p, buf, sizeof buf);
     static const uint8_t want[16] = {'a', 'b'};
-    assert_memory_equal(&buf[n - 2 - 64], want, 16);
+    assert_memory_equal(&buf[n - 3 - 64], want, 16); /* before diag_irq and the CRC */
 }
 
 static void test_job_limit(void **state)

@@ -66,6 +66,8 @@ enum {
     MODCP_CPST_SF = 0x0004,         /* group error LED */
     MODCP_CPST_COMMLOSS = 0x0008,   /* comm-loss supervision expired */
     MODCP_CPST_LISTEN_ONLY = 0x0010, /* FC08 sub 04 listen-only mode */
+    MODCP_CPST_WIRE_BREAK = 0x0100, /* BREAK on RxD (normal mode) until a good character */
+    MODCP_CPST_PARAM_ERROR = 0x0200, /* the last PARAMS record was rejected */
 };
 
 typedef struct {
@@ -76,6 +78,18 @@ typedef struct {
     uint16_t status;        /* STATUS word of the last event */
     uint16_t counters[8];   /* Modbus serial-line counters (modcp_counter_t order) */
     modcp_event_t param_event; /* why the CP is not configured (NONE if it is) */
+    /* line discipline and diagnostics (leds.h, signals.h, cpdiag.h) */
+    uint8_t leds;           /* LED levels: bit MODCP_LED_SF / TXD / RXD */
+    uint8_t signals;        /* RS232 signals: MODCP_SIGBIT_* (RTS, DTR, CTS, DSR, AUTO) */
+    uint16_t char_errors;   /* characters with parity / framing / overrun error */
+    uint16_t breaks;        /* BREAKs */
+    uint16_t t15_discards;  /* frames discarded by the t1.5 check */
+    uint16_t frames_too_long; /* frames longer than the receive buffer */
+    uint16_t signal_aborts; /* sends / receptions aborted by CTS / DSR */
+    uint8_t diag_irq[4];    /* last diagnostic interrupt record (001 §8.4) */
+    uint32_t diag_irq_count; /* advances with every diagnostic interrupt */
+    uint32_t systat_ack;    /* SYSTAT request answered by systat[] */
+    uint8_t systat[16];     /* SYSTAT image (004 §7.4), cleared in the CP when taken */
 } modcp_cp_status_t;
 
 typedef struct {
@@ -84,6 +98,7 @@ typedef struct {
     _Atomic uint32_t abort_tag; /* tag of the last job the CP gave up on (0x100 = none) */
     _Atomic uint32_t status_seq; /* seqlock: odd while the CP writes `status` */
     modcp_cp_status_t status;
+    _Atomic uint32_t systat_req; /* CPU side: number of the last SYSTAT request */
 } modcp_backplane_t;
 
 /* Job operations. */
@@ -91,6 +106,10 @@ enum {
     MODCP_JOB_READ = 1,     /* read count bytes / T,C elements (FC01/02/03/04) */
     MODCP_JOB_WRITE = 2,    /* write bytes (FC06/16) */
     MODCP_JOB_BITWRITE = 3, /* read-modify-write of count bits from operand.bit (FC05/15) */
+    MODCP_JOB_MASKWRITE = 4, /* FC22: the word at the operand (M, Q, DB; count 2 bytes)
+                                := (cur AND data[0..1]) OR (data[2..3] AND NOT data[0..1]),
+                                len 4 (AND mask, OR mask, high byte first), read and
+                                written in one FB call (atomic) */
 };
 
 /* JOB header, first block of a job (serialised little-endian into data[]). */
@@ -124,6 +143,12 @@ void modcp_bp_init(modcp_backplane_t *bp);
 void modcp_bp_publish_status(modcp_backplane_t *bp, const modcp_cp_status_t *st);
 /* CPU side: read a consistent copy; false if the CP was writing (try again). */
 bool modcp_bp_read_status(const modcp_backplane_t *bp, modcp_cp_status_t *out);
+/* CPU side: ask for the SYSTAT image (reading clears SYSTAT in the CP, as SFB STATUS
+ * does, 004 §7.4). Returns the request number; the CP answers at its next poll. */
+uint32_t modcp_bp_systat_request(modcp_backplane_t *bp);
+/* CPU side: true when request `req` has been answered; copies the 16-byte image
+ * (byte 0 state 02H RUN / 05H fault, byte 2 flags F U B, bytes 4..15 six events). */
+bool modcp_bp_systat_result(const modcp_backplane_t *bp, uint32_t req, uint8_t out[16]);
 
 /* Producer side: publish one block (seq is filled in from *seq, which is then
  * incremented). Returns false (nothing written) when the ring is full. */

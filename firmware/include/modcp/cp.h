@@ -4,6 +4,7 @@
  *   UART rx interrupt     -> modcp_cp_on_rx() / modcp_cp_on_line_error()
  *   one-shot timer        -> modcp_cp_on_timer()
  *   transmission complete -> modcp_cp_on_tx_done()
+ *   RS232 CTS / DSR change -> modcp_cp_on_signals()  (automatic secondary signals)
  *   CP task (often)       -> modcp_cp_poll()  (backplane, job timeouts, LEDs)
  * The CP is configured by the PARAMS record the CPU side sends over the backplane;
  * until then (or with an invalid record) it is not ready and the line is ignored.
@@ -15,13 +16,16 @@
 #include <stdint.h>
 
 #include "modcp/backplane.h"
+#include "modcp/cpdiag.h"
 #include "modcp/diag.h"
 #include "modcp/hal.h"
 #include "modcp/job.h"
+#include "modcp/leds.h"
 #include "modcp/link.h"
 #include "modcp/map.h"
 #include "modcp/params.h"
 #include "modcp/pdu.h"
+#include "modcp/signals.h"
 
 
 typedef struct modcp_cp {
@@ -44,8 +48,14 @@ typedef struct modcp_cp {
     bool published;
     modcp_cp_status_t last_status; /* what was last published on the backplane */
     modcp_event_t ack_event;
-    uint8_t buf[MODCP_ADU_MAX];                /* frame buffer: request, then reply */
+    uint8_t buf[MODCP_LINK_BUF_MAX];           /* frame buffer: request, then reply (ASCII:
+                                                  hex-encoded in place, see link.h) */
     uint8_t record[MODCP_PARAMS_RECORD_MAX];   /* PARAMS record as it arrives */
+    /* line discipline and diagnostics (signals.c, leds.c, cpdiag.c) */
+    modcp_sig_t sig;       /* RS232 automatic secondary signals */
+    modcp_leds_t leds;     /* SF / TXD / RXD */
+    modcp_cpdiag_t cpdiag; /* wire break, diagnostic interrupt, SYSTAT service */
+    modcp_ext_t ext;       /* extended function set: comm loss, ASCII delimiter (ext.h) */
 } modcp_cp_t;
 
 void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp);
@@ -54,6 +64,9 @@ void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us);
 void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us);
 void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us);
 void modcp_cp_on_tx_done(modcp_cp_t *cp, uint32_t now_us);
+/* RS232 inputs CTS / DSR (true = ON), at start and on every change; used with
+ * automatic secondary signals (params.rs232_auto, see modcp/signals.h). */
+void modcp_cp_on_signals(modcp_cp_t *cp, bool cts, bool dsr, uint32_t now_us);
 void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us);
 
 /* Ready: configured and the FB initialised. */

@@ -10,6 +10,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "modcp/commlog.h"
 #include "modcp/events.h"
 
 #define MODCP_DIAG_BUFFER 9
@@ -45,12 +46,15 @@ typedef struct {
     uint16_t char_errors;
     uint16_t breaks;
     uint16_t t15_discards;
+    modcp_comm_t comm; /* FC11 / FC12 event counter and log, listen-only (commlog.h) */
 } modcp_diag_t;
 
 void modcp_diag_init(modcp_diag_t *d);
 /* Record an event (NONE is ignored). */
 void modcp_diag_event(modcp_diag_t *d, modcp_event_t ev);
-/* Increment a serial-line counter (wraps at 65535 -> 0, as the spec's counters). */
+/* Increment a serial-line counter. Bus and slave message counts (0B, 0E) wrap
+ * 65535 -> 0, the error counts saturate at 65535 (002 §8: frame counters modulo
+ * 65536, error counters saturating). */
 void modcp_diag_count(modcp_diag_t *d, modcp_counter_t c);
 void modcp_diag_clear_counters(modcp_diag_t *d);
 /* SYSTAT image (16 bytes as 004 §7.4: state, 0, flags, 0, 6 event words high byte

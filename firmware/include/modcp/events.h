@@ -18,11 +18,15 @@ enum {
     /* class 05H: CPU job errors */
     MODCP_EV_JOB_LENGTH = 0x0518, /* job longer than the CPU transfer limit */
 
+    /* class 07H: send errors (001 §8.2) */
+    MODCP_EV_CTS_TIMEOUT = 0x0708,  /* RS232 auto: CTS not ON when the data output waiting time expired */
+
     /* class 08H: receive errors */
     MODCP_EV_ZVZ = 0x0806,          /* character delay time exceeded (t1.5 / ASCII timeout) */
     MODCP_EV_CHAR_ERROR = 0x080C,   /* parity, framing or overrun error in a character */
     MODCP_EV_BREAK = 0x080D,        /* BREAK: receive line interrupted */
     MODCP_EV_FRAME_TOO_LONG = 0x0816, /* telegram longer than the receive buffer (001 §8.2) */
+    MODCP_EV_SIGNAL_OFF = 0x0818,   /* RS232 auto: DSR = OFF or CTS = OFF before/during sending (001 §8.2) */
     MODCP_EV_BCAST_FC = 0x0830,     /* broadcast not allowed with this function code */
     MODCP_EV_ILLEGAL_FC = 0x0831,   /* function code not supported */
     MODCP_EV_QUANTITY = 0x0832,     /* quantity out of range / T,C count not multiple of 16 */
@@ -34,6 +38,7 @@ enum {
     MODCP_EV_ASCII_START = 0x0838,  /* wrong start character (ASCII) */
     MODCP_EV_ASCII_RESTART = 0x0839, /* ':' inside a frame restarts reception (ASCII) */
     MODCP_EV_ASCII_NOT_HEX = 0x083A, /* non-hex character inside a frame (ASCII) */
+    MODCP_EV_MEI_CODE = 0x083B,     /* modcp: FC43/14 ReadDevId code not 01..04 (exception 03) */
 
     /* class 0EH: general processing errors of the driver */
     MODCP_EV_INTERNAL_SEND = 0x0E10,
@@ -56,6 +61,7 @@ enum {
     MODCP_EV_DB_ACCESS = 0x0E39,     /* DB missing, too short, or DB boundary crossed */
     MODCP_EV_WORK_DB = 0x0E3A,       /* FB work area missing or too short (FC05/15) */
     MODCP_EV_FB_TIMEOUT = 0x0E3B,    /* timeout while the FB executes a write job */
+    MODCP_EV_ILLEGAL_JOB = 0x0E3C,   /* illegal job (message kind) from the CPU side */
     MODCP_EV_TC_ALIGN = 0x0E50,      /* T/C start not on a 16-bit boundary */
     MODCP_EV_NO_WINDOW = 0x0E51,     /* address outside every from/to window */
     MODCP_EV_WRITE_DENIED = 0x0E52,  /* DB < 1, write outside limits, write to work area */
@@ -64,6 +70,8 @@ enum {
     MODCP_EV_AREA_READONLY = 0x0E55, /* write to T, C or I */
     MODCP_EV_FB_NOT_RUNNING = 0x0E56, /* FB not initialised */
     MODCP_EV_FB_ERROR = 0x0E57,      /* FB reported an error */
+    MODCP_EV_COMMLOSS = 0x0E60,      /* modcp: comm-loss supervision expired (no valid request
+                                        for our address within commloss_ms) */
 };
 
 /* Modbus exception code (1..4) for an event raised while *validating and mapping* a

@@ -52,6 +52,8 @@ typedef struct {
     bool msg_overflow;
     modcp_bp_init_t init;
     uint32_t proto_errors; /* sequence / framing errors seen on the ring */
+    uint32_t illegal_msgs; /* blocks of a kind the CPU side must not send (also in
+                              proto_errors); the CP reports (0E)3CH, cpdiag.c */
 } modcp_job_t;
 
 void modcp_job_init(modcp_job_t *j, modcp_backplane_t *bp, uint8_t *msgbuf, uint16_t msgcap);

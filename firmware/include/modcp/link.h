@@ -21,6 +21,14 @@
 #include "modcp/params.h"
 
 #define MODCP_ADU_MAX 264u /* FC15 with 2040 bits: 1+1+2+2+1+255+2 */
+/* ASCII (ascii.c): received frames are decoded to binary as they arrive (at most
+ * MODCP_ADU_MAX bytes), but the reply is hex-encoded in place: ':' + 2 x (address,
+ * PDU of up to 253 bytes, LRC) + CR LF = 513 characters. A CP's frame buffer is
+ * MODCP_LINK_BUF_MAX bytes (249 more than RTU alone needs); RTU still uses only the
+ * first MODCP_ADU_MAX. */
+#define MODCP_ASCII_PDU_MAX 253u
+#define MODCP_ASCII_ADU_MAX (1u + 2u * (1u + MODCP_ASCII_PDU_MAX + 1u) + 2u)
+#define MODCP_LINK_BUF_MAX MODCP_ASCII_ADU_MAX
 
 typedef enum {
     MODCP_LINK_IDLE = 0,  /* waiting for the first byte of a frame */
@@ -29,6 +37,8 @@ typedef enum {
     MODCP_LINK_BUSY,      /* a request is being processed; buffer owned by the PDU */
     MODCP_LINK_TURNAROUND,/* reply ready, waiting for the turnaround delay */
     MODCP_LINK_TX,        /* transmitting */
+    MODCP_LINK_EOF,       /* ASCII: CR LF of a good frame received, handed over on the
+                             next timer expiry (armed with 1 us) */
 } modcp_link_state_t;
 
 typedef struct {
@@ -42,7 +52,8 @@ typedef struct {
     const modcp_hal_t *hal;
     modcp_diag_t *diag;
     uint8_t *buf;
-    uint16_t cap;
+    uint16_t cap;     /* receive / RTU capacity: the buffer, at most MODCP_ADU_MAX */
+    uint16_t size;    /* the whole buffer (ASCII replies are hex-encoded in place) */
     /* configuration */
     uint8_t framing;  /* modcp_framing_t */
     uint8_t own_addr;
@@ -69,8 +80,13 @@ typedef struct {
     uint8_t hex_hi;
     bool hex_half;
     bool got_cr;
+    bool ascii7;        /* 7 data bits: the eighth bit of a received character is masked */
+    uint8_t ascii_delim; /* end of frame is CR + this (LF; FC08 sub-function 03 sets it) */
     /* transmit */
     uint16_t tx_len;
+    uint32_t tx_at_us; /* when the reply was handed over (start of the turnaround) */
+    bool tx_hold;      /* RS232 automatic signals: a reply waits in TURNAROUND until
+                          modcp_link_tx_release() (signals.c decides RTS / CTS) */
 } modcp_link_t;
 
 void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag, uint8_t *buf,
@@ -90,6 +106,11 @@ void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us);
 /* Request finished without a reply (broadcast, error). */
 void modcp_link_done(modcp_link_t *l);
 void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us);
+/* RS232 automatic signals (signals.c): a reply held in TURNAROUND is sent now (send)
+ * or dropped (!send, back to receiving). */
+void modcp_link_tx_release(modcp_link_t *l, bool send, uint32_t now_us);
+/* Drop the frame being received (DSR went OFF): it ends silently at t3.5. */
+void modcp_link_rx_discard(modcp_link_t *l);
 
 /* RTU / ASCII framing internals, called by link.c (not for other modules). */
 void modcp_rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
@@ -97,5 +118,11 @@ void modcp_rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
 void modcp_rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
 bool modcp_rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f);
 uint16_t modcp_rtu_encode(modcp_link_t *l, uint16_t pdu_len);
+/* ASCII framing (ascii.c): the same interface; a frame ends with CR + ascii_delim and
+ * is handed over by modcp_ascii_on_timer() on the timer expiry that follows it. */
+void modcp_ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
+void modcp_ascii_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
+bool modcp_ascii_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f);
+uint16_t modcp_ascii_encode(modcp_link_t *l, uint16_t pdu_len);
 
 #endif

@@ -122,6 +122,8 @@ typedef struct {
     char product[MODCP_ID_STRING_MAX + 1];
     char revision[MODCP_ID_STRING_MAX + 1];
     char app_name[MODCP_ID_STRING_MAX + 1];
+    /* diagnostics */
+    uint8_t diag_irq; /* diagnostic interrupt records (001 §8.4): 0 off (default), 1 on */
 } modcp_params_t;
 
 /* Field identifiers, used in validation issues so tools can name section/key. */
@@ -160,6 +162,7 @@ typedef enum {
     MODCP_PF_COMMLOSS,
     MODCP_PF_SCANNER, /* index = entry, 0xFF = start/count */
     MODCP_PF_ID_STRING,
+    MODCP_PF_DIAG_IRQ,
     MODCP_PF_COUNT
 } modcp_param_field_t;
 

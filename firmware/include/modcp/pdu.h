@@ -8,6 +8,7 @@
 
 #include "modcp/backplane.h"
 #include "modcp/diag.h"
+#include "modcp/ext.h"
 #include "modcp/map.h"
 #include "modcp/params.h"
 
@@ -23,6 +24,7 @@ typedef struct {
     const modcp_areas_t *areas;
     modcp_diag_t *diag;
     bool fb_ready; /* CPU side initialised */
+    modcp_ext_t *ext; /* extended set: persistent state (may be NULL) */
 } modcp_pdu_env_t;
 
 typedef struct {
@@ -39,6 +41,7 @@ typedef struct {
     const uint8_t *wdata; /* job write data (inside the request) */
     uint8_t *rdata;      /* where the job's read data must land (inside the PDU buffer) */
     uint16_t rcap;
+    modcp_pdu_x_t x;     /* extended set: state of this request (pdu_ext.c) */
 } modcp_pdu_t;
 
 /* Handle a request PDU (pdu[0] = function code) received for addr (0 = broadcast).
@@ -53,5 +56,11 @@ modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env
 
 /* Encode an exception reply for fc with code; returns the PDU length (2). */
 uint16_t modcp_pdu_exception(uint8_t *pdu, uint8_t fc, uint8_t code);
+
+/* The request ended with action a (REPLY or NO_REPLY): FC11 event counter, FC12 send
+ * event, comm-loss supervision, FC08 sub 01 / 0A effects (pdu_ext.c). The CP calls it
+ * once per request, right before the reply goes out. */
+void modcp_pdu_finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_pdu_action_t a,
+                        uint32_t now_us);
 
 #endif

@@ -1,7 +1,8 @@
 /* modcp — the hardware abstraction the core sees. A port implements these callbacks
  * (one struct, one context pointer) and feeds the core's event functions from its
  * interrupts: modcp_cp_on_rx(), modcp_cp_on_line_error(), modcp_cp_on_timer(),
- * modcp_cp_on_tx_done() and modcp_cp_poll() (see modcp/cp.h). Time is always passed
+ * modcp_cp_on_tx_done(), modcp_cp_on_signals() (RS232 CTS / DSR) and modcp_cp_poll()
+ * (see modcp/cp.h). Time is always passed
  * in by the port (microseconds, free-running, wrapping at 2^32). */
 #ifndef MODCP_HAL_H
 #define MODCP_HAL_H
@@ -34,8 +35,15 @@ typedef struct modcp_hal {
     void (*set_de)(void *ctx, bool on);
     /* LEDs SF / TXD / RXD. May be NULL. */
     void (*set_led)(void *ctx, modcp_led_t led, bool on);
-    /* RS232 output signals RTS / DTR. May be NULL. */
+    /* RS232 output signals RTS / DTR. May be NULL. With automatic secondary signals
+     * (params.rs232_auto) the port also reports the inputs CTS and DSR with
+     * modcp_cp_on_signals() at start and on every change. */
     void (*set_signal)(void *ctx, modcp_signal_t sig, bool on);
+    /* Stop the transmission started by uart_tx at once (RS232 automatic signals: CTS or
+     * DSR went OFF while sending). The port must not call modcp_cp_on_tx_done() for
+     * the aborted transmission. May be NULL: the UART then finishes the frame and its
+     * late transmission-complete is ignored. */
+    void (*uart_tx_abort)(void *ctx);
 } modcp_hal_t;
 
 #endif

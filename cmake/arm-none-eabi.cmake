@@ -1,0 +1,54 @@
+# modcp — CMake toolchain file for Debian's arm-none-eabi-gcc (newlib, newlib-nano).
+#
+#   cmake -DCMAKE_TOOLCHAIN_FILE=cmake/arm-none-eabi.cmake -DMODCP_ARM_CPU=cortex-m3 ...
+#
+# MODCP_ARM_CPU selects the core: cortex-m3 (soft float) or cortex-m4 (FPv4-SP, hard
+# float ABI). Everything (core library, HAL, boards) is compiled -Os with function and
+# data sections; executables are linked with --gc-sections against newlib-nano and no
+# host start files (each board brings its own startup code and linker script).
+set(CMAKE_SYSTEM_NAME Generic)
+set(CMAKE_SYSTEM_PROCESSOR arm)
+
+set(MODCP_ARM_CPU "cortex-m3" CACHE STRING "Cortex-M core: cortex-m3 or cortex-m4")
+set_property(CACHE MODCP_ARM_CPU PROPERTY STRINGS cortex-m3 cortex-m4)
+# try_compile() projects see the same core.
+list(APPEND CMAKE_TRY_COMPILE_PLATFORM_VARIABLES MODCP_ARM_CPU)
+
+set(_prefix arm-none-eabi-)
+find_program(CMAKE_C_COMPILER ${_prefix}gcc REQUIRED)
+find_program(CMAKE_ASM_COMPILER ${_prefix}gcc)
+find_program(CMAKE_OBJCOPY ${_prefix}objcopy REQUIRED)
+find_program(CMAKE_SIZE ${_prefix}size)
+find_program(CMAKE_NM ${_prefix}nm)
+set(CMAKE_AR ${_prefix}ar CACHE FILEPATH "archiver")
+set(CMAKE_RANLIB ${_prefix}ranlib CACHE FILEPATH "ranlib")
+
+# No host executables can run: test the compiler with a static library.
+set(CMAKE_TRY_COMPILE_TARGET_TYPE STATIC_LIBRARY)
+
+if(MODCP_ARM_CPU STREQUAL "cortex-m4")
+  set(_cpu "-mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16")
+elseif(MODCP_ARM_CPU STREQUAL "cortex-m3")
+  set(_cpu "-mcpu=cortex-m3 -mthumb -mfloat-abi=soft")
+else()
+  message(FATAL_ERROR "MODCP_ARM_CPU must be cortex-m3 or cortex-m4, not '${MODCP_ARM_CPU}'")
+endif()
+
+set(CMAKE_C_FLAGS_INIT "${_cpu} -ffunction-sections -fdata-sections -fno-common")
+set(CMAKE_ASM_FLAGS_INIT "${_cpu}")
+# -Os for every build type: the size report is made on this image.
+set(CMAKE_C_FLAGS_DEBUG_INIT "-Os -g3")
+set(CMAKE_C_FLAGS_RELEASE_INIT "-Os -DNDEBUG")
+set(CMAKE_C_FLAGS_MINSIZEREL_INIT "-Os -DNDEBUG")
+set(CMAKE_C_FLAGS_RELWITHDEBINFO_INIT "-Os -g -DNDEBUG")
+set(CMAKE_EXE_LINKER_FLAGS_INIT
+    "${_cpu} -specs=nano.specs -nostartfiles -Wl,--gc-sections -Wl,--print-memory-usage")
+
+set(CMAKE_EXECUTABLE_SUFFIX_C .elf)
+set(CMAKE_EXECUTABLE_SUFFIX .elf)
+
+# Look for libraries and headers only in the toolchain's sysroot.
+set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
+set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
+set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
+set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE ONLY)

@@ -1,0 +1,65 @@
+/* modcp — the CP's diagnostic channels towards the CPU side (004 §7, 001 §8; SPEC §7),
+ * besides the diagnostic buffer and the STATUS word that diag.c keeps:
+ *
+ *  - wire break: a BREAK reported in normal mode ((08)0DH) means "receive line to the
+ *    partner interrupted". The state lasts until the next correctly received character
+ *    (the line is back) or re-parameterisation; it lights SF. In interference
+ *    suppression and RS485 BREAK is ignored (004 §2.2, §2.3) and never a wire break.
+ *  - diagnostic interrupt (001 §8.4), only with params.diag_irq (default off): 4 bytes,
+ *      wire break on RxD          25 0C 02 00  (coming)
+ *      parameterisation error     83 0C 00 00  (coming: a PARAMS record was rejected)
+ *      fault gone                 00 0C 00 00  (going: the wire break ended, or valid
+ *                                              parameters arrived; modcp extension,
+ *                                              S7 convention: byte 0 bit 0 = module fault)
+ *    Published in the status area as the last record plus a counter that advances with
+ *    every interrupt; the CPU side reacts to a change of the counter. Only changes of
+ *    state raise an interrupt (a record rejected again, e.g. at the FB's retries, does
+ *    not). For a record that cannot be decoded at all (CRC, length) the setting of the
+ *    last decodable record applies.
+ *  - SYSTAT service (004 §7.4, read with SFB STATUS, clears it): the CPU side writes a
+ *    request number to the backplane (modcp_bp_systat_request); the CP answers at its
+ *    next poll by publishing the 16-byte SYSTAT image with that number and clearing
+ *    SYSTAT (modcp_diag_read_systat). Events after that go into the fresh SYSTAT; no
+ *    event is lost between image and clear.
+ *  - backplane protocol errors seen by job.c become events (0E)30H / (0E)3CH. */
+#ifndef MODCP_CPDIAG_H
+#define MODCP_CPDIAG_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "modcp/diag.h"
+
+#define MODCP_DIAG_IRQ_BYTES 4u
+
+typedef struct {
+    bool wire_break;    /* BREAK in normal mode, until the next good character */
+    bool param_error;   /* the last PARAMS record was rejected */
+    bool irq_enabled;   /* params.diag_irq of the last decodable record */
+    uint8_t irq[MODCP_DIAG_IRQ_BYTES]; /* last diagnostic interrupt record */
+    uint32_t irq_count; /* interrupts raised since start */
+    uint32_t systat_ack; /* number of the last SYSTAT request answered */
+    uint8_t systat[16];  /* the image given with it */
+    uint32_t proto_seen;   /* job.c's proto_errors already reported */
+    uint32_t illegal_seen; /* job.c's illegal_msgs already reported */
+} modcp_cpdiag_t;
+
+void modcp_cpdiag_init(modcp_cpdiag_t *d);
+/* A line error reached the link; reported: the link reports it ((08)0CH / (08)0DH), i.e.
+ * it is enabled and in normal mode. */
+void modcp_cpdiag_line_error(modcp_cpdiag_t *d, uint8_t line_errors, bool reported);
+/* A character was received correctly. */
+void modcp_cpdiag_good_char(modcp_cpdiag_t *d);
+/* A PARAMS record was taken: ok (applied) or rejected; irq_setting: its diag_irq field
+ * (-1 when the record could not be decoded). Clears the wire break. */
+void modcp_cpdiag_params(modcp_cpdiag_t *d, bool ok, int irq_setting);
+/* Backplane protocol errors counted by job.c (totals): new blocks of a kind the CPU
+ * side must not send -> (0E)3CH "illegal job"; other new unexpected blocks (sequence
+ * gap, data without its header, continuation without a start, short INIT) -> (0E)30H
+ * "unexpected acknowledgement". At most one of each per call (per poll). */
+void modcp_cpdiag_backplane(modcp_cpdiag_t *d, modcp_diag_t *diag, uint32_t proto_errors,
+                            uint32_t illegal_msgs);
+/* Serve a SYSTAT request (number req) if it is new: image + clear. run: CP in RUN. */
+void modcp_cpdiag_systat(modcp_cpdiag_t *d, modcp_diag_t *diag, uint32_t req, bool run);
+
+#endif

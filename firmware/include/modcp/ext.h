@@ -1,0 +1,113 @@
+/* modcp — the extended function set (SPEC §5.3, function set `extended`):
+ *  - FC08 serial-line diagnostics, FC11, FC12 (serial_diag.c; log in commlog.h)
+ *  - FC17 report slave ID, FC43/14 read device identification (devid.c)
+ *  - FC22 mask write register, FC23 read/write multiple registers (pdu_ext.c)
+ *  - the indirection scanner (scanner.c): scan_count consecutive holding registers
+ *    from scan_start, each pointing at a word operand (MW, IW, QW, DBn.DBWm, T, C)
+ *  - comm-loss supervision (commloss.c)
+ * The PDU engine (pdu.c) hands these requests to pdu_ext.c; the CP (cp.c) keeps the
+ * persistent state below, reports every finished request (modcp_pdu_finished) and
+ * polls the supervision with the time (modcp_ext_poll).
+ * docs/extended-functions.md has every frame and every decision. */
+#ifndef MODCP_EXT_H
+#define MODCP_EXT_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "modcp/diag.h"
+#include "modcp/events.h"
+#include "modcp/map.h"
+#include "modcp/params.h"
+
+#define MODCP_ASCII_DELIMITER_DEFAULT 0x0Au /* LF */
+
+/* Persistent state of the extended set, one per CP (modcp_cp_t.ext). */
+typedef struct {
+    /* comm-loss supervision */
+    bool cl_armed;       /* an accepted write for our address was seen */
+    bool cl_lost;        /* expired: MODCP_CPST_COMMLOSS set */
+    uint32_t cl_last_us; /* last valid request for our address */
+    /* FC08 sub 03: end-of-frame character of ASCII framing (replaces LF); the CP copies
+     * it to modcp_link_t.ascii_delim when delimiter_changed is set (sub 03, sub 01) */
+    uint8_t ascii_delimiter;
+    bool delimiter_changed;
+    /* the last CPU job timed out and none has succeeded since (FC17 run indicator) */
+    bool cpu_stalled;
+} modcp_ext_t;
+
+/* Per-request state of the extended set (modcp_pdu_t.x, cleared for every request). */
+typedef struct {
+    uint8_t exc;     /* exception code detected for this request (0 = none) */
+    uint8_t quiet;   /* listen-only: not processed, nothing more to account */
+    uint8_t timeout; /* a CPU job of this request timed out */
+    uint8_t after;   /* action after the reply: MODCP_X_AFTER_* */
+    /* job sequence (scanner, FC22, FC23); seq 0: a core request that pdu.c finishes */
+    uint8_t seq;
+    uint8_t phase;
+    uint8_t idx;
+    uint8_t wop;     /* job op of the write part, 0 = none */
+    bool wscan;      /* write part through the scanner */
+    bool rscan;      /* read part through the scanner */
+    uint16_t wstart, wqty, rstart, rqty;
+    uint16_t woff;   /* write data: offset in the PDU buffer */
+    uint16_t wlen;   /* direct write: data bytes */
+    uint16_t roff;   /* read data: offset in the PDU buffer */
+    uint16_t rbytes; /* read data bytes in the reply */
+    uint16_t cap;    /* PDU buffer capacity */
+    uint16_t echo;   /* reply = the first `echo` request bytes; 0: read reply */
+    modcp_operand_t wdir; /* write part, direct mapping */
+    modcp_operand_t rdir; /* read part, direct mapping */
+} modcp_pdu_x_t;
+
+enum {
+    MODCP_X_AFTER_NONE = 0,
+    MODCP_X_AFTER_CLEAR,         /* FC08 sub 0A: counters, event counter, diag register */
+    MODCP_X_AFTER_RESTART,       /* FC08 sub 01 data 0000: restart, keep the log */
+    MODCP_X_AFTER_RESTART_CLEAR, /* FC08 sub 01 data FF00: restart, clear the log */
+};
+
+/* ---- persistent state --------------------------------------------------------------- */
+
+void modcp_ext_init(modcp_ext_t *x);
+/* New parameters: supervision disarmed, delimiter LF, listen-only left. */
+void modcp_ext_reset(modcp_ext_t *x, modcp_diag_t *d);
+/* Time for the supervision; returns status_flags with MODCP_CPST_COMMLOSS and
+ * MODCP_CPST_LISTEN_ONLY updated. */
+uint32_t modcp_ext_poll(modcp_ext_t *x, const modcp_params_t *p, modcp_diag_t *d,
+                        uint32_t status_flags, uint32_t now_us);
+/* FC08 sub 01 / 0A effects (also used by tests). */
+void modcp_ext_restart(modcp_ext_t *x, modcp_diag_t *d, bool clear_log);
+void modcp_ext_clear_counters(modcp_diag_t *d);
+/* Diagnostic register (FC08 sub 02): latched bits plus the live ones. */
+uint16_t modcp_ext_diag_register(const modcp_ext_t *x, const modcp_diag_t *d);
+
+/* ---- comm-loss supervision (commloss.c) --------------------------------------------- */
+
+/* A valid request for our address (not broadcast) arrived: restart the time, clear
+ * the comm-loss state. */
+void modcp_commloss_request(modcp_ext_t *x, uint32_t now_us);
+/* An accepted (executed, no exception) write for our address: arms the supervision. */
+void modcp_commloss_write(modcp_ext_t *x, const modcp_params_t *p, uint32_t now_us);
+/* Expiry check: reports MODCP_EV_COMMLOSS once per loss. */
+void modcp_commloss_poll(modcp_ext_t *x, const modcp_params_t *p, modcp_diag_t *d,
+                         uint32_t now_us);
+
+/* ---- indirection scanner (scanner.c) ------------------------------------------------ */
+
+/* True when the scanner is on (function set extended, scan_count > 0) and the register
+ * range [reg, reg + qty) touches it (qty 0: never). */
+bool modcp_scan_touches(const modcp_params_t *p, uint16_t reg, uint16_t qty);
+/* Operand of scanner register reg for a read or a write (area NONE: unused entry,
+ * reads give 0000, writes are discarded). Events: (0E)51H reg outside the scanner,
+ * (0E)54H operand beyond the controller area, writes: (0E)55H to I, T, C,
+ * (0E)52H outside the M / Q / DB write limits or to the FB's work DB. */
+modcp_event_t modcp_scan_map(const modcp_params_t *p, const modcp_areas_t *a, uint16_t reg,
+                             bool write, modcp_operand_t *out);
+/* Check a whole range before anything is executed: it must lie inside the scanner
+ * ((0E)54H when it runs past either end), not consist of unused entries only
+ * ((0E)51H), and every used entry must map (modcp_scan_map). */
+modcp_event_t modcp_scan_check(const modcp_params_t *p, const modcp_areas_t *a, uint16_t reg,
+                               uint16_t qty, bool write);
+
+#endif

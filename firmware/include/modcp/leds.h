@@ -1,0 +1,50 @@
+/* modcp — the CP's LEDs SF / TXD / RXD (004 §7.2, 001 §1.2; SPEC §7).
+ *
+ *  SF  (group error): on at power-on and whenever the CP is not ready (no or invalid
+ *      parameters, FB not initialised), and while a wire break (BREAK on RxD in normal
+ *      mode) is present. The caller computes it; leds.c only drives it.
+ *  TXD: on while a reply is being sent; on for at least MODCP_LED_MIN_ON_US.
+ *  RXD: on while characters are received (any address: the line is alive); a received
+ *      frame keeps it on until it has ended (no character for `quiet_us`, t3.5) and
+ *      at least MODCP_LED_MIN_ON_US have passed since it went on.
+ * The LEDs are switched only in modcp_leds_poll(), i.e. from modcp_cp_poll(); the
+ * receive / transmit events only note times. The minimum on-time counts from the
+ * moment the LED was switched on, so every frame is visible for at least 200 ms
+ * however late the poll comes. set_led is called only when a level changes. */
+#ifndef MODCP_LEDS_H
+#define MODCP_LEDS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "modcp/hal.h"
+
+#define MODCP_LED_MIN_ON_US 200000u
+#define MODCP_LED_COUNT 3u
+
+typedef struct {
+    const modcp_hal_t *hal;
+    bool on[MODCP_LED_COUNT];       /* levels as last set, indexed by modcp_led_t */
+    uint32_t on_us[MODCP_LED_COUNT]; /* when TXD / RXD went on */
+    uint32_t quiet_us;  /* silence that ends a received frame */
+    bool rx_seen;       /* a character arrived since the last poll */
+    uint32_t rx_last_us; /* time of the last character */
+    bool tx_seen;       /* a transmission started since the last poll */
+    bool tx_active;     /* a transmission is on the line */
+} modcp_leds_t;
+
+/* Power-on: SF on, TXD and RXD off. */
+void modcp_leds_init(modcp_leds_t *x, const modcp_hal_t *hal);
+/* Silence that ends a received frame (t3.5 of the link). */
+void modcp_leds_configure(modcp_leds_t *x, uint32_t quiet_us);
+/* A character (or line error) was received at now_us. */
+void modcp_leds_rx(modcp_leds_t *x, uint32_t now_us);
+/* A transmission started / ended (transmission complete or aborted). */
+void modcp_leds_tx_start(modcp_leds_t *x);
+void modcp_leds_tx_end(modcp_leds_t *x);
+/* Drive the LEDs at now_us; sf: the group error is present. */
+void modcp_leds_poll(modcp_leds_t *x, bool sf, uint32_t now_us);
+/* Levels as bits (1 << modcp_led_t) for the status area. */
+uint8_t modcp_leds_bits(const modcp_leds_t *x);
+
+#endif

@@ -1,0 +1,37 @@
+/* modcp — quantity limits of the bit and register functions by framing and register
+ * width (SPEC §4, §5.1; 003 §4.5, §5, §8.5 event (08)32H), and the register width of
+ * a holding-register address in the 32-bit scheme (003 §4.5).
+ *
+ *                      RTU                      ASCII (003: 252 data bytes per frame)
+ *   FC01 / FC02        1 ... 2040 bits          1 ... 2008 bits
+ *   FC15               1 ... 2040 bits          1 ... 1976 bits
+ *   FC03 / FC04        1 ... 127 registers      1 ... 125
+ *   FC16               1 ... 127                1 ... 123
+ *   FC03, 32-bit       1 ... 63                 1 ... 62
+ *   FC16, 32-bit       1 ... 63                 1 ... 61
+ * "32-bit" is the int32 and float range of the 32-bit scheme; its int16 range has
+ * the 16-bit limits. The RTU 32-bit limit (the manual has none: the 32-bit extension
+ * exists only in the ASCII driver) is a decision of modcp: the largest count whose
+ * byte count 4 x n fits the one-byte byte count and the 127-word budget of RTU
+ * (4 x 63 = 252 bytes = 126 words). */
+#ifndef MODCP_QUANTITY_H
+#define MODCP_QUANTITY_H
+
+#include <stdint.h>
+
+#include "modcp/params.h"
+
+/* Register width of holding register `reg` for fc: 0 = the 16-bit scheme (regs32 off,
+ * FC04, or an address outside every 32-bit range: the mapping then refuses it), else
+ * modcp_r32_kind_t + 1 of the range that holds it (as modcp_map_regs' out->bit). */
+uint8_t modcp_regs32_kind(const modcp_params_t *p, uint8_t fc, uint16_t reg);
+
+/* Bytes per register for a kind returned by modcp_regs32_kind(): 4 for int32 and
+ * float, else 2. */
+uint8_t modcp_reg_bytes(uint8_t r32_kind);
+
+/* Largest quantity of fc (01, 02, 03, 04, 15, 16) for the framing of p and the
+ * register kind (0 for bits and 16-bit registers). 0 for other function codes. */
+uint16_t modcp_qty_max(const modcp_params_t *p, uint8_t fc, uint8_t r32_kind);
+
+#endif

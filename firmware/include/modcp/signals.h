@@ -1,0 +1,83 @@
+/* modcp — RS232 automatic secondary signals (004 §2.4, 001 §1.6; SPEC §2).
+ *
+ * Only with params.rs232_auto (interface RS232; validation refuses it otherwise):
+ *  - configure: DTR = ON (CP ready), RTS = OFF. Not ready / not automatic: both OFF
+ *    (also at power-on: "the outputs are OFF").
+ *  - a reply: RTS = ON and the data output waiting time (rts_on_delay_ms) starts.
+ *    When it has elapsed and CTS = ON the reply is sent. CTS not ON then: (07)08H,
+ *    the reply is dropped, RTS = OFF.
+ *  - CTS ON -> OFF while sending: (08)18H, the transmission is aborted
+ *    (hal->uart_tx_abort), RTS = OFF.
+ *  - after the last character (transmission complete) RTS = OFF when the time to
+ *    RTS off (rts_off_delay_ms) has elapsed; the CP does not wait for CTS OFF. The
+ *    link stays in TX until then: half duplex, no request is taken while RTS is ON.
+ *  - receiving only while DSR = ON (characters and line errors with DSR OFF are
+ *    dropped before the link). DSR ON -> OFF: (08)18H once; a send in progress
+ *    (waiting for CTS or sending) is aborted and so is the frame being received.
+ *    A reply that becomes ready while DSR is OFF is dropped without a second event.
+ *
+ * Timer: the one-shot timer is shared with the link. signals.c arms it only while the
+ * link holds a reply in TURNAROUND (data output waiting time) or is in TX after the
+ * last character (time to RTS off); in those states the link never arms it, and
+ * modcp_sig_on_timer() claims the expiry. An early expiry re-arms the remainder, so
+ * the reply never leaves before rts_on_delay and RTS never drops before rts_off_delay. */
+#ifndef MODCP_SIGNALS_H
+#define MODCP_SIGNALS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "modcp/diag.h"
+#include "modcp/hal.h"
+#include "modcp/link.h"
+#include "modcp/params.h"
+
+typedef enum {
+    MODCP_SIGST_IDLE = 0, /* no reply in progress */
+    MODCP_SIGST_WAIT_CTS, /* RTS ON, data output waiting time running */
+    MODCP_SIGST_SENDING,  /* the reply is on the line */
+    MODCP_SIGST_RTS_OFF,  /* last character sent, time to RTS off running */
+} modcp_sig_state_t;
+
+typedef struct {
+    const modcp_hal_t *hal;
+    modcp_diag_t *diag;
+    bool enabled;          /* automatic mode configured and CP configured */
+    uint32_t on_delay_us;  /* data output waiting time */
+    uint32_t off_delay_us; /* time to RTS off */
+    uint8_t state;         /* modcp_sig_state_t */
+    uint32_t t0_us;        /* start of the running wait */
+    bool cts, dsr;         /* inputs as last reported by the port (OFF until reported) */
+    bool rts, dtr;         /* outputs as last set */
+    uint16_t aborts;       /* sends and receptions aborted by CTS / DSR */
+} modcp_sig_t;
+
+/* Power-on: RTS and DTR OFF. */
+void modcp_sig_init(modcp_sig_t *s, const modcp_hal_t *hal, modcp_diag_t *diag);
+/* Apply parameters (after modcp_link_configure): automatic -> DTR ON, RTS OFF. */
+void modcp_sig_configure(modcp_sig_t *s, const modcp_params_t *p);
+/* CP not ready: RTS and DTR OFF, nothing in progress. */
+void modcp_sig_disable(modcp_sig_t *s);
+/* May a received character / line error go to the link (DSR ON or not automatic)? */
+bool modcp_sig_rx_allowed(const modcp_sig_t *s);
+/* After modcp_link_reply(): a reply held in TURNAROUND starts RTS / the waiting time. */
+void modcp_sig_on_reply(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us);
+/* Timer expiry: true when it was ours (the link must not see it). */
+bool modcp_sig_on_timer(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us);
+/* Transmission complete: true when handled here (automatic mode); the link then gets
+ * its modcp_link_on_tx_done() when RTS goes OFF. */
+bool modcp_sig_on_tx_done(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us);
+/* The port reports CTS / DSR (at start and on every change). */
+void modcp_sig_on_inputs(modcp_sig_t *s, modcp_link_t *l, bool cts, bool dsr, uint32_t now_us);
+/* Signal levels as a bit set for the status area: MODCP_SIGBIT_*. */
+uint8_t modcp_sig_bits(const modcp_sig_t *s);
+
+enum {
+    MODCP_SIGBIT_RTS = 0x01,
+    MODCP_SIGBIT_DTR = 0x02,
+    MODCP_SIGBIT_CTS = 0x04,
+    MODCP_SIGBIT_DSR = 0x08,
+    MODCP_SIGBIT_AUTO = 0x80, /* automatic mode active */
+};
+
+#endif

@@ -1,0 +1,83 @@
+/* modcp — comm-loss supervision (SPEC §2, §5.3; 002 §7) and the persistent state of
+ * the extended set.
+ *
+ * params.commloss_ms = 0: off; 100 ... 30000 ms: the supervision is armed by the
+ * first accepted write (FC05, 06, 15, 16, 22, 23 executed without exception) for our
+ * own address since start-up / new parameters (002 §7: "at least one command or
+ * setpoint parameter written a first time"). Once armed, every valid request for our
+ * address (CRC good, addressed to us, not broadcast; answered normally, with an
+ * exception, or not at all in listen-only mode) restarts the time. When the time runs
+ * out: event (0E)60H once and MODCP_CPST_COMMLOSS in the backplane status area,
+ * which the CPU side's user program reads with modcp_bp_read_status(). The next valid
+ * request for our address clears the flag; the supervision stays armed.
+ * Like the Altivar (002 §7 pitfall), any request keeps it alive, also reads. */
+#include <stddef.h>
+
+#include "modcp/backplane.h"
+#include "modcp/ext.h"
+
+void modcp_ext_init(modcp_ext_t *x)
+{
+    x->cl_armed = false;
+    x->cl_lost = false;
+    x->cl_last_us = 0u;
+    x->ascii_delimiter = MODCP_ASCII_DELIMITER_DEFAULT;
+    x->delimiter_changed = false;
+    x->cpu_stalled = false;
+}
+
+void modcp_ext_reset(modcp_ext_t *x, modcp_diag_t *d)
+{
+    modcp_ext_init(x);
+    if (d != NULL) {
+        d->comm.listen_only = false;
+    }
+}
+
+void modcp_commloss_request(modcp_ext_t *x, uint32_t now_us)
+{
+    x->cl_last_us = now_us;
+    x->cl_lost = false;
+}
+
+void modcp_commloss_write(modcp_ext_t *x, const modcp_params_t *p, uint32_t now_us)
+{
+    if (p->commloss_ms == 0u || x->cl_armed) {
+        return;
+    }
+    x->cl_armed = true;
+    x->cl_lost = false;
+    x->cl_last_us = now_us;
+}
+
+void modcp_commloss_poll(modcp_ext_t *x, const modcp_params_t *p, modcp_diag_t *d,
+                         uint32_t now_us)
+{
+    if (p->commloss_ms == 0u) {
+        x->cl_armed = false;
+        x->cl_lost = false;
+        return;
+    }
+    if (!x->cl_armed || x->cl_lost) {
+        return;
+    }
+    if ((uint32_t)(now_us - x->cl_last_us) >= (uint32_t)p->commloss_ms * 1000u) {
+        x->cl_lost = true;
+        modcp_diag_event(d, MODCP_EV_COMMLOSS);
+    }
+}
+
+uint32_t modcp_ext_poll(modcp_ext_t *x, const modcp_params_t *p, modcp_diag_t *d,
+                        uint32_t status_flags, uint32_t now_us)
+{
+    modcp_commloss_poll(x, p, d, now_us);
+    d->comm.commloss = x->cl_lost;
+    uint32_t f = status_flags & ~(uint32_t)(MODCP_CPST_COMMLOSS | MODCP_CPST_LISTEN_ONLY);
+    if (x->cl_lost) {
+        f |= MODCP_CPST_COMMLOSS;
+    }
+    if (d->comm.listen_only) {
+        f |= MODCP_CPST_LISTEN_ONLY;
+    }
+    return f;
+}

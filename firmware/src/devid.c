@@ -1,0 +1,165 @@
+/* modcp — identification of the extended set: FC17 report slave ID (Modbus
+ * Application Protocol V1.1b3 §6.13) and FC43/14 read device identification (§6.21),
+ * both from the parameter record's strings (SPEC §2: vendor, product, revision,
+ * user application name; at most 16 characters each).
+ *
+ * FC17 reply: 11, byte count, slave ID (= the slave address), run indicator (FF: the
+ * CP is ready and the CPU side answers its jobs; 00: the last CPU job timed out and
+ * none has succeeded since), then "vendor product revision" in ASCII, separated by
+ * one space (empty strings left out).
+ *
+ * FC43/14: conformity level 82H (regular identification, stream and individual
+ * access). Objects: 00 vendor name, 01 product code, 02 major/minor revision (basic,
+ * always present, possibly empty), 06 user application name (regular; present when
+ * the parameter is not empty). 03/04/05 are not provided.
+ *   ReadDevId 01 stream basic (00..02), 02 stream regular (00..02, 06), 03 extended:
+ *   answered as regular (the CP's conformity level; ReadDevId echoed as requested),
+ *   04 one object. Stream access from an object id that is not in the category
+ *   restarts at object 00 (Application Protocol §6.21); individual access to an
+ *   object that does not exist: exception 02 ((0E)51H).
+ *   More follows / next object id: when the next object does not fit into the reply
+ *   (max. 253 bytes of PDU), More follows = FF and next object id = its id; with
+ *   strings of at most 16 characters this never happens in the CP.
+ *   MEI type other than 0E: exception 01 ((08)31H); ReadDevId not 01..04: exception 03
+ *   ((08)3BH); a request that is not exactly 2B 0E code object: exception 03 ((08)33H). */
+#include <stddef.h>
+#include <string.h>
+
+#include "pdu_internal.h"
+
+#define PDU_MAX 253u
+#define CONFORMITY 0x82u
+
+static uint8_t id_len(const char *str)
+{
+    uint8_t n = 0;
+    while (n < MODCP_ID_STRING_MAX && str[n] != '\0') {
+        n++;
+    }
+    return n;
+}
+
+static bool run_indicator(const modcp_pdu_env_t *env)
+{
+    return env->fb_ready && !(env->ext != NULL && env->ext->cpu_stalled);
+}
+
+modcp_pdu_action_t modcp_pdu_fc17(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                  uint16_t len, uint16_t cap, uint16_t *out_len)
+{
+    if (len != 1u) {
+        return modcp_pdu_fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
+    }
+    if (cap < 4u) {
+        return modcp_pdu_fail(s, env, MODCP_EV_JOB_LENGTH, 4, pdu, out_len);
+    }
+    const char *parts[3] = {env->p->vendor, env->p->product, env->p->revision};
+    uint16_t o = 4; /* fc, byte count, slave id, run indicator */
+    for (size_t i = 0; i < 3u; i++) {
+        uint8_t n = id_len(parts[i]);
+        if (n == 0u) {
+            continue;
+        }
+        if (o > 4u && o < cap) {
+            pdu[o++] = ' ';
+        }
+        if ((uint32_t)o + n > cap) {
+            break; /* never with the CP's buffer (at most 4 + 50 bytes) */
+        }
+        memcpy(pdu + o, parts[i], n);
+        o = (uint16_t)(o + n);
+    }
+    pdu[1] = (uint8_t)(o - 2u);
+    pdu[2] = env->p->slave_addr;
+    pdu[3] = run_indicator(env) ? 0xFFu : 0x00u;
+    *out_len = o;
+    return MODCP_PDU_REPLY;
+}
+
+typedef struct {
+    uint8_t id;
+    const char *value;
+} object_t;
+
+/* The objects of the CP in id order; returns their number. */
+static size_t objects(const modcp_params_t *p, object_t out[4])
+{
+    size_t n = 0;
+    out[n++] = (object_t){0x00, p->vendor};
+    out[n++] = (object_t){0x01, p->product};
+    out[n++] = (object_t){0x02, p->revision};
+    if (id_len(p->app_name) > 0u) {
+        out[n++] = (object_t){0x06, p->app_name};
+    }
+    return n;
+}
+
+modcp_pdu_action_t modcp_pdu_fc43(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                  uint16_t len, uint16_t cap, uint16_t *out_len)
+{
+    if (len < 2u) {
+        return modcp_pdu_fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
+    }
+    if (pdu[1] != 0x0Eu) {
+        return modcp_pdu_fail(s, env, MODCP_EV_ILLEGAL_FC, 1, pdu, out_len);
+    }
+    if (len != 4u) {
+        return modcp_pdu_fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
+    }
+    const uint8_t code = pdu[2];
+    const uint8_t want = pdu[3];
+    if (code < 1u || code > 4u) {
+        return modcp_pdu_fail(s, env, MODCP_EV_MEI_CODE, 3, pdu, out_len);
+    }
+    object_t obj[4];
+    size_t total = objects(env->p, obj);
+    size_t first = 0;
+    size_t last; /* one past the last object of the category */
+    if (code == 4u) {
+        for (first = 0; first < total && obj[first].id != want; first++) {
+        }
+        if (first == total) {
+            return modcp_pdu_fail(s, env, MODCP_EV_NO_WINDOW, 2, pdu, out_len);
+        }
+        last = first + 1u;
+    } else {
+        last = code == 1u ? 3u : total; /* basic: 00..02; regular / extended: all */
+        while (first < last && obj[first].id != want) {
+            first++;
+        }
+        if (first == last) {
+            first = 0; /* not an object of this category: restart at 00 */
+        }
+    }
+    const uint16_t limit = cap < PDU_MAX ? cap : (uint16_t)PDU_MAX;
+    if (limit < 7u) {
+        return modcp_pdu_fail(s, env, MODCP_EV_JOB_LENGTH, 4, pdu, out_len);
+    }
+    uint16_t o = 7; /* 2B 0E code conformity more next count */
+    uint8_t count = 0;
+    uint8_t more = 0x00;
+    uint8_t next = 0x00;
+    for (size_t i = first; i < last; i++) {
+        uint8_t n = id_len(obj[i].value);
+        if ((uint32_t)o + 2u + n > limit) {
+            if (count == 0u) {
+                return modcp_pdu_fail(s, env, MODCP_EV_JOB_LENGTH, 4, pdu, out_len);
+            }
+            more = 0xFF;
+            next = obj[i].id;
+            break;
+        }
+        pdu[o] = obj[i].id;
+        pdu[o + 1u] = n;
+        memcpy(pdu + o + 2u, obj[i].value, n);
+        o = (uint16_t)(o + 2u + n);
+        count++;
+    }
+    pdu[2] = code;
+    pdu[3] = CONFORMITY;
+    pdu[4] = more;
+    pdu[5] = next;
+    pdu[6] = count;
+    *out_len = o;
+    return MODCP_PDU_REPLY;
+}

@@ -1,0 +1,529 @@
+/* modcp — POSIX HAL: pty / serial UART, monotonic clock, one-shot timer, threads. */
+#define _GNU_SOURCE
+#include "modcp/hal_posix.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <poll.h>
+#include <pthread.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/ioctl.h>
+#include <sys/stat.h>
+#include <termios.h>
+#include <time.h>
+#include <unistd.h>
+#ifdef __linux__
+#include <linux/serial.h>
+#endif
+
+#include "posix_baud.h"
+
+/* ---- clock -------------------------------------------------------------------- */
+
+uint64_t modcp_posix_now_us64(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
+}
+
+uint32_t modcp_posix_now_us(void)
+{
+    return (uint32_t)(modcp_posix_now_us64() & 0xFFFFFFFFu);
+}
+
+uint32_t modcp_posix_now_ms(void)
+{
+    return (uint32_t)((modcp_posix_now_us64() / 1000u) & 0xFFFFFFFFu);
+}
+
+void modcp_posix_sleep_until_us64(uint64_t t_us)
+{
+    struct timespec ts;
+    ts.tv_sec = (time_t)(t_us / 1000000u);
+    ts.tv_nsec = (long)((t_us % 1000000u) * 1000u);
+    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL) == EINTR) {
+    }
+}
+
+/* ---- threads -------------------------------------------------------------------- */
+
+int modcp_posix_thread_start(modcp_posix_thread_t *t, void *(*fn)(void *), void *arg)
+{
+    int rc = pthread_create(&t->handle, NULL, fn, arg);
+    return rc == 0 ? 0 : -rc;
+}
+
+void modcp_posix_thread_join(modcp_posix_thread_t *t)
+{
+    (void)pthread_join(t->handle, NULL);
+}
+
+/* ---- opening ---------------------------------------------------------------------- */
+
+static void port_reset(modcp_posix_port_t *p, uint32_t char_us)
+{
+    memset(p, 0, sizeof *p);
+    p->fd = -1;
+    p->slave_fd = -1;
+    p->char_us = char_us != 0u ? char_us : 1u;
+}
+
+int modcp_posix_open_pty(modcp_posix_port_t *p, const char *link, uint32_t char_us)
+{
+    port_reset(p, char_us);
+    int fd = posix_openpt(O_RDWR | O_NOCTTY);
+    if (fd < 0) {
+        return -errno;
+    }
+    if (grantpt(fd) != 0 || unlockpt(fd) != 0 || ptsname_r(fd, p->path, sizeof p->path) != 0) {
+        int e = errno;
+        close(fd);
+        return -e;
+    }
+    int sfd = open(p->path, O_RDWR | O_NOCTTY | O_NONBLOCK);
+    if (sfd < 0) {
+        int e = errno;
+        close(fd);
+        return -e;
+    }
+    struct termios tio;
+    if (tcgetattr(sfd, &tio) == 0) {
+        cfmakeraw(&tio);
+        tio.c_cflag |= CLOCAL | CREAD;
+        tio.c_cc[VMIN] = 1;
+        tio.c_cc[VTIME] = 0;
+        (void)tcsetattr(sfd, TCSANOW, &tio);
+    }
+    int fl = fcntl(fd, F_GETFL);
+    (void)fcntl(fd, F_SETFL, fl | O_NONBLOCK);
+    p->fd = fd;
+    p->slave_fd = sfd;
+    p->is_pty = true;
+    p->paced = true;
+    if (link != NULL && link[0] != '\0') {
+        struct stat st;
+        if (lstat(link, &st) == 0) {
+            if (!S_ISLNK(st.st_mode)) {
+                modcp_posix_close(p);
+                return -EEXIST; /* never replace a regular file */
+            }
+            (void)unlink(link);
+        }
+        if (symlink(p->path, link) != 0) {
+            int e = errno;
+            modcp_posix_close(p);
+            return -e;
+        }
+        snprintf(p->link, sizeof p->link, "%s", link);
+    }
+    return 0;
+}
+
+static speed_t speed_of(uint32_t baud)
+{
+    switch (baud) {
+    case 300u: return B300;
+    case 600u: return B600;
+    case 1200u: return B1200;
+    case 2400u: return B2400;
+    case 4800u: return B4800;
+    case 9600u: return B9600;
+    case 19200u: return B19200;
+    case 38400u: return B38400;
+    case 57600u: return B57600;
+    case 115200u: return B115200;
+    default: return B0;
+    }
+}
+
+int modcp_posix_open_device(modcp_posix_port_t *p, const char *path, uint32_t baud,
+                            uint8_t data_bits, uint8_t parity, uint8_t stop_bits, uint32_t char_us)
+{
+    port_reset(p, char_us);
+    p->parity = parity;
+    int fd = open(path, O_RDWR | O_NOCTTY | O_NONBLOCK);
+    if (fd < 0) {
+        return -errno;
+    }
+    struct termios tio;
+    if (tcgetattr(fd, &tio) != 0) {
+        int e = errno;
+        close(fd);
+        return -e;
+    }
+    cfmakeraw(&tio);
+    tio.c_cflag &= (tcflag_t) ~(CSIZE | PARENB | PARODD | CSTOPB | CRTSCTS);
+    tio.c_cflag |= CLOCAL | CREAD | (data_bits == 7u ? CS7 : CS8);
+    if (parity != 0u) {
+        tio.c_cflag |= PARENB;
+        if (parity == 1u) {
+            tio.c_cflag |= PARODD;
+        }
+    }
+    if (stop_bits == 2u) {
+        tio.c_cflag |= CSTOPB;
+    }
+    /* mark parity / framing errors and BREAK in the stream: FF 00 x, FF 00 00, FF FF */
+    tio.c_iflag &= (tcflag_t) ~(IGNBRK | BRKINT | IGNPAR | ISTRIP | IXON | IXOFF | IXANY);
+    tio.c_iflag |= INPCK | PARMRK;
+    tio.c_cc[VMIN] = 1;
+    tio.c_cc[VTIME] = 0;
+    speed_t sp = speed_of(baud);
+    if (sp != B0) {
+        cfsetispeed(&tio, sp);
+        cfsetospeed(&tio, sp);
+    }
+    if (tcsetattr(fd, TCSANOW, &tio) != 0) {
+        int e = errno;
+        close(fd);
+        return -e;
+    }
+    if (sp == B0) {
+        int rc = modcp_posix_custom_baud(fd, baud);
+        if (rc != 0) {
+            close(fd);
+            return rc;
+        }
+    }
+    (void)tcflush(fd, TCIOFLUSH);
+    p->fd = fd;
+    p->is_pty = false;
+    snprintf(p->path, sizeof p->path, "%s", path);
+    char real[PATH_MAX];
+    const char *tn = ttyname(fd);
+    p->paced = (tn != NULL && strncmp(tn, "/dev/pts/", 9) == 0) ||
+               (realpath(path, real) != NULL && strncmp(real, "/dev/pts/", 9) == 0);
+#ifdef TIOCGICOUNT
+    struct serial_icounter_struct ic;
+    if (ioctl(fd, TIOCGICOUNT, &ic) == 0) {
+        p->overruns = (uint32_t)(ic.overrun + ic.buf_overrun);
+    }
+#endif
+    return 0;
+}
+
+void modcp_posix_close(modcp_posix_port_t *p)
+{
+    if (p->link[0] != '\0') {
+        char target[256];
+        ssize_t n = readlink(p->link, target, sizeof target - 1u);
+        if (n >= 0) {
+            target[n] = '\0';
+            if (strcmp(target, p->path) == 0) {
+                (void)unlink(p->link);
+            }
+        }
+        p->link[0] = '\0';
+    }
+    if (p->slave_fd >= 0) {
+        close(p->slave_fd);
+        p->slave_fd = -1;
+    }
+    if (p->fd >= 0) {
+        close(p->fd);
+        p->fd = -1;
+    }
+}
+
+/* ---- HAL callbacks ------------------------------------------------------------------- */
+
+static void modem_bit(int fd, int bit, bool on)
+{
+    if (fd >= 0) {
+        (void)ioctl(fd, on ? TIOCMBIS : TIOCMBIC, &bit);
+    }
+}
+
+static void hal_uart_tx(void *ctx, const uint8_t *buf, uint16_t len)
+{
+    modcp_posix_port_t *p = ctx;
+    if (len > MODCP_POSIX_TX_MAX) {
+        len = MODCP_POSIX_TX_MAX;
+    }
+    memcpy(p->tx_buf, buf, len);
+    p->tx_len = len;
+    p->tx_pos = 0;
+    p->tx_t0_us = p->now_us;
+    p->tx_active = true;
+    if (p->on_tx != NULL) {
+        p->on_tx(p->on_tx_user, buf, len, p->now_us);
+    }
+    if (!p->paced && p->fd >= 0) {
+        /* the UART paces; write it all now */
+        size_t off = 0;
+        while (off < len) {
+            ssize_t n = write(p->fd, p->tx_buf + off, len - off);
+            if (n < 0) {
+                if (errno == EINTR) {
+                    continue;
+                }
+                if (errno == EAGAIN) {
+                    struct pollfd pf = {p->fd, POLLOUT, 0};
+                    (void)poll(&pf, 1, 100);
+                    continue;
+                }
+                break;
+            }
+            off += (size_t)n;
+        }
+        p->tx_pos = len;
+    }
+}
+
+/* RS232 automatic signals: CTS or DSR went OFF while sending. */
+static void hal_uart_tx_abort(void *ctx)
+{
+    modcp_posix_port_t *p = ctx;
+    if (p->tx_active && !p->paced && p->fd >= 0) {
+        (void)tcflush(p->fd, TCOFLUSH);
+    }
+    p->tx_active = false; /* no transmission-complete for an aborted frame */
+}
+
+static void hal_timer_arm(void *ctx, uint32_t us)
+{
+    modcp_posix_port_t *p = ctx;
+    if (us == 0u) {
+        p->timer_armed = false;
+        return;
+    }
+    p->timer_armed = true;
+    p->timer_deadline_us = p->now_us + us;
+}
+
+static void hal_set_de(void *ctx, bool on)
+{
+    modcp_posix_port_t *p = ctx;
+    p->de = on;
+    if (!p->is_pty) {
+        modem_bit(p->fd, TIOCM_RTS, on); /* RTS as the transceiver's DE, as common adapters do */
+    }
+}
+
+static void hal_set_led(void *ctx, modcp_led_t led, bool on)
+{
+    modcp_posix_port_t *p = ctx;
+    if ((unsigned)led < 3u) {
+        p->led[led] = on;
+    }
+}
+
+static void hal_set_signal(void *ctx, modcp_signal_t sig, bool on)
+{
+    modcp_posix_port_t *p = ctx;
+    if (sig == MODCP_SIG_RTS) {
+        p->rts = on;
+        if (!p->is_pty) {
+            modem_bit(p->fd, TIOCM_RTS, on);
+        }
+    } else {
+        p->dtr = on;
+        if (!p->is_pty) {
+            modem_bit(p->fd, TIOCM_DTR, on);
+        }
+    }
+}
+
+void modcp_posix_hal(modcp_posix_port_t *p, modcp_hal_t *hal)
+{
+    memset(hal, 0, sizeof *hal);
+    hal->ctx = p;
+    hal->uart_tx = hal_uart_tx;
+    hal->timer_arm = hal_timer_arm;
+    hal->set_de = hal_set_de;
+    hal->set_led = hal_set_led;
+    hal->set_signal = hal_set_signal;
+    hal->uart_tx_abort = hal_uart_tx_abort;
+}
+
+bool modcp_posix_modem_inputs(modcp_posix_port_t *p, bool *cts, bool *dsr)
+{
+    bool c = true;
+    bool d = true;
+    if (!p->is_pty && p->fd >= 0) {
+        int bits = 0;
+        if (ioctl(p->fd, TIOCMGET, &bits) == 0) {
+            c = (bits & TIOCM_CTS) != 0;
+            d = (bits & TIOCM_DSR) != 0;
+        }
+    }
+    bool changed = !p->inputs_known || c != p->cts || d != p->dsr;
+    p->inputs_known = true;
+    p->cts = c;
+    p->dsr = d;
+    *cts = c;
+    *dsr = d;
+    return changed;
+}
+
+/* ---- waiting ---------------------------------------------------------------------------- */
+
+static bool due(uint32_t now, uint32_t at)
+{
+    return (int32_t)(now - at) >= 0;
+}
+
+/* Microseconds from now until at (0 if due). */
+static uint32_t until(uint32_t now, uint32_t at)
+{
+    return due(now, at) ? 0u : at - now;
+}
+
+/* pty: write the bytes whose time has come; report completion with the last one. */
+static bool tx_progress(modcp_posix_port_t *p, uint32_t now)
+{
+    if (!p->tx_active) {
+        return false;
+    }
+    if (p->paced) {
+        uint32_t elapsed = now - p->tx_t0_us;
+        uint32_t n_due = elapsed / p->char_us;
+        if (n_due > p->tx_len) {
+            n_due = p->tx_len;
+        }
+        while (p->tx_pos < n_due) {
+            ssize_t n = write(p->fd, p->tx_buf + p->tx_pos, (size_t)(n_due - p->tx_pos));
+            if (n < 0) {
+                if (errno == EINTR) {
+                    continue;
+                }
+                /* EAGAIN: nobody reads the pty; drop, like a line without a listener */
+                p->tx_pos = (uint16_t)n_due;
+                break;
+            }
+            p->tx_pos = (uint16_t)(p->tx_pos + (uint16_t)n);
+        }
+        if (p->tx_pos >= p->tx_len) {
+            p->tx_active = false;
+            return true;
+        }
+        return false;
+    }
+    if (!due(now, p->tx_t0_us + (uint32_t)p->tx_len * p->char_us)) {
+        return false;
+    }
+    int queued = 0;
+    if (ioctl(p->fd, TIOCOUTQ, &queued) == 0 && queued > 0) {
+        return false; /* the driver still has bytes: check again */
+    }
+    p->tx_active = false;
+    return true;
+}
+
+static uint32_t tx_next_us(const modcp_posix_port_t *p, uint32_t now)
+{
+    if (!p->tx_active) {
+        return UINT32_MAX;
+    }
+    if (p->paced) {
+        return until(now, p->tx_t0_us + (uint32_t)(p->tx_pos + 1u) * p->char_us);
+    }
+    uint32_t u = until(now, p->tx_t0_us + (uint32_t)p->tx_len * p->char_us);
+    return u == 0u ? 500u : u;
+}
+
+/* Decode a PARMRK stream (device only). */
+static size_t decode(modcp_posix_port_t *p, const uint8_t *in, size_t n, modcp_posix_rx_t *rx,
+                     size_t cap)
+{
+    size_t k = 0;
+    uint8_t err = p->parity != 0u ? MODCP_LINE_PARITY : MODCP_LINE_FRAMING;
+    for (size_t i = 0; i < n && k < cap; i++) {
+        uint8_t b = in[i];
+        switch (p->mark_state) {
+        case 0:
+            if (b == 0xFFu) {
+                p->mark_state = 1;
+            } else {
+                rx[k].byte = b;
+                rx[k].errors = 0;
+                k++;
+            }
+            break;
+        case 1:
+            if (b == 0xFFu) {
+                rx[k].byte = 0xFFu;
+                rx[k].errors = 0;
+                k++;
+                p->mark_state = 0;
+            } else {
+                p->mark_state = 2; /* FF 00: a marked character follows */
+            }
+            break;
+        default:
+            rx[k].byte = b;
+            rx[k].errors = b == 0u ? MODCP_LINE_BREAK : err;
+            k++;
+            p->mark_state = 0;
+            break;
+        }
+    }
+    return k;
+}
+
+int modcp_posix_wait(modcp_posix_port_t *p, uint32_t max_us, modcp_posix_rx_t *rx, size_t cap,
+                     bool *tx_done, bool *timer_fired, uint32_t *now_us)
+{
+    uint32_t now = modcp_posix_now_us();
+    uint32_t wait = max_us;
+    if (p->timer_armed) {
+        uint32_t u = until(now, p->timer_deadline_us);
+        wait = u < wait ? u : wait;
+    }
+    uint32_t t = tx_next_us(p, now);
+    wait = t < wait ? t : wait;
+
+    struct pollfd pf = {p->fd, POLLIN, 0};
+    struct timespec ts = {(time_t)(wait / 1000000u), (long)(wait % 1000000u) * 1000L};
+    int pr = ppoll(&pf, 1, &ts, NULL);
+    if (pr < 0 && errno != EINTR) {
+        return -errno;
+    }
+    now = modcp_posix_now_us();
+    *now_us = now;
+    *tx_done = tx_progress(p, now);
+    *timer_fired = false;
+    if (p->timer_armed && due(now, p->timer_deadline_us)) {
+        p->timer_armed = false;
+        *timer_fired = true;
+    }
+    size_t k = 0;
+    if (pr > 0 && (pf.revents & (POLLIN | POLLHUP | POLLERR)) != 0) {
+        uint8_t buf[512];
+        size_t want = cap < sizeof buf ? cap : sizeof buf;
+        ssize_t n = read(p->fd, buf, want);
+        if (n > 0) {
+            if (p->is_pty) {
+                for (ssize_t i = 0; i < n; i++) {
+                    rx[i].byte = buf[i];
+                    rx[i].errors = 0;
+                }
+                k = (size_t)n;
+            } else {
+                k = decode(p, buf, (size_t)n, rx, cap);
+#ifdef TIOCGICOUNT
+                struct serial_icounter_struct ic;
+                if (ioctl(p->fd, TIOCGICOUNT, &ic) == 0) {
+                    uint32_t ov = (uint32_t)(ic.overrun + ic.buf_overrun);
+                    if (ov != p->overruns && k > 0u) {
+                        rx[k - 1u].errors |= MODCP_LINE_OVERRUN;
+                    }
+                    p->overruns = ov;
+                }
+#endif
+            }
+        } else if (n < 0 && errno != EAGAIN && errno != EINTR && errno != EIO) {
+            return -errno;
+        } else if (n < 0 && errno == EIO) {
+            /* pty without a slave: cannot happen while slave_fd is open; avoid a busy loop */
+            struct timespec s = {0, 1000000L};
+            nanosleep(&s, NULL);
+        }
+    }
+    return (int)k;
+}

@@ -1,0 +1,428 @@
+#!/usr/bin/env python3
+"""modcp — real masters against the firmware images running in QEMU.
+
+    qemu_test.py --root ROOT --board mps2-an385|stm32f405 --suite SUITE [options]
+
+Suites
+  libmodbus  tests/integration/master_libmodbus (every FC of the manual with the exact
+             reply bytes, T/C, exceptions 01..04, broadcast, the largest frames, the
+             paused user program via the console, N random write-then-read operations)
+  pymodbus   tests/integration/master_pymodbus.py (pymodbus client, same configuration)
+  firmware   what is particular to the image, from raw frames: the end-of-frame timer
+             (a frame written in pieces with short gaps is one frame, a long gap splits
+             it), the console and the Modbus side seeing one controller memory,
+             broadcast, exceptions, the extended function set (FC08 counters, FC11,
+             FC12, FC17, FC22, FC23, FC43/14)
+
+The image is started with tools/run-qemu (Modbus line and console on ptys). The
+script keeps both ptys open for the whole run (QEMU polls a pty it considers
+disconnected only once a second and drops output meanwhile), waits until the console
+prompt and an FC08 echo answer, then runs the suite. The master's --control FIFO is
+bridged to the console (`pause` / `resume` stop and restart the cyclic user program).
+
+Exit status: 0 passed, 1 failed, 77 skipped (no qemu-system-arm or no image: build the
+images with tools/build-arm).
+"""
+import argparse
+import os
+import re
+import select
+import shutil
+import signal
+import struct
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import tty
+
+SKIP = 77
+SLAVE = 5
+
+
+def crc16(data):
+    crc = 0xFFFF
+    for b in data:
+        crc ^= b
+        for _ in range(8):
+            crc = (crc >> 1) ^ 0xA001 if crc & 1 else crc >> 1
+    return bytes([crc & 0xFF, crc >> 8])
+
+
+def adu(pdu, addr=SLAVE):
+    frame = bytes([addr]) + bytes(pdu)
+    return frame + crc16(frame)
+
+
+class Fail(Exception):
+    pass
+
+
+class Target:
+    """One firmware image in QEMU, its Modbus pty and its console pty."""
+
+    def __init__(self, root, board, elf, log):
+        self.root, self.board, self.elf, self.log = root, board, elf, log
+        self.proc = None
+        self.mfd = self.cfd = None
+        self.modbus_tty = self.console_tty = None
+
+    def start(self):
+        cmd = [os.path.join(self.root, "tools", "run-qemu"), self.board, "--elf", self.elf]
+        self.proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                     text=True, start_new_session=True)
+        deadline = time.time() + 20
+        while time.time() < deadline and not (self.modbus_tty and self.console_tty):
+            line = self.proc.stdout.readline()
+            if not line:
+                raise Fail("tools/run-qemu ended: %s" % self.proc.poll())
+            self.log(line.rstrip())
+            if line.startswith("MODBUS_TTY="):
+                self.modbus_tty = line.strip().split("=", 1)[1]
+            elif line.startswith("CONSOLE_TTY="):
+                self.console_tty = line.strip().split("=", 1)[1]
+        if not (self.modbus_tty and self.console_tty):
+            raise Fail("no ptys from tools/run-qemu")
+        threading.Thread(target=self._drain, daemon=True).start()
+        self.cfd = self._open(self.console_tty)
+        self.mfd = self._open(self.modbus_tty)
+        self._wait_console()
+        self._wait_modbus()
+
+    def _drain(self):
+        for line in self.proc.stdout:
+            self.log("qemu: " + line.rstrip())
+
+    @staticmethod
+    def _open(path):
+        fd = os.open(path, os.O_RDWR | os.O_NOCTTY)
+        tty.setraw(fd)
+        return fd
+
+    def stop(self):
+        for fd in (self.mfd, self.cfd):
+            if fd is not None:
+                os.close(fd)
+        if self.proc and self.proc.poll() is None:
+            os.killpg(self.proc.pid, signal.SIGTERM)
+            try:
+                self.proc.wait(10)
+            except subprocess.TimeoutExpired:
+                os.killpg(self.proc.pid, signal.SIGKILL)
+                self.proc.wait()
+
+    # ---- console ----
+    def _read(self, fd, timeout):
+        r, _, _ = select.select([fd], [], [], max(0.0, timeout))
+        return os.read(fd, 4096) if r else b""
+
+    def _wait_console(self):
+        deadline = time.time() + 15
+        buf = b""
+        while time.time() < deadline:
+            os.write(self.cfd, b"\r")
+            end = time.time() + 0.5
+            while time.time() < end:
+                buf += self._read(self.cfd, end - time.time())
+                if b"> " in buf:
+                    self._flush(self.cfd)
+                    return
+        raise Fail("the console did not answer (%r)" % buf[-200:])
+
+    def _flush(self, fd):
+        while self._read(fd, 0.05):
+            pass
+
+    def console(self, cmd, timeout=3.0):
+        """Run one console command; returns its answer (without echo and prompt)."""
+        self._flush(self.cfd)
+        os.write(self.cfd, cmd.encode() + b"\r")
+        buf = b""
+        end = time.time() + timeout
+        while time.time() < end:
+            buf += self._read(self.cfd, end - time.time())
+            text = buf.decode(errors="replace")
+            if text.endswith("\r\n> ") or text.endswith("\n> "):
+                lines = text.replace("\r\n", "\n").split("\n")
+                return "\n".join(l for l in lines[1:-1])  # drop the echo and the prompt
+        raise Fail("console: no answer to %r (%r)" % (cmd, buf[-200:]))
+
+    # ---- Modbus, raw frames ----
+    def _wait_modbus(self):
+        deadline = time.time() + 15
+        req = adu([0x08, 0x00, 0x00, 0xA5, 0x5A])
+        while time.time() < deadline:
+            if self.transact(req, timeout=0.4) == req:
+                return
+        raise Fail("no answer to an FC08 echo on %s" % self.modbus_tty)
+
+    def transact(self, req, timeout=1.0, expect_len=None, pieces=None, gap_s=0.0):
+        """Send req (optionally in pieces with gap_s between them) and return the
+        reply: complete when expect_len bytes are in, or after 50 ms of silence."""
+        self._flush(self.mfd)
+        if pieces:
+            pos = 0
+            for n in pieces:
+                os.write(self.mfd, req[pos:pos + n])
+                pos += n
+                if pos < len(req):
+                    time.sleep(gap_s)
+            if pos < len(req):
+                os.write(self.mfd, req[pos:])
+        else:
+            os.write(self.mfd, req)
+        out = b""
+        end = time.time() + timeout
+        while time.time() < end:
+            wait = end - time.time() if not out else min(0.05, end - time.time())
+            data = self._read(self.mfd, wait)
+            if data:
+                out += data
+                if expect_len is not None and len(out) >= expect_len:
+                    break
+            elif out:
+                break
+        return out
+
+
+# ---- the firmware suite -----------------------------------------------------------------
+
+
+class Checks:
+    def __init__(self, log):
+        self.log = log
+        self.passed = 0
+        self.failed = 0
+
+    def ok(self, cond, what):
+        if cond:
+            self.passed += 1
+            self.log("ok - " + what)
+        else:
+            self.failed += 1
+            self.log("FAIL - " + what)
+        return cond
+
+
+def reply_ok(rep, fc):
+    return len(rep) >= 4 and rep[0] == SLAVE and rep[1] == fc and crc16(rep[:-2]) == rep[-2:]
+
+
+def exc_of(rep):
+    if len(rep) == 5 and rep[1] & 0x80 and crc16(rep[:3]) == rep[3:]:
+        return rep[2]
+    return None
+
+
+def console_value(text):
+    m = re.search(r"=\s*(0x[0-9A-Fa-f]+|-?\d+)", text)
+    return int(m.group(1), 0) if m else None
+
+
+def suite_firmware(t, c):
+    # end-of-frame timing on the chip: t3.5 at 9600 baud = 4 ms (manual table)
+    req = adu([0x03, 0x00, 0x50, 0x00, 0x02])
+    want = bytes.fromhex("05 03 04 87 65 43 21 76 70")
+    c.ok(t.transact(req, expect_len=9) == want, "FC03 manual example in one write")
+    c.ok(t.transact(req, expect_len=9, pieces=[1, 1, 1, 1, 1, 1, 1], gap_s=0.0005) == want,
+         "FC03 written byte by byte, 0.5 ms gaps (< t3.5): one frame")
+    before = t.console("status")
+    crc_before = int(re.search(r"bus_crc=(\d+)", before).group(1)) if "bus_crc=" in before else None
+    rep = t.transact(req, timeout=0.6, pieces=[4], gap_s=0.100)
+    c.ok(rep == b"", "FC03 split by a 100 ms gap (> t3.5): two fragments, no reply")
+    after = t.console("status")
+    if crc_before is not None and "bus_crc=" in after:
+        crc_after = int(re.search(r"bus_crc=(\d+)", after).group(1))
+        c.ok(crc_after >= crc_before + 2, "both fragments counted as CRC errors (%d -> %d)"
+             % (crc_before, crc_after))
+    c.ok(t.transact(req, expect_len=9) == want, "next request after the split frame is served")
+
+    # the console and the master see one controller memory
+    rep = t.transact(adu([0x06, 0x01, 0x80, 0x2B, 0x1A]), expect_len=8)
+    c.ok(rep == adu([0x06, 0x01, 0x80, 0x2B, 0x1A]), "004 §6.6 FC06 DB800.DBW768 = 2B1A")
+    v = console_value(t.console("get DB800.DBW768"))
+    c.ok(v == 0x2B1A, "console: get DB800.DBW768 = 0x2B1A after FC06 (got %s)" % v)
+    t.console("set DB800.DBW770 0x4242")
+    rep = t.transact(adu([0x03, 0x01, 0x81, 0x00, 0x01]), expect_len=7)
+    c.ok(rep == adu([0x03, 0x02, 0x42, 0x42]), "console set DB800.DBW770 0x4242, FC03 reads it")
+    t.console("set M1150.5 1")
+    rep = t.transact(adu([0x01, 0x04, 0xB5, 0x00, 0x01]), expect_len=6)
+    c.ok(rep == adu([0x01, 0x01, 0x01]), "console set M1150.5, FC01 coil 1205 reads 1")
+
+    # broadcast: executed, never answered
+    rep = t.transact(adu([0x06, 0x01, 0x82, 0x77, 0x88], addr=0), timeout=0.3)
+    c.ok(rep == b"", "broadcast FC06: no reply")
+    time.sleep(0.1)
+    v = console_value(t.console("get DB800.DBW772"))
+    c.ok(v == 0x7788, "broadcast FC06 executed: DB800.DBW772 = 0x7788 (got %s)" % v)
+    rep = t.transact(adu([0x03, 0x00, 0x50, 0x00, 0x02], addr=0), timeout=0.3)
+    c.ok(rep == b"", "broadcast FC03: dropped, no reply")
+    rep = t.transact(adu([0x03, 0x00, 0x50, 0x00, 0x02], addr=6), timeout=0.3)
+    c.ok(rep == b"", "request for slave 6: ignored")
+
+    # exceptions
+    for name, pdu, code in (
+        ("FC 0x41 -> 01", [0x41, 0, 0, 0, 1], 1),
+        ("FC03 across a DB boundary -> 02", [0x03, 0x01, 0xFE, 0x00, 0x04], 2),
+        ("FC03 0 registers -> 03", [0x03, 0x00, 0x00, 0x00, 0x00], 3),
+        ("FC03 DB803 missing -> 04", [0x03, 0x06, 0x00, 0x00, 0x01], 4),
+    ):
+        rep = t.transact(adu(pdu), expect_len=5)
+        c.ok(exc_of(rep) == code and rep[1] == (pdu[0] | 0x80),
+             "exception %s (got %s)" % (name, rep.hex(" ")))
+
+    # extended function set
+    rep = t.transact(adu([0x08, 0x00, 0x0B, 0x00, 0x00]), expect_len=8)
+    c.ok(reply_ok(rep, 0x08) and struct.unpack(">H", rep[4:6])[0] > 0,
+         "FC08 sub 0B bus message count > 0 (%s)" % rep.hex(" "))
+    rep = t.transact(adu([0x08, 0x00, 0x0C, 0x00, 0x00]), expect_len=8)
+    c.ok(reply_ok(rep, 0x08) and struct.unpack(">H", rep[4:6])[0] >= 2,
+         "FC08 sub 0C CRC error count >= 2 (%s)" % rep.hex(" "))
+    rep = t.transact(adu([0x0B]), expect_len=8)
+    c.ok(reply_ok(rep, 0x0B) and len(rep) == 8, "FC11 comm event counter (%s)" % rep.hex(" "))
+    rep = t.transact(adu([0x0C]))
+    c.ok(reply_ok(rep, 0x0C) and rep[2] == len(rep) - 5 and rep[2] >= 6,
+         "FC12 comm event log (%d bytes)" % len(rep))
+    rep = t.transact(adu([0x11]))
+    c.ok(reply_ok(rep, 0x11) and rep[2] == len(rep) - 5, "FC17 report slave ID (%r)" % rep[3:-2])
+    # FC22: DB800.DBW774 = 0x1234, AND 0xF0F0, OR 0x0505 -> (0x1234 & F0F0) | (0505 & ~F0F0)
+    t.transact(adu([0x06, 0x01, 0x83, 0x12, 0x34]), expect_len=8)
+    rep = t.transact(adu([0x16, 0x01, 0x83, 0xF0, 0xF0, 0x05, 0x05]), expect_len=10)
+    c.ok(rep == adu([0x16, 0x01, 0x83, 0xF0, 0xF0, 0x05, 0x05]), "FC22 mask write echo")
+    v = console_value(t.console("get DB800.DBW774"))
+    want22 = (0x1234 & 0xF0F0) | (0x0505 & ~0xF0F0 & 0xFFFF)
+    c.ok(v == want22, "FC22 result DB800.DBW774 = 0x%04X (got %s)" % (want22, v))
+    # FC23: write 2 registers at 0x0190 first, then read 3 from 0x018F
+    rep = t.transact(adu([0x17, 0x01, 0x8F, 0x00, 0x03, 0x01, 0x90, 0x00, 0x02, 0x04,
+                          0xAA, 0xBB, 0xCC, 0xDD]), expect_len=11)
+    c.ok(reply_ok(rep, 0x17) and rep[2] == 6 and rep[5:9] == bytes([0xAA, 0xBB, 0xCC, 0xDD]),
+         "FC23 write then read (%s)" % rep.hex(" "))
+    rep = t.transact(adu([0x2B, 0x0E, 0x01, 0x00]))
+    c.ok(reply_ok(rep, 0x2B) and rep[2] == 0x0E and len(rep) > 12,
+         "FC43/14 basic device identification (%r)" % rep[3:-2])
+
+    # the image itself
+    text = t.console("board")
+    c.ok(t.board in text and "cycles" in text, "console: board command (%s)" % text.split("\n")[0])
+
+
+# ---- masters ----------------------------------------------------------------------------
+
+
+def bridge_fifo(path, target, stop):
+    """Forward the master's control lines (pause / resume) to the console. The FIFO is
+    opened read-write so that it never reports end-of-file between two writers."""
+    fd = os.open(path, os.O_RDWR | os.O_NONBLOCK)
+    buf = b""
+    try:
+        while not stop.is_set():
+            r, _, _ = select.select([fd], [], [], 0.1)
+            if not r:
+                continue
+            buf += os.read(fd, 256)
+            while b"\n" in buf:
+                line, buf = buf.split(b"\n", 1)
+                cmd = line.decode().strip()
+                if cmd:
+                    target.log("control: %s -> %s" % (cmd, target.console(cmd)))
+    finally:
+        os.close(fd)
+
+
+def run_master(cmd, log, timeout):
+    log("$ " + " ".join(cmd))
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    last = ""
+    try:
+        for line in p.stdout:
+            log(line.rstrip())
+            if line.strip():
+                last = line.strip()
+        rc = p.wait(timeout)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        raise Fail("master timed out")
+    m = re.match(r"(\d+) passed, (\d+) failed", last)
+    if not m:
+        raise Fail("master ended without 'N passed, M failed' (rc %s)" % rc)
+    return int(m.group(1)), int(m.group(2)), rc
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--root", required=True)
+    ap.add_argument("--board", required=True, choices=["mps2-an385", "stm32f405"])
+    ap.add_argument("--suite", required=True, choices=["libmodbus", "pymodbus", "firmware"])
+    ap.add_argument("--master", help="master_libmodbus executable or master_pymodbus.py")
+    ap.add_argument("--python", default=sys.executable, help="interpreter for pymodbus")
+    ap.add_argument("--random", type=int, default=2000)
+    ap.add_argument("--elf", help="image to run (default: the QEMU test image, else the plain one)")
+    args = ap.parse_args()
+
+    t_start = time.time()
+
+    def log(msg):
+        print("[%6.2f] %s" % (time.time() - t_start, msg), flush=True)
+
+    if shutil.which("qemu-system-arm") is None:
+        print("SKIP: qemu-system-arm is not installed (Debian package qemu-system-arm)")
+        return SKIP
+    # The QEMU test image (tools/build-arm): configs/default.ini with f_mul = 4, i.e. a
+    # 16 ms end of frame that host scheduling gaps inside QEMU's byte delivery cannot
+    # reach. Without it, the plain image.
+    elf = args.elf or os.path.join(args.root, "build", args.board, "modcp-%s-qemu.elf" % args.board)
+    if not os.path.exists(elf):
+        elf = os.path.join(args.root, "build", args.board, "modcp-%s.elf" % args.board)
+    if not os.path.exists(elf):
+        print("SKIP: no firmware image %s (build it with tools/build-arm)" % elf)
+        return SKIP
+    if args.suite != "firmware" and (not args.master or not os.path.exists(args.master)):
+        print("SKIP: master %s not available" % args.master)
+        return SKIP
+
+    log("image %s" % elf)
+    target = Target(args.root, args.board, elf, log)
+    stop = threading.Event()
+    tmpdir = tempfile.mkdtemp(prefix="modcp-qemu-")
+    try:
+        target.start()
+        log("%s up: Modbus %s, console %s (%.1f s)" % (args.board, target.modbus_tty,
+                                                      target.console_tty, time.time() - t_start))
+        if args.suite == "firmware":
+            checks = Checks(log)
+            suite_firmware(target, checks)
+            passed, failed, rc = checks.passed, checks.failed, 0
+        else:
+            fifo = os.path.join(tmpdir, "control")
+            os.mkfifo(fifo)
+            threading.Thread(target=bridge_fifo, args=(fifo, target, stop), daemon=True).start()
+            if args.suite == "libmodbus":
+                cmd = [args.master, "--device", target.modbus_tty, "--baud", "9600",
+                       "--parity", "E", "--slave", str(SLAVE), "--random", str(args.random),
+                       "--control", fifo]
+            else:
+                cmd = [args.python, args.master, "--device", target.modbus_tty, "--baud",
+                       "9600", "--parity", "E", "--slave", str(SLAVE), "--random",
+                       str(args.random)]
+            passed, failed, rc = run_master(cmd, log, timeout=170)
+        status = target.console("status")
+        log("console status: " + status)
+        ok = failed == 0 and passed > 0 and rc == 0
+        if not ok:
+            log("console diag:\n" + target.console("diag"))
+        log("%s %s: %d passed, %d failed, %.1f s -> %s" % (args.board, args.suite, passed, failed,
+                                                          time.time() - t_start,
+                                                          "PASS" if ok else "FAIL"))
+        return 0 if ok else 1
+    except Fail as e:
+        log("FAIL: %s" % e)
+        return 1
+    finally:
+        stop.set()
+        target.stop()
+        shutil.rmtree(tmpdir, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,1476 @@
+/* modcp — INI configuration -> parameter record + controller memory (libinih).
+ * The schema is documented in docs/parameters.md; keep both in step. */
+#define _POSIX_C_SOURCE 200809L
+#include "modcp_conf.h"
+
+#include <ctype.h>
+#include <ini.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "modcp/events.h"
+
+#define IDX_GLOBAL 16u /* src[] slot for issue index 0xFF */
+
+/* ---- defaults of the tool-level [cpu] keys ------------------------------------- */
+#define DEF_I_BYTES 128u
+#define DEF_Q_BYTES 128u
+#define DEF_M_BYTES 256u
+#define DEF_TIMERS 128u
+#define DEF_COUNTERS 128u
+#define DEF_CYCLE_MS 10u
+#define MAX_CYCLE_MS 60000u
+
+/* ---- small helpers ---------------------------------------------------------------- */
+
+static void copy_str(char *dst, size_t cap, const char *src)
+{
+    if (cap == 0u) {
+        return;
+    }
+    size_t n = strlen(src);
+    if (n >= cap) {
+        n = cap - 1u;
+    }
+    memcpy(dst, src, n);
+    dst[n] = '\0';
+}
+
+static void lower_copy(char *dst, size_t cap, const char *src)
+{
+    size_t i = 0;
+    for (; src[i] != '\0' && i + 1u < cap; i++) {
+        dst[i] = (char)tolower((unsigned char)src[i]);
+    }
+    dst[i] = '\0';
+}
+
+static void event_name(modcp_event_t ev, char *buf, size_t cap)
+{
+    (void)snprintf(buf, cap, "(%02X)%02XH", (unsigned)MODCP_EVENT_CLASS(ev),
+                   (unsigned)MODCP_EVENT_NUMBER(ev));
+}
+
+/* Unsigned number, decimal or 0x hex, the whole string. */
+static bool parse_u32(const char *s, uint32_t *v)
+{
+    while (isspace((unsigned char)*s)) {
+        s++;
+    }
+    if (*s == '\0' || *s == '-' || *s == '+') {
+        return false;
+    }
+    char *end = NULL;
+    unsigned long long x = strtoull(s, &end, 0);
+    if (end == s) {
+        return false;
+    }
+    while (isspace((unsigned char)*end)) {
+        end++;
+    }
+    if (*end != '\0' || x > 0xFFFFFFFFull) {
+        return false;
+    }
+    *v = (uint32_t)x;
+    return true;
+}
+
+/* Hex element value of a [memory] line (0x, 16#, B#16#, W#16#, DW#16# prefixes
+ * optional). */
+static bool parse_hex(const char *s, uint32_t max, uint32_t *v)
+{
+    static const char *const prefixes[] = {"0x", "dw#16#", "w#16#", "b#16#", "16#"};
+    for (size_t i = 0; i < sizeof prefixes / sizeof prefixes[0]; i++) {
+        size_t n = strlen(prefixes[i]);
+        if (strncasecmp(s, prefixes[i], n) == 0) {
+            s += n;
+            break;
+        }
+    }
+    if (*s == '\0') {
+        return false;
+    }
+    for (const char *p = s; *p != '\0'; p++) {
+        if (!isxdigit((unsigned char)*p)) {
+            return false;
+        }
+    }
+    char *end = NULL;
+    unsigned long long x = strtoull(s, &end, 16);
+    if (*end != '\0' || x > max) {
+        return false;
+    }
+    *v = (uint32_t)x;
+    return true;
+}
+
+/* ---- problems ------------------------------------------------------------------------ */
+
+static void add_problem(modcp_conf_t *c, bool fatal, const char *fmt, ...)
+{
+    if (c->problem_count < MODCP_CONF_MAX_PROBLEMS) {
+        modcp_conf_problem_t *p = &c->problems[c->problem_count];
+        size_t nl = strlen(c->name);
+        if (nl > sizeof p->text - 3u) {
+            nl = sizeof p->text - 3u;
+        }
+        memmove(p->text, c->name, nl);
+        p->text[nl] = ':';
+        p->text[nl + 1u] = ' ';
+        p->text[nl + 2u] = '\0';
+        int n = (int)(nl + 2u);
+        va_list ap;
+        va_start(ap, fmt);
+        if (n >= 0 && (size_t)n < sizeof p->text) {
+            (void)vsnprintf(p->text + n, sizeof p->text - (size_t)n, fmt, ap);
+        }
+        va_end(ap);
+        p->fatal = fatal;
+    }
+    c->problem_count++;
+    if (fatal) {
+        c->fatal_count++;
+    }
+}
+
+/* "[section] key = value: rule (event (0E)23H)" or with "warning, " */
+static void add_key_problem(modcp_conf_t *c, bool fatal, const char *section, const char *key,
+                            const char *value, const char *rule, modcp_event_t ev)
+{
+    char en[16];
+    if (ev != MODCP_EV_NONE) {
+        event_name(ev, en, sizeof en);
+        add_problem(c, fatal, "[%s] %s = %s: %s (%sevent %s)", section, key, value, rule,
+                    fatal ? "" : "warning, ", en);
+    } else {
+        add_problem(c, fatal, "[%s] %s = %s: %s%s", section, key, value, rule,
+                    fatal ? "" : " (warning)");
+    }
+}
+
+static void set_src(modcp_conf_t *c, modcp_param_field_t f, unsigned idx, const char *section,
+                    const char *key, const char *value)
+{
+    if ((unsigned)f >= MODCP_PF_COUNT || idx >= MODCP_CONF_SRC_INDEX) {
+        return;
+    }
+    modcp_conf_src_t *s = &c->src[f][idx];
+    s->set = true;
+    copy_str(s->section, sizeof s->section, section);
+    copy_str(s->key, sizeof s->key, key);
+    copy_str(s->value, sizeof s->value, value);
+}
+
+/* ---- key table ------------------------------------------------------------------------ */
+
+typedef enum { K_U8, K_U16, K_U32, K_ENUM, K_BOOL, K_STR } kind_t;
+
+typedef struct {
+    const char *name;
+    uint8_t value;
+} enum_name_t;
+
+static const enum_name_t parity_names[] = {
+    {"none", MODCP_PARITY_NONE}, {"odd", MODCP_PARITY_ODD}, {"even", MODCP_PARITY_EVEN},
+    {"n", MODCP_PARITY_NONE},    {"o", MODCP_PARITY_ODD},   {"e", MODCP_PARITY_EVEN},
+    {NULL, 0}};
+static const enum_name_t framing_names[] = {
+    {"rtu", MODCP_FRAMING_RTU}, {"ascii", MODCP_FRAMING_ASCII}, {NULL, 0}};
+static const enum_name_t mode_names[] = {{"normal", MODCP_OPMODE_NORMAL},
+                                         {"suppress", MODCP_OPMODE_SUPPRESS},
+                                         {"interference_suppression", MODCP_OPMODE_SUPPRESS},
+                                         {NULL, 0}};
+static const enum_name_t eof_names[] = {
+    {"manual", MODCP_EOF_MANUAL}, {"modbus", MODCP_EOF_MODBUS}, {NULL, 0}};
+static const enum_name_t iface_names[] = {{"rs232", MODCP_IFACE_RS232},
+                                          {"rs422", MODCP_IFACE_RS422},
+                                          {"rs485", MODCP_IFACE_RS485},
+                                          {NULL, 0}};
+static const enum_name_t fset_names[] = {
+    {"cp341", MODCP_FSET_CP341}, {"extended", MODCP_FSET_EXTENDED}, {NULL, 0}};
+static const enum_name_t model_names[] = {
+    {"cp341", MODCP_CPU_CP341}, {"cp441", MODCP_CPU_CP441}, {"cp441-2", MODCP_CPU_CP441}, {NULL, 0}};
+
+typedef struct {
+    const char *section;
+    const char *key;
+    uint8_t field; /* modcp_param_field_t */
+    uint8_t index;
+    uint8_t kind;
+    size_t off;
+    const enum_name_t *names;
+} conf_key_t;
+
+#define P(f) offsetof(modcp_params_t, f)
+
+static const conf_key_t keys[] = {
+    {"serial", "baud", MODCP_PF_BAUD, 0, K_U32, P(baud), NULL},
+    {"serial", "data_bits", MODCP_PF_DATA_BITS, 0, K_U8, P(data_bits), NULL},
+    {"serial", "parity", MODCP_PF_PARITY, 0, K_ENUM, P(parity), parity_names},
+    {"serial", "stop_bits", MODCP_PF_STOP_BITS, 0, K_U8, P(stop_bits), NULL},
+    {"protocol", "slave_address", MODCP_PF_SLAVE_ADDR, 0, K_U8, P(slave_addr), NULL},
+    {"protocol", "framing", MODCP_PF_FRAMING, 0, K_ENUM, P(framing), framing_names},
+    {"protocol", "mode", MODCP_PF_OPMODE, 0, K_ENUM, P(opmode), mode_names},
+    {"protocol", "f_mul", MODCP_PF_FMUL, 0, K_U8, P(f_mul), NULL},
+    {"protocol", "eof_timing", MODCP_PF_EOF_TIMING, 0, K_ENUM, P(eof_timing), eof_names},
+    {"protocol", "t15_check", MODCP_PF_T15_CHECK, 0, K_BOOL, P(t15_check), NULL},
+    {"protocol", "ascii_timeout_ms", MODCP_PF_ASCII_TIMEOUT, 0, K_U16, P(ascii_timeout_ms), NULL},
+    {"protocol", "function_set", MODCP_PF_FSET, 0, K_ENUM, P(fset), fset_names},
+    {"interface", "type", MODCP_PF_IFACE, 0, K_ENUM, P(iface), iface_names},
+    {"interface", "turnaround_ms", MODCP_PF_TURNAROUND, 0, K_U16, P(turnaround_ms), NULL},
+    {"interface", "rs232_auto", MODCP_PF_RS232_AUTO, 0, K_BOOL, P(rs232_auto), NULL},
+    {"interface", "rts_on_delay_ms", MODCP_PF_RTS_ON_DELAY, 0, K_U16, P(rts_on_delay_ms), NULL},
+    {"interface", "rts_off_delay_ms", MODCP_PF_RTS_OFF_DELAY, 0, K_U16, P(rts_off_delay_ms), NULL},
+    {"registers", "holding_base_db", MODCP_PF_HR_BASE, 0, K_U16, P(hr_base_db), NULL},
+    {"registers", "input_base_db", MODCP_PF_IR_BASE, 0, K_U16, P(ir_base_db), NULL},
+    {"registers", "with_32bit_registers", MODCP_PF_REGS32, 0, K_BOOL, P(regs32), NULL},
+    {"cpu", "model", MODCP_PF_CPU_MODEL, 0, K_ENUM, P(cpu_model), model_names},
+    {"cpu", "job_limit", MODCP_PF_JOB_LIMIT, 0, K_U16, P(job_limit), NULL},
+    {"cpu", "timeout_ms", MODCP_PF_CPU_TIMEOUT, 0, K_U16, P(cpu_timeout_ms), NULL},
+    {"cpu", "start_time_ms", MODCP_PF_START_TIME, 0, K_U16, P(start_time_ms), NULL},
+    {"supervision", "commloss_ms", MODCP_PF_COMMLOSS, 0, K_U16, P(commloss_ms), NULL},
+    {"scanner", "start", MODCP_PF_SCANNER, 0xFF, K_U16, P(scan_start), NULL},
+    {"identification", "vendor", MODCP_PF_ID_STRING, 0, K_STR, P(vendor), NULL},
+    {"identification", "product", MODCP_PF_ID_STRING, 1, K_STR, P(product), NULL},
+    {"identification", "revision", MODCP_PF_ID_STRING, 2, K_STR, P(revision), NULL},
+    {"identification", "app_name", MODCP_PF_ID_STRING, 3, K_STR, P(app_name), NULL},
+    {"diagnostics", "interrupt", MODCP_PF_DIAG_IRQ, 0, K_BOOL, P(diag_irq), NULL},
+};
+
+/* Keys handled outside the table, for "unknown key" messages. */
+static const char *const section_keys[][2] = {
+    {"serial", "baud, data_bits, parity, stop_bits"},
+    {"protocol", "slave_address, framing, mode, f_mul, eof_timing, t15_check, ascii_timeout_ms, "
+                 "function_set"},
+    {"interface", "type, turnaround_ms, rs232_auto, rts_on_delay_ms, rts_off_delay_ms"},
+    {"coils", "m, q, t, c, dbN (FROM-TO @ START)"},
+    {"inputs", "m, i, dbN (FROM-TO @ START)"},
+    {"registers", "holding_base_db, input_base_db, with_32bit_registers, int16, int32, float"},
+    {"limits", "db, m, q (MIN-MAX or off)"},
+    {"cpu", "model, job_limit, timeout_ms, start_time_ms, cycle_ms, work_db, i_bytes, q_bytes, "
+            "m_bytes, timers, counters, dbs"},
+    {"memory", "S7 operands, e.g. MB1008, M1000.3, DB800.DBW160, T100"},
+    {"supervision", "commloss_ms"},
+    {"scanner", "start, entries"},
+    {"identification", "vendor, product, revision, app_name"},
+    {"diagnostics", "interrupt"},
+};
+
+static const char *known_keys(const char *section)
+{
+    for (size_t i = 0; i < sizeof section_keys / sizeof section_keys[0]; i++) {
+        if (strcasecmp(section_keys[i][0], section) == 0) {
+            return section_keys[i][1];
+        }
+    }
+    return NULL;
+}
+
+/* ---- rules in words --------------------------------------------------------------------- */
+
+static modcp_event_t field_event(uint8_t field)
+{
+    switch (field) {
+    case MODCP_PF_DATA_BITS: return MODCP_EV_DATA_BITS;
+    case MODCP_PF_SLAVE_ADDR: return MODCP_EV_SLAVE_ADDR;
+    case MODCP_PF_OPMODE: return MODCP_EV_OPMODE;
+    case MODCP_PF_FMUL:
+    case MODCP_PF_ASCII_TIMEOUT: return MODCP_EV_FMUL;
+    case MODCP_PF_LIM_DB:
+    case MODCP_PF_LIM_M:
+    case MODCP_PF_LIM_Q: return MODCP_EV_WRITE_LIMITS;
+    case MODCP_PF_COILS: return MODCP_EV_COIL_FROMTO;
+    case MODCP_PF_INPUTS: return MODCP_EV_INPUT_FROMTO;
+    default: return MODCP_EV_PARAM_RECORD;
+    }
+}
+
+static const char *field_rule(uint8_t field)
+{
+    switch (field) {
+    case MODCP_PF_BAUD:
+        return "must be one of 300, 600, 1200, 2400, 4800, 9600, 19200, 38400, 57600, 76800, "
+               "115200";
+    case MODCP_PF_DATA_BITS: return "must be 8 for RTU, 7 or 8 for ASCII";
+    case MODCP_PF_PARITY: return "must be none, odd or even";
+    case MODCP_PF_STOP_BITS: return "must be 1 or 2";
+    case MODCP_PF_SLAVE_ADDR: return "must be 1..255";
+    case MODCP_PF_FRAMING: return "must be rtu or ascii";
+    case MODCP_PF_OPMODE: return "must be normal or suppress (interference suppression)";
+    case MODCP_PF_FMUL: return "must be 1..10; the CP runs with 1";
+    case MODCP_PF_EOF_TIMING: return "must be manual or modbus";
+    case MODCP_PF_T15_CHECK: return "must be on or off";
+    case MODCP_PF_ASCII_TIMEOUT: return "must be 1..6500 ms; the CP runs with 1000 ms";
+    case MODCP_PF_IFACE: return "must be rs232, rs422 or rs485";
+    case MODCP_PF_TURNAROUND: return "must be 0..100 ms";
+    case MODCP_PF_RS232_AUTO: return "must be on or off, and on only with [interface] type = rs232";
+    case MODCP_PF_RTS_ON_DELAY:
+    case MODCP_PF_RTS_OFF_DELAY: return "must be 0..65535 ms";
+    case MODCP_PF_HR_BASE:
+    case MODCP_PF_IR_BASE: return "must be a DB number 1..65535 (0: not configured)";
+    case MODCP_PF_REGS32: return "must be on or off";
+    case MODCP_PF_LIM_DB:
+    case MODCP_PF_LIM_M:
+    case MODCP_PF_LIM_Q:
+        return "must be MIN-MAX with MIN <= MAX (DB MIN >= 1), or off to disable writes";
+    case MODCP_PF_FSET: return "must be cp341 or extended";
+    case MODCP_PF_CPU_MODEL: return "must be cp341 or cp441";
+    case MODCP_PF_JOB_LIMIT:
+        return "must be 0 (the model's limit) or 32..1024 bytes (cp341) / 32..450 (cp441)";
+    case MODCP_PF_CPU_TIMEOUT: return "must be 1..65535 ms";
+    case MODCP_PF_START_TIME: return "must be 1..65535 ms";
+    case MODCP_PF_COMMLOSS: return "must be 0 (off) or 100..30000 ms";
+    case MODCP_PF_SCANNER: return "must be 0..65535";
+    case MODCP_PF_ID_STRING: return "at most 16 characters";
+    case MODCP_PF_DIAG_IRQ: return "must be on or off";
+    default: return "invalid value";
+    }
+}
+
+/* ---- INI handler --------------------------------------------------------------------------- */
+
+typedef struct {
+    char section[24];
+    char key[48];
+    char value[160];
+    bool used;
+} override_t;
+
+#define MAX_OVERRIDES 32
+
+typedef struct {
+    modcp_conf_t *c;
+    char bad_section[64]; /* last unknown section reported */
+    override_t ov[MAX_OVERRIDES];
+    size_t ov_count;
+} parse_ctx_t;
+
+static int on_ini_line(void *user, const char *section, const char *name, const char *value);
+
+/* "section.key=value" */
+static bool add_override(parse_ctx_t *px, const char *text)
+{
+    const char *dot = strchr(text, '.');
+    const char *eq = strchr(text, '=');
+    if (px->ov_count >= MAX_OVERRIDES || dot == NULL || eq == NULL || eq < dot || dot == text) {
+        return false;
+    }
+    override_t *o = &px->ov[px->ov_count];
+    size_t sl = (size_t)(dot - text);
+    size_t kl = (size_t)(eq - dot - 1);
+    if (sl >= sizeof o->section || kl == 0u || kl >= sizeof o->key) {
+        return false;
+    }
+    memcpy(o->section, text, sl);
+    o->section[sl] = '\0';
+    memcpy(o->key, dot + 1, kl);
+    o->key[kl] = '\0';
+    copy_str(o->value, sizeof o->value, eq + 1);
+    o->used = false;
+    px->ov_count++;
+    return true;
+}
+
+static const char *override_of(parse_ctx_t *px, const char *section, const char *name)
+{
+    for (size_t i = 0; i < px->ov_count; i++) {
+        if (strcasecmp(px->ov[i].section, section) == 0 && strcasecmp(px->ov[i].key, name) == 0) {
+            px->ov[i].used = true;
+            return px->ov[i].value;
+        }
+    }
+    return NULL;
+}
+
+static void apply_unused_overrides(parse_ctx_t *px)
+{
+    for (size_t i = 0; i < px->ov_count; i++) {
+        if (!px->ov[i].used) {
+            px->ov[i].used = true;
+            (void)on_ini_line(px, px->ov[i].section, px->ov[i].key, px->ov[i].value);
+        }
+    }
+}
+
+static bool seen_before(modcp_conf_t *c, const char *section, const char *key)
+{
+    char k[64];
+    char s[24];
+    char n[40];
+    lower_copy(s, sizeof s, section);
+    lower_copy(n, sizeof n, key);
+    (void)snprintf(k, sizeof k, "%s/%s", s, n);
+    for (size_t i = 0; i < c->seen_count; i++) {
+        if (strcmp(c->seen[i], k) == 0) {
+            return true;
+        }
+    }
+    if (c->seen_count < MODCP_CONF_MAX_SEEN) {
+        copy_str(c->seen[c->seen_count++], sizeof c->seen[0], k);
+    }
+    return false;
+}
+
+static void handle_table_key(modcp_conf_t *c, const conf_key_t *k, const char *section,
+                             const char *name, const char *value)
+{
+    uint8_t *base = (uint8_t *)&c->params;
+    unsigned idx = k->index == 0xFFu ? IDX_GLOBAL : k->index;
+    modcp_event_t ev = field_event(k->field);
+    const char *rule = field_rule(k->field);
+    uint32_t v = 0;
+    set_src(c, (modcp_param_field_t)k->field, idx, section, name, value);
+
+    switch (k->kind) {
+    case K_ENUM:
+        for (const enum_name_t *e = k->names; e->name != NULL; e++) {
+            if (strcasecmp(e->name, value) == 0) {
+                base[k->off] = e->value;
+                return;
+            }
+        }
+        add_key_problem(c, true, section, name, value, rule, ev);
+        return;
+    case K_BOOL:
+        if (strcasecmp(value, "on") == 0 || strcasecmp(value, "yes") == 0 ||
+            strcasecmp(value, "true") == 0 || strcmp(value, "1") == 0) {
+            base[k->off] = 1u;
+        } else if (strcasecmp(value, "off") == 0 || strcasecmp(value, "no") == 0 ||
+                   strcasecmp(value, "false") == 0 || strcmp(value, "0") == 0) {
+            base[k->off] = 0u;
+        } else {
+            add_key_problem(c, true, section, name, value, "must be on or off", ev);
+        }
+        return;
+    case K_STR:
+        if (strlen(value) > MODCP_ID_STRING_MAX) {
+            add_key_problem(c, true, section, name, value, rule, ev);
+            return;
+        }
+        memset(base + k->off, 0, MODCP_ID_STRING_MAX + 1u);
+        memcpy(base + k->off, value, strlen(value));
+        return;
+    default:
+        break;
+    }
+    bool ok = parse_u32(value, &v);
+    bool soft = k->field == MODCP_PF_FMUL || k->field == MODCP_PF_ASCII_TIMEOUT;
+    uint32_t max = k->kind == K_U8 ? 0xFFu : (k->kind == K_U16 ? 0xFFFFu : 0xFFFFFFFFu);
+    if (!ok) {
+        add_key_problem(c, true, section, name, value, "not a number", ev);
+        return;
+    }
+    if (v > max) {
+        if (soft) {
+            v = 0; /* out of range: the CP's validation reports it and runs with the default */
+        } else {
+            add_key_problem(c, true, section, name, value, rule, ev);
+            return;
+        }
+    }
+    switch (k->kind) {
+    case K_U8: base[k->off] = (uint8_t)v; break;
+    case K_U16: {
+        uint16_t x = (uint16_t)v;
+        memcpy(base + k->off, &x, sizeof x);
+        break;
+    }
+    default: memcpy(base + k->off, &v, sizeof v); break;
+    }
+}
+
+/* "FROM-TO" (numbers decimal or 0x); returns false on a syntax error. */
+static bool parse_range(const char *s, uint32_t *from, uint32_t *to)
+{
+    char buf[96];
+    copy_str(buf, sizeof buf, s);
+    char *dash = strchr(buf, '-');
+    if (dash == NULL) {
+        return false;
+    }
+    *dash = '\0';
+    return parse_u32(buf, from) && parse_u32(dash + 1, to);
+}
+
+/* Number with an optional operand prefix: "1000", "MB1000", "M1000", "T100", "DB12". */
+static bool parse_start(const char *s, const char *const *prefixes, uint32_t *v)
+{
+    while (isspace((unsigned char)*s)) {
+        s++;
+    }
+    if (prefixes != NULL) {
+        for (size_t i = 0; prefixes[i] != NULL; i++) {
+            size_t n = strlen(prefixes[i]);
+            if (strncasecmp(s, prefixes[i], n) == 0 && isdigit((unsigned char)s[n])) {
+                s += n;
+                break;
+            }
+        }
+    }
+    return parse_u32(s, v);
+}
+
+static const char *const pfx_m[] = {"MB", "M", NULL};
+static const char *const pfx_q[] = {"QB", "Q", NULL};
+static const char *const pfx_i[] = {"IB", "I", NULL};
+static const char *const pfx_t[] = {"T", NULL};
+static const char *const pfx_c[] = {"C", NULL};
+static const char *const pfx_db[] = {"DBB", NULL};
+static const char *const pfx_dbno[] = {"DB", NULL};
+
+/* "FROM-TO @ START" */
+static bool parse_window(const char *value, const char *const *pfx, uint32_t *from, uint32_t *to,
+                         uint32_t *start)
+{
+    char buf[160];
+    copy_str(buf, sizeof buf, value);
+    char *at = strchr(buf, '@');
+    if (at == NULL) {
+        return false;
+    }
+    *at = '\0';
+    return parse_range(buf, from, to) && parse_start(at + 1, pfx, start);
+}
+
+static void handle_window(modcp_conf_t *c, bool coils, const char *section, const char *name,
+                          const char *value)
+{
+    modcp_bitwin_t w;
+    memset(&w, 0, sizeof w);
+    const char *const *pfx = NULL;
+    modcp_event_t ev = coils ? MODCP_EV_COIL_FROMTO : MODCP_EV_INPUT_FROMTO;
+    const char *usage = coils ? "unknown window (keys: m, q, t, c, dbN)"
+                              : "unknown window (keys: m, i, dbN)";
+    if (strcasecmp(name, "m") == 0) {
+        w.area = MODCP_AREA_M;
+        pfx = pfx_m;
+    } else if (coils && strcasecmp(name, "q") == 0) {
+        w.area = MODCP_AREA_Q;
+        pfx = pfx_q;
+    } else if (coils && strcasecmp(name, "t") == 0) {
+        w.area = MODCP_AREA_T;
+        pfx = pfx_t;
+    } else if (coils && strcasecmp(name, "c") == 0) {
+        w.area = MODCP_AREA_C;
+        pfx = pfx_c;
+    } else if (!coils && strcasecmp(name, "i") == 0) {
+        w.area = MODCP_AREA_I;
+        pfx = pfx_i;
+    } else if (strncasecmp(name, "db", 2) == 0) {
+        uint32_t db = 0;
+        if (!parse_u32(name + 2, &db) || db > 0xFFFFu || !isdigit((unsigned char)name[2])) {
+            add_key_problem(c, true, section, name, value, "bad DB number in the key (db1..db65535)",
+                            ev);
+            return;
+        }
+        w.area = MODCP_AREA_DB;
+        w.db = (uint16_t)db;
+        pfx = pfx_db;
+    } else {
+        add_key_problem(c, true, section, name, value, usage, MODCP_EV_NONE);
+        return;
+    }
+    uint8_t *count = coils ? &c->coil_count : &c->input_count;
+    size_t cap = coils ? MODCP_COIL_WINDOWS : MODCP_INPUT_WINDOWS;
+    if (*count >= cap) {
+        add_key_problem(c, true, section, name, value,
+                        coils ? "too many windows (at most 6)" : "too many windows (at most 4)", ev);
+        return;
+    }
+    uint32_t from = 0, to = 0, start = 0;
+    if (!parse_window(value, pfx, &from, &to, &start)) {
+        add_key_problem(c, true, section, name, value,
+                        "syntax: FROM-TO @ START (e.g. 0-2047 @ 1000)", ev);
+        return;
+    }
+    if (from > 0xFFFFu || to > 0xFFFFu || start > 0xFFFFu) {
+        add_key_problem(c, true, section, name, value,
+                        "from, to and start must be 0..65535", ev);
+        return;
+    }
+    w.from = (uint16_t)from;
+    w.to = (uint16_t)to;
+    w.start = (uint16_t)start;
+    uint8_t idx = *count;
+    (*count)++;
+    if (coils) {
+        c->params.coils[idx] = w;
+        copy_str(c->coil_keys[idx], sizeof c->coil_keys[idx], name);
+    } else {
+        c->params.inputs[idx] = w;
+        copy_str(c->input_keys[idx], sizeof c->input_keys[idx], name);
+    }
+    set_src(c, coils ? MODCP_PF_COILS : MODCP_PF_INPUTS, idx, section, name, value);
+}
+
+static void handle_r32(modcp_conf_t *c, unsigned kind, const char *section, const char *name,
+                       const char *value)
+{
+    uint32_t from = 0, to = 0, db = 0;
+    set_src(c, MODCP_PF_R32, kind, section, name, value);
+    if (strcasecmp(value, "off") == 0) {
+        memset(&c->params.r32[kind], 0, sizeof c->params.r32[kind]);
+        return;
+    }
+    if (!parse_window(value, pfx_dbno, &from, &to, &db)) {
+        add_key_problem(c, true, section, name, value,
+                        "syntax: FROM-TO @ DB (e.g. 1000-1099 @ 10) or off", MODCP_EV_PARAM_RECORD);
+        return;
+    }
+    if (from > 0xFFFFu || to > 0xFFFFu || db > 0xFFFFu) {
+        add_key_problem(c, true, section, name, value, "from, to and DB must be 0..65535",
+                        MODCP_EV_PARAM_RECORD);
+        return;
+    }
+    c->params.r32[kind].from = (uint16_t)from;
+    c->params.r32[kind].to = (uint16_t)to;
+    c->params.r32[kind].db = (uint16_t)db;
+}
+
+static void handle_limit(modcp_conf_t *c, const char *section, const char *name, const char *value)
+{
+    modcp_limit_t *l;
+    modcp_param_field_t f;
+    if (strcasecmp(name, "db") == 0) {
+        l = &c->params.lim_db;
+        f = MODCP_PF_LIM_DB;
+    } else if (strcasecmp(name, "m") == 0) {
+        l = &c->params.lim_m;
+        f = MODCP_PF_LIM_M;
+    } else if (strcasecmp(name, "q") == 0) {
+        l = &c->params.lim_q;
+        f = MODCP_PF_LIM_Q;
+    } else {
+        add_key_problem(c, true, section, name, value, "unknown key (keys: db, m, q)",
+                        MODCP_EV_NONE);
+        return;
+    }
+    set_src(c, f, 0, section, name, value);
+    if (strcasecmp(value, "off") == 0) {
+        l->min = 0;
+        l->max = 0;
+        return;
+    }
+    uint32_t lo = 0, hi = 0;
+    if (!parse_range(value, &lo, &hi) || lo > 0xFFFFu || hi > 0xFFFFu) {
+        add_key_problem(c, true, section, name, value, field_rule(f), MODCP_EV_WRITE_LIMITS);
+        return;
+    }
+    l->min = (uint16_t)lo;
+    l->max = (uint16_t)hi;
+}
+
+static int cmp_db(const void *a, const void *b)
+{
+    const modcp_conf_db_t *x = a;
+    const modcp_conf_db_t *y = b;
+    return (int)x->number - (int)y->number;
+}
+
+static void handle_dbs(modcp_conf_t *c, const char *section, const char *name, const char *value)
+{
+    char buf[256];
+    copy_str(buf, sizeof buf, value);
+    c->db_count = 0;
+    char *save = NULL;
+    for (char *tok = strtok_r(buf, " \t,", &save); tok != NULL; tok = strtok_r(NULL, " \t,", &save)) {
+        char *colon = strchr(tok, ':');
+        uint32_t no = 0, size = 0;
+        if (colon != NULL) {
+            *colon = '\0';
+        }
+        const char *nos = tok;
+        if (strncasecmp(nos, "db", 2) == 0) {
+            nos += 2;
+        }
+        char what[96];
+        (void)snprintf(what, sizeof what, "entry '%s%s%s'", tok, colon != NULL ? ":" : "",
+                       colon != NULL ? colon + 1 : "");
+        if (colon == NULL || !parse_u32(nos, &no) || !parse_u32(colon + 1, &size)) {
+            char rule[160];
+            (void)snprintf(rule, sizeof rule, "%s: syntax NUMBER:SIZE (e.g. 800:1024)", what);
+            add_key_problem(c, true, section, name, value, rule, MODCP_EV_NONE);
+            continue;
+        }
+        if (no < 1u || no > 0xFFFFu || size < 1u || size > 0xFFFFu) {
+            char rule[160];
+            (void)snprintf(rule, sizeof rule, "%s: DB number and size must be 1..65535", what);
+            add_key_problem(c, true, section, name, value, rule, MODCP_EV_NONE);
+            continue;
+        }
+        bool dup = false;
+        for (uint16_t i = 0; i < c->db_count; i++) {
+            if (c->dbs[i].number == no) {
+                dup = true;
+            }
+        }
+        if (dup) {
+            char rule[160];
+            (void)snprintf(rule, sizeof rule, "%s: DB%u listed twice", what, (unsigned)no);
+            add_key_problem(c, true, section, name, value, rule, MODCP_EV_NONE);
+            continue;
+        }
+        if (c->db_count >= MODCP_CONF_MAX_DBS) {
+            add_key_problem(c, true, section, name, value, "too many DBs (at most 64)",
+                            MODCP_EV_NONE);
+            break;
+        }
+        c->dbs[c->db_count].number = (uint16_t)no;
+        c->dbs[c->db_count].size = (uint16_t)size;
+        c->db_count++;
+    }
+    qsort(c->dbs, c->db_count, sizeof c->dbs[0], cmp_db);
+}
+
+static void handle_cpu_tool(modcp_conf_t *c, const char *section, const char *name,
+                            const char *value)
+{
+    uint32_t v = 0;
+    uint16_t *dst = NULL;
+    if (strcasecmp(name, "dbs") == 0) {
+        handle_dbs(c, section, name, value);
+        return;
+    }
+    if (strcasecmp(name, "i_bytes") == 0) {
+        dst = &c->i_bytes;
+    } else if (strcasecmp(name, "q_bytes") == 0) {
+        dst = &c->q_bytes;
+    } else if (strcasecmp(name, "m_bytes") == 0) {
+        dst = &c->m_bytes;
+    } else if (strcasecmp(name, "timers") == 0) {
+        dst = &c->timers;
+    } else if (strcasecmp(name, "counters") == 0) {
+        dst = &c->counters;
+    } else if (strcasecmp(name, "work_db") == 0) {
+        dst = &c->work_db;
+    }
+    if (dst != NULL) {
+        if (!parse_u32(value, &v) || v > 0xFFFFu) {
+            add_key_problem(c, true, section, name, value, "must be 0..65535", MODCP_EV_NONE);
+            return;
+        }
+        *dst = (uint16_t)v;
+        return;
+    }
+    if (strcasecmp(name, "cycle_ms") == 0) {
+        if (!parse_u32(value, &v) || v < 1u || v > MAX_CYCLE_MS) {
+            add_key_problem(c, true, section, name, value, "must be 1..60000 ms", MODCP_EV_NONE);
+            return;
+        }
+        c->cycle_ms = v;
+        return;
+    }
+    char rule[256];
+    (void)snprintf(rule, sizeof rule, "unknown key (keys: %s)", known_keys("cpu"));
+    add_key_problem(c, true, section, name, value, rule, MODCP_EV_NONE);
+}
+
+static void handle_scanner_entries(modcp_conf_t *c, const char *section, const char *name,
+                                   const char *value)
+{
+    char buf[256];
+    copy_str(buf, sizeof buf, value);
+    set_src(c, MODCP_PF_SCANNER, IDX_GLOBAL, section, name, value);
+    memset(c->params.scan, 0, sizeof c->params.scan);
+    unsigned n = 0;
+    char *save = NULL;
+    for (char *tok = strtok_r(buf, " \t,", &save); tok != NULL; tok = strtok_r(NULL, " \t,", &save)) {
+        if (n >= MODCP_SCANNER_MAX) {
+            add_key_problem(c, true, section, name, value, "at most 16 entries",
+                            MODCP_EV_PARAM_RECORD);
+            break;
+        }
+        set_src(c, MODCP_PF_SCANNER, n, section, name, tok);
+        modcp_s7op_t op;
+        if (!modcp_s7op_parse(tok, &op) || op.width != MODCP_S7_WORD) {
+            char rule[200];
+            (void)snprintf(rule, sizeof rule,
+                           "entry %u '%s' must be a word operand (MWn, IWn, QWn, DBn.DBWm, Tn, Cn)",
+                           n + 1u, tok);
+            add_key_problem(c, true, section, name, value, rule, MODCP_EV_PARAM_RECORD);
+            n++;
+            continue;
+        }
+        c->params.scan[n].area = op.area;
+        c->params.scan[n].db = op.db;
+        c->params.scan[n].offset = op.offset;
+        n++;
+    }
+    c->params.scan_count = (uint8_t)(n > MODCP_SCANNER_MAX ? MODCP_SCANNER_MAX : n);
+}
+
+static void handle_memory(modcp_conf_t *c, const char *section, const char *name, const char *value)
+{
+    modcp_s7op_t op;
+    if (!modcp_s7op_parse(name, &op)) {
+        add_key_problem(c, true, section, name, value,
+                        "not an operand (e.g. MB1008, M1000.3, IW4, DB800.DBW160, T100)",
+                        MODCP_EV_NONE);
+        return;
+    }
+    if (c->init_count >= MODCP_CONF_MAX_INITS) {
+        add_key_problem(c, true, section, name, value, "too many [memory] lines (at most 256)",
+                        MODCP_EV_NONE);
+        return;
+    }
+    modcp_conf_init_t *in = &c->inits[c->init_count];
+    in->op = op;
+    in->count = 0;
+    in->first = (uint32_t)c->value_count;
+    copy_str(in->key, sizeof in->key, name);
+    copy_str(in->value, sizeof in->value, value);
+    char buf[256];
+    copy_str(buf, sizeof buf, value);
+    char *save = NULL;
+    uint32_t max = op.width == MODCP_S7_BIT    ? 1u
+                   : op.width == MODCP_S7_BYTE ? 0xFFu
+                   : op.width == MODCP_S7_WORD ? 0xFFFFu
+                                               : 0xFFFFFFFFu;
+    for (char *tok = strtok_r(buf, " \t,", &save); tok != NULL; tok = strtok_r(NULL, " \t,", &save)) {
+        uint32_t v = 0;
+        bool ok;
+        if (op.width == MODCP_S7_DWORD && strpbrk(tok, ".") != NULL) {
+            char *end = NULL;
+            float f = strtof(tok, &end);
+            ok = end != tok && *end == '\0';
+            memcpy(&v, &f, sizeof v);
+        } else if (op.width == MODCP_S7_BIT) {
+            ok = strcmp(tok, "0") == 0 || strcmp(tok, "1") == 0;
+            v = tok[0] == '1' ? 1u : 0u;
+        } else {
+            ok = parse_hex(tok, max, &v);
+        }
+        if (!ok) {
+            char rule[200];
+            (void)snprintf(rule, sizeof rule,
+                           "bad value '%s' (%s)", tok,
+                           op.width == MODCP_S7_BIT
+                               ? "bits: 0 or 1"
+                               : (op.width == MODCP_S7_DWORD
+                                      ? "hex, at most 8 digits, or a float such as 1.5"
+                                      : (op.width == MODCP_S7_BYTE ? "hex byte, e.g. 17"
+                                                                   : "hex word, e.g. 8765")));
+            add_key_problem(c, true, section, name, value, rule, MODCP_EV_NONE);
+            return;
+        }
+        if (c->value_count >= MODCP_CONF_MAX_VALUES) {
+            add_key_problem(c, true, section, name, value, "too many [memory] values",
+                            MODCP_EV_NONE);
+            return;
+        }
+        c->values[c->value_count++] = v;
+        in->count++;
+    }
+    if (in->count == 0u) {
+        add_key_problem(c, true, section, name, value, "no value", MODCP_EV_NONE);
+        return;
+    }
+    /* the last element's offset must still be addressable */
+    uint32_t last;
+    if (op.width == MODCP_S7_BIT) {
+        last = op.offset + ((uint32_t)op.bit + in->count - 1u) / 8u;
+    } else if (op.area == MODCP_AREA_T || op.area == MODCP_AREA_C) {
+        last = op.offset + in->count - 1u;
+    } else {
+        last = op.offset + (uint32_t)op.width * in->count - 1u;
+    }
+    if (last > 0xFFFFu) {
+        add_key_problem(c, true, section, name, value, "runs beyond offset 65535", MODCP_EV_NONE);
+        c->value_count = in->first;
+        return;
+    }
+    c->init_count++;
+}
+
+static int on_ini_line(void *user, const char *section, const char *name, const char *value)
+{
+    parse_ctx_t *px = user;
+    modcp_conf_t *c = px->c;
+    const char *keys_of = known_keys(section);
+    const char *ov = override_of(px, section, name);
+    if (ov != NULL) {
+        value = ov;
+    }
+    if (keys_of == NULL) {
+        if (strcmp(px->bad_section, section) != 0) {
+            copy_str(px->bad_section, sizeof px->bad_section, section);
+            add_key_problem(c, true, section, name, value,
+                            "unknown section (sections: serial, protocol, interface, coils, "
+                            "inputs, registers, limits, cpu, memory, supervision, scanner, "
+                            "identification, diagnostics)",
+                            MODCP_EV_NONE);
+        }
+        return 1;
+    }
+    if (seen_before(c, section, name)) {
+        add_key_problem(c, true, section, name, value, "key given twice", MODCP_EV_NONE);
+        return 1;
+    }
+    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
+        if (strcasecmp(keys[i].section, section) == 0 && strcasecmp(keys[i].key, name) == 0) {
+            handle_table_key(c, &keys[i], section, name, value);
+            return 1;
+        }
+    }
+    if (strcasecmp(section, "coils") == 0 || strcasecmp(section, "inputs") == 0) {
+        handle_window(c, strcasecmp(section, "coils") == 0, section, name, value);
+        return 1;
+    }
+    if (strcasecmp(section, "registers") == 0) {
+        static const char *const kinds[3] = {"int16", "int32", "float"};
+        for (unsigned k = 0; k < 3u; k++) {
+            if (strcasecmp(name, kinds[k]) == 0) {
+                handle_r32(c, k, section, name, value);
+                return 1;
+            }
+        }
+    } else if (strcasecmp(section, "limits") == 0) {
+        handle_limit(c, section, name, value);
+        return 1;
+    } else if (strcasecmp(section, "cpu") == 0) {
+        handle_cpu_tool(c, section, name, value);
+        return 1;
+    } else if (strcasecmp(section, "memory") == 0) {
+        handle_memory(c, section, name, value);
+        return 1;
+    } else if (strcasecmp(section, "scanner") == 0 && strcasecmp(name, "entries") == 0) {
+        handle_scanner_entries(c, section, name, value);
+        return 1;
+    }
+    char rule[300];
+    (void)snprintf(rule, sizeof rule, "unknown key (keys: %s)", keys_of);
+    add_key_problem(c, true, section, name, value, rule, MODCP_EV_NONE);
+    return 1;
+}
+
+/* ---- schema coverage ------------------------------------------------------------------ */
+
+size_t modcp_conf_uncovered(uint8_t *fields, size_t cap)
+{
+    size_t n = 0;
+    for (unsigned f = 1; f < MODCP_PF_COUNT; f++) {
+        bool covered = f == MODCP_PF_COILS || f == MODCP_PF_INPUTS || f == MODCP_PF_R32 ||
+                       f == MODCP_PF_LIM_DB || f == MODCP_PF_LIM_M || f == MODCP_PF_LIM_Q ||
+                       f == MODCP_PF_SCANNER;
+        for (size_t i = 0; !covered && i < sizeof keys / sizeof keys[0]; i++) {
+            covered = keys[i].field == f;
+        }
+        if (!covered) {
+            if (n < cap) {
+                fields[n] = (uint8_t)f;
+            }
+            n++;
+        }
+    }
+    return n;
+}
+
+/* ---- validation issues -> problems ---------------------------------------------------------- */
+
+static const char *default_key(uint8_t field, unsigned index, const char **section)
+{
+    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
+        if (keys[i].field == field && (keys[i].index == index || keys[i].index == 0xFFu)) {
+            *section = keys[i].section;
+            return keys[i].key;
+        }
+    }
+    switch (field) {
+    case MODCP_PF_LIM_DB: *section = "limits"; return "db";
+    case MODCP_PF_LIM_M: *section = "limits"; return "m";
+    case MODCP_PF_LIM_Q: *section = "limits"; return "q";
+    case MODCP_PF_SCANNER: *section = "scanner"; return "entries";
+    default: *section = "?"; return "?";
+    }
+}
+
+static bool is_tc(uint8_t area)
+{
+    return area == MODCP_AREA_T || area == MODCP_AREA_C;
+}
+
+static void window_rule(const modcp_conf_t *c, const modcp_param_issue_t *is, char *rule, size_t cap)
+{
+    bool coils = is->field == MODCP_PF_COILS;
+    const modcp_bitwin_t *w = coils ? &c->params.coils[is->index] : &c->params.inputs[is->index];
+    if (is->event == MODCP_EV_COIL_OVERLAP || is->event == MODCP_EV_INPUT_OVERLAP) {
+        const char *other = "?";
+        if (is->value < (coils ? MODCP_COIL_WINDOWS : MODCP_INPUT_WINDOWS)) {
+            other = coils ? c->coil_keys[is->value] : c->input_keys[is->value];
+        }
+        (void)snprintf(rule, cap, "overlaps the window [%s] %s", coils ? "coils" : "inputs", other);
+        return;
+    }
+    if (w->from > w->to) {
+        (void)snprintf(rule, cap, "illegal from/to: from must not be greater than to");
+    } else if (w->area == MODCP_AREA_DB && w->db == 0u) {
+        (void)snprintf(rule, cap, "illegal from/to: the DB number must be 1..65535");
+    } else if (is_tc(w->area) && ((uint32_t)w->to - w->from + 1u) % 16u != 0u) {
+        (void)snprintf(rule, cap,
+                       "illegal from/to: a T/C window must span a multiple of 16 bits (it spans %u)",
+                       (unsigned)((uint32_t)w->to - w->from + 1u));
+    } else if (is_tc(w->area)) {
+        (void)snprintf(rule, cap, "illegal from/to: the window ends beyond element 65535");
+    } else {
+        (void)snprintf(rule, cap, "illegal from/to: the window ends beyond byte 65535");
+    }
+}
+
+static const char *const r32_keys[3] = {"int16", "int32", "float"};
+
+static void r32_rule(const modcp_conf_t *c, const modcp_param_issue_t *is, char *rule, size_t cap)
+{
+    const modcp_r32range_t *r = &c->params.r32[is->index % 3u];
+    uint32_t per = is->index == MODCP_R32_INT16 ? 2u : 4u;
+    if (r->from > r->to) {
+        (void)snprintf(rule, cap, "from must not be greater than to");
+    } else if (r->db == 0u) {
+        (void)snprintf(rule, cap, "the DB number must be 1..65535");
+    } else if (((uint32_t)r->to - r->from + 1u) * per > 65536u) {
+        (void)snprintf(rule, cap, "the range needs more than one DB (%u bytes > 65536)",
+                       (unsigned)(((uint32_t)r->to - r->from + 1u) * per));
+    } else {
+        for (unsigned i = 0; i < is->index && i < 3u; i++) {
+            const modcp_r32range_t *a = &c->params.r32[i];
+            if (a->from <= r->to && r->from <= a->to) {
+                (void)snprintf(rule, cap, "overlaps the range [registers] %s", r32_keys[i]);
+                return;
+            }
+            if (a->db == r->db) {
+                (void)snprintf(rule, cap, "uses the same DB as [registers] %s", r32_keys[i]);
+                return;
+            }
+        }
+        (void)snprintf(rule, cap, "illegal 32-bit register range");
+    }
+}
+
+static void report_issue(modcp_conf_t *c, const modcp_param_issue_t *is)
+{
+    char rule[256];
+    unsigned idx = is->index == 0xFFu ? IDX_GLOBAL : is->index;
+    const char *section = "?";
+    const char *key = "?";
+    const char *value = "(default)";
+    char valbuf[64];
+    if (is->field < MODCP_PF_COUNT && idx < MODCP_CONF_SRC_INDEX && c->src[is->field][idx].set) {
+        const modcp_conf_src_t *s = &c->src[is->field][idx];
+        section = s->section;
+        key = s->key;
+        value = s->value;
+    } else {
+        key = default_key(is->field, idx, &section);
+        (void)snprintf(valbuf, sizeof valbuf, "%lu (default)", (unsigned long)is->value);
+        value = valbuf;
+    }
+    switch (is->field) {
+    case MODCP_PF_COILS:
+    case MODCP_PF_INPUTS: window_rule(c, is, rule, sizeof rule); break;
+    case MODCP_PF_R32: r32_rule(c, is, rule, sizeof rule); break;
+    case MODCP_PF_SCANNER:
+        if (is->index == 0xFFu) {
+            (void)snprintf(rule, sizeof rule,
+                           "at most 16 entries, and start + entries must not exceed 65536");
+        } else {
+            (void)snprintf(rule, sizeof rule,
+                           "entry %u must be a word operand (MWn, IWn, QWn, DBn.DBWm with DB "
+                           "1..65535, Tn, Cn)",
+                           (unsigned)is->index + 1u);
+        }
+        break;
+    default: copy_str(rule, sizeof rule, field_rule(is->field)); break;
+    }
+    add_key_problem(c, is->fatal, section, key, value, rule, is->event);
+}
+
+/* ---- tool-level checks: [cpu] and [memory] against the controller ------------------------- */
+
+static const modcp_conf_db_t *conf_db(const modcp_conf_t *c, uint16_t number)
+{
+    for (uint16_t i = 0; i < c->db_count; i++) {
+        if (c->dbs[i].number == number) {
+            return &c->dbs[i];
+        }
+    }
+    return NULL;
+}
+
+static void check_memory(modcp_conf_t *c)
+{
+    for (size_t i = 0; i < c->init_count; i++) {
+        const modcp_conf_init_t *in = &c->inits[i];
+        const modcp_s7op_t *op = &in->op;
+        uint32_t end; /* one past the last byte / element */
+        if (op->width == MODCP_S7_BIT) {
+            end = op->offset + ((uint32_t)op->bit + in->count - 1u) / 8u + 1u;
+        } else if (is_tc(op->area)) {
+            end = op->offset + (uint32_t)in->count;
+        } else {
+            end = op->offset + (uint32_t)op->width * in->count;
+        }
+        uint32_t size;
+        const char *what;
+        char dbwhat[48];
+        modcp_event_t ev = MODCP_EV_AREA_ACCESS;
+        switch (op->area) {
+        case MODCP_AREA_I: size = c->i_bytes; what = "I (i_bytes)"; break;
+        case MODCP_AREA_Q: size = c->q_bytes; what = "Q (q_bytes)"; break;
+        case MODCP_AREA_M: size = c->m_bytes; what = "M (m_bytes)"; break;
+        case MODCP_AREA_T: size = c->timers; what = "T (timers)"; break;
+        case MODCP_AREA_C: size = c->counters; what = "C (counters)"; break;
+        default: {
+            const modcp_conf_db_t *db = conf_db(c, op->db);
+            ev = MODCP_EV_DB_ACCESS;
+            if (db == NULL) {
+                char rule[96];
+                (void)snprintf(rule, sizeof rule, "DB%u is not in [cpu] dbs", (unsigned)op->db);
+                add_key_problem(c, true, "memory", in->key, in->value, rule, ev);
+                continue;
+            }
+            size = db->size;
+            (void)snprintf(dbwhat, sizeof dbwhat, "DB%u", (unsigned)op->db);
+            what = dbwhat;
+            break;
+        }
+        }
+        if (end > size) {
+            char rule[128];
+            (void)snprintf(rule, sizeof rule, "outside %s of %u %s", what, (unsigned)size,
+                           is_tc(op->area) ? "elements" : "bytes");
+            add_key_problem(c, true, "memory", in->key, in->value, rule, ev);
+        }
+    }
+}
+
+static void window_warnings(modcp_conf_t *c, bool coils)
+{
+    size_t n = coils ? MODCP_COIL_WINDOWS : MODCP_INPUT_WINDOWS;
+    for (size_t i = 0; i < n; i++) {
+        const modcp_bitwin_t *w = coils ? &c->params.coils[i] : &c->params.inputs[i];
+        if (w->area == MODCP_AREA_NONE || w->from > w->to) {
+            continue;
+        }
+        uint32_t bits = (uint32_t)w->to - w->from + 1u;
+        uint32_t last = is_tc(w->area) ? w->start + bits / 16u - 1u : w->start + (bits - 1u) / 8u;
+        uint32_t size;
+        char what[48];
+        switch (w->area) {
+        case MODCP_AREA_I: size = c->i_bytes; copy_str(what, sizeof what, "[cpu] i_bytes"); break;
+        case MODCP_AREA_Q: size = c->q_bytes; copy_str(what, sizeof what, "[cpu] q_bytes"); break;
+        case MODCP_AREA_M: size = c->m_bytes; copy_str(what, sizeof what, "[cpu] m_bytes"); break;
+        case MODCP_AREA_T: size = c->timers; copy_str(what, sizeof what, "[cpu] timers"); break;
+        case MODCP_AREA_C: size = c->counters; copy_str(what, sizeof what, "[cpu] counters"); break;
+        default: {
+            const modcp_conf_db_t *db = conf_db(c, w->db);
+            size = db != NULL ? db->size : 0u;
+            (void)snprintf(what, sizeof what, "the size of DB%u", (unsigned)w->db);
+            break;
+        }
+        }
+        if (last >= size) {
+            const modcp_conf_src_t *s = &c->src[coils ? MODCP_PF_COILS : MODCP_PF_INPUTS][i];
+            char rule[200];
+            (void)snprintf(rule, sizeof rule,
+                           "the window reaches %s %u but %s is %u: requests beyond get (0E)54H",
+                           is_tc(w->area) ? "element" : "byte", (unsigned)last, what,
+                           (unsigned)size);
+            add_key_problem(c, false, s->section, s->key, s->value, rule, MODCP_EV_NONE);
+        }
+    }
+}
+
+static void check_cpu(modcp_conf_t *c)
+{
+    if (c->work_db != 0u && conf_db(c, c->work_db) == NULL) {
+        char value[16];
+        (void)snprintf(value, sizeof value, "%u", (unsigned)c->work_db);
+        char rule[96];
+        (void)snprintf(rule, sizeof rule, "DB%u is not in [cpu] dbs", (unsigned)c->work_db);
+        add_key_problem(c, true, "cpu", "work_db", value, rule, MODCP_EV_WORK_DB);
+    }
+    window_warnings(c, true);
+    window_warnings(c, false);
+    const uint16_t bases[2] = {c->params.hr_base_db, c->params.ir_base_db};
+    const char *names[2] = {"holding_base_db", "input_base_db"};
+    for (unsigned k = 0; k < 2u; k++) {
+        if (bases[k] != 0u && conf_db(c, bases[k]) == NULL) {
+            char value[16];
+            (void)snprintf(value, sizeof value, "%u", (unsigned)bases[k]);
+            char rule[128];
+            (void)snprintf(rule, sizeof rule,
+                           "DB%u is not in [cpu] dbs: its registers get exception 04 ((0E)39H)",
+                           (unsigned)bases[k]);
+            add_key_problem(c, false, "registers", names[k], value, rule, MODCP_EV_NONE);
+        }
+    }
+}
+
+/* ---- loading ------------------------------------------------------------------------------------ */
+
+static void conf_reset(modcp_conf_t *c, const char *name)
+{
+    memset(c, 0, sizeof *c);
+    copy_str(c->name, sizeof c->name, name);
+    modcp_params_defaults(&c->params);
+    c->i_bytes = DEF_I_BYTES;
+    c->q_bytes = DEF_Q_BYTES;
+    c->m_bytes = DEF_M_BYTES;
+    c->timers = DEF_TIMERS;
+    c->counters = DEF_COUNTERS;
+    c->cycle_ms = DEF_CYCLE_MS;
+}
+
+static size_t finish(modcp_conf_t *c, int rc)
+{
+    if (rc > 0) {
+        add_problem(c, true, "line %d: syntax error (expected [section] or key = value; lines "
+                             "are at most 199 characters)",
+                    rc);
+    }
+    modcp_param_issue_t issues[64];
+    size_t n = modcp_params_validate(&c->params, issues, 64);
+    for (size_t i = 0; i < n && i < 64u; i++) {
+        report_issue(c, &issues[i]);
+    }
+    check_cpu(c);
+    check_memory(c);
+    return c->fatal_count;
+}
+
+size_t modcp_conf_load_ex(modcp_conf_t *c, const char *path, const char *const *overrides,
+                          size_t n_overrides)
+{
+    conf_reset(c, path);
+    parse_ctx_t *px = calloc(1, sizeof *px);
+    if (px == NULL) {
+        add_problem(c, true, "out of memory");
+        return c->fatal_count;
+    }
+    px->c = c;
+    for (size_t i = 0; i < n_overrides; i++) {
+        if (!add_override(px, overrides[i])) {
+            add_problem(c, true, "bad override '%s' (expected section.key=value)", overrides[i]);
+        }
+    }
+    FILE *f = fopen(path, "r");
+    if (f == NULL) {
+        add_problem(c, true, "cannot open the file");
+        free(px);
+        return c->fatal_count;
+    }
+    int rc = ini_parse_file(f, on_ini_line, px);
+    fclose(f);
+    apply_unused_overrides(px);
+    free(px);
+    return finish(c, rc);
+}
+
+size_t modcp_conf_load(modcp_conf_t *c, const char *path)
+{
+    return modcp_conf_load_ex(c, path, NULL, 0u);
+}
+
+size_t modcp_conf_load_string(modcp_conf_t *c, const char *name, const char *text)
+{
+    conf_reset(c, name);
+    parse_ctx_t px;
+    memset(&px, 0, sizeof px);
+    px.c = c;
+    int rc = ini_parse_string(text, on_ini_line, &px);
+    return finish(c, rc);
+}
+
+size_t modcp_conf_record(const modcp_conf_t *c, uint8_t *buf, size_t cap)
+{
+    return modcp_params_encode(&c->params, buf, cap);
+}
+
+/* ---- controller memory ------------------------------------------------------------------------ */
+
+static void apply_inits(const modcp_conf_t *c, modcp_plcmem_t *mem)
+{
+    for (size_t i = 0; i < c->init_count; i++) {
+        const modcp_conf_init_t *in = &c->inits[i];
+        modcp_s7op_t op = in->op;
+        for (uint16_t k = 0; k < in->count; k++) {
+            (void)modcp_s7op_write(mem, &op, c->values[in->first + k]);
+            if (op.width == MODCP_S7_BIT) {
+                if (op.bit == 7u) {
+                    op.bit = 0;
+                    op.offset = (uint16_t)(op.offset + 1u);
+                } else {
+                    op.bit = (uint8_t)(op.bit + 1u);
+                }
+            } else if (is_tc(op.area)) {
+                op.offset = (uint16_t)(op.offset + 1u);
+            } else {
+                op.offset = (uint16_t)(op.offset + op.width);
+            }
+        }
+    }
+}
+
+bool modcp_conf_memory_alloc(const modcp_conf_t *c, modcp_conf_memory_t *m)
+{
+    memset(m, 0, sizeof *m);
+    modcp_plcmem_t *mem = &m->mem;
+    mem->i = calloc(c->i_bytes + 1u, 1);
+    mem->q = calloc(c->q_bytes + 1u, 1);
+    mem->m = calloc(c->m_bytes + 1u, 1);
+    mem->t = calloc(c->timers + 1u, sizeof(uint16_t));
+    mem->c = calloc(c->counters + 1u, sizeof(uint16_t));
+    mem->i_size = c->i_bytes;
+    mem->q_size = c->q_bytes;
+    mem->m_size = c->m_bytes;
+    mem->t_count = c->timers;
+    mem->c_count = c->counters;
+    bool ok = mem->i != NULL && mem->q != NULL && mem->m != NULL && mem->t != NULL && mem->c != NULL;
+    for (uint16_t i = 0; i < c->db_count; i++) {
+        m->dbs[i].number = c->dbs[i].number;
+        m->dbs[i].size = c->dbs[i].size;
+        m->dbs[i].data = calloc(c->dbs[i].size, 1);
+        ok = ok && m->dbs[i].data != NULL;
+    }
+    mem->dbs = m->dbs;
+    mem->db_count = c->db_count;
+    if (!ok) {
+        modcp_conf_memory_free(m);
+        return false;
+    }
+    apply_inits(c, mem);
+    return true;
+}
+
+void modcp_conf_memory_free(modcp_conf_memory_t *m)
+{
+    free(m->mem.i);
+    free(m->mem.q);
+    free(m->mem.m);
+    free(m->mem.t);
+    free(m->mem.c);
+    for (size_t i = 0; i < MODCP_CONF_MAX_DBS; i++) {
+        free(m->dbs[i].data);
+    }
+    memset(m, 0, sizeof *m);
+}
+
+/* ---- C generator ---------------------------------------------------------------------------------- */
+
+static void write_bytes(FILE *f, const char *name, const uint8_t *b, size_t n)
+{
+    fprintf(f, "static uint8_t %s[%zu] = {", name, n);
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (b[i] != 0u) {
+            fprintf(f, "%s[%zu] = 0x%02X", (k % 6u == 0u) ? "\n    " : " ", i, (unsigned)b[i]);
+            fputc(',', f);
+            k++;
+        }
+    }
+    fprintf(f, "%s};\n", k == 0u ? "0" : "\n");
+}
+
+static void write_words(FILE *f, const char *name, const uint16_t *w, size_t n)
+{
+    fprintf(f, "static uint16_t %s[%zu] = {", name, n);
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (w[i] != 0u) {
+            fprintf(f, "%s[%zu] = 0x%04X,", (k % 5u == 0u) ? "\n    " : " ", i, (unsigned)w[i]);
+            k++;
+        }
+    }
+    fprintf(f, "%s};\n", k == 0u ? "0" : "\n");
+}
+
+bool modcp_conf_write_c(const modcp_conf_t *c, FILE *f)
+{
+    uint8_t rec[MODCP_PARAMS_RECORD_MAX];
+    size_t rlen = modcp_conf_record(c, rec, sizeof rec);
+    if (rlen == 0u) {
+        return false;
+    }
+    modcp_conf_memory_t m;
+    if (!modcp_conf_memory_alloc(c, &m)) {
+        return false;
+    }
+    const char *base = strrchr(c->name, '/');
+    base = base != NULL ? base + 1 : c->name;
+    char settings[48];
+    modcp_conf_line_settings(&c->params, settings, sizeof settings);
+    fprintf(f, "/* Generated by modcp-conf from %s -- do not edit.\n"
+               " * Slave %u, %s. See modcp/cfg_gen.h. */\n",
+            base, (unsigned)c->params.slave_addr, settings);
+    fprintf(f, "#include <stddef.h>\n#include <stdint.h>\n\n#include \"modcp/cfg_gen.h\"\n\n");
+    fprintf(f, "const uint8_t modcp_cfg_record[%zu] = {", rlen);
+    for (size_t i = 0; i < rlen; i++) {
+        fprintf(f, "%s0x%02X,", (i % 12u == 0u) ? "\n    " : " ", (unsigned)rec[i]);
+    }
+    fprintf(f, "\n};\nconst uint16_t modcp_cfg_record_len = %zu;\n\n", rlen);
+
+    if (c->i_bytes > 0u) {
+        write_bytes(f, "cfg_i", m.mem.i, c->i_bytes);
+    }
+    if (c->q_bytes > 0u) {
+        write_bytes(f, "cfg_q", m.mem.q, c->q_bytes);
+    }
+    if (c->m_bytes > 0u) {
+        write_bytes(f, "cfg_m", m.mem.m, c->m_bytes);
+    }
+    if (c->timers > 0u) {
+        write_words(f, "cfg_t", m.mem.t, c->timers);
+    }
+    if (c->counters > 0u) {
+        write_words(f, "cfg_c", m.mem.c, c->counters);
+    }
+    for (uint16_t i = 0; i < c->db_count; i++) {
+        char name[32];
+        (void)snprintf(name, sizeof name, "cfg_db%u", (unsigned)c->dbs[i].number);
+        write_bytes(f, name, m.dbs[i].data, c->dbs[i].size);
+    }
+    if (c->db_count > 0u) {
+        fprintf(f, "\nstatic modcp_db_t cfg_dbs[%u] = {\n", (unsigned)c->db_count);
+        for (uint16_t i = 0; i < c->db_count; i++) {
+            fprintf(f, "    {%u, %u, cfg_db%u},\n", (unsigned)c->dbs[i].number,
+                    (unsigned)c->dbs[i].size, (unsigned)c->dbs[i].number);
+        }
+        fprintf(f, "};\n");
+    }
+    fprintf(f, "\nmodcp_plcmem_t modcp_cfg_mem = {\n");
+    fprintf(f, "    .i = %s,\n    .q = %s,\n    .m = %s,\n    .t = %s,\n    .c = %s,\n",
+            c->i_bytes > 0u ? "cfg_i" : "NULL", c->q_bytes > 0u ? "cfg_q" : "NULL",
+            c->m_bytes > 0u ? "cfg_m" : "NULL", c->timers > 0u ? "cfg_t" : "NULL",
+            c->counters > 0u ? "cfg_c" : "NULL");
+    fprintf(f, "    .i_size = %u,\n    .q_size = %u,\n    .m_size = %u,\n", (unsigned)c->i_bytes,
+            (unsigned)c->q_bytes, (unsigned)c->m_bytes);
+    fprintf(f, "    .t_count = %u,\n    .c_count = %u,\n", (unsigned)c->timers,
+            (unsigned)c->counters);
+    fprintf(f, "    .dbs = %s,\n    .db_count = %u,\n};\n\n", c->db_count > 0u ? "cfg_dbs" : "NULL",
+            (unsigned)c->db_count);
+    fprintf(f, "const uint16_t modcp_cfg_work_db = %u;\n", (unsigned)c->work_db);
+    fprintf(f, "const uint32_t modcp_cfg_cycle_ms = %lu;\n", (unsigned long)c->cycle_ms);
+    fprintf(f, "const uint32_t modcp_cfg_start_time_ms = %u;\n", (unsigned)c->params.start_time_ms);
+    fprintf(f, "const uint8_t modcp_cfg_slave_addr = %u;\n", (unsigned)c->params.slave_addr);
+    fprintf(f, "const uint32_t modcp_cfg_baud = %lu;\n", (unsigned long)c->params.baud);
+    fprintf(f, "const char modcp_cfg_name[] = \"");
+    for (const char *p = base; *p != '\0'; p++) {
+        if (*p == '"' || *p == '\\') {
+            fputc('\\', f);
+        }
+        fputc(isprint((unsigned char)*p) ? *p : '?', f);
+    }
+    fprintf(f, "\";\n");
+    modcp_conf_memory_free(&m);
+    return ferror(f) == 0;
+}
+
+void modcp_conf_line_settings(const modcp_params_t *p, char *out, size_t cap)
+{
+    char par = p->parity == MODCP_PARITY_EVEN ? 'E' : (p->parity == MODCP_PARITY_ODD ? 'O' : 'N');
+    (void)snprintf(out, cap, "%lu %u%c%u %s", (unsigned long)p->baud, (unsigned)p->data_bits, par,
+                   (unsigned)p->stop_bits, p->framing == MODCP_FRAMING_ASCII ? "ASCII" : "RTU");
+}

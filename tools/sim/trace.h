@@ -1,0 +1,46 @@
+/* modcp-sim — frame trace: every frame received and sent with a microsecond time
+ * stamp and its meaning, decoded in the tool from the bytes (the core is untouched).
+ *
+ *   [    1.234567] rx 05 03 00 50 00 02 C5 9E | slave 5 FC03 read holding registers addr 0x0050 (80) qty 2
+ *   [    1.246012] tx 05 03 04 87 65 43 21 76 70 | FC03 reply, 4 data bytes
+ *   [    2.000100] rx 07 03 00 00 00 01 84 6C | not for us (slave 7)
+ *   [    2.100000] event (08)36H receive error: CRC/LRC of the request does not match */
+#ifndef MODCP_SIM_TRACE_H
+#define MODCP_SIM_TRACE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "modcp/events.h"
+
+#define SIM_TRACE_MAX 1200u
+
+typedef struct {
+    uint8_t own_addr;
+    bool ascii;
+    uint64_t gap_us; /* end of a received frame: t3.5 (RTU) or the inter-character timeout */
+    uint8_t rx[SIM_TRACE_MAX];
+    size_t rx_len;
+    bool rx_errors;
+    uint64_t rx_t0;   /* time stamp of the first byte (us since start) */
+    uint64_t rx_last; /* time stamp of the last byte */
+    void (*print)(void *user, const char *line);
+    void *user;
+} sim_trace_t;
+
+void sim_trace_init(sim_trace_t *t, uint8_t own_addr, bool ascii, uint64_t gap_us,
+                    void (*print)(void *user, const char *line), void *user);
+/* A received character (errors: MODCP_LINE_*), at t us since start. */
+void sim_trace_rx(sim_trace_t *t, uint8_t byte, uint8_t errors, uint64_t t_us);
+/* Ends a received frame after the gap. */
+void sim_trace_poll(sim_trace_t *t, uint64_t t_us);
+/* A frame sent (the whole reply, as handed to the UART). */
+void sim_trace_tx(sim_trace_t *t, const uint8_t *buf, size_t len, uint64_t t_us);
+/* A diagnostic event. */
+void sim_trace_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us);
+
+/* Meaning of a PDU (pdu[0] = function code) in words. */
+void sim_describe_pdu(const uint8_t *pdu, size_t len, bool reply, char *out, size_t cap);
+
+#endif
