@@ -173,6 +173,7 @@ void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
     if (!modcp_sig_rx_allowed(&cp->sig)) {
         return; /* RS232 automatic signals: no reception while DSR is OFF */
     }
+    modcp_sig_on_rx(&cp->sig, &cp->link, now_us);
     line_rx(cp, now_us);
     modcp_cpdiag_good_char(&cp->cpdiag);
     modcp_link_on_byte(&cp->link, byte, now_us);
@@ -183,6 +184,7 @@ void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us
     if (!modcp_sig_rx_allowed(&cp->sig)) {
         return;
     }
+    modcp_sig_on_rx(&cp->sig, &cp->link, now_us);
     line_rx(cp, now_us);
     modcp_cpdiag_line_error(&cp->cpdiag, line_errors, cp->link.enabled && !cp->link.suppress);
     modcp_link_on_error(&cp->link, line_errors, now_us);

@@ -143,6 +143,17 @@ bool modcp_sig_on_timer(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us)
     }
 }
 
+/* A character from the partner while RTS is still ON after our reply: the partner has
+ * received the reply completely (it answers it), so the time to RTS off has done its
+ * job: RTS goes OFF now and the character is received normally. */
+void modcp_sig_on_rx(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us)
+{
+    if (s->enabled && s->state == MODCP_SIGST_RTS_OFF) {
+        arm(s, 0);
+        rts_off_done(s, l, now_us);
+    }
+}
+
 bool modcp_sig_on_tx_done(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us)
 {
     if (!s->enabled) {

@@ -381,6 +381,11 @@ def main():
         print("SKIP: master %s not available" % args.master)
         return SKIP
 
+    def on_signal(signum, frame):
+        raise Fail("stopped by signal %d" % signum)
+
+    signal.signal(signal.SIGTERM, on_signal)  # ctest's timeout: stop QEMU too
+    signal.signal(signal.SIGHUP, on_signal)
     log("image %s" % elf)
     target = Target(args.root, args.board, elf, log)
     stop = threading.Event()

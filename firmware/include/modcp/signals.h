@@ -67,6 +67,8 @@ bool modcp_sig_on_timer(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us);
 /* Transmission complete: true when handled here (automatic mode); the link then gets
  * its modcp_link_on_tx_done() when RTS goes OFF. */
 bool modcp_sig_on_tx_done(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us);
+/* A received character or line error: ends the time to RTS off early (see signals.c). */
+void modcp_sig_on_rx(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us);
 /* The port reports CTS / DSR (at start and on every change). */
 void modcp_sig_on_inputs(modcp_sig_t *s, modcp_link_t *l, bool cts, bool dsr, uint32_t now_us);
 /* Signal levels as a bit set for the status area: MODCP_SIGBIT_*. */
