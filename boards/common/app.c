@@ -127,6 +127,9 @@ static void execute_line(void)
             con_put_text(con_out);
             con_puts("\r\n");
         }
+        if (strcmp(con_line, "help") == 0 || strcmp(con_line, "?") == 0) {
+            con_puts("  board               this board, its configuration, uptime, cycles\r\n");
+        }
     }
     con_puts("> ");
     con_len = 0u;
