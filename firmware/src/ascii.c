@@ -49,6 +49,7 @@
 
 #include "modcp/crc.h"
 #include "modcp/link.h"
+#include "link_internal.h"
 
 #define ASCII_COLON 0x3Au
 #define ASCII_CR 0x0Du
@@ -57,27 +58,6 @@
 
 static const char hex_digits[16] = {'0', '1', '2', '3', '4', '5', '6', '7',
                                     '8', '9', 'A', 'B', 'C', 'D', 'E', 'F'};
-
-static void arm(const modcp_link_t *l, uint32_t us)
-{
-    if (l->hal != NULL && l->hal->timer_arm != NULL) {
-        l->hal->timer_arm(l->hal->ctx, us);
-    }
-}
-
-static void event(const modcp_link_t *l, modcp_event_t ev)
-{
-    if (l->diag != NULL) {
-        modcp_diag_event(l->diag, ev);
-    }
-}
-
-static void count(const modcp_link_t *l, modcp_counter_t c)
-{
-    if (l->diag != NULL) {
-        modcp_diag_count(l->diag, c);
-    }
-}
 
 static uint8_t hexval(uint8_t c)
 {
@@ -107,18 +87,7 @@ static void frame_start(modcp_link_t *l, uint32_t now_us)
     l->rx_bad = false;
     l->rx_overflow = false;
     l->last_us = now_us;
-    arm(l, l->ascii_timeout_us);
-}
-
-/* The current frame (ours or another slave's) is damaged before its LRC could be
- * evaluated: counted once as a bus communication error, as rtu.c does (Serial Line
- * V1.02 §6.1 counter 2, "an error detected on the character level"). */
-static void mark_bad(modcp_link_t *l)
-{
-    if (!l->rx_bad) {
-        l->rx_bad = true;
-        count(l, MODCP_CNT_BUS_CRC);
-    }
+    link_arm(l, l->ascii_timeout_us);
 }
 
 /* The frame is bad: report ev for our frame (NONE: already reported by link.c) and
@@ -126,20 +95,20 @@ static void mark_bad(modcp_link_t *l)
 static void discard(modcp_link_t *l, modcp_event_t ev)
 {
     if (l->state == MODCP_LINK_RX && !l->rx_bad) {
-        event(l, ev);
+        link_event(l, ev);
     }
     l->state = MODCP_LINK_SKIP;
-    mark_bad(l);
+    link_mark_bad(l);
 }
 
 /* CR + delimiter: the end of the frame in RX or SKIP. */
 static void frame_end(modcp_link_t *l)
 {
     const bool lrc_ok = l->count >= ASCII_MIN_FRAME && (l->crc & 0xFFu) == 0u;
-    arm(l, 0);
+    link_arm(l, 0);
     if (l->state == MODCP_LINK_SKIP) {
         if (!l->rx_bad) {
-            count(l, lrc_ok ? MODCP_CNT_BUS_MSG : MODCP_CNT_BUS_CRC);
+            link_count(l, lrc_ok ? MODCP_CNT_BUS_MSG : MODCP_CNT_BUS_CRC);
         }
         l->state = MODCP_LINK_IDLE;
         return;
@@ -152,18 +121,18 @@ static void frame_end(modcp_link_t *l)
         if (l->diag != NULL) {
             l->diag->frames_too_long = (uint16_t)(l->diag->frames_too_long + 1u);
         }
-        event(l, MODCP_EV_FRAME_TOO_LONG);
+        link_event(l, MODCP_EV_FRAME_TOO_LONG);
         return;
     }
     if (!lrc_ok) {
-        event(l, MODCP_EV_CRC); /* 003 §8.5 (08)36H "LRC incorrect" */
-        count(l, MODCP_CNT_BUS_CRC);
+        link_event(l, MODCP_EV_CRC); /* 003 §8.5 (08)36H "LRC incorrect" */
+        link_count(l, MODCP_CNT_BUS_CRC);
         return;
     }
-    count(l, MODCP_CNT_BUS_MSG);
-    count(l, MODCP_CNT_SLAVE_MSG);
+    link_count(l, MODCP_CNT_BUS_MSG);
+    link_count(l, MODCP_CNT_SLAVE_MSG);
     l->state = MODCP_LINK_EOF;
-    arm(l, 1u); /* hand the frame over on the timer, as RTU does */
+    link_arm(l, 1u); /* hand the frame over on the timer, as RTU does */
 }
 
 /* One decoded byte of the frame in RX / SKIP. */
@@ -200,7 +169,7 @@ static void frame_char(modcp_link_t *l, uint8_t c, uint32_t now_us)
         return;
     }
     l->last_us = now_us;
-    arm(l, l->ascii_timeout_us);
+    link_arm(l, l->ascii_timeout_us);
     if (l->first != ASCII_COLON) {
         return; /* stray characters before a start character */
     }
@@ -270,7 +239,7 @@ static void busy_track(modcp_link_t *l, uint8_t c, uint32_t now_us)
     l->hex_half = false;
     l->count = 1;
     if ((uint8_t)((unsigned)l->hex_hi << 4 | v) == l->own_addr) {
-        event(l, MODCP_EV_SEQUENCE);
+        link_event(l, MODCP_EV_SEQUENCE);
     }
 }
 
@@ -286,13 +255,13 @@ void modcp_ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
             break;
         }
         if (!l->suppress) {
-            event(l, MODCP_EV_ASCII_START);
+            link_event(l, MODCP_EV_ASCII_START);
         }
         l->state = MODCP_LINK_SKIP; /* ignore the rest of the stray characters */
         l->first = 0;
         l->rx_bad = true;
         l->last_us = now_us;
-        arm(l, l->ascii_timeout_us);
+        link_arm(l, l->ascii_timeout_us);
         break;
     case MODCP_LINK_RX:
     case MODCP_LINK_SKIP:
@@ -316,7 +285,7 @@ void modcp_ascii_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
     discard(l, MODCP_EV_NONE); /* link.c reported it (normal mode) */
     l->got_cr = false;
     l->last_us = now_us;
-    arm(l, l->ascii_timeout_us);
+    link_arm(l, l->ascii_timeout_us);
 }
 
 bool modcp_ascii_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
@@ -343,7 +312,7 @@ bool modcp_ascii_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
     }
     uint32_t gap = now_us - l->last_us;
     if (gap < l->ascii_timeout_us) {
-        arm(l, l->ascii_timeout_us - gap); /* an expiry that raced a character */
+        link_arm(l, l->ascii_timeout_us - gap); /* an expiry that raced a character */
         return false;
     }
     if (l->first == ASCII_COLON) {

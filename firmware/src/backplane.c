@@ -158,3 +158,21 @@ bool modcp_bp_init_decode(const uint8_t *d, uint8_t len, modcp_bp_init_t *i)
     i->record_crc = get16(d + 12);
     return true;
 }
+
+bool modcp_ring_put_data(modcp_ring_t *r, uint8_t *seq, uint8_t kind, uint8_t flags, uint8_t tag,
+                         const uint8_t *data, uint8_t len)
+{
+    modcp_block_t b;
+    memset(&b, 0, sizeof b);
+    if (len > MODCP_BLOCK_SIZE) {
+        return false;
+    }
+    if (len > 0u) {
+        memcpy(b.data, data, len);
+    }
+    b.len = len;
+    b.kind = kind;
+    b.flags = flags;
+    b.tag = tag;
+    return modcp_ring_put(r, &b, seq);
+}

@@ -49,16 +49,7 @@ void modcp_fb_init(modcp_fb_t *fb, modcp_backplane_t *bp, modcp_plcmem_t *mem,
 static bool put_block(modcp_fb_t *fb, uint8_t kind, uint8_t flags, uint8_t tag,
                       const uint8_t *data, uint8_t len)
 {
-    modcp_block_t b;
-    memset(&b, 0, sizeof b);
-    if (len > 0u) {
-        memcpy(b.data, data, len);
-    }
-    b.len = len;
-    b.kind = kind;
-    b.flags = flags;
-    b.tag = tag;
-    return modcp_ring_put(&fb->bp->to_cp, &b, &fb->tx_seq);
+    return modcp_ring_put_data(&fb->bp->to_cp, &fb->tx_seq, kind, flags, tag, data, len);
 }
 
 /* ---- replies ---------------------------------------------------------------------- */

@@ -93,16 +93,7 @@ void modcp_job_abort(modcp_job_t *j)
 static bool put_block(modcp_job_t *j, uint8_t kind, uint8_t flags, uint8_t tag,
                       const uint8_t *data, uint8_t len)
 {
-    modcp_block_t b;
-    memset(&b, 0, sizeof b);
-    if (len > 0u) {
-        memcpy(b.data, data, len);
-    }
-    b.len = len;
-    b.kind = kind;
-    b.flags = flags;
-    b.tag = tag;
-    return modcp_ring_put(&j->bp->to_cpu, &b, &j->tx_seq);
+    return modcp_ring_put_data(&j->bp->to_cpu, &j->tx_seq, kind, flags, tag, data, len);
 }
 
 bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev)

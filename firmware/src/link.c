@@ -11,13 +11,7 @@
 #include <string.h>
 
 #include "modcp/link.h"
-
-static void arm(const modcp_link_t *l, uint32_t us)
-{
-    if (l->hal != NULL && l->hal->timer_arm != NULL) {
-        l->hal->timer_arm(l->hal->ctx, us);
-    }
-}
+#include "link_internal.h"
 
 static void set_de(const modcp_link_t *l, bool on)
 {
@@ -69,7 +63,7 @@ static void resume_rx(modcp_link_t *l, uint32_t now_us, bool have_now)
             l->rx_overflow = false;
             l->len = 0;
             l->count = 1;
-            arm(l, quiet - gap);
+            link_arm(l, quiet - gap);
             return;
         }
     }
@@ -92,7 +86,7 @@ void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag
 
 void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
 {
-    arm(l, 0);
+    link_arm(l, 0);
     set_de(l, false);
     reset_rx(l);
     l->framing = p->framing;
@@ -122,7 +116,7 @@ void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
 
 void modcp_link_disable(modcp_link_t *l)
 {
-    arm(l, 0);
+    link_arm(l, 0);
     set_de(l, false);
     reset_rx(l);
     l->enabled = false;
@@ -179,7 +173,7 @@ bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
             return false; /* RS232 automatic signals: signals.c releases the reply */
         }
         if (waited < l->turnaround_us) {
-            arm(l, l->turnaround_us - waited); /* early expiry: never before turnaround */
+            link_arm(l, l->turnaround_us - waited); /* early expiry: never before turnaround */
             return false;
         }
         start_tx(l);
@@ -215,7 +209,7 @@ void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us)
     }
     if (l->rs485 && l->turnaround_us > 0u) {
         l->state = MODCP_LINK_TURNAROUND;
-        arm(l, l->turnaround_us);
+        link_arm(l, l->turnaround_us);
         return;
     }
     start_tx(l);

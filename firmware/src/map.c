@@ -58,8 +58,7 @@ static bool input_area(uint8_t area)
     return area == MODCP_AREA_M || area == MODCP_AREA_I || area == MODCP_AREA_DB;
 }
 
-/* Size of the controller area in bytes (M, Q, I) or elements (T, C); DB: 65536. */
-static uint32_t area_size(const modcp_areas_t *a, uint8_t area)
+uint32_t modcp_map_area_size(const modcp_areas_t *a, uint8_t area)
 {
     if (a == NULL || area == MODCP_AREA_DB) {
         return 0x10000u;
@@ -151,7 +150,7 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
         first = (uint32_t)w->start + rel / 8u;
         last = (uint32_t)w->start + (rel + (uint32_t)qty - 1u) / 8u;
     }
-    if (end_addr > w->to || last >= area_size(a, w->area)) {
+    if (end_addr > w->to || last >= modcp_map_area_size(a, w->area)) {
         return MODCP_EV_PAST_END;
     }
 

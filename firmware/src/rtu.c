@@ -33,46 +33,14 @@
 
 #include "modcp/crc.h"
 #include "modcp/link.h"
+#include "link_internal.h"
 
 #define RTU_MIN_FRAME 4u /* address, function, CRC */
-
-static void arm(const modcp_link_t *l, uint32_t us)
-{
-    if (l->hal != NULL && l->hal->timer_arm != NULL) {
-        l->hal->timer_arm(l->hal->ctx, us);
-    }
-}
-
-static void event(const modcp_link_t *l, modcp_event_t ev)
-{
-    if (l->diag != NULL) {
-        modcp_diag_event(l->diag, ev);
-    }
-}
-
-static void count(const modcp_link_t *l, modcp_counter_t c)
-{
-    if (l->diag != NULL) {
-        modcp_diag_count(l->diag, c);
-    }
-}
 
 static void count_char(modcp_link_t *l)
 {
     if (l->count < UINT16_MAX) {
         l->count++;
-    }
-}
-
-/* The current frame is damaged (character error, BREAK, t1.5): it is discarded and,
- * once per frame, counted as a bus communication error (Serial Line V1.02 §6.1
- * counter 2: "in case of an error detected on the character level ... this counter
- * is also incremented"). */
-static void mark_bad(modcp_link_t *l)
-{
-    if (!l->rx_bad) {
-        l->rx_bad = true;
-        count(l, MODCP_CNT_BUS_CRC);
     }
 }
 
@@ -83,7 +51,7 @@ static void frame_start(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
     l->first = b;
     l->rx_bad = false;
     if (error) {
-        mark_bad(l);
+        link_mark_bad(l);
     }
     l->rx_overflow = false;
     l->len = 0;
@@ -105,14 +73,14 @@ static void frame_start(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
             l->state = MODCP_LINK_SKIP; /* not checked, not answered */
         }
     }
-    arm(l, l->t35_us);
+    link_arm(l, l->t35_us);
 }
 
 /* End of a frame for another address: only the serial-line bus counters. */
 static void skip_end(modcp_link_t *l)
 {
     if (!l->rx_bad) {
-        count(l, (l->count >= RTU_MIN_FRAME && l->crc == 0u) ? MODCP_CNT_BUS_MSG : MODCP_CNT_BUS_CRC);
+        link_count(l, (l->count >= RTU_MIN_FRAME && l->crc == 0u) ? MODCP_CNT_BUS_MSG : MODCP_CNT_BUS_CRC);
     }
     l->state = MODCP_LINK_IDLE;
 }
@@ -126,12 +94,12 @@ static void check_t15(modcp_link_t *l, uint32_t now_us)
     }
     uint32_t dist = now_us - l->last_us;
     if (dist > l->t15_us + l->char_us) {
-        mark_bad(l);
+        link_mark_bad(l);
         if (l->diag != NULL) {
             l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
         }
         if (!l->suppress) {
-            event(l, MODCP_EV_ZVZ);
+            link_event(l, MODCP_EV_ZVZ);
         }
     }
 }
@@ -140,7 +108,7 @@ static void check_t15(modcp_link_t *l, uint32_t now_us)
  * (0E)11H, back to idle; the character that found it starts a new frame. */
 static void internal_error(modcp_link_t *l)
 {
-    event(l, MODCP_EV_INTERNAL_RECEIVE);
+    link_event(l, MODCP_EV_INTERNAL_RECEIVE);
     l->state = MODCP_LINK_IDLE;
     l->busy_rx = false;
     l->len = 0;
@@ -156,7 +124,7 @@ static void busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
     if (!l->busy_rx || now_us - l->last_us >= l->t35_us) {
         l->busy_rx = true;
         if (!error && b == l->own_addr) {
-            event(l, MODCP_EV_SEQUENCE);
+            link_event(l, MODCP_EV_SEQUENCE);
         }
     }
     l->last_us = now_us;
@@ -179,7 +147,7 @@ void modcp_rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
             l->rx_overflow = true;
         }
         l->last_us = now_us;
-        arm(l, l->t35_us);
+        link_arm(l, l->t35_us);
         break;
     case MODCP_LINK_SKIP:
         if (now_us - l->last_us >= l->t35_us) {
@@ -190,7 +158,7 @@ void modcp_rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
         count_char(l);
         l->crc = modcp_crc16_update(l->crc, &b, 1);
         l->last_us = now_us;
-        arm(l, l->t35_us);
+        link_arm(l, l->t35_us);
         break;
     case MODCP_LINK_BUSY:
     case MODCP_LINK_TURNAROUND:
@@ -218,10 +186,10 @@ void modcp_rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
         if (!l->rx_bad && !l->rx_overflow && l->len >= RTU_MIN_FRAME && l->crc == 0u) {
             return; /* after the CRC: not part of the frame */
         }
-        mark_bad(l);
+        link_mark_bad(l);
         count_char(l);
         l->last_us = now_us;
-        arm(l, l->t35_us);
+        link_arm(l, l->t35_us);
         break;
     case MODCP_LINK_SKIP:
         if (now_us - l->last_us >= l->t35_us) {
@@ -231,10 +199,10 @@ void modcp_rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
             }
             break;
         }
-        mark_bad(l);
+        link_mark_bad(l);
         count_char(l);
         l->last_us = now_us;
-        arm(l, l->t35_us);
+        link_arm(l, l->t35_us);
         break;
     case MODCP_LINK_BUSY:
     case MODCP_LINK_TURNAROUND:
@@ -257,7 +225,7 @@ bool modcp_rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
     }
     uint32_t gap = now_us - l->last_us;
     if (gap < l->t35_us) {
-        arm(l, l->t35_us - gap); /* an expiry that raced a character */
+        link_arm(l, l->t35_us - gap); /* an expiry that raced a character */
         return false;
     }
     if (l->state == MODCP_LINK_SKIP) {
@@ -272,16 +240,16 @@ bool modcp_rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         if (l->diag != NULL) {
             l->diag->frames_too_long = (uint16_t)(l->diag->frames_too_long + 1u);
         }
-        event(l, MODCP_EV_FRAME_TOO_LONG);
+        link_event(l, MODCP_EV_FRAME_TOO_LONG);
         return false;
     }
     if (l->len < RTU_MIN_FRAME || l->crc != 0u) {
-        event(l, MODCP_EV_CRC);
-        count(l, MODCP_CNT_BUS_CRC);
+        link_event(l, MODCP_EV_CRC);
+        link_count(l, MODCP_CNT_BUS_CRC);
         return false;
     }
-    count(l, MODCP_CNT_BUS_MSG);
-    count(l, MODCP_CNT_SLAVE_MSG);
+    link_count(l, MODCP_CNT_BUS_MSG);
+    link_count(l, MODCP_CNT_SLAVE_MSG);
     if (f == NULL) {
         return false;
     }

@@ -36,27 +36,6 @@ bool modcp_scan_touches(const modcp_params_t *p, uint16_t reg, uint16_t qty)
     return first <= s_last && last >= s_first;
 }
 
-static uint32_t area_size(const modcp_areas_t *a, uint8_t area)
-{
-    if (a == NULL) {
-        return 0x10000u;
-    }
-    switch (area) {
-    case MODCP_AREA_I:
-        return a->i_bytes;
-    case MODCP_AREA_Q:
-        return a->q_bytes;
-    case MODCP_AREA_M:
-        return a->m_bytes;
-    case MODCP_AREA_T:
-        return a->timers;
-    case MODCP_AREA_C:
-        return a->counters;
-    default:
-        return 0x10000u; /* DB: checked by the CPU side */
-    }
-}
-
 static bool limit_ok(const modcp_limit_t *l, uint32_t first, uint32_t last)
 {
     return l->max != 0u && first >= l->min && last <= l->max;
@@ -83,7 +62,7 @@ modcp_event_t modcp_scan_map(const modcp_params_t *p, const modcp_areas_t *a, ui
         if (write) {
             return MODCP_EV_AREA_READONLY;
         }
-        if (first >= area_size(a, e->area)) {
+        if (first >= modcp_map_area_size(a, e->area)) {
             return MODCP_EV_PAST_END;
         }
         out->count = 1u; /* one element, 2 bytes */
@@ -91,7 +70,7 @@ modcp_event_t modcp_scan_map(const modcp_params_t *p, const modcp_areas_t *a, ui
     case MODCP_AREA_I:
     case MODCP_AREA_Q:
     case MODCP_AREA_M:
-        if (first + 1u >= area_size(a, e->area)) {
+        if (first + 1u >= modcp_map_area_size(a, e->area)) {
             return MODCP_EV_PAST_END;
         }
         if (write) {

@@ -153,6 +153,9 @@ bool modcp_bp_systat_result(const modcp_backplane_t *bp, uint32_t req, uint8_t o
 /* Producer side: publish one block (seq is filled in from *seq, which is then
  * incremented). Returns false (nothing written) when the ring is full. */
 bool modcp_ring_put(modcp_ring_t *r, const modcp_block_t *b, uint8_t *seq);
+/* Producer side: build a block from its parts and publish it (modcp_ring_put). */
+bool modcp_ring_put_data(modcp_ring_t *r, uint8_t *seq, uint8_t kind, uint8_t flags, uint8_t tag,
+                         const uint8_t *data, uint8_t len);
 /* Consumer side: copy out and acknowledge the oldest block. Returns false when empty. */
 bool modcp_ring_get(modcp_ring_t *r, modcp_block_t *b);
 /* Blocks free for the producer. */

@@ -50,6 +50,10 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
 modcp_event_t modcp_map_regs(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
                              uint16_t reg, uint16_t qty, modcp_operand_t *out);
 
+/* Size of a controller area in bytes (M, Q, I) or elements (T, C) as reported at init;
+ * DB (and areas == NULL): 65536, since DB sizes are checked by the CPU side. */
+uint32_t modcp_map_area_size(const modcp_areas_t *a, uint8_t area);
+
 /* Inverse of the register scheme (8.6): register number of DB db, byte offset dbw
  * relative to base. Returns false when not addressable. */
 bool modcp_map_reg_of(uint16_t base_db, uint16_t db, uint16_t dbw, uint16_t *reg);
