@@ -67,6 +67,16 @@ bool modcp_ring_get(modcp_ring_t *r, modcp_block_t *b)
     return true;
 }
 
+const modcp_block_t *modcp_ring_peek(const modcp_ring_t *r)
+{
+    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_relaxed);
+    uint32_t head = atomic_load_explicit(&r->head, memory_order_acquire);
+    if (head == tail) {
+        return NULL;
+    }
+    return &r->slot[tail & (MODCP_BP_DEPTH - 1u)];
+}
+
 uint32_t modcp_ring_space(const modcp_ring_t *r)
 {
     uint32_t head = atomic_load_explicit(&r->head, memory_order_acquire);

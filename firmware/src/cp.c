@@ -13,9 +13,59 @@
 
 static modcp_pdu_env_t env_of(modcp_cp_t *cp)
 {
+#if MODCP_WITH_EXTENDED
     modcp_pdu_env_t e = {&cp->params, &cp->areas, &cp->diag, cp->fb_ready, &cp->ext};
+#else
+    modcp_pdu_env_t e = {&cp->params, &cp->areas, &cp->diag, cp->fb_ready, NULL};
+#endif
     return e;
 }
+
+/* ---- RS232 automatic secondary signals (signals.c), or none in this build ------ */
+
+#if MODCP_WITH_RS232_SIGNALS
+static bool sig_rx_allowed(const modcp_cp_t *cp)
+{
+    return modcp_sig_rx_allowed(&cp->sig);
+}
+static void sig_on_rx(modcp_cp_t *cp, uint32_t now_us)
+{
+    modcp_sig_on_rx(&cp->sig, &cp->link, now_us);
+}
+static bool sig_on_timer(modcp_cp_t *cp, uint32_t now_us)
+{
+    return modcp_sig_on_timer(&cp->sig, &cp->link, now_us);
+}
+static bool sig_on_tx_done(modcp_cp_t *cp, uint32_t now_us)
+{
+    return modcp_sig_on_tx_done(&cp->sig, &cp->link, now_us);
+}
+#else
+/* Built without RS232 signals: reception always allowed, no timer or transmit
+ * complete of their own, RTS / DTR never driven (rs232_auto is refused, params.c). */
+static bool sig_rx_allowed(const modcp_cp_t *cp)
+{
+    (void)cp;
+    return true;
+}
+static void sig_on_rx(modcp_cp_t *cp, uint32_t now_us)
+{
+    (void)cp;
+    (void)now_us;
+}
+static bool sig_on_timer(modcp_cp_t *cp, uint32_t now_us)
+{
+    (void)cp;
+    (void)now_us;
+    return false;
+}
+static bool sig_on_tx_done(modcp_cp_t *cp, uint32_t now_us)
+{
+    (void)cp;
+    (void)now_us;
+    return false;
+}
+#endif
 
 /* ---- line discipline and diagnostics (signals.c, leds.c, cpdiag.c) ---------- */
 
@@ -49,7 +99,9 @@ static void line_reply(modcp_cp_t *cp, uint16_t out_len, uint32_t now_us)
 {
     bool was_tx = cp->link.state == MODCP_LINK_TX;
     modcp_link_reply(&cp->link, out_len, now_us);
+#if MODCP_WITH_RS232_SIGNALS
     modcp_sig_on_reply(&cp->sig, &cp->link, now_us);
+#endif
     tx_watch(cp, was_tx);
 }
 
@@ -58,7 +110,9 @@ static void line_params(modcp_cp_t *cp, bool ok, int irq)
 {
     modcp_cpdiag_params(&cp->cpdiag, ok, irq);
     if (ok) {
+#if MODCP_WITH_RS232_SIGNALS
         modcp_sig_configure(&cp->sig, &cp->params);
+#endif
         modcp_leds_configure(&cp->leds, cp->link.t35_us);
     }
 }
@@ -69,12 +123,14 @@ static void line_status(const modcp_cp_t *cp, modcp_cp_status_t *st)
     st->flags |= (cp->cpdiag.wire_break ? MODCP_CPST_WIRE_BREAK : 0u) |
                  (cp->cpdiag.param_error ? MODCP_CPST_PARAM_ERROR : 0u);
     st->leds = modcp_leds_bits(&cp->leds);
+#if MODCP_WITH_RS232_SIGNALS
     st->signals = modcp_sig_bits(&cp->sig);
+    st->signal_aborts = cp->sig.aborts;
+#endif
     st->char_errors = cp->diag.char_errors;
     st->breaks = cp->diag.breaks;
     st->t15_discards = cp->diag.t15_discards;
     st->frames_too_long = cp->diag.frames_too_long;
-    st->signal_aborts = cp->sig.aborts;
     memcpy(st->diag_irq, cp->cpdiag.irq, sizeof st->diag_irq);
     st->diag_irq_count = cp->cpdiag.irq_count;
     st->systat_ack = cp->cpdiag.systat_ack;
@@ -94,9 +150,16 @@ static void line_poll(modcp_cp_t *cp, uint32_t now_us)
 
 void modcp_cp_on_signals(modcp_cp_t *cp, bool cts, bool dsr, uint32_t now_us)
 {
+#if MODCP_WITH_RS232_SIGNALS
     bool was_tx = cp->link.state == MODCP_LINK_TX;
     modcp_sig_on_inputs(&cp->sig, &cp->link, cts, dsr, now_us);
     tx_watch(cp, was_tx);
+#else
+    (void)cp; /* no RS232 automatic signals in this build: inputs not used */
+    (void)cts;
+    (void)dsr;
+    (void)now_us;
+#endif
 }
 
 void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp)
@@ -106,13 +169,21 @@ void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp
     cp->bp = bp;
     modcp_diag_init(&cp->diag);
     modcp_params_defaults(&cp->params);
-    modcp_link_init(&cp->link, hal, &cp->diag, cp->buf, (uint16_t)sizeof cp->buf);
+    modcp_link_init(&cp->link, hal, &cp->diag, cp->buf, (uint16_t)MODCP_LINK_BUF_MAX);
+#if MODCP_SHARED_PARAMS_BUFFER
+    modcp_job_init(&cp->job, bp, cp->buf, (uint16_t)sizeof cp->buf); /* see features.h */
+#else
     modcp_job_init(&cp->job, bp, cp->record, (uint16_t)sizeof cp->record);
+#endif
     cp->param_event = MODCP_EV_PARAM_RECORD; /* nothing received yet */
+#if MODCP_WITH_RS232_SIGNALS
     modcp_sig_init(&cp->sig, hal, &cp->diag);   /* RTS, DTR OFF */
+#endif
     modcp_leds_init(&cp->leds, hal);            /* SF on, TXD, RXD off */
     modcp_cpdiag_init(&cp->cpdiag);
+#if MODCP_WITH_EXTENDED
     modcp_ext_init(&cp->ext);
+#endif
 }
 
 bool modcp_cp_ready(const modcp_cp_t *cp)
@@ -123,12 +194,14 @@ bool modcp_cp_ready(const modcp_cp_t *cp)
 /* Finish the current request with the PDU engine's decision. */
 static void finish(modcp_cp_t *cp, modcp_pdu_action_t a, uint16_t out_len, uint32_t now_us)
 {
+#if MODCP_WITH_EXTENDED
     modcp_pdu_env_t env = env_of(cp);
     modcp_pdu_finished(&cp->pdu, &env, a, now_us); /* FC11/12 accounting, comm loss */
     if (cp->ext.delimiter_changed) { /* FC08 sub 03 / 01: the ASCII input delimiter */
         cp->link.ascii_delim = cp->ext.ascii_delimiter;
         cp->ext.delimiter_changed = false;
     }
+#endif
     if (a == MODCP_PDU_REPLY) {
         line_reply(cp, out_len, now_us);
     } else {
@@ -170,10 +243,10 @@ static void process_request(modcp_cp_t *cp, uint32_t now_us)
 
 void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
 {
-    if (!modcp_sig_rx_allowed(&cp->sig)) {
+    if (!sig_rx_allowed(cp)) {
         return; /* RS232 automatic signals: no reception while DSR is OFF */
     }
-    modcp_sig_on_rx(&cp->sig, &cp->link, now_us);
+    sig_on_rx(cp, now_us);
     line_rx(cp, now_us);
     modcp_cpdiag_good_char(&cp->cpdiag);
     modcp_link_on_byte(&cp->link, byte, now_us);
@@ -181,10 +254,10 @@ void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
 
 void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us)
 {
-    if (!modcp_sig_rx_allowed(&cp->sig)) {
+    if (!sig_rx_allowed(cp)) {
         return;
     }
-    modcp_sig_on_rx(&cp->sig, &cp->link, now_us);
+    sig_on_rx(cp, now_us);
     line_rx(cp, now_us);
     modcp_cpdiag_line_error(&cp->cpdiag, line_errors, cp->link.enabled && !cp->link.suppress);
     modcp_link_on_error(&cp->link, line_errors, now_us);
@@ -193,7 +266,7 @@ void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us
 void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
 {
     bool was_tx = cp->link.state == MODCP_LINK_TX;
-    if (modcp_sig_on_timer(&cp->sig, &cp->link, now_us)) {
+    if (sig_on_timer(cp, now_us)) {
         tx_watch(cp, was_tx); /* data output waiting time over: the reply may start */
         return;
     }
@@ -206,27 +279,53 @@ void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
 void modcp_cp_on_tx_done(modcp_cp_t *cp, uint32_t now_us)
 {
     modcp_leds_tx_end(&cp->leds);
-    if (modcp_sig_on_tx_done(&cp->sig, &cp->link, now_us)) {
+    if (sig_on_tx_done(cp, now_us)) {
         return; /* RS232 automatic signals: RTS OFF after its delay, then receive */
     }
     modcp_link_on_tx_done(&cp->link, now_us);
 }
 
-/* A PARAMS record arrived: validate and apply, or stay not ready. */
-static void take_params(modcp_cp_t *cp)
+/* Drop the request in progress, stop the line: the CP is not ready. */
+static void unconfigure(modcp_cp_t *cp)
 {
     if (cp->request_pending) {
         modcp_job_abort(&cp->job);
         cp->request_pending = false;
     }
     modcp_link_disable(&cp->link);
+#if MODCP_WITH_RS232_SIGNALS
     modcp_sig_disable(&cp->sig);
+#endif
     cp->configured = false;
     cp->fb_ready = false;
+}
+
+#if MODCP_SHARED_PARAMS_BUFFER
+/* A PARAMS record starts and will be stored in the frame buffer: nothing may use the
+ * buffer any more. A reply on the line is sent from it, so the record waits until
+ * its transmission is complete (false); a request being received or processed, or a
+ * reply not yet started, is dropped. */
+static bool params_start(modcp_cp_t *cp)
+{
+    if (cp->link.state == MODCP_LINK_TX) {
+        return false;
+    }
+    unconfigure(cp);
+    return true;
+}
+#endif
+
+/* A PARAMS record arrived: validate and apply, or stay not ready. */
+static void take_params(modcp_cp_t *cp)
+{
+    unconfigure(cp);
+#if MODCP_WITH_EXTENDED
     modcp_ext_reset(&cp->ext, &cp->diag); /* comm loss disarmed, listen-only left */
+#endif
 
     modcp_params_t rec;
-    modcp_event_t ev = modcp_params_decode(cp->record, cp->job.msglen, &rec);
+    const uint8_t *record = cp->job.msgbuf; /* cp->record, or cp->buf (features.h) */
+    modcp_event_t ev = modcp_params_decode(record, cp->job.msglen, &rec);
     int irq = ev == MODCP_EV_NONE ? (int)rec.diag_irq : -1;
     modcp_event_t warning = MODCP_EV_NONE;
     if (ev == MODCP_EV_NONE) {
@@ -240,7 +339,7 @@ static void take_params(modcp_cp_t *cp)
         line_params(cp, false, irq);
         return;
     }
-    cp->record_crc = modcp_crc16(cp->record, cp->job.msglen);
+    cp->record_crc = modcp_crc16(record, cp->job.msglen);
     cp->configured = true;
     modcp_link_configure(&cp->link, &cp->params);
     line_params(cp, true, irq);
@@ -313,9 +412,19 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
         } else if (r == MODCP_JOBP_INIT) {
             take_init(cp);
         }
+#if MODCP_SHARED_PARAMS_BUFFER
+        else if (r == MODCP_JOBP_PARAMS_START) {
+            if (!params_start(cp)) {
+                break; /* a reply is on the line: the record waits for its end */
+            }
+            modcp_job_params_grant(&cp->job);
+        }
+#endif
     }
     line_poll(cp, now_us);
+#if MODCP_WITH_EXTENDED
     cp->status_flags =
         modcp_ext_poll(&cp->ext, &cp->params, &cp->diag, cp->status_flags, now_us);
+#endif
     publish(cp);
 }

@@ -44,7 +44,9 @@ void modcp_diag_count(modcp_diag_t *d, modcp_counter_t c)
     } else if (d->counters[c] != UINT16_MAX) {
         d->counters[c]++; /* error counts saturate */
     }
-    modcp_comm_counted(&d->comm, (unsigned)c);
+#if MODCP_WITH_EXTENDED
+    modcp_comm_counted(&d->comm, (unsigned)c); /* FC12 event log, overrun flag */
+#endif
 }
 
 void modcp_diag_clear_counters(modcp_diag_t *d)

@@ -259,10 +259,37 @@ static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b)
     }
 }
 
+#if MODCP_SHARED_PARAMS_BUFFER
+void modcp_job_params_grant(modcp_job_t *j)
+{
+    j->msg_granted = true;
+}
+
+/* msgbuf is shared with its owner (the CP's frame buffer): the first block of a
+ * PARAMS record stays in the ring until the owner has granted it. */
+static bool params_wait(const modcp_job_t *j)
+{
+    const modcp_block_t *next = modcp_ring_peek(&j->bp->to_cp);
+    return next != NULL && !j->msg_granted && next->kind == MODCP_BP_PARAMS &&
+           (next->flags & MODCP_BLK_FIRST) != 0u;
+}
+#endif
+
 modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us)
 {
     modcp_block_t b;
-    while (modcp_ring_get(&j->bp->to_cp, &b)) {
+    for (;;) {
+#if MODCP_SHARED_PARAMS_BUFFER
+        if (params_wait(j)) {
+            return MODCP_JOBP_PARAMS_START;
+        }
+#endif
+        if (!modcp_ring_get(&j->bp->to_cp, &b)) {
+            break;
+        }
+#if MODCP_SHARED_PARAMS_BUFFER
+        j->msg_granted = false; /* a grant covers the one block it was asked for */
+#endif
         modcp_jobp_t r = rx_block(j, &b);
         if (r != MODCP_JOBP_NOTHING) {
             return r;

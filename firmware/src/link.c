@@ -103,11 +103,13 @@ void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
     case MODCP_FRAMING_RTU:
         l->enabled = l->cap >= 4u;
         break;
+#if MODCP_WITH_ASCII
     case MODCP_FRAMING_ASCII: /* ascii.c */
         l->ascii7 = p->data_bits == 7u;
         l->ascii_delim = 0x0Au; /* LF until FC08 sub-function 03 changes it */
         l->enabled = l->cap >= 3u && l->size >= 11u;
         break;
+#endif
     default:
         l->enabled = false;
         break;
@@ -127,11 +129,13 @@ void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
     if (!l->enabled) {
         return;
     }
-    if (l->framing == (uint8_t)MODCP_FRAMING_RTU) {
-        modcp_rtu_on_byte(l, b, now_us);
-    } else {
+#if MODCP_WITH_ASCII
+    if (l->framing != (uint8_t)MODCP_FRAMING_RTU) {
         modcp_ascii_on_byte(l, b, now_us);
+        return;
     }
+#endif
+    modcp_rtu_on_byte(l, b, now_us);
 }
 
 void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
@@ -155,11 +159,13 @@ void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
             modcp_diag_count(l->diag, MODCP_CNT_CHAR_OVERRUN);
         }
     }
-    if (l->framing == (uint8_t)MODCP_FRAMING_RTU) {
-        modcp_rtu_on_error(l, line_errors, now_us);
-    } else {
+#if MODCP_WITH_ASCII
+    if (l->framing != (uint8_t)MODCP_FRAMING_RTU) {
         modcp_ascii_on_error(l, line_errors, now_us);
+        return;
     }
+#endif
+    modcp_rtu_on_error(l, line_errors, now_us);
 }
 
 bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
@@ -179,10 +185,12 @@ bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         start_tx(l);
         return false;
     }
-    if (l->framing == (uint8_t)MODCP_FRAMING_RTU) {
-        return modcp_rtu_on_timer(l, now_us, f);
+#if MODCP_WITH_ASCII
+    if (l->framing != (uint8_t)MODCP_FRAMING_RTU) {
+        return modcp_ascii_on_timer(l, now_us, f);
     }
-    return modcp_ascii_on_timer(l, now_us, f);
+#endif
+    return modcp_rtu_on_timer(l, now_us, f);
 }
 
 void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us)
@@ -191,8 +199,12 @@ void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us)
         return;
     }
     l->tx_at_us = now_us;
+#if MODCP_WITH_ASCII
     l->tx_len = l->framing == (uint8_t)MODCP_FRAMING_ASCII ? modcp_ascii_encode(l, pdu_len)
                                                            : modcp_rtu_encode(l, pdu_len);
+#else
+    l->tx_len = modcp_rtu_encode(l, pdu_len); /* RTU only: no ASCII in this build */
+#endif
     if (l->tx_len == 0u) {
         if (l->diag != NULL) {
             modcp_diag_event(l->diag, MODCP_EV_INTERNAL_SEND); /* reply does not fit */

@@ -40,6 +40,11 @@
  *                  DB with db != 0 with byte offset <= 65534, T, C), an ID string
  *                  not NUL-terminated within 17 bytes (index 0 vendor, 1 product,
  *                  2 revision, 3 app_name), diag_irq > 1.
+ *   a feature compiled out of this image (modcp/features.h) .... (0E)2EH fatal
+ *                  framing ascii without MODCP_WITH_ASCII; rs232_auto on without
+ *                  MODCP_WITH_RS232_SIGNALS; without MODCP_WITH_EXTENDED: fset
+ *                  extended, commloss not 0, scan_count not 0 (index 0xFF). The
+ *                  CP stays "not ready" with that reason, never half-working.
  *
  * Values of issues: the offending field value; for from/to problems of a window
  * from << 16 | to; for a bad area the area; for db 0 the db (0); for a T/C size
@@ -116,7 +121,11 @@ void modcp_params_defaults(modcp_params_t *p)
     p->rts_off_delay_ms = 0u;
     /* coils / inputs: area NONE (memset); hr/ir base 0 = register functions not
      * configured; regs32 off; limits {0,0} = writes disabled */
+#if MODCP_WITH_EXTENDED
     p->fset = MODCP_FSET_EXTENDED;
+#else
+    p->fset = MODCP_FSET_CP341; /* the only set in a build without the extended set */
+#endif
     p->cpu_model = MODCP_CPU_CP341;
     p->job_limit = 0u;
     p->cpu_timeout_ms = 1000u;
@@ -348,7 +357,7 @@ static bool id_terminated(const char *str)
 
 static void check_scanner(issue_sink_t *s, const modcp_params_t *p)
 {
-    if (p->scan_count > MODCP_SCANNER_MAX ||
+    if (p->scan_count > MODCP_SCANNER_MAX || (!MODCP_WITH_EXTENDED && p->scan_count != 0u) ||
         (uint32_t)p->scan_start + (uint32_t)p->scan_count > 0x10000u) {
         add_fatal(s, MODCP_PF_SCANNER, 0xFFu, MODCP_EV_PARAM_RECORD, p->scan_count);
         return;
@@ -397,7 +406,8 @@ static void run_checks(const modcp_params_t *p, issue_sink_t *s)
     if (p->slave_addr == 0u) {
         add_fatal(s, MODCP_PF_SLAVE_ADDR, 0u, MODCP_EV_SLAVE_ADDR, p->slave_addr);
     }
-    if (p->framing > MODCP_FRAMING_ASCII) {
+    if (p->framing > MODCP_FRAMING_ASCII ||
+        (!MODCP_WITH_ASCII && p->framing == MODCP_FRAMING_ASCII)) { /* compiled out */
         add_fatal(s, MODCP_PF_FRAMING, 0u, rec, p->framing);
     }
     if (p->opmode > MODCP_OPMODE_SUPPRESS) {
@@ -421,7 +431,8 @@ static void run_checks(const modcp_params_t *p, issue_sink_t *s)
     if (p->turnaround_ms > 100u) {
         add_fatal(s, MODCP_PF_TURNAROUND, 0u, rec, p->turnaround_ms);
     }
-    if (p->rs232_auto > 1u || (p->rs232_auto == 1u && p->iface != MODCP_IFACE_RS232)) {
+    if (p->rs232_auto > 1u || (p->rs232_auto == 1u && p->iface != MODCP_IFACE_RS232) ||
+        (!MODCP_WITH_RS232_SIGNALS && p->rs232_auto != 0u)) { /* compiled out */
         add_fatal(s, MODCP_PF_RS232_AUTO, 0u, rec, p->rs232_auto);
     }
     /* rts delays: every value 0 ... 65535 ms is legal */
@@ -437,7 +448,8 @@ static void run_checks(const modcp_params_t *p, issue_sink_t *s)
     check_limit(s, MODCP_PF_LIM_DB, &p->lim_db, true);
     check_limit(s, MODCP_PF_LIM_M, &p->lim_m, false);
     check_limit(s, MODCP_PF_LIM_Q, &p->lim_q, false);
-    if (p->fset > MODCP_FSET_EXTENDED) {
+    if (p->fset > MODCP_FSET_EXTENDED ||
+        (!MODCP_WITH_EXTENDED && p->fset == MODCP_FSET_EXTENDED)) { /* compiled out */
         add_fatal(s, MODCP_PF_FSET, 0u, rec, p->fset);
     }
     if (p->cpu_model > MODCP_CPU_CP441) {
@@ -452,7 +464,8 @@ static void run_checks(const modcp_params_t *p, issue_sink_t *s)
     if (p->start_time_ms == 0u) {
         add_fatal(s, MODCP_PF_START_TIME, 0u, rec, p->start_time_ms);
     }
-    if (p->commloss_ms != 0u && (p->commloss_ms < 100u || p->commloss_ms > 30000u)) {
+    if (p->commloss_ms != 0u &&
+        (p->commloss_ms < 100u || p->commloss_ms > 30000u || !MODCP_WITH_EXTENDED)) {
         add_fatal(s, MODCP_PF_COMMLOSS, 0u, rec, p->commloss_ms);
     }
     check_scanner(s, p);

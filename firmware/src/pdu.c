@@ -10,7 +10,8 @@
  * read before the first reply byte is written.
  * Function set `extended` (SPEC §5.3): listen-only and the FC12 receive event come
  * first (modcp_pdu_ext_pre); FC08, 11, 12, 17, 22, 23, 43 and scanner addresses of
- * FC03/06/16 go to pdu_ext.c after the FB check; `cp341` answers them with 01. */
+ * FC03/06/16 go to pdu_ext.c after the FB check; `cp341` answers them with 01. Built
+ * without the extended set (MODCP_WITH_EXTENDED 0) the engine is the cp341 set. */
 #include "modcp/pdu.h"
 
 #include <string.h>
@@ -30,8 +31,39 @@ uint16_t modcp_pdu_exception(uint8_t *pdu, uint8_t fc, uint8_t code)
     return 2;
 }
 
+/* ---- exceptions (manual set and extended set) ----------------------------------------------------------------- */
+
+modcp_pdu_action_t modcp_pdu_fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_event_t ev,
+                                  uint8_t code, uint8_t *pdu, uint16_t *out_len)
+{
+    modcp_diag_event(env->diag, ev);
+    if (code == 0u) {
+        code = modcp_event_exception(ev);
+        if (code == 0u) {
+            code = 4;
+        }
+    }
+    s->x.exc = code;
+    if (ev == MODCP_EV_XFER_TIMEOUT || ev == MODCP_EV_FB_TIMEOUT) {
+        s->x.timeout = 1;
+    }
+    /* Serial Line V1.02 §6.1: exceptions detected in broadcast messages count too */
+    modcp_diag_count(env->diag, MODCP_CNT_EXCEPTION);
+    if (code == 7u) {
+        modcp_diag_count(env->diag, MODCP_CNT_NAK);
+    } else if (code == 6u) {
+        modcp_diag_count(env->diag, MODCP_CNT_BUSY);
+    }
+    if (s->broadcast) {
+        modcp_diag_count(env->diag, MODCP_CNT_NO_RESPONSE);
+        return MODCP_PDU_NO_REPLY;
+    }
+    *out_len = modcp_pdu_exception(pdu, s->fc, code);
+    return MODCP_PDU_REPLY;
+}
+
 /* Record ev and answer with its exception code (04 when it has none); counts the
- * exception, also for a broadcast (pdu_ext.c). */
+ * exception, also for a broadcast. */
 static modcp_pdu_action_t fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_event_t ev,
                                uint8_t code, uint8_t *pdu, uint16_t *out_len)
 {
@@ -246,22 +278,32 @@ modcp_pdu_action_t modcp_pdu_request(modcp_pdu_t *s, const modcp_pdu_env_t *env,
     s->fc = pdu[0];
     s->broadcast = addr == 0u;
 
+#if MODCP_WITH_EXTENDED
     modcp_pdu_action_t pre;
     if (modcp_pdu_ext_pre(s, env, pdu, len, &pre)) {
         return pre; /* listen-only mode */
     }
+#endif
     if (s->broadcast && !fc_broadcast_allowed(s->fc)) {
         return fail(s, env, MODCP_EV_BCAST_FC, 1, pdu, out_len); /* silent, counted */
     }
+#if MODCP_WITH_EXTENDED
     if (!fc_supported(s->fc) && !modcp_pdu_ext_supported(env, s->fc)) {
         return fail(s, env, MODCP_EV_ILLEGAL_FC, 1, pdu, out_len);
     }
+#else
+    if (!fc_supported(s->fc)) { /* built without the extended set: the cp341 set */
+        return fail(s, env, MODCP_EV_ILLEGAL_FC, 1, pdu, out_len);
+    }
+#endif
     if (!env->fb_ready) {
         return fail(s, env, MODCP_EV_FB_NOT_RUNNING, 4, pdu, out_len);
     }
+#if MODCP_WITH_EXTENDED
     if (modcp_pdu_ext_claims(env, pdu, len)) {
         return modcp_pdu_ext_request(s, env, pdu, len, cap, out_len);
     }
+#endif
     switch (s->fc) {
     case 0x01:
     case 0x02:
@@ -303,9 +345,11 @@ modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env
                                       modcp_event_t ev, uint8_t *pdu, uint16_t *out_len)
 {
     *out_len = 0;
+#if MODCP_WITH_EXTENDED
     if (s->x.seq != 0u) {
         return modcp_pdu_ext_complete(s, env, ev, pdu, out_len); /* extended set */
     }
+#endif
     if (ev != MODCP_EV_NONE) {
         return fail(s, env, ev, 4, pdu, out_len);
     }

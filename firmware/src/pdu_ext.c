@@ -3,6 +3,8 @@
  * indirection scanner's request handling, and the end-of-request accounting (FC11
  * event counter, FC12 send events, comm-loss supervision).
  *
+ * modcp_pdu_fail() (exception accounting, needed by the manual set too) is in pdu.c.
+ *
  * Requests that need several CPU jobs (scanner: one job per scattered operand; FC23:
  * the write, then the read) run as a sequence: modcp_pdu_ext_request() returns the
  * first job, modcp_pdu_ext_complete() the next one, until the reply is built. Every
@@ -37,37 +39,6 @@ static uint16_t get16(const uint8_t *p)
 static bool extended(const modcp_pdu_env_t *env)
 {
     return env->p->fset == (uint8_t)MODCP_FSET_EXTENDED;
-}
-
-/* ---- exceptions ----------------------------------------------------------------- */
-
-modcp_pdu_action_t modcp_pdu_fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_event_t ev,
-                                  uint8_t code, uint8_t *pdu, uint16_t *out_len)
-{
-    modcp_diag_event(env->diag, ev);
-    if (code == 0u) {
-        code = modcp_event_exception(ev);
-        if (code == 0u) {
-            code = 4;
-        }
-    }
-    s->x.exc = code;
-    if (ev == MODCP_EV_XFER_TIMEOUT || ev == MODCP_EV_FB_TIMEOUT) {
-        s->x.timeout = 1;
-    }
-    /* Serial Line V1.02 §6.1: exceptions detected in broadcast messages count too */
-    modcp_diag_count(env->diag, MODCP_CNT_EXCEPTION);
-    if (code == 7u) {
-        modcp_diag_count(env->diag, MODCP_CNT_NAK);
-    } else if (code == 6u) {
-        modcp_diag_count(env->diag, MODCP_CNT_BUSY);
-    }
-    if (s->broadcast) {
-        modcp_diag_count(env->diag, MODCP_CNT_NO_RESPONSE);
-        return MODCP_PDU_NO_REPLY;
-    }
-    *out_len = modcp_pdu_exception(pdu, s->fc, code);
-    return MODCP_PDU_REPLY;
 }
 
 /* ---- receive event, listen-only mode -------------------------------------------- */

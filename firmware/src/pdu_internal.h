@@ -8,7 +8,7 @@
 
 #include "modcp/pdu.h"
 
-/* Record ev and answer with exception `code` (0: the event's code, else 04). Counts
+/* pdu.c: record ev and answer with exception `code` (0: the event's code, else 04). Counts
  * the exception (also for broadcast, Serial Line V1.02 §6.1 counter 3) and, for a
  * broadcast, the missing response. */
 modcp_pdu_action_t modcp_pdu_fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_event_t ev,

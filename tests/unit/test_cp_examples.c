@@ -1,7 +1,10 @@
 /* End to end through the core: frame in -> link -> PDU -> mapping -> job over the
  * backplane -> FB against controller memory -> reply out. Every worked example of
  * 004 §6 with the 004 §9 frames (CRC included), the 4.6.4 negative tests, every
- * exception code and event of SPEC §5.2, broadcast, and the not-ready states. */
+ * exception code and event of SPEC §5.2, broadcast, and the not-ready states.
+ * Built twice: unit.test_cp_examples against modcp_core, and unit.test_cp_manual
+ * against modcp_core_manual (the feature switches of modcp/features.h off), where
+ * MODCP_TEST_MANUAL adds the checks that the switched-off features are refused. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -460,6 +463,213 @@ static void test_fmul_corrected(void **state)
     world_free(w);
 }
 
+#if defined(MODCP_TEST_MANUAL)
+/* ---- the core built for the manual's function set (modcp_core_manual) ------------- */
+
+_Static_assert(!MODCP_WITH_EXTENDED && !MODCP_WITH_ASCII && !MODCP_WITH_RS232_SIGNALS &&
+                   MODCP_SHARED_PARAMS_BUFFER,
+               "unit.test_cp_manual must be built against modcp_core_manual");
+
+/* A record asking for a feature compiled out of the image: refused with (0E)2EH and
+ * the field, the CP stays not ready (FB: CP_START_ERROR, ERROR_INFO 0E2EH). */
+static void refused(const modcp_params_t *p, modcp_param_field_t field)
+{
+    modcp_param_issue_t issues[8];
+    size_t n = modcp_params_validate(p, issues, 8);
+    assert_int_equal(n, 1);
+    assert_int_equal(issues[0].field, field);
+    assert_true(issues[0].fatal);
+    assert_int_equal(issues[0].event, MODCP_EV_PARAM_RECORD);
+
+    modcp_params_t q = *p;
+    q.start_time_ms = 500;
+    world_t *w = world_new(&q);
+    assert_false(world_start(w, 2000));
+    assert_true(w->fb_out.cp_start_error);
+    assert_int_equal(w->fb_out.error_info, MODCP_EV_PARAM_RECORD);
+    assert_false(w->cp.configured);
+    assert_int_equal(w->cp.param_event, MODCP_EV_PARAM_RECORD);
+    expect_silence(w, "05 08 00 00 A5 C3 DA 8E");
+    world_free(w);
+}
+
+static void test_manual_refuses_compiled_out(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    world_example_params(&p);
+    assert_int_equal(p.fset, MODCP_FSET_CP341); /* the default of this build */
+    assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+
+    modcp_params_t q = p;
+    q.framing = MODCP_FRAMING_ASCII;
+    refused(&q, MODCP_PF_FRAMING);
+    q = p;
+    q.fset = MODCP_FSET_EXTENDED;
+    refused(&q, MODCP_PF_FSET);
+    q = p;
+    q.commloss_ms = 1000;
+    refused(&q, MODCP_PF_COMMLOSS);
+    q = p;
+    q.scan_start = 9000;
+    q.scan_count = 1;
+    q.scan[0].area = MODCP_AREA_M;
+    q.scan[0].offset = 10;
+    refused(&q, MODCP_PF_SCANNER);
+    q = p;
+    q.iface = MODCP_IFACE_RS232;
+    q.rs232_auto = 1;
+    refused(&q, MODCP_PF_RS232_AUTO);
+}
+
+/* The extended function codes and FC08 sub-functions answer as in the cp341 set; the
+ * frame buffer is the RTU ADU. */
+static void test_manual_cp341_set(void **state)
+{
+    (void)state;
+    world_t *w = started(NULL);
+    assert_int_equal(w->cp.link.size, MODCP_ADU_MAX);
+    assert_int_equal(w->cp.link.cap, MODCP_ADU_MAX);
+    static const uint8_t fc11[] = {0x05, 0x0B};
+    expect_exception(w, fc11, sizeof fc11, 1, MODCP_EV_ILLEGAL_FC);
+    static const uint8_t fc23[] = {0x05, 0x17, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00,
+                                   0x00, 0x01, 0x02, 0x12, 0x34};
+    expect_exception(w, fc23, sizeof fc23, 1, MODCP_EV_ILLEGAL_FC);
+    static const uint8_t sub01[] = {0x05, 0x08, 0x00, 0x01, 0x00, 0x00};
+    expect_exception(w, sub01, sizeof sub01, 3, MODCP_EV_DIAG_SUBFC);
+    expect_reply(w, "05 08 00 00 A5 C3 DA 8E", "05 08 00 00 A5 C3 DA 8E");
+    modcp_cp_on_signals(&w->cp, false, false, w->now_us); /* no signals: ignored */
+    expect_reply(w, "05 08 00 00 A5 C3 DA 8E", "05 08 00 00 A5 C3 DA 8E");
+    world_free(w);
+}
+
+/* ---- PARAMS record in the frame buffer (MODCP_SHARED_PARAMS_BUFFER) ---------------- */
+
+/* The CPU side sends its record again, block by block, as the FB does (its sequence
+ * numbers), without running the FB: blocks *k.. up to `blocks` of them, as many as
+ * the ring takes. Returns true when the whole record is out. */
+static bool push_record(world_t *w, size_t *k, size_t blocks)
+{
+    size_t total = (w->record_len + MODCP_BLOCK_SIZE - 1u) / MODCP_BLOCK_SIZE;
+    for (size_t m = 0; m < blocks && *k < total; m++) {
+        size_t off = *k * MODCP_BLOCK_SIZE;
+        size_t n = w->record_len - off < MODCP_BLOCK_SIZE ? w->record_len - off : MODCP_BLOCK_SIZE;
+        uint8_t flags = (uint8_t)((*k == 0 ? MODCP_BLK_FIRST : 0) | (*k + 1 == total ? MODCP_BLK_LAST : 0));
+        if (!modcp_ring_put_data(&w->bp.to_cp, &w->fb.tx_seq, MODCP_BP_PARAMS, flags, 0,
+                                 w->record + off, (uint8_t)n)) {
+            break; /* ring full */
+        }
+        ++*k;
+    }
+    return *k == total;
+}
+
+/* Push the rest of the record, polling the CP as the ring fills. */
+static void push_rest(world_t *w, size_t *k)
+{
+    for (int guard = 0; guard < 100; guard++) {
+        bool all = push_record(w, k, 1000);
+        w->now_us += 1000;
+        modcp_cp_poll(&w->cp, w->now_us);
+        if (all) {
+            return;
+        }
+    }
+    fail();
+}
+
+/* The FB starts the CP again (CP_START edge) and it becomes ready. */
+static void restart(world_t *w)
+{
+    w->fb_paused = false;
+    modcp_fb_in_t in = {false};
+    modcp_fb_call(&w->fb, &in, &w->fb_out, w->now_us / 1000u);
+    assert_true(world_start(w, 2000));
+    assert_true(modcp_cp_ready(&w->cp));
+}
+
+/* A record arriving while a request waits for its CPU job: the request is dropped
+ * before the first record byte lands in the frame buffer, nothing is ever sent for it
+ * (not even when the CPU side answers the old job later), the record is taken. */
+static void test_shared_record_during_request(void **state)
+{
+    (void)state;
+    world_t *w = started(NULL);
+    assert_true(w->cp.job.msgbuf == w->cp.buf);
+    w->fb_paused = true;
+    unsigned sent = w->fake.tx_count;
+    assert_int_equal(world_request(w, "05 03 00 50 00 02 C5 9E", 5), 0);
+    assert_true(w->cp.request_pending);
+    assert_int_equal(w->cp.link.state, MODCP_LINK_BUSY);
+
+    size_t k = 0;
+    assert_false(push_record(w, &k, 1)); /* first block only */
+    modcp_cp_poll(&w->cp, w->now_us);
+    assert_false(w->cp.request_pending);
+    assert_false(w->cp.configured);
+    assert_false(w->cp.link.enabled);
+    assert_false(modcp_job_busy(&w->cp.job));
+    assert_memory_equal(w->cp.buf, w->record, MODCP_BLOCK_SIZE);
+    /* the line is off while the record arrives */
+    assert_int_equal(world_request(w, "05 08 00 00 A5 C3 DA 8E", 5), 0);
+
+    /* the rest: the CP is configured again with the same record */
+    push_rest(w, &k);
+    assert_true(w->cp.configured);
+    assert_int_equal(w->cp.param_event, MODCP_EV_NONE);
+    assert_int_equal(w->fake.tx_count, sent);
+
+    restart(w); /* the FB runs the old job too: its late reply is dropped */
+    assert_int_equal(w->fake.tx_count, sent);
+    expect_reply(w, "05 08 00 00 A5 C3 DA 8E", "05 08 00 00 A5 C3 DA 8E");
+    world_free(w);
+}
+
+/* A record arriving while a reply is on the line: the reply is sent from the frame
+ * buffer, so the record waits in the backplane until transmission complete. */
+static void test_shared_record_during_reply(void **state)
+{
+    (void)state;
+    world_t *w = started(NULL);
+    w->fb_paused = true;
+    static const uint8_t req[] = {0x05, 0x08, 0x00, 0x00, 0xA5, 0xC3, 0xDA, 0x8E};
+    unsigned sent = w->fake.tx_count;
+    for (size_t k = 0; k < sizeof req; k++) {
+        modcp_cp_on_rx(&w->cp, req[k], w->now_us);
+        w->now_us += 10;
+    }
+    w->now_us += w->fake.timer_us;
+    modcp_cp_on_timer(&w->cp, w->now_us);
+    assert_int_equal(w->fake.tx_count, sent + 1);
+    assert_int_equal(w->cp.link.state, MODCP_LINK_TX); /* no transmission complete yet */
+    uint16_t n = w->fake.tx_len;
+    assert_memory_equal(w->fake.tx, req, sizeof req);
+
+    size_t k = 0;
+    (void)push_record(w, &k, 1000);
+    for (int m = 0; m < 5; m++) {
+        w->now_us += 1000;
+        modcp_cp_poll(&w->cp, w->now_us);
+    }
+    /* still sending: the reply bytes in the buffer are untouched, the record waits */
+    assert_int_equal(w->cp.link.state, MODCP_LINK_TX);
+    assert_memory_equal(w->cp.buf, w->fake.tx, n);
+    assert_true(w->cp.configured);
+    assert_int_equal(w->cp.job.msgkind, 0);
+
+    assert_non_null(modcp_ring_peek(&w->bp.to_cp)); /* the record's first block */
+    modcp_cp_on_tx_done(&w->cp, w->now_us);
+    push_rest(w, &k);
+    assert_true(w->cp.configured); /* the record was taken */
+    assert_int_equal(w->cp.param_event, MODCP_EV_NONE);
+    assert_false(w->cp.fb_ready);  /* and waits for the FB's INIT */
+    assert_int_equal(w->fake.tx_count, sent + 1);
+    restart(w);
+    expect_reply(w, "05 08 00 00 A5 C3 DA 8E", "05 08 00 00 A5 C3 DA 8E");
+    world_free(w);
+}
+#endif
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -486,6 +696,12 @@ int main(void)
         cmocka_unit_test(test_other_address_and_crc),
         cmocka_unit_test(test_bad_params_not_ready),
         cmocka_unit_test(test_fmul_corrected),
+#if defined(MODCP_TEST_MANUAL)
+        cmocka_unit_test(test_manual_refuses_compiled_out),
+        cmocka_unit_test(test_manual_cp341_set),
+        cmocka_unit_test(test_shared_record_during_request),
+        cmocka_unit_test(test_shared_record_during_reply),
+#endif
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

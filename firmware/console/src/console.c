@@ -880,10 +880,12 @@ static int cmd_status(modcp_console_env_t *env, out_t *o)
                    (unsigned)d->counters[MODCP_CNT_CHAR_OVERRUN], (unsigned long)d->events_total,
                    (unsigned)d->char_errors, (unsigned)d->breaks, (unsigned)d->frames_too_long,
                    (unsigned)d->t15_discards);
+#if MODCP_WITH_EXTENDED
         /* extended set: FC08 sub 04 listen-only, comm-loss supervision (MODCP_CPST_*) */
         out_printf(o, " listen_only=%u commloss=%u comm_events=%u",
                    d->comm.listen_only ? 1u : 0u, d->comm.commloss ? 1u : 0u,
                    (unsigned)d->comm.event_count);
+#endif
     }
     return MODCP_CONSOLE_OK;
 }

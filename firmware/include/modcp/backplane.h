@@ -158,6 +158,9 @@ bool modcp_ring_put_data(modcp_ring_t *r, uint8_t *seq, uint8_t kind, uint8_t fl
                          const uint8_t *data, uint8_t len);
 /* Consumer side: copy out and acknowledge the oldest block. Returns false when empty. */
 bool modcp_ring_get(modcp_ring_t *r, modcp_block_t *b);
+/* Consumer side: the oldest block without taking it (NULL when empty). It stays valid
+ * until the consumer takes it. */
+const modcp_block_t *modcp_ring_peek(const modcp_ring_t *r);
 /* Blocks free for the producer. */
 uint32_t modcp_ring_space(const modcp_ring_t *r);
 

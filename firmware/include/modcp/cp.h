@@ -8,6 +8,7 @@
  *   CP task (often)       -> modcp_cp_poll()  (backplane, job timeouts, LEDs)
  * The CP is configured by the PARAMS record the CPU side sends over the backplane;
  * until then (or with an invalid record) it is not ready and the line is ignored.
+ * Members marked with a feature switch (modcp/features.h) exist only when it is on.
  * Until the FB's INIT arrives every request gets exception 04 and (0E)56H. */
 #ifndef MODCP_CP_H
 #define MODCP_CP_H
@@ -18,6 +19,7 @@
 #include "modcp/backplane.h"
 #include "modcp/cpdiag.h"
 #include "modcp/diag.h"
+#include "modcp/features.h"
 #include "modcp/hal.h"
 #include "modcp/job.h"
 #include "modcp/leds.h"
@@ -27,6 +29,11 @@
 #include "modcp/pdu.h"
 #include "modcp/signals.h"
 
+
+#if MODCP_SHARED_PARAMS_BUFFER
+#define MODCP_CP_BUF_SIZE                                                                    \
+    (MODCP_LINK_BUF_MAX > MODCP_PARAMS_RECORD_MAX ? MODCP_LINK_BUF_MAX : MODCP_PARAMS_RECORD_MAX)
+#endif
 
 typedef struct modcp_cp {
     const modcp_hal_t *hal;
@@ -48,14 +55,24 @@ typedef struct modcp_cp {
     bool published;
     modcp_cp_status_t last_status; /* what was last published on the backplane */
     modcp_event_t ack_event;
+#if MODCP_SHARED_PARAMS_BUFFER
+    uint8_t buf[MODCP_CP_BUF_SIZE];            /* frame buffer (first MODCP_LINK_BUF_MAX
+                                                  bytes), and the PARAMS record as it
+                                                  arrives while the link is off */
+#else
     uint8_t buf[MODCP_LINK_BUF_MAX];           /* frame buffer: request, then reply (ASCII:
                                                   hex-encoded in place, see link.h) */
     uint8_t record[MODCP_PARAMS_RECORD_MAX];   /* PARAMS record as it arrives */
+#endif
     /* line discipline and diagnostics (signals.c, leds.c, cpdiag.c) */
+#if MODCP_WITH_RS232_SIGNALS
     modcp_sig_t sig;       /* RS232 automatic secondary signals */
+#endif
     modcp_leds_t leds;     /* SF / TXD / RXD */
     modcp_cpdiag_t cpdiag; /* wire break, diagnostic interrupt, SYSTAT service */
+#if MODCP_WITH_EXTENDED
     modcp_ext_t ext;       /* extended function set: comm loss, ASCII delimiter (ext.h) */
+#endif
 } modcp_cp_t;
 
 void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp);

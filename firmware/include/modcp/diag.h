@@ -12,6 +12,7 @@
 
 #include "modcp/commlog.h"
 #include "modcp/events.h"
+#include "modcp/features.h"
 
 #define MODCP_DIAG_BUFFER 9
 #define MODCP_SYSTAT_EVENTS 6
@@ -46,7 +47,9 @@ typedef struct {
     uint16_t char_errors;
     uint16_t breaks;
     uint16_t t15_discards;
+#if MODCP_WITH_EXTENDED
     modcp_comm_t comm; /* FC11 / FC12 event counter and log, listen-only (commlog.h) */
+#endif
 } modcp_diag_t;
 
 void modcp_diag_init(modcp_diag_t *d);

@@ -8,6 +8,7 @@
 #include <stdint.h>
 
 #include "modcp/backplane.h"
+#include "modcp/features.h"
 
 typedef enum {
     MODCP_JOBST_IDLE = 0,
@@ -23,6 +24,10 @@ typedef enum {
     MODCP_JOBP_DONE,   /* current job finished: see event (NONE = success) and rlen */
     MODCP_JOBP_PARAMS, /* a complete PARAMS record is in msgbuf[0 .. msglen) */
     MODCP_JOBP_INIT,   /* an INIT message arrived: see init */
+    MODCP_JOBP_PARAMS_START, /* MODCP_SHARED_PARAMS_BUFFER: a PARAMS record starts, its
+                                first block waits in the ring, nothing is stored; free
+                                msgbuf, then call modcp_job_params_grant() (reported on
+                                every poll until then) */
 } modcp_jobp_t;
 
 typedef struct {
@@ -50,6 +55,9 @@ typedef struct {
     uint16_t msglen;
     uint8_t msgkind;   /* kind being reassembled, 0 = none */
     bool msg_overflow;
+#if MODCP_SHARED_PARAMS_BUFFER
+    bool msg_granted;  /* the owner freed msgbuf for the PARAMS block ahead */
+#endif
     modcp_bp_init_t init;
     uint32_t proto_errors; /* sequence / framing errors seen on the ring */
     uint32_t illegal_msgs; /* blocks of a kind the CPU side must not send (also in
@@ -74,6 +82,11 @@ modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us);
 void modcp_job_abort(modcp_job_t *j);
 
 bool modcp_job_busy(const modcp_job_t *j);
+
+#if MODCP_SHARED_PARAMS_BUFFER
+/* After MODCP_JOBP_PARAMS_START: msgbuf is free, the PARAMS record may be stored. */
+void modcp_job_params_grant(modcp_job_t *j);
+#endif
 
 /* Answer an INIT (NONE = ready). False if the ring is full (call again later). */
 bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev);

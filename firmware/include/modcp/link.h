@@ -17,6 +17,7 @@
 #include <stdint.h>
 
 #include "modcp/diag.h"
+#include "modcp/features.h"
 #include "modcp/hal.h"
 #include "modcp/params.h"
 
@@ -25,10 +26,15 @@
  * MODCP_ADU_MAX bytes), but the reply is hex-encoded in place: ':' + 2 x (address,
  * PDU of up to 253 bytes, LRC) + CR LF = 513 characters. A CP's frame buffer is
  * MODCP_LINK_BUF_MAX bytes (249 more than RTU alone needs); RTU still uses only the
- * first MODCP_ADU_MAX. */
+ * first MODCP_ADU_MAX. Built without ASCII (MODCP_WITH_ASCII 0, modcp/features.h) the
+ * frame buffer is MODCP_ADU_MAX. */
 #define MODCP_ASCII_PDU_MAX 253u
 #define MODCP_ASCII_ADU_MAX (1u + 2u * (1u + MODCP_ASCII_PDU_MAX + 1u) + 2u)
+#if MODCP_WITH_ASCII
 #define MODCP_LINK_BUF_MAX MODCP_ASCII_ADU_MAX
+#else
+#define MODCP_LINK_BUF_MAX MODCP_ADU_MAX
+#endif
 
 typedef enum {
     MODCP_LINK_IDLE = 0,  /* waiting for the first byte of a frame */

@@ -13,6 +13,7 @@
 #include <stdint.h>
 
 #include "modcp/events.h"
+#include "modcp/features.h"
 
 #define MODCP_PARAMS_VERSION 1u
 #define MODCP_PARAMS_RECORD_MAX 400u /* upper bound of the serialised record */
