@@ -379,10 +379,11 @@ static void publish(modcp_cp_t *cp)
     memcpy(st.counters, cp->diag.counters, sizeof st.counters);
     st.param_event = cp->param_event;
     line_status(cp, &st);
-    if (cp->published && memcmp(&st, &cp->last_status, sizeof st) == 0) {
+    /* The CP is the only writer of the status area, so it may compare with what it
+     * published last without a copy of its own. */
+    if (cp->published && memcmp(&st, &cp->bp->status, sizeof st) == 0) {
         return;
     }
-    cp->last_status = st;
     cp->published = true;
     modcp_bp_publish_status(cp->bp, &st);
 }

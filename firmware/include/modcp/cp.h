@@ -53,7 +53,6 @@ typedef struct modcp_cp {
     bool ack_pending;     /* an INIT_ACK could not be sent yet */
     uint32_t status_flags; /* extra MODCP_CPST_* flags (comm loss, listen only) */
     bool published;
-    modcp_cp_status_t last_status; /* what was last published on the backplane */
     modcp_event_t ack_event;
 #if MODCP_SHARED_PARAMS_BUFFER
     uint8_t buf[MODCP_CP_BUF_SIZE];            /* frame buffer (first MODCP_LINK_BUF_MAX

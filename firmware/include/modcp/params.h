@@ -16,7 +16,7 @@
 #include "modcp/features.h"
 
 #define MODCP_PARAMS_VERSION 1u
-#define MODCP_PARAMS_RECORD_MAX 400u /* upper bound of the serialised record */
+#define MODCP_PARAMS_RECORD_MAX 320u /* upper bound of the serialised record (316 bytes in version 1; checked at compile time) */
 
 typedef enum { MODCP_PARITY_NONE = 0, MODCP_PARITY_ODD = 1, MODCP_PARITY_EVEN = 2 } modcp_parity_t;
 typedef enum { MODCP_FRAMING_RTU = 0, MODCP_FRAMING_ASCII = 1 } modcp_framing_t;
