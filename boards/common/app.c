@@ -121,6 +121,13 @@ static void execute_line(void)
         env.paused = &paused;
         env.cp_start = &cp_start;
         env.cycles = cycles;
+        modcp_cp_status_t cst; /* the CP's status area, read from the backplane */
+        for (int k = 0; k < 100; k++) {
+            if (modcp_bp_read_status(&bp, &cst)) {
+                env.cp_status = &cst;
+                break;
+            }
+        }
         con_out[0] = '\0';
         (void)modcp_console_exec(&env, con_line, con_out, sizeof con_out);
         if (con_out[0] != '\0') {

@@ -11,6 +11,8 @@
 #include <cmocka.h>
 
 #include "modcp/console.h"
+#include "modcp/hal.h"
+#include "modcp/signals.h"
 
 typedef struct {
     uint8_t i[16], q[16], m[32];
@@ -213,6 +215,27 @@ static void test_diag_status_pause(void **state)
     assert_non_null(strstr(run(f, "status", MODCP_CONSOLE_OK), " cp=not-configured param_event=(0E)23H "));
 }
 
+/* The CP's status area (read from the backplane): LEDs, RS232 signals, line state and
+ * the last diagnostic interrupt record, in words (issue 7). */
+static void test_status_line_area(void **state)
+{
+    fx_t *f = *state;
+    modcp_cp_status_t st;
+    memset(&st, 0, sizeof st);
+    f->env.cp_status = &st;
+    assert_non_null(strstr(run(f, "status", MODCP_CONSOLE_OK),
+                           " leds=off signals=off line=ok signal_aborts=0 diag_irq=none"));
+    st.leds = (uint8_t)((1u << MODCP_LED_SF) | (1u << MODCP_LED_RXD));
+    st.signals = MODCP_SIGBIT_RTS | MODCP_SIGBIT_DTR | MODCP_SIGBIT_DSR | MODCP_SIGBIT_AUTO;
+    st.flags = MODCP_CPST_WIRE_BREAK;
+    st.signal_aborts = 2;
+    memcpy(st.diag_irq, "\x25\x0C\x02\x00", 4);
+    st.diag_irq_count = 1;
+    assert_non_null(strstr(run(f, "status", MODCP_CONSOLE_OK),
+                           " leds=SF,RXD signals=RTS,DTR,DSR(auto) line=wire-break signal_aborts=2"
+                           " diag_irq=25.0C.02.00(#1)"));
+}
+
 static void test_missing_env(void **state)
 {
     (void)state;
@@ -307,6 +330,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_dump_lines, setup, teardown),
         cmocka_unit_test_setup_teardown(test_errors, setup, teardown),
         cmocka_unit_test_setup_teardown(test_diag_status_pause, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_status_line_area, setup, teardown),
         cmocka_unit_test(test_missing_env),
         cmocka_unit_test_setup_teardown(test_truncation, setup, teardown),
         cmocka_unit_test(test_operand_parse_name),

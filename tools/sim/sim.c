@@ -242,6 +242,14 @@ static void exec_console(sim_t *s)
     env.paused = &s->paused;
     env.cp_start = &s->fb_in.cp_start;
     env.cycles = s->cycles;
+    /* the CP's status area, read from the backplane like any user program would */
+    modcp_cp_status_t cst;
+    for (int k = 0; k < 100; k++) {
+        if (modcp_bp_read_status(&s->bp, &cst)) {
+            env.cp_status = &cst;
+            break;
+        }
+    }
     (void)modcp_console_exec(&env, s->cmd_line, s->cmd_out, sizeof s->cmd_out);
 }
 

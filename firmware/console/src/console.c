@@ -10,6 +10,7 @@
  *  - set on T, C and I is allowed: the console is the user program's view of the
  *    controller memory, not the master's. */
 #include "modcp/console.h"
+#include "modcp/signals.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -886,6 +887,42 @@ static int cmd_status(modcp_console_env_t *env, out_t *o)
                    d->comm.listen_only ? 1u : 0u, d->comm.commloss ? 1u : 0u,
                    (unsigned)d->comm.event_count);
 #endif
+    }
+    const modcp_cp_status_t *st = env->cp_status;
+    if (st != NULL) {
+        static const char *const led_names[3] = {"SF", "TXD", "RXD"};
+        static const struct {
+            uint8_t bit;
+            const char *name;
+        } sig_names[4] = {{MODCP_SIGBIT_RTS, "RTS"}, {MODCP_SIGBIT_DTR, "DTR"},
+                          {MODCP_SIGBIT_CTS, "CTS"}, {MODCP_SIGBIT_DSR, "DSR"}};
+        out_printf(o, " leds=");
+        bool any = false;
+        for (unsigned k = 0; k < 3u; k++) {
+            if ((st->leds & (1u << k)) != 0u) {
+                out_printf(o, "%s%s", any ? "," : "", led_names[k]);
+                any = true;
+            }
+        }
+        out_printf(o, "%s signals=", any ? "" : "off");
+        any = false;
+        for (unsigned k = 0; k < 4u; k++) {
+            if ((st->signals & sig_names[k].bit) != 0u) {
+                out_printf(o, "%s%s", any ? "," : "", sig_names[k].name);
+                any = true;
+            }
+        }
+        out_printf(o, "%s%s line=%s signal_aborts=%u diag_irq=", any ? "" : "off",
+                   (st->signals & MODCP_SIGBIT_AUTO) != 0u ? "(auto)" : "",
+                   (st->flags & MODCP_CPST_WIRE_BREAK) != 0u ? "wire-break" : "ok",
+                   (unsigned)st->signal_aborts);
+        if (st->diag_irq_count == 0u) {
+            out_printf(o, "none");
+        } else {
+            out_printf(o, "%02X.%02X.%02X.%02X(#%lu)", (unsigned)st->diag_irq[0],
+                       (unsigned)st->diag_irq[1], (unsigned)st->diag_irq[2],
+                       (unsigned)st->diag_irq[3], (unsigned long)st->diag_irq_count);
+        }
     }
     return MODCP_CONSOLE_OK;
 }

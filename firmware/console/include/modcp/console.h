@@ -19,6 +19,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "modcp/backplane.h"
 #include "modcp/diag.h"
 #include "modcp/events.h"
 #include "modcp/fb.h"
@@ -66,6 +67,10 @@ typedef struct modcp_console_env {
     bool cp_ready;                 /* configured and the FB's INIT accepted */
     modcp_event_t cp_param_event;  /* first fatal parameter event, NONE if configured */
     uint32_t cycles;               /* user program cycles so far */
+    /* The CP's status area as the CPU side reads it from the backplane
+     * (modcp_bp_read_status); optional: LEDs, RS232 signals, line state and the last
+     * diagnostic interrupt record in `status`. */
+    const modcp_cp_status_t *cp_status;
 } modcp_console_env_t;
 
 enum {
