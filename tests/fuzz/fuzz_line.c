@@ -10,6 +10,8 @@
  *   0xF8        parity error, 0xF9 framing error, 0xFA overrun, 0xFB BREAK
  *   0xFC        run one FB cycle (1 ms), 0xFD next byte is a literal
  *   anything else: a received byte, 100 us after the previous one.
+ * Both framings: the replay runs every kind of input in RTU and in ASCII; for libFuzzer
+ * the first input byte selects the framing (bit 0: 1 = ASCII).
  * Built as a libFuzzer target with clang (-DMODCP_FUZZ=ON), and as a deterministic
  * replay driver (fuzz_replay) that ctest runs on every build. */
 #include <stdint.h>
@@ -50,6 +52,48 @@ typedef struct {
 
 static fworld_t W;
 static fworld_t SNAP; /* memory image before the input */
+static int ascii_mode; /* Modbus ASCII framing instead of RTU (test code) */
+
+static int hexval(uint8_t c)
+{
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+}
+
+/* ':' + hex pairs + LRC + CR LF -> binary (without the LRC); 0 if malformed. */
+static size_t ascii_decode(const uint8_t *a, size_t n, uint8_t *out)
+{
+    if (n < 9u || a[0] != ':' || a[n - 2] != '\r' || a[n - 1] != '\n' || (n - 3u) % 2u != 0u) {
+        return 0;
+    }
+    size_t m = 0;
+    uint8_t sum = 0;
+    for (size_t k = 1; k + 2 < n; k += 2) {
+        int hi = hexval(a[k]), lo = hexval(a[k + 1]);
+        if (hi < 0 || lo < 0) return 0;
+        out[m] = (uint8_t)(hi * 16 + lo);
+        sum = (uint8_t)(sum + out[m++]);
+    }
+    return sum == 0u ? m - 1u : 0u;
+}
+
+static size_t ascii_encode(const uint8_t *b, size_t n, uint8_t *out)
+{
+    static const char hx[] = "0123456789ABCDEF";
+    size_t m = 0;
+    uint8_t sum = 0;
+    out[m++] = ':';
+    for (size_t k = 0; k <= n; k++) {
+        uint8_t v = k < n ? b[k] : (uint8_t)(0u - sum);
+        if (k < n) sum = (uint8_t)(sum + v);
+        out[m++] = (uint8_t)hx[v >> 4];
+        out[m++] = (uint8_t)hx[v & 15u];
+    }
+    out[m++] = '\r';
+    out[m++] = '\n';
+    return m;
+}
 
 static void die(const char *what)
 {
@@ -60,6 +104,21 @@ static void die(const char *what)
 static void f_tx(void *ctx, const uint8_t *buf, uint16_t len)
 {
     fworld_t *w = ctx;
+    if (ascii_mode) {
+        uint8_t bin[300];
+        if (len > 2u * 260u + 5u) {
+            die("ASCII reply length");
+        }
+        size_t m = ascii_decode(buf, len, bin);
+        if (m < 2u || bin[0] != 5 || ((bin[1] & 0x80u) && (m != 3u || bin[2] < 1u || bin[2] > 4u))) {
+            die("ASCII reply format / LRC / address");
+        }
+        memcpy(w->tx, buf, len);
+        w->tx_len = len;
+        w->tx_pending = 1;
+        w->replies++;
+        return;
+    }
     if (len > 264u || len < 5u) {
         die("reply length");
     }
@@ -107,6 +166,11 @@ static void setup(void)
     p.lim_m = (modcp_limit_t){1000, 1255};
     p.lim_q = (modcp_limit_t){256, 319};
     p.cpu_timeout_ms = 50;
+    if (ascii_mode) {
+        p.framing = MODCP_FRAMING_ASCII;
+        p.data_bits = 7;
+        p.ascii_timeout_ms = 20;
+    }
     for (unsigned k = 0; k < NDB; k++) {
         W.dbs[k] = (modcp_db_t){db_numbers[k], k == 0 ? 64 : 1024, W.db_data[k]};
     }
@@ -189,20 +253,27 @@ static void check_memory(void)
 
 static void good_request_answered(void)
 {
-    uint8_t req[8] = {5, 0x08, 0x00, 0x00, 0x12, 0x34};
-    uint16_t crc = modcp_crc16(req, 6);
-    req[6] = (uint8_t)crc;
-    req[7] = (uint8_t)(crc >> 8);
-    advance(20000); /* silence: whatever was going on is over */
+    uint8_t req[32] = {5, 0x08, 0x00, 0x00, 0x12, 0x34};
+    size_t n = 8;
+    if (ascii_mode) {
+        uint8_t bin[6];
+        memcpy(bin, req, 6);
+        n = ascii_encode(bin, 6, req);
+    } else {
+        uint16_t crc = modcp_crc16(req, 6);
+        req[6] = (uint8_t)crc;
+        req[7] = (uint8_t)(crc >> 8);
+    }
+    advance(40000); /* silence: whatever was going on is over */
     settle();
     unsigned before = W.replies;
-    for (int k = 0; k < 8; k++) {
+    for (size_t k = 0; k < n; k++) {
         modcp_cp_on_rx(&W.cp, req[k], W.now_us);
         advance(100);
     }
     advance(10000);
     settle();
-    if (W.replies != before + 1 || W.tx_len != 8 || memcmp(W.tx, req, 8) != 0) {
+    if (W.replies != before + 1 || W.tx_len != n || memcmp(W.tx, req, n) != 0) {
         die("good request not answered after the input");
     }
 }
@@ -210,6 +281,14 @@ static void good_request_answered(void)
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
+#ifdef MODCP_LIBFUZZER
+    if (size == 0) {
+        return 0;
+    }
+    ascii_mode = data[0] & 1u; /* the first byte selects RTU or ASCII framing */
+    data++;
+    size--;
+#endif
     setup();
     SNAP = W;
     for (size_t k = 0; k < size; k++) {
@@ -279,10 +358,11 @@ int main(int argc, char **argv)
         {13, 5, 16, 0x00, 0x32, 0x00, 0x03, 0x06, 0xCD, 0x09, 0xDE, 0x1A, 0xEF, 0x2B},
         {6, 0, 6, 0x00, 0x10, 0xAA, 0x55},
     };
-    uint8_t in[700];
+    uint8_t in[1400];
     unsigned runs = 0, m_changed = 0;
-    unsigned long total_replies = 0;
-    for (unsigned it = 0; it < iterations; it++) {
+    unsigned long total_replies = 0, ascii_replies = 0;
+    for (unsigned it = 0; it < 2u * iterations; it++) {
+        ascii_mode = it >= iterations; /* first RTU, then the same kind of input in ASCII */
         size_t n = 0;
         unsigned frames = 1 + next() % 4;
         for (unsigned f = 0; f < frames && n < 600; f++) {
@@ -292,8 +372,13 @@ int main(int argc, char **argv)
                 for (unsigned k = 0; k < len; k++) in[n++] = (uint8_t)next();
             } else { /* a seed frame with its CRC, mutated or not */
                 const uint8_t *s = seeds[next() % (sizeof seeds / sizeof seeds[0])];
-                uint8_t fr[20];
-                size_t len = with_crc(s + 1, s[0], fr);
+                uint8_t fr[40];
+                size_t len;
+                if (ascii_mode) {
+                    len = ascii_encode(s + 1, s[0], fr);
+                } else {
+                    len = with_crc(s + 1, s[0], fr);
+                }
                 if (kind == 2) fr[next() % len] ^= (uint8_t)(1u << (next() % 8));
                 if (kind == 3) fr[1 + next() % (len - 1)] = (uint8_t)next();
                 for (size_t k = 0; k < len; k++) {
@@ -307,11 +392,12 @@ int main(int argc, char **argv)
         LLVMFuzzerTestOneInput(in, n);
         runs++;
         total_replies += W.replies - 1u; /* minus the closing good request */
+        ascii_replies += ascii_mode ? W.replies - 1u : 0u;
         m_changed += memcmp(W.m, SNAP.m, sizeof W.m) != 0;
     }
-    printf("fuzz replay: %u inputs, %lu replies, %u inputs wrote M, invariants held\n", runs,
-           total_replies, m_changed);
-    if (total_replies == 0 || m_changed == 0) {
+    printf("fuzz replay: %u inputs (RTU and ASCII), %lu replies (%lu in ASCII), %u inputs wrote M,"
+           " invariants held\n", runs, total_replies, ascii_replies, m_changed);
+    if (total_replies == ascii_replies || ascii_replies == 0 || m_changed == 0) {
         die("the replay exercised nothing");
     }
     return 0;
