@@ -10,6 +10,7 @@
 #include "modcp/crc.h"
 #include "modcp/events.h"
 #include "modcp/params.h"
+#include "world.h"
 
 #define RECORD_LEN 316u /* 8 header + 306 payload + 2 CRC */
 
@@ -26,16 +27,7 @@ static void set_win(modcp_bitwin_t *w, uint8_t area, uint16_t from, uint16_t to,
 /* 004 §9 parameter set (slave 5, coils M/Q/T/C, inputs M/I, base DB 800 / 900) */
 static void params_004_9(modcp_params_t *p)
 {
-    modcp_params_defaults(p);
-    p->slave_addr = 5;
-    set_win(&p->coils[0], MODCP_AREA_M, 0, 2047, 1000, 0);
-    set_win(&p->coils[1], MODCP_AREA_Q, 2048, 2559, 256, 0);
-    set_win(&p->coils[2], MODCP_AREA_T, 4096, 4607, 100, 0);
-    set_win(&p->coils[3], MODCP_AREA_C, 4608, 5119, 200, 0);
-    set_win(&p->inputs[0], MODCP_AREA_M, 0, 4095, 2000, 0);
-    set_win(&p->inputs[1], MODCP_AREA_I, 4096, 5119, 128, 0);
-    p->hr_base_db = 800;
-    p->ir_base_db = 900;
+    world_example_params(p);
     /* 004 §3.5 example 4.6.4 limits */
     p->lim_db = (modcp_limit_t){600, 699};
     p->lim_m = (modcp_limit_t){1000, 1127};
