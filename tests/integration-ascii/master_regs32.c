@@ -31,43 +31,10 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "master_util.h"
+
 static modbus_t *ctx;
 static int slave = 5;
-static bool verbose;
-static int passed, failed;
-
-static void ok(bool cond, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void ok(bool cond, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    if (cond) {
-        passed++;
-        if (verbose) {
-            printf("ok    ");
-            vprintf(fmt, ap);
-            printf("\n");
-        }
-    } else {
-        failed++;
-        printf("FAIL  ");
-        vprintf(fmt, ap);
-        printf("\n");
-    }
-    va_end(ap);
-}
-
-static uint16_t crc16(const uint8_t *p, size_t n)
-{
-    uint16_t crc = 0xFFFF;
-    while (n-- > 0) {
-        crc ^= *p++;
-        for (int k = 0; k < 8; k++) {
-            crc = (crc & 1u) ? (uint16_t)((crc >> 1) ^ 0xA001u) : (uint16_t)(crc >> 1);
-        }
-    }
-    return crc;
-}
 
 static long now_ms(void)
 {
@@ -142,26 +109,6 @@ static int xfer(const uint8_t *pdu, int n, uint8_t *rsp, int cap, const char *wh
 }
 
 /* "05 03 ..." spaced hex, without CRC -> bytes */
-static int hex(const char *s, uint8_t *out, int cap)
-{
-    int n = 0;
-    while (*s != 0 && n < cap) {
-        while (*s == ' ') {
-            s++;
-        }
-        if (*s == 0) {
-            break;
-        }
-        unsigned v;
-        if (sscanf(s, "%2x", &v) != 1) {
-            break;
-        }
-        out[n++] = (uint8_t)v;
-        s += 2;
-    }
-    return n;
-}
-
 /* Exchange a request (spaced hex, address included, no CRC) and compare the reply
  * (spaced hex, no CRC) byte for byte. */
 static void expect(const char *req, const char *reply, const char *what)

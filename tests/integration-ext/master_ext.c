@@ -26,72 +26,10 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "master_util.h"
+
 static modbus_t *ctx;
-static int passed, failed;
-static bool verbose;
 static int timeout_ms = 1500;
-
-static void ok(bool cond, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void ok(bool cond, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    if (cond) {
-        passed++;
-        if (verbose) {
-            printf("ok - ");
-            vprintf(fmt, ap);
-            printf("\n");
-        }
-    } else {
-        failed++;
-        printf("FAIL - ");
-        vprintf(fmt, ap);
-        printf("\n");
-    }
-    va_end(ap);
-    fflush(stdout);
-}
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + (double)ts.tv_nsec / 1e9;
-}
-
-static uint16_t crc16(const uint8_t *p, size_t n)
-{
-    uint16_t crc = 0xFFFF;
-    for (size_t i = 0; i < n; i++) {
-        crc ^= p[i];
-        for (int k = 0; k < 8; k++) {
-            crc = (crc & 1u) ? (uint16_t)((crc >> 1) ^ 0xA001u) : (uint16_t)(crc >> 1);
-        }
-    }
-    return crc;
-}
-
-static size_t hex(const char *s, uint8_t *out, size_t cap)
-{
-    size_t n = 0;
-    unsigned v;
-    int used;
-    while (n < cap && sscanf(s, " %2x%n", &v, &used) == 1) {
-        out[n++] = (uint8_t)v;
-        s += used;
-    }
-    return n;
-}
-
-static void fmt_hex(const uint8_t *p, size_t n, char *out, size_t cap)
-{
-    size_t o = 0;
-    out[0] = 0;
-    for (size_t i = 0; i < n && o + 4 < cap; i++) {
-        o += (size_t)snprintf(out + o, cap - o, i ? " %02X" : "%02X", p[i]);
-    }
-}
 
 /* Write a frame (CRC appended here, or corrupted with bad_crc) straight to the line and
  * read up to want bytes of reply. Returns the bytes read. */
@@ -108,25 +46,7 @@ static int raw(const char *req_hex, bool bad_crc, uint8_t *rsp, size_t want, int
     if (write(fd, buf, n) != (ssize_t)n) {
         return -1;
     }
-    size_t got = 0;
-    double end = now_s() + wait_ms / 1000.0;
-    while (got < want) {
-        int left = (int)((end - now_s()) * 1000.0);
-        if (left <= 0) {
-            break;
-        }
-        struct pollfd pf = {fd, POLLIN, 0};
-        if (poll(&pf, 1, left) <= 0) {
-            break;
-        }
-        ssize_t r = read(fd, rsp + got, want - got);
-        if (r > 0) {
-            got += (size_t)r;
-        } else if (r < 0 && errno != EAGAIN && errno != EINTR) {
-            break;
-        }
-    }
-    return (int)got;
+    return read_want(fd, rsp, want, wait_ms);
 }
 
 /* Raw request, the reply must be exactly expect_hex + its CRC. */

@@ -32,6 +32,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "master_util.h"
+
 /* ---- options and results ------------------------------------------------------- */
 
 typedef struct {
@@ -53,29 +55,6 @@ typedef struct {
 
 static opts_t o;
 static modbus_t *ctx;
-static int passed, failed;
-
-static void ok(bool cond, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void ok(bool cond, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    if (cond) {
-        passed++;
-        if (o.verbose) {
-            printf("ok - ");
-            vprintf(fmt, ap);
-            printf("\n");
-        }
-    } else {
-        failed++;
-        printf("FAIL - ");
-        vprintf(fmt, ap);
-        printf("\n");
-    }
-    va_end(ap);
-    fflush(stdout);
-}
 
 static bool group(const char *name)
 {
@@ -89,13 +68,6 @@ static bool group(const char *name)
     return strstr(buf, pat) != NULL;
 }
 
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + (double)ts.tv_nsec / 1e9;
-}
-
 static void msleep(int ms)
 {
     struct timespec ts = {ms / 1000, (long)(ms % 1000) * 1000000L};
@@ -103,56 +75,6 @@ static void msleep(int ms)
 }
 
 /* ---- hex and CRC ------------------------------------------------------------------------- */
-
-static size_t hex(const char *s, uint8_t *out, size_t cap)
-{
-    size_t n = 0;
-    while (*s != '\0' && n < cap) {
-        while (*s == ' ') {
-            s++;
-        }
-        if (*s == '\0') {
-            break;
-        }
-        unsigned v;
-        if (sscanf(s, "%2x", &v) != 1) {
-            fprintf(stderr, "bad hex '%s'\n", s);
-            exit(3);
-        }
-        out[n++] = (uint8_t)v;
-        s += 2;
-    }
-    return n;
-}
-
-static uint16_t crc16(const uint8_t *p, size_t n)
-{
-    uint16_t crc = 0xFFFF;
-    for (size_t i = 0; i < n; i++) {
-        crc ^= p[i];
-        for (int b = 0; b < 8; b++) {
-            crc = (crc & 1u) ? (uint16_t)((crc >> 1) ^ 0xA001u) : (uint16_t)(crc >> 1);
-        }
-    }
-    return crc;
-}
-
-static size_t add_crc(uint8_t *b, size_t n)
-{
-    uint16_t c = crc16(b, n);
-    b[n] = (uint8_t)(c & 0xFF);
-    b[n + 1] = (uint8_t)(c >> 8);
-    return n + 2;
-}
-
-static void fmt_hex(const uint8_t *b, size_t n, char *out, size_t cap)
-{
-    size_t pos = 0;
-    out[0] = '\0';
-    for (size_t i = 0; i < n && pos + 4 < cap; i++) {
-        pos += (size_t)snprintf(out + pos, cap - pos, "%s%02X", i ? " " : "", b[i]);
-    }
-}
 
 /* ---- raw exchanges ---------------------------------------------------------------------- */
 
@@ -197,25 +119,7 @@ static int raw_fd(const uint8_t *req, size_t rl, uint8_t *rsp, size_t want, int 
     if (write(fd, buf, n) != (ssize_t)n) {
         return -1;
     }
-    size_t got = 0;
-    double end = now_s() + wait_ms / 1000.0;
-    while (got < want) {
-        int left = (int)((end - now_s()) * 1000.0);
-        if (left <= 0) {
-            break;
-        }
-        struct pollfd pf = {fd, POLLIN, 0};
-        if (poll(&pf, 1, left) <= 0) {
-            break;
-        }
-        ssize_t r = read(fd, rsp + got, want - got);
-        if (r > 0) {
-            got += (size_t)r;
-        } else if (r < 0 && errno != EAGAIN && errno != EINTR) {
-            break;
-        }
-    }
-    return (int)got;
+    return read_want(fd, rsp, want, wait_ms);
 }
 
 static void raw_echo(const char *name, const char *req_hex, const char *expect_hex)
@@ -861,7 +765,7 @@ int main(int argc, char **argv)
             }
             break;
         case 'o': snprintf(o.only, sizeof o.only, "%s", optarg); break;
-        case 'v': o.verbose = true; break;
+        case 'v': o.verbose = verbose = true; break;
         default: return usage();
         }
     }
