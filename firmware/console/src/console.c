@@ -309,125 +309,69 @@ size_t modcp_s7op_name(const modcp_s7op_t *op, char *out, size_t cap)
     return (size_t)n < cap ? (size_t)n : cap - 1u;
 }
 
-static modcp_db_t *find_db(const modcp_plcmem_t *mem, uint16_t number)
+/* The console reads and writes through the controller memory model (plcmem.c), so
+ * it checks sizes and DB existence exactly as the FB does. */
+static modcp_operand_t operand_of(const modcp_s7op_t *op)
 {
-    for (uint16_t i = 0; i < mem->db_count; i++) {
-        if (mem->dbs[i].number == number) {
-            return &mem->dbs[i];
-        }
-    }
-    return NULL;
+    modcp_operand_t o;
+    memset(&o, 0, sizeof o);
+    o.area = op->area;
+    o.db = op->db;
+    o.offset = op->offset;
+    o.bit = op->width == MODCP_S7_BIT ? op->bit : 0u;
+    o.count = 1u; /* one bit for write_bits; reads and writes go by length */
+    return o;
 }
 
-/* Bytes of a byte-addressed operand, or NULL with the event. */
-static uint8_t *byte_ptr(const modcp_plcmem_t *mem, const modcp_s7op_t *op, modcp_event_t *ev)
+/* Bytes an operand occupies: 1 for a bit's byte, 2 for T / C elements. */
+static uint16_t operand_bytes(const modcp_s7op_t *op)
 {
-    uint8_t *base;
-    uint32_t size;
-    uint32_t n = op->width == MODCP_S7_BIT ? 1u : op->width;
-    *ev = MODCP_EV_AREA_ACCESS;
-    switch (op->area) {
-    case MODCP_AREA_I: base = mem->i; size = mem->i_size; break;
-    case MODCP_AREA_Q: base = mem->q; size = mem->q_size; break;
-    case MODCP_AREA_M: base = mem->m; size = mem->m_size; break;
-    case MODCP_AREA_DB: {
-        modcp_db_t *db = find_db(mem, op->db);
-        *ev = MODCP_EV_DB_ACCESS;
-        if (db == NULL) {
-            return NULL;
-        }
-        base = db->data;
-        size = db->size;
-        break;
+    if (op->area == MODCP_AREA_T || op->area == MODCP_AREA_C) {
+        return 2u;
     }
-    default: return NULL;
-    }
-    if (base == NULL || (uint32_t)op->offset + n > size) {
-        return NULL;
-    }
-    *ev = MODCP_EV_NONE;
-    return base + op->offset;
-}
-
-static uint16_t *elem_ptr(const modcp_plcmem_t *mem, const modcp_s7op_t *op)
-{
-    if (op->area == MODCP_AREA_T && mem->t != NULL && op->offset < mem->t_count) {
-        return &mem->t[op->offset];
-    }
-    if (op->area == MODCP_AREA_C && mem->c != NULL && op->offset < mem->c_count) {
-        return &mem->c[op->offset];
-    }
-    return NULL;
+    return op->width == MODCP_S7_BIT ? 1u : op->width;
 }
 
 modcp_event_t modcp_s7op_read(const modcp_plcmem_t *mem, const modcp_s7op_t *op, uint32_t *value)
 {
-    modcp_event_t ev = MODCP_EV_AREA_ACCESS;
     if (mem == NULL || op == NULL || value == NULL) {
+        return MODCP_EV_AREA_ACCESS;
+    }
+    modcp_operand_t o = operand_of(op);
+    uint8_t b[4] = {0, 0, 0, 0};
+    uint16_t n = operand_bytes(op);
+    modcp_event_t ev = modcp_plcmem_read(mem, &o, b, n);
+    if (ev != MODCP_EV_NONE) {
         return ev;
     }
-    if (op->area == MODCP_AREA_T || op->area == MODCP_AREA_C) {
-        uint16_t *e = elem_ptr(mem, op);
-        if (e == NULL) {
-            return ev;
-        }
-        *value = *e;
+    if (op->width == MODCP_S7_BIT && op->area != MODCP_AREA_T && op->area != MODCP_AREA_C) {
+        *value = ((uint32_t)b[0] >> op->bit) & 1u;
         return MODCP_EV_NONE;
     }
-    uint8_t *p = byte_ptr(mem, op, &ev);
-    if (p == NULL) {
-        return ev;
+    uint32_t v = 0;
+    for (uint16_t k = 0; k < n; k++) {
+        v = (v << 8) | b[k]; /* big-endian as stored; T / C high byte first */
     }
-    switch (op->width) {
-    case MODCP_S7_BIT: *value = ((uint32_t)p[0] >> op->bit) & 1u; break;
-    case MODCP_S7_BYTE: *value = p[0]; break;
-    case MODCP_S7_WORD: *value = ((uint32_t)p[0] << 8) | p[1]; break;
-    default:
-        *value = ((uint32_t)p[0] << 24) | ((uint32_t)p[1] << 16) | ((uint32_t)p[2] << 8) | p[3];
-        break;
-    }
+    *value = v;
     return MODCP_EV_NONE;
 }
 
 modcp_event_t modcp_s7op_write(modcp_plcmem_t *mem, const modcp_s7op_t *op, uint32_t value)
 {
-    modcp_event_t ev = MODCP_EV_AREA_ACCESS;
     if (mem == NULL || op == NULL) {
-        return ev;
+        return MODCP_EV_AREA_ACCESS;
     }
-    if (op->area == MODCP_AREA_T || op->area == MODCP_AREA_C) {
-        uint16_t *e = elem_ptr(mem, op);
-        if (e == NULL) {
-            return ev;
-        }
-        *e = (uint16_t)(value & 0xFFFFu);
-        return MODCP_EV_NONE;
+    modcp_operand_t o = operand_of(op);
+    if (op->width == MODCP_S7_BIT && op->area != MODCP_AREA_T && op->area != MODCP_AREA_C) {
+        uint8_t bit = (uint8_t)(value & 1u);
+        return modcp_plcmem_write_bits(mem, &o, &bit);
     }
-    uint8_t *p = byte_ptr(mem, op, &ev);
-    if (p == NULL) {
-        return ev;
+    uint16_t n = operand_bytes(op);
+    uint8_t b[4];
+    for (uint16_t k = 0; k < n; k++) {
+        b[k] = (uint8_t)(value >> (8u * (n - 1u - k)));
     }
-    switch (op->width) {
-    case MODCP_S7_BIT:
-        if ((value & 1u) != 0u) {
-            p[0] = (uint8_t)(p[0] | (1u << op->bit));
-        } else {
-            p[0] = (uint8_t)(p[0] & ~(1u << op->bit));
-        }
-        break;
-    case MODCP_S7_BYTE: p[0] = (uint8_t)(value & 0xFFu); break;
-    case MODCP_S7_WORD:
-        p[0] = (uint8_t)((value >> 8) & 0xFFu);
-        p[1] = (uint8_t)(value & 0xFFu);
-        break;
-    default:
-        p[0] = (uint8_t)((value >> 24) & 0xFFu);
-        p[1] = (uint8_t)((value >> 16) & 0xFFu);
-        p[2] = (uint8_t)((value >> 8) & 0xFFu);
-        p[3] = (uint8_t)(value & 0xFFu);
-        break;
-    }
-    return MODCP_EV_NONE;
+    return modcp_plcmem_write(mem, &o, b, n);
 }
 
 /* ---- names ------------------------------------------------------------------- */
@@ -606,7 +550,7 @@ static int operand_error(out_t *o, const modcp_plcmem_t *mem, const modcp_s7op_t
     char name[32];
     (void)modcp_s7op_name(op, name, sizeof name);
     if (op->area == MODCP_AREA_DB) {
-        const modcp_db_t *db = find_db(mem, op->db);
+        const modcp_db_t *db = modcp_plcmem_db(mem, op->db);
         if (db == NULL) {
             return fail(o, "%s: DB%u does not exist", name, (unsigned)op->db);
         }
@@ -772,7 +716,7 @@ static int cmd_dump(modcp_console_env_t *env, const args_t *a, out_t *o)
     case MODCP_AREA_T: elems = mem->t; size = mem->t_count; break;
     case MODCP_AREA_C: elems = mem->c; size = mem->c_count; break;
     default: {
-        const modcp_db_t *db = find_db(mem, dbno);
+        const modcp_db_t *db = modcp_plcmem_db(mem, dbno);
         if (db == NULL) {
             return fail(o, "DB%u does not exist", (unsigned)dbno);
         }
