@@ -24,11 +24,17 @@ import struct
 import sys
 import time
 
-from pymodbus.client import ModbusSerialClient
-from pymodbus.diag_message import ReturnQueryDataRequest
-from pymodbus.framer.ascii_framer import ModbusAsciiFramer
-from pymodbus.register_read_message import ReadHoldingRegistersRequest
-from pymodbus.register_write_message import WriteMultipleRegistersRequest
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "integration"))
+import debpkg  # noqa: E402
+
+try:
+    from pymodbus.client import ModbusSerialClient
+    from pymodbus.diag_message import ReturnQueryDataRequest
+    from pymodbus.framer.ascii_framer import ModbusAsciiFramer
+    from pymodbus.register_read_message import ReadHoldingRegistersRequest
+    from pymodbus.register_write_message import WriteMultipleRegistersRequest
+except ImportError as e:
+    debpkg.missing(e)
 
 passed = 0
 failed = 0

@@ -29,11 +29,15 @@ def main():
     a = ap.parse_args()
     sys.path.insert(0, a.simlib)
     from simlib import Checks, RawLine, Sim, with_crc  # noqa: E402
-    from pymodbus import diag_message as dm
-    from pymodbus.client import ModbusSerialClient
-    from pymodbus.mei_message import ReadDeviceInformationRequest
-    from pymodbus.other_message import GetCommEventCounterRequest, GetCommEventLogRequest
-    from pymodbus.pdu import ExceptionResponse
+    import debpkg  # noqa: E402
+    try:
+        from pymodbus import diag_message as dm
+        from pymodbus.client import ModbusSerialClient
+        from pymodbus.mei_message import ReadDeviceInformationRequest
+        from pymodbus.other_message import GetCommEventCounterRequest, GetCommEventLogRequest
+        from pymodbus.pdu import ExceptionResponse
+    except ImportError as e:
+        debpkg.missing(e)
 
     t = Checks()
     S = 5

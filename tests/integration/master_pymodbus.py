@@ -20,11 +20,16 @@ import random
 import sys
 import time
 
-import pymodbus
-from pymodbus import diag_message
-from pymodbus.client import ModbusSerialClient
-from pymodbus.framer.ascii_framer import ModbusAsciiFramer
-from pymodbus.pdu import ExceptionResponse
+import debpkg
+
+try:
+    import pymodbus
+    from pymodbus import diag_message
+    from pymodbus.client import ModbusSerialClient
+    from pymodbus.framer.ascii_framer import ModbusAsciiFramer
+    from pymodbus.pdu import ExceptionResponse
+except ImportError as e:
+    debpkg.missing(e)
 
 passed = 0
 failed = 0
