@@ -8,6 +8,7 @@ the simulator's console (the controller memory) and by reading back with mbpoll.
 import argparse
 import os
 import re
+import shutil
 import subprocess
 import sys
 import time
@@ -22,6 +23,10 @@ def main():
     ap.add_argument("--config", required=True)
     ap.add_argument("--mbpoll", default="mbpoll")
     a = ap.parse_args()
+    if shutil.which(a.mbpoll) is None:
+        print("%s not found: install Debian's mbpoll (tools/install-deps does)" % a.mbpoll)
+        print("0 passed, 1 failed")
+        return 1
     t = Checks()
     t0 = time.monotonic()
     with Sim(a.sim, a.config) as sim:
