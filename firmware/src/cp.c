@@ -319,6 +319,7 @@ static bool params_start(modcp_cp_t *cp)
 static void take_params(modcp_cp_t *cp)
 {
     unconfigure(cp);
+    modcp_diag_clear_buffer(&cp->diag); /* 001 §8.3: re-parameterisation clears it */
 #if MODCP_WITH_EXTENDED
     modcp_ext_reset(&cp->ext, &cp->diag); /* comm loss disarmed, listen-only left */
 #endif

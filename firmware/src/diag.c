@@ -54,6 +54,12 @@ void modcp_diag_clear_counters(modcp_diag_t *d)
     memset(d->counters, 0, sizeof d->counters);
 }
 
+void modcp_diag_clear_buffer(modcp_diag_t *d)
+{
+    memset(d->buffer, 0, sizeof d->buffer);
+    d->buffer_len = 0;
+}
+
 void modcp_diag_read_systat(modcp_diag_t *d, bool run, uint8_t out[16])
 {
     memset(out, 0, 16);

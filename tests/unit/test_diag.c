@@ -166,6 +166,45 @@ static void test_systat_fault_state(void **state)
     world_free(w);
 }
 
+/* VIPA CP 341-1AH01 manual §8.3 (CP diagnostic buffer): "power-off or
+ * re-parameterisation of the CP clears it". Events of the previous parameterisation are
+ * gone after a new record; the new record's own events are kept. */
+static void test_diag_buffer_cleared_on_reparameterisation_8_3(void **state)
+{
+    (void)state;
+    world_t *w = world_new(NULL);
+    assert_true(world_start(w, 2000));
+    assert_int_equal(world_request(w, "05 03 00 50 00 02 C5 9F", 100), 0); /* (08)36H */
+    world_run(w, 100);
+    assert_int_equal(w->cp.diag.buffer_len, 1);
+    assert_int_equal(w->cp.diag.buffer[0], MODCP_EV_CRC);
+
+    /* a new CP_START edge re-parameterises the CP with a valid record: buffer empty */
+    modcp_fb_in_t in = {false};
+    modcp_fb_call(&w->fb, &in, &w->fb_out, w->now_us / 1000u);
+    w->now_us += 1000;
+    assert_true(world_start(w, 2000));
+    assert_int_equal(w->cp.diag.buffer_len, 0);
+    assert_int_equal(w->cp.diag.buffer[0], MODCP_EV_NONE);
+    /* the line still reports into the emptied buffer */
+    assert_int_equal(world_request(w, "05 03 00 50 00 02 C5 9F", 100), 0);
+    world_run(w, 100);
+    assert_int_equal(w->cp.diag.buffer_len, 1);
+
+    /* an invalid record: the buffer holds its event only */
+    w->params.slave_addr = 0;
+    w->params.start_time_ms = 300;
+    w->record_len = modcp_params_encode(&w->params, w->record, sizeof w->record);
+    modcp_fb_call(&w->fb, &in, &w->fb_out, w->now_us / 1000u);
+    w->now_us += 1000;
+    assert_false(world_start(w, 1000));
+    assert_true(w->cp.diag.buffer_len >= 1);
+    for (unsigned i = 0; i < w->cp.diag.buffer_len; i++) {
+        assert_int_equal(w->cp.diag.buffer[i], MODCP_EV_SLAVE_ADDR); /* (0E)23H, no (08)36H */
+    }
+    world_free(w);
+}
+
 /* ---- wire break and diagnostic interrupt --------------------------------------- */
 
 static lw_t *start(const modcp_params_t *p)
@@ -584,6 +623,7 @@ int main(void)
         cmocka_unit_test(test_systat_image),
         cmocka_unit_test(test_systat_service),
         cmocka_unit_test(test_systat_fault_state),
+        cmocka_unit_test(test_diag_buffer_cleared_on_reparameterisation_8_3),
         cmocka_unit_test(test_diag_irq_wire_break),
         cmocka_unit_test(test_diag_irq_param_error),
         cmocka_unit_test(test_cpdiag_unit),
