@@ -224,7 +224,7 @@ class Docs:
                   "%s: tools/run-qemu %s prints both ptys" % (where, " ".join(args)))
 
     def sim_starts(self, where, args):
-        s = Sim(self.sim_bin, args[0], extra=args[1:])
+        s = Sim(self.sim_bin, os.path.join(self.root, args[0]), extra=args[1:])
         try:
             s.start()
             self.t.ok(True, "%s: modcp-sim %s becomes ready" % (where, " ".join(args)))
