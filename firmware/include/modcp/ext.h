@@ -5,9 +5,10 @@
  *  - the indirection scanner (scanner.c): scan_count consecutive holding registers
  *    from scan_start, each pointing at a word operand (MW, IW, QW, DBn.DBWm, T, C)
  *  - comm-loss supervision (commloss.c)
- * The PDU engine (pdu.c) hands these requests to pdu_ext.c; the CP (cp.c) keeps the
- * persistent state below, reports every finished request (modcp_pdu_finished) and
- * polls the supervision with the time (modcp_ext_poll).
+ * The PDU engine's function-code table (pdu.c) hands these requests to their
+ * handlers; the CP (cp.c) keeps the persistent state below, reports every finished
+ * request (modcp_pdu_finished) and polls the supervision with the time
+ * (modcp_ext_poll).
  * docs/extended-functions.md has every frame and every decision. */
 #ifndef MODCP_EXT_H
 #define MODCP_EXT_H
@@ -42,10 +43,13 @@ typedef struct {
     uint8_t quiet;   /* listen-only: not processed, nothing more to account */
     uint8_t timeout; /* a CPU job of this request timed out */
     uint8_t after;   /* action after the reply: MODCP_X_AFTER_* */
-    /* job sequence (scanner, FC22, FC23); seq 0: a core request that pdu.c finishes */
+    /* job sequence (scanner, FC22, FC23); seq 0: a single job (manual set) */
     uint8_t seq;
-    uint8_t phase;
-    uint8_t idx;
+    uint8_t phase;   /* early reads, check reads, writes, reads (pdu_ext.c) */
+    uint8_t early;   /* FC23: write data moved to the buffer's end, early reads allowed */
+    uint16_t idx;
+    uint8_t wfirst;  /* check reads: the first DB write was passed */
+    uint8_t probe[2]; /* data of a check read (discarded) */
     uint8_t wop;     /* job op of the write part, 0 = none */
     bool wscan;      /* write part through the scanner */
     bool rscan;      /* read part through the scanner */
