@@ -272,6 +272,9 @@ modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env
                                       modcp_event_t ev, uint8_t *pdu, uint16_t *out_len)
 {
     *out_len = 0;
+    if (ev == MODCP_EV_NONE && s->x.seq == 0u && s->job.op != 0u) {
+        return encode(s, env, pdu, out_len); /* the single job of the manual set */
+    }
     modcp_pdu_action_t a;
     if (ev != MODCP_EV_NONE) {
         a = modcp_pdu_err(s, ev, MODCP_EXC_DEVICE_FAILURE); /* whatever the CPU side said */

@@ -28,8 +28,7 @@ uint8_t modcp_reg_bytes(uint8_t r32_kind)
                : 2u;
 }
 
-/* [class][ascii + 2 x wide]: RTU, ASCII, RTU 32-bit, ASCII 32-bit */
-static const uint16_t limits[MODCP_QLIM_COUNT][4] = {
+const uint16_t modcp_qty_limits[MODCP_QLIM_COUNT][4] = {
     [MODCP_QLIM_NONE] = {0u, 0u, 0u, 0u},
     [MODCP_QLIM_READ_BITS] = {2040u, 2008u, 2040u, 2008u},
     [MODCP_QLIM_WRITE_BITS] = {2040u, 1976u, 2040u, 1976u},
@@ -38,18 +37,6 @@ static const uint16_t limits[MODCP_QLIM_COUNT][4] = {
     [MODCP_QLIM_RW_READ] = {125u, 125u, 62u, 62u},
     [MODCP_QLIM_RW_WRITE] = {121u, 121u, 60u, 60u},
 };
-
-uint16_t modcp_qty_limit(const modcp_params_t *p, uint8_t lim, uint8_t r32_kind)
-{
-    if (lim >= (uint8_t)MODCP_QLIM_COUNT) {
-        return 0u;
-    }
-    unsigned col = p->framing == (uint8_t)MODCP_FRAMING_ASCII ? 1u : 0u;
-    if (modcp_reg_bytes(r32_kind) == 4u) {
-        col += 2u;
-    }
-    return limits[lim][col];
-}
 
 uint16_t modcp_qty_max(const modcp_params_t *p, uint8_t fc, uint8_t r32_kind)
 {

@@ -44,9 +44,20 @@ enum {
     MODCP_QLIM_COUNT
 };
 
-/* Largest quantity of limit class lim (MODCP_QLIM_*) for the framing of p and the
- * register kind (0 for bits and 16-bit registers); 0 for MODCP_QLIM_NONE. */
-uint16_t modcp_qty_limit(const modcp_params_t *p, uint8_t lim, uint8_t r32_kind);
+/* The limits: [class][column], columns RTU, ASCII, RTU 32-bit, ASCII 32-bit. */
+extern const uint16_t modcp_qty_limits[MODCP_QLIM_COUNT][4];
+
+/* Largest quantity of limit class lim (MODCP_QLIM_*, < MODCP_QLIM_COUNT) for the
+ * framing of p and the register kind (0 for bits and 16-bit registers); 0 for
+ * MODCP_QLIM_NONE. */
+static inline uint16_t modcp_qty_limit(const modcp_params_t *p, uint8_t lim, uint8_t r32_kind)
+{
+    unsigned col = p->framing == (uint8_t)MODCP_FRAMING_ASCII ? 1u : 0u;
+    if (r32_kind == (uint8_t)(MODCP_R32_INT32 + 1u) || r32_kind == (uint8_t)(MODCP_R32_FLOAT + 1u)) {
+        col += 2u; /* 4 bytes per register */
+    }
+    return modcp_qty_limits[lim][col];
+}
 
 /* Largest quantity of fc (01, 02, 03, 04, 15, 16) for the framing of p and the
  * register kind (0 for bits and 16-bit registers). 0 for other function codes. */
