@@ -32,6 +32,8 @@ enum {
     F_ADDR = 1u << 3,  /* start address at pdu[1..2] (s->addr) */
     F_R32 = 1u << 4,   /* holding registers: width by the start address (003 §4.5) */
     F_SCAN = 1u << 5,  /* extended: on scanner addresses the scanner's handler runs */
+    F_WRITE = 1u << 6, /* writes controller memory (arms the comm-loss supervision) */
+    F_NOCOUNT = 1u << 7, /* not counted by the FC11 event counter (FC11, FC12) */
 };
 
 typedef struct {
@@ -53,23 +55,23 @@ typedef struct {
 /* The function codes, the most frequent first (one row per function set where the
  * handlers differ). */
 static const fc_row_t fc_table[] = {
-    /* fc   min  max  flags                                  quantity limits        handler */
-    {0x03u, 5u,  5u,  BOTH | F_ADDR | F_R32 | F_SCAN,           MODCP_QLIM_READ_REGS,  modcp_pdu_read_regs},
-    {0x10u, 6u,  0u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST, MODCP_QLIM_WRITE_REGS, modcp_pdu_write_regs},
-    {0x06u, 3u,  0u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST, MODCP_QLIM_NONE,       modcp_pdu_write_reg},
-    {0x01u, 5u,  5u,  BOTH | F_ADDR,                            MODCP_QLIM_READ_BITS,  modcp_pdu_read_bits},
-    {0x02u, 5u,  5u,  BOTH | F_ADDR,                            MODCP_QLIM_READ_BITS,  modcp_pdu_read_bits},
-    {0x04u, 5u,  5u,  BOTH | F_ADDR,                            MODCP_QLIM_READ_REGS,  modcp_pdu_read_regs},
-    {0x05u, 5u,  5u,  BOTH | F_ADDR | F_BCAST,                  MODCP_QLIM_NONE,       modcp_pdu_write_coil},
-    {0x0Fu, 6u,  0u,  BOTH | F_ADDR | F_BCAST,                  MODCP_QLIM_WRITE_BITS, modcp_pdu_write_coils},
-    {0x08u, 3u,  0u,  F_CP341,                                  MODCP_QLIM_NONE,       modcp_pdu_diag0},
-    EXT_ONLY({0x08u, 3u,  0u,  F_EXT,                           MODCP_QLIM_NONE,       modcp_pdu_fc08})
-    EXT_ONLY({0x17u, 10u, 0u,  F_EXT,                           MODCP_QLIM_NONE,       modcp_pdu_fc23})
-    EXT_ONLY({0x16u, 7u,  7u,  F_EXT,                           MODCP_QLIM_NONE,       modcp_pdu_fc22})
-    EXT_ONLY({0x0Bu, 1u,  1u,  F_EXT,                           MODCP_QLIM_NONE,       modcp_pdu_fc11})
-    EXT_ONLY({0x0Cu, 1u,  1u,  F_EXT,                           MODCP_QLIM_NONE,       modcp_pdu_fc12})
-    EXT_ONLY({0x11u, 1u,  1u,  F_EXT,                           MODCP_QLIM_NONE,       modcp_pdu_fc17})
-    EXT_ONLY({0x2Bu, 2u,  0u,  F_EXT,                           MODCP_QLIM_NONE,       modcp_pdu_fc43})
+    /*       {fc,    min, max, function sets and flags,                        quantity limits,      handler} */
+             {0x03u, 5u,  5u, BOTH | F_ADDR | F_R32 | F_SCAN,                    MODCP_QLIM_READ_REGS,  modcp_pdu_read_regs},
+             {0x10u, 6u,  0u, BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_WRITE_REGS, modcp_pdu_write_regs},
+             {0x06u, 3u,  0u, BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_NONE,       modcp_pdu_write_reg},
+             {0x01u, 5u,  5u, BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS,  modcp_pdu_read_bits},
+             {0x02u, 5u,  5u, BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS,  modcp_pdu_read_bits},
+             {0x04u, 5u,  5u, BOTH | F_ADDR,                                     MODCP_QLIM_READ_REGS,  modcp_pdu_read_regs},
+             {0x05u, 5u,  5u, BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_NONE,       modcp_pdu_write_coil},
+             {0x0Fu, 6u,  0u, BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_WRITE_BITS, modcp_pdu_write_coils},
+             {0x08u, 3u,  0u, F_CP341,                                           MODCP_QLIM_NONE,       modcp_pdu_diag0},
+    EXT_ONLY({0x08u, 3u,  0u, F_EXT,                                             MODCP_QLIM_NONE,       modcp_pdu_fc08})
+    EXT_ONLY({0x17u, 10u, 0u, F_EXT | F_WRITE,                                   MODCP_QLIM_NONE,       modcp_pdu_fc23})
+    EXT_ONLY({0x16u, 7u,  7u, F_EXT | F_WRITE,                                   MODCP_QLIM_NONE,       modcp_pdu_fc22})
+    EXT_ONLY({0x0Bu, 1u,  1u, F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE,       modcp_pdu_fc11})
+    EXT_ONLY({0x0Cu, 1u,  1u, F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE,       modcp_pdu_fc12})
+    EXT_ONLY({0x11u, 1u,  1u, F_EXT,                                             MODCP_QLIM_NONE,       modcp_pdu_fc17})
+    EXT_ONLY({0x2Bu, 2u,  0u, F_EXT,                                             MODCP_QLIM_NONE,       modcp_pdu_fc43})
 };
 
 /* The row of fc in the function set of p (NULL: not in it). Built without the
@@ -223,6 +225,7 @@ static modcp_pdu_action_t dispatch(modcp_pdu_t *s, const modcp_pdu_env_t *env, u
     if (r == NULL) {
         return modcp_pdu_err(s, MODCP_EV_ILLEGAL_FC, MODCP_EXC_ILLEGAL_FUNCTION);
     }
+    s->fcflags = r->flags;
     modcp_pdu_handler_t h = r->run;
     if (len < r->min_len || (r->max_len != 0u && len > r->max_len)) {
         return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
@@ -293,12 +296,6 @@ modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env
 /* ---- end of a request (extended set) ------------------------------------------------ */
 
 #if MODCP_WITH_EXTENDED
-static bool write_fc(uint8_t fc)
-{
-    return fc == 0x05u || fc == 0x06u || fc == 0x0Fu || fc == 0x10u || fc == 0x16u ||
-           fc == 0x17u;
-}
-
 static bool write_op(uint8_t op)
 {
     return op == MODCP_JOB_WRITE || op == MODCP_JOB_BITWRITE || op == MODCP_JOB_MASKWRITE;
@@ -309,7 +306,7 @@ static uint8_t send_event(const modcp_pdu_t *s, const modcp_comm_t *c)
 {
     uint8_t ev = MODCP_COMM_TX;
     switch (s->x.exc) {
-    case MODCP_EXC_OF_EVENT:
+    case MODCP_EXC_NONE:
         break;
     case MODCP_EXC_ILLEGAL_FUNCTION:
     case MODCP_EXC_ILLEGAL_ADDRESS:
@@ -347,16 +344,16 @@ void modcp_pdu_finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_pdu_ac
     }
     if (s->x.quiet == 0u) {
         modcp_comm_log(&d->comm, send_event(s, &d->comm));
-        if (s->x.exc == 0u && s->fc != 0x0Bu && s->fc != 0x0Cu) {
+        if (s->x.exc == MODCP_EXC_NONE && (s->fcflags & F_NOCOUNT) == 0u) {
             d->comm.event_count++; /* successful completion; wraps 65535 -> 0 */
         }
         if (x != NULL) {
             if (s->x.timeout != 0u) {
                 x->cpu_stalled = true;
-            } else if (s->job.op != 0u && s->x.exc == 0u) {
+            } else if (s->job.op != 0u && s->x.exc == MODCP_EXC_NONE) {
                 x->cpu_stalled = false;
             }
-            if (!s->broadcast && s->x.exc == 0u && write_fc(s->fc)) {
+            if (!s->broadcast && s->x.exc == MODCP_EXC_NONE && (s->fcflags & F_WRITE) != 0u) {
                 modcp_commloss_write(x, env->p, now_us);
             }
         }

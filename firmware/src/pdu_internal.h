@@ -22,7 +22,9 @@
 
 /* Modbus exception codes (Application Protocol V1.1b3 §7). */
 enum {
-    MODCP_EXC_OF_EVENT = 0,          /* the event's code (modcp_event_exception), else 04 */
+    MODCP_EXC_NONE = 0,              /* s->x.exc: no exception (yet) */
+    MODCP_EXC_OF_EVENT = 0,          /* modcp_pdu_err: the event's code
+                                        (modcp_event_exception), else 04 */
     MODCP_EXC_ILLEGAL_FUNCTION = 1,
     MODCP_EXC_ILLEGAL_ADDRESS = 2,
     MODCP_EXC_ILLEGAL_VALUE = 3,

@@ -33,6 +33,7 @@ typedef struct {
 typedef struct {
     /* the request in progress */
     uint8_t fc;
+    uint8_t fcflags;     /* the function-code table's flags of fc (pdu.c) */
     bool broadcast;
     uint16_t addr;
     uint16_t qty;
