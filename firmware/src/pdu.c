@@ -275,7 +275,12 @@ modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env
                                       modcp_event_t ev, uint8_t *pdu, uint16_t *out_len)
 {
     *out_len = 0;
-    if (ev == MODCP_EV_NONE && s->x.seq == 0u && s->job.op != 0u) {
+#if MODCP_WITH_EXTENDED
+    const bool sequence = s->x.seq != 0u;
+#else
+    const bool sequence = false;
+#endif
+    if (ev == MODCP_EV_NONE && !sequence && s->job.op != 0u) {
         return encode(s, env, pdu, out_len); /* the single job of the manual set */
     }
     modcp_pdu_action_t a;
@@ -284,7 +289,7 @@ modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env
     } else if (s->job.op == 0u) {
         a = modcp_pdu_err(s, MODCP_EV_INTERNAL_SEND, MODCP_EXC_DEVICE_FAILURE); /* no job ran */
 #if MODCP_WITH_EXTENDED
-    } else if (s->x.seq != 0u) {
+    } else if (sequence) {
         a = modcp_pdu_seq_next(s, env, pdu); /* FC22, FC23, scanner: next job */
 #endif
     } else {

@@ -18,6 +18,7 @@
 
 #include "modcp/diag.h"
 #include "modcp/events.h"
+#include "modcp/features.h"
 #include "modcp/map.h"
 #include "modcp/params.h"
 
@@ -37,17 +38,22 @@ typedef struct {
     bool cpu_stalled;
 } modcp_ext_t;
 
-/* Per-request state of the extended set (modcp_pdu_t.x, cleared for every request). */
+/* Per-request state of the PDU engine beyond the request itself (modcp_pdu_t.x,
+ * cleared for every request): the reply's description and the exception for both
+ * sets; the job sequence of the extended set (FC22, FC23, scanner) only with it. */
 typedef struct {
     uint8_t exc;     /* exception code detected for this request (0 = none) */
     uint8_t quiet;   /* listen-only: not processed, nothing more to account */
     uint8_t timeout; /* a CPU job of this request timed out */
     uint8_t after;   /* action after the reply: MODCP_X_AFTER_* */
+    uint16_t echo;   /* reply = the first `echo` request bytes; 0: read reply */
+    uint16_t rbytes; /* read data bytes in the reply */
+#if MODCP_WITH_EXTENDED
     /* job sequence (scanner, FC22, FC23); seq 0: a single job (manual set) */
     uint8_t seq;
     uint8_t phase;   /* early reads, check reads, writes, reads (pdu_ext.c) */
+    uint8_t idx;
     uint8_t early;   /* FC23: write data moved to the buffer's end, early reads allowed */
-    uint16_t idx;
     uint8_t wfirst;  /* check reads: the first DB write was passed */
     uint8_t probe[2]; /* data of a check read (discarded) */
     uint8_t wop;     /* job op of the write part, 0 = none */
@@ -57,11 +63,10 @@ typedef struct {
     uint16_t woff;   /* write data: offset in the PDU buffer */
     uint16_t wlen;   /* direct write: data bytes */
     uint16_t roff;   /* read data: offset in the PDU buffer */
-    uint16_t rbytes; /* read data bytes in the reply */
     uint16_t cap;    /* PDU buffer capacity */
-    uint16_t echo;   /* reply = the first `echo` request bytes; 0: read reply */
     modcp_operand_t wdir; /* write part, direct mapping */
     modcp_operand_t rdir; /* read part, direct mapping */
+#endif
 } modcp_pdu_x_t;
 
 enum {
