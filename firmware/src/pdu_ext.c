@@ -6,17 +6,22 @@
  * every range and every operand, the CPU job limit) and then returns the first job;
  * modcp_pdu_seq_next() returns the next one until the reply can be encoded (pdu.c).
  *
- * An exception means that nothing was written (docs/extended-functions.md): what only
- * the CPU side can check — a DB that is missing or too short — is checked before the
- * first write by a *check read* of the last two bytes of every DB operand that a job
- * after the first write job touches (the first write job checks its own operand and
- * writes nothing when it fails; a job is atomic on the CPU side). So the jobs run as
- *   1. check reads (only for requests with a write and more than one job),
- *   2. the writes (FC23: the write part, as Application Protocol §6.17 specifies),
- *   3. the reads (they see the written values).
+ * An exception means that nothing was written (docs/extended-functions.md). A single
+ * CPU job is atomic: the CPU side refuses it before it writes. What only the CPU side
+ * can check - a DB that is missing or too short - is therefore checked, for requests
+ * with several jobs, before the first write. The jobs run as
+ *   1. early reads (FC23): reads of DB operands that no write of the request touches;
+ *      their values are the same before and after the writes, and their jobs check
+ *      the DBs. Only when the reply and the write data both fit into the buffer (the
+ *      write data move to its end);
+ *   2. check reads: a 2-byte read of the last word of every other DB operand that a
+ *      job after the first write touches;
+ *   3. the writes, DB operands first (the first one checks its own DB), then M / Q
+ *      (checked by the CP against the sizes the CPU side reported);
+ *   4. the other reads (they see the written values: Application Protocol §6.17).
  * A failing job stops the sequence with exception 04. Only a CPU side that stops
- * answering between the write and a later job (timeout) leaves a write done behind
- * an exception.
+ * answering between a write and a later job (timeout) leaves a write done behind an
+ * exception.
  *
  * Limits (registers, quantity.c): FC23 read 1..125, write 1..121 (Modbus Application
  * Protocol); with 32-bit registers (int32 / float range, 4 bytes each) read 1..62,
