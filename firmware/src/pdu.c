@@ -135,21 +135,6 @@ static modcp_pdu_action_t fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8
     return MODCP_PDU_REPLY;
 }
 
-/* Align a bit string read from byte boundaries: drop `shift` low bits of the first
- * byte, keep qty bits, clear the unused high bits of the last byte. */
-static void align_bits(uint8_t *d, uint8_t shift, uint16_t qty)
-{
-    uint16_t n = (uint16_t)((qty + 7u) / 8u);
-    if (shift != 0u) {
-        for (uint16_t i = 0; i < n; i++) {
-            d[i] = (uint8_t)((d[i] >> shift) | (d[i + 1u] << (8u - shift)));
-        }
-    }
-    if ((qty & 7u) != 0u) {
-        d[n - 1u] &= (uint8_t)((1u << (qty & 7u)) - 1u);
-    }
-}
-
 /* Every job of the request is done: the reply is the echo of the request's first
  * s->x.echo bytes, or fc, byte count and the s->x.rbytes data read to pdu + 2. */
 static modcp_pdu_action_t encode(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
@@ -164,7 +149,7 @@ static modcp_pdu_action_t encode(modcp_pdu_t *s, const modcp_pdu_env_t *env, uin
         return MODCP_PDU_REPLY;
     }
     if (s->bits != 0u) {
-        align_bits(pdu + 2, s->shift, s->qty);
+        modcp_pdu_align_bits(pdu + 2, s->shift, s->qty); /* FC01 / FC02 */
     }
     pdu[0] = s->fc;
     pdu[1] = (uint8_t)s->x.rbytes;
@@ -268,7 +253,8 @@ modcp_pdu_action_t modcp_pdu_request(modcp_pdu_t *s, const modcp_pdu_env_t *env,
         return MODCP_PDU_NO_REPLY;
     }
 #endif
-    return settle(s, env, dispatch(s, env, pdu, len, cap, out_len), pdu, out_len);
+    modcp_pdu_action_t a = dispatch(s, env, pdu, len, cap, out_len);
+    return a == MODCP_PDU_JOB ? a : settle(s, env, a, pdu, out_len);
 }
 
 modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env,

@@ -87,6 +87,9 @@ modcp_pdu_action_t modcp_pdu_write_coils(modcp_pdu_t *s, const modcp_pdu_env_t *
 modcp_pdu_action_t modcp_pdu_write_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env,
                                         uint8_t *pdu, uint16_t len, uint16_t cap,
                                         uint16_t *out_len);
+/* The FC01 / FC02 reply data read from byte boundaries: drop `shift` low bits of the
+ * first byte, keep qty bits, clear the unused high bits of the last byte. */
+void modcp_pdu_align_bits(uint8_t *d, uint8_t shift, uint16_t qty);
 modcp_pdu_action_t modcp_pdu_diag0(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
                                    uint16_t len, uint16_t cap, uint16_t *out_len);
 

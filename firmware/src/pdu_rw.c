@@ -21,6 +21,19 @@ static modcp_pdu_action_t read_job(modcp_pdu_t *s, const modcp_operand_t *o, uin
                          (uint16_t)(cap > 2u ? cap - 2u : 0u));
 }
 
+void modcp_pdu_align_bits(uint8_t *d, uint8_t shift, uint16_t qty)
+{
+    uint16_t n = (uint16_t)((qty + 7u) / 8u);
+    if (shift != 0u) {
+        for (uint16_t i = 0; i < n; i++) {
+            d[i] = (uint8_t)((d[i] >> shift) | (d[i + 1u] << (8u - shift)));
+        }
+    }
+    if ((qty & 7u) != 0u) {
+        d[n - 1u] &= (uint8_t)((1u << (qty & 7u)) - 1u);
+    }
+}
+
 /* FC01 / FC02: read bits. */
 modcp_pdu_action_t modcp_pdu_read_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
                                        uint16_t len, uint16_t cap, uint16_t *out_len)
