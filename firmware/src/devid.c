@@ -47,11 +47,9 @@ static bool run_indicator(const modcp_pdu_env_t *env)
 modcp_pdu_action_t modcp_pdu_fc17(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
                                   uint16_t len, uint16_t cap, uint16_t *out_len)
 {
-    if (len != 1u) {
-        return modcp_pdu_fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-    }
+    (void)len; /* 1: the function-code table */
     if (cap < 4u) {
-        return modcp_pdu_fail(s, env, MODCP_EV_JOB_LENGTH, 4, pdu, out_len);
+        return modcp_pdu_err(s, MODCP_EV_JOB_LENGTH, MODCP_EXC_DEVICE_FAILURE);
     }
     const char *parts[3] = {env->p->vendor, env->p->product, env->p->revision};
     uint16_t o = 4; /* fc, byte count, slave id, run indicator */
@@ -97,19 +95,16 @@ static size_t objects(const modcp_params_t *p, object_t out[4])
 modcp_pdu_action_t modcp_pdu_fc43(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
                                   uint16_t len, uint16_t cap, uint16_t *out_len)
 {
-    if (len < 2u) {
-        return modcp_pdu_fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-    }
-    if (pdu[1] != 0x0Eu) {
-        return modcp_pdu_fail(s, env, MODCP_EV_ILLEGAL_FC, 1, pdu, out_len);
+    if (pdu[1] != 0x0Eu) { /* length >= 2: the function-code table */
+        return modcp_pdu_err(s, MODCP_EV_ILLEGAL_FC, MODCP_EXC_ILLEGAL_FUNCTION);
     }
     if (len != 4u) {
-        return modcp_pdu_fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
+        return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
     const uint8_t code = pdu[2];
     const uint8_t want = pdu[3];
     if (code < 1u || code > 4u) {
-        return modcp_pdu_fail(s, env, MODCP_EV_MEI_CODE, 3, pdu, out_len);
+        return modcp_pdu_err(s, MODCP_EV_MEI_CODE, MODCP_EXC_ILLEGAL_VALUE);
     }
     object_t obj[4];
     size_t total = objects(env->p, obj);
@@ -119,7 +114,7 @@ modcp_pdu_action_t modcp_pdu_fc43(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         for (first = 0; first < total && obj[first].id != want; first++) {
         }
         if (first == total) {
-            return modcp_pdu_fail(s, env, MODCP_EV_NO_WINDOW, 2, pdu, out_len);
+            return modcp_pdu_err(s, MODCP_EV_NO_WINDOW, MODCP_EXC_ILLEGAL_ADDRESS);
         }
         last = first + 1u;
     } else {
@@ -133,7 +128,7 @@ modcp_pdu_action_t modcp_pdu_fc43(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     }
     const uint16_t limit = cap < PDU_MAX ? cap : (uint16_t)PDU_MAX;
     if (limit < 7u) {
-        return modcp_pdu_fail(s, env, MODCP_EV_JOB_LENGTH, 4, pdu, out_len);
+        return modcp_pdu_err(s, MODCP_EV_JOB_LENGTH, MODCP_EXC_DEVICE_FAILURE);
     }
     uint16_t o = 7; /* 2B 0E code conformity more next count */
     uint8_t count = 0;
@@ -143,7 +138,7 @@ modcp_pdu_action_t modcp_pdu_fc43(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         uint8_t n = id_len(obj[i].value);
         if ((uint32_t)o + 2u + n > limit) {
             if (count == 0u) {
-                return modcp_pdu_fail(s, env, MODCP_EV_JOB_LENGTH, 4, pdu, out_len);
+                return modcp_pdu_err(s, MODCP_EV_JOB_LENGTH, MODCP_EXC_DEVICE_FAILURE);
             }
             more = 0xFF;
             next = obj[i].id;

@@ -1,28 +1,99 @@
-/* modcp — PDU engine: the manual's function set (004 §6): FC 01, 02, 03, 04, 05, 06,
- * 08 (sub-function 0000), 15, 16.
+/* modcp — PDU engine: decode a request, check it against the function-code table,
+ * hand it to its handler, encode the reply or the exception; the end-of-request
+ * accounting of the extended set.
  *
- * Order of checks (Modbus application protocol §6 state diagrams, 004 ch. 7):
- *   broadcast rule ((08)30H, silence) -> function code ((08)31H, exception 01)
- *   -> FB initialised ((0E)56H, exception 04) -> length / quantity / value
- *   ((08)32H..35H, exception 03) -> address mapping ((0E)5xH, exception 02)
- *   -> job on the CPU side (exception 04 on any error it reports).
- * Replies are built in place in the request buffer: every field of the request is
- * read before the first reply byte is written.
- * Function set `extended` (SPEC §5.3): listen-only and the FC12 receive event come
- * first (modcp_pdu_ext_pre); FC08, 11, 12, 17, 22, 23, 43 and scanner addresses of
- * FC03/06/16 go to pdu_ext.c after the FB check; `cp341` answers them with 01. Built
- * without the extended set (MODCP_WITH_EXTENDED 0) the engine is the cp341 set. */
+ * Order of checks (docs/diagnostics.md "Order of checks"; Modbus Application Protocol
+ * §6 state diagrams, 004 ch. 7, SPEC §6). The link layer has already dropped frames
+ * for other addresses and frames with a bad CRC / LRC.
+ *   (extended set) FC12 receive event; listen-only mode takes the request
+ *   1. CPU side not initialised     -> (0E)56H, exception 04 (every request)
+ *   2. broadcast rule                -> (08)30H, silence
+ *   3. function code of the set      -> (08)31H, exception 01
+ *   4. length (table min / max)      -> (08)33H, exception 03
+ *   5. quantity (table limit class)  -> (08)32H, exception 03
+ *   6. handler: byte count, values ((08)33H..35H, 03), then addresses, windows,
+ *      write limits ((0E)5xH, 02); every check before the first job
+ *   7. CPU job                       -> exception 04 on any error it reports
+ * Replies are built in place in the request buffer. */
 #include "modcp/pdu.h"
 
+#include <stddef.h>
 #include <string.h>
 
-#include "modcp/quantity.h" /* limits by framing and register width (003 §5, §8.5) */
-#include "pdu_internal.h"      /* the extended set (SPEC §5.3): pdu_ext.c */
+#include "modcp/quantity.h"
+#include "pdu_internal.h"
 
-static uint16_t get16(const uint8_t *p)
+/* ---- the function-code table ------------------------------------------------------ */
+
+enum {
+    F_CP341 = 1u << 0, /* in function set cp341 (the manual's, 004 §6) */
+    F_EXT = 1u << 1,   /* in function set extended (SPEC §5.3) */
+    F_BCAST = 1u << 2, /* broadcast may run it (SPEC §5.2: FC 05, 06, 15, 16) */
+    F_ADDR = 1u << 3,  /* start address at pdu[1..2] (s->addr) */
+    F_R32 = 1u << 4,   /* holding registers: width by the start address (003 §4.5) */
+    F_SCAN = 1u << 5,  /* extended: on scanner addresses the scanner's handler runs */
+    F_WRITE = 1u << 6, /* writes controller memory (arms the comm-loss supervision) */
+    F_NOCOUNT = 1u << 7, /* not counted by the FC11 event counter (FC11, FC12) */
+};
+
+typedef struct {
+    uint8_t fc;
+    uint8_t min_len; /* request PDU length, function code included */
+    uint8_t max_len; /* 0: the handler checks it against the byte count */
+    uint8_t flags;   /* F_* */
+    uint8_t lim;     /* MODCP_QLIM_*: quantity at pdu[3..4], limits in quantity.c */
+    modcp_pdu_handler_t run;
+} fc_row_t;
+
+#if MODCP_WITH_EXTENDED
+#define EXT_ONLY(...) __VA_ARGS__,
+#else
+#define EXT_ONLY(...)
+#endif
+#define BOTH (F_CP341 | F_EXT)
+
+/* The function codes, the most frequent first (one row per function set where the
+ * handlers differ). */
+static const fc_row_t fc_table[] = {
+    /*       {fc,    min, max, function sets and flags,                        quantity limits,      handler} */
+             {0x03u, 5u,  5u, BOTH | F_ADDR | F_R32 | F_SCAN,                    MODCP_QLIM_READ_REGS,  modcp_pdu_read_regs},
+             {0x10u, 6u,  0u, BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_WRITE_REGS, modcp_pdu_write_regs},
+             {0x06u, 3u,  0u, BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_NONE,       modcp_pdu_write_reg},
+             {0x01u, 5u,  5u, BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS,  modcp_pdu_read_bits},
+             {0x02u, 5u,  5u, BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS,  modcp_pdu_read_bits},
+             {0x04u, 5u,  5u, BOTH | F_ADDR,                                     MODCP_QLIM_READ_REGS,  modcp_pdu_read_regs},
+             {0x05u, 5u,  5u, BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_NONE,       modcp_pdu_write_coil},
+             {0x0Fu, 6u,  0u, BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_WRITE_BITS, modcp_pdu_write_coils},
+             {0x08u, 3u,  0u, F_CP341,                                           MODCP_QLIM_NONE,       modcp_pdu_diag0},
+    EXT_ONLY({0x08u, 3u,  0u, F_EXT,                                             MODCP_QLIM_NONE,       modcp_pdu_fc08})
+    EXT_ONLY({0x17u, 10u, 0u, F_EXT | F_WRITE,                                   MODCP_QLIM_NONE,       modcp_pdu_fc23})
+    EXT_ONLY({0x16u, 7u,  7u, F_EXT | F_WRITE,                                   MODCP_QLIM_NONE,       modcp_pdu_fc22})
+    EXT_ONLY({0x0Bu, 1u,  1u, F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE,       modcp_pdu_fc11})
+    EXT_ONLY({0x0Cu, 1u,  1u, F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE,       modcp_pdu_fc12})
+    EXT_ONLY({0x11u, 1u,  1u, F_EXT,                                             MODCP_QLIM_NONE,       modcp_pdu_fc17})
+    EXT_ONLY({0x2Bu, 2u,  0u, F_EXT,                                             MODCP_QLIM_NONE,       modcp_pdu_fc43})
+};
+
+/* The row of fc in the function set of p (NULL: not in it). Built without the
+ * extended set, the engine is the cp341 set whatever p says. */
+static const fc_row_t *row_of(const modcp_params_t *p, uint8_t fc)
 {
-    return (uint16_t)(((unsigned)p[0] << 8) | p[1]);
+#if MODCP_WITH_EXTENDED
+    const uint8_t set = p->fset == (uint8_t)MODCP_FSET_EXTENDED ? F_EXT : F_CP341;
+#else
+    (void)p;
+    const uint8_t set = F_CP341;
+#endif
+    for (size_t i = 0; i < sizeof fc_table / sizeof fc_table[0]; i++) {
+        const fc_row_t *r = &fc_table[i];
+        if (r->fc == fc && (r->flags & set) != 0u) {
+            return r;
+        }
+    }
+    return NULL;
 }
+
+/* ---- exceptions, reply encoding ----------------------------------------------------- */
 
 uint16_t modcp_pdu_exception(uint8_t *pdu, uint8_t fc, uint8_t code)
 {
@@ -31,27 +102,29 @@ uint16_t modcp_pdu_exception(uint8_t *pdu, uint8_t fc, uint8_t code)
     return 2;
 }
 
-/* ---- exceptions (manual set and extended set) ----------------------------------------------------------------- */
-
-modcp_pdu_action_t modcp_pdu_fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_event_t ev,
-                                  uint8_t code, uint8_t *pdu, uint16_t *out_len)
+/* A refused request (s->err, s->x.exc): record the event, count the exception (also
+ * for a broadcast, Serial Line V1.02 §6.1 counter 3), answer it or, for a broadcast,
+ * count the missing response. */
+static modcp_pdu_action_t fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                               uint16_t *out_len)
 {
+    const modcp_event_t ev = s->err;
     modcp_diag_event(env->diag, ev);
-    if (code == 0u) {
+    uint8_t code = s->x.exc;
+    if (code == (uint8_t)MODCP_EXC_OF_EVENT) {
         code = modcp_event_exception(ev);
         if (code == 0u) {
-            code = 4;
+            code = MODCP_EXC_DEVICE_FAILURE;
         }
+        s->x.exc = code;
     }
-    s->x.exc = code;
     if (ev == MODCP_EV_XFER_TIMEOUT || ev == MODCP_EV_FB_TIMEOUT) {
         s->x.timeout = 1;
     }
-    /* Serial Line V1.02 §6.1: exceptions detected in broadcast messages count too */
     modcp_diag_count(env->diag, MODCP_CNT_EXCEPTION);
-    if (code == 7u) {
+    if (code == (uint8_t)MODCP_EXC_NAK) {
         modcp_diag_count(env->diag, MODCP_CNT_NAK);
-    } else if (code == 6u) {
+    } else if (code == (uint8_t)MODCP_EXC_BUSY) {
         modcp_diag_count(env->diag, MODCP_CNT_BUSY);
     }
     if (s->broadcast) {
@@ -62,209 +135,107 @@ modcp_pdu_action_t modcp_pdu_fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, mo
     return MODCP_PDU_REPLY;
 }
 
-/* Record ev and answer with its exception code (04 when it has none); counts the
- * exception, also for a broadcast. */
-static modcp_pdu_action_t fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_event_t ev,
-                               uint8_t code, uint8_t *pdu, uint16_t *out_len)
+/* Every job of the request is done: the reply is the echo of the request's first
+ * s->x.echo bytes, or fc, byte count and the s->x.rbytes data read to pdu + 2. */
+static modcp_pdu_action_t encode(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                 uint16_t *out_len)
 {
-    return modcp_pdu_fail(s, env, ev, code, pdu, out_len);
+    if (s->broadcast) {
+        modcp_diag_count(env->diag, MODCP_CNT_NO_RESPONSE);
+        return MODCP_PDU_NO_REPLY;
+    }
+    if (s->x.echo != 0u) {
+        *out_len = s->x.echo;
+        return MODCP_PDU_REPLY;
+    }
+    if (s->bits != 0u) {
+        modcp_pdu_align_bits(pdu + 2, s->shift, s->qty); /* FC01 / FC02 */
+    }
+    pdu[0] = s->fc;
+    pdu[1] = (uint8_t)s->x.rbytes;
+    *out_len = (uint16_t)(2u + s->x.rbytes);
+    return MODCP_PDU_REPLY;
 }
 
-static bool fc_supported(uint8_t fc)
+static modcp_pdu_action_t settle(modcp_pdu_t *s, const modcp_pdu_env_t *env,
+                                 modcp_pdu_action_t a, uint8_t *pdu, uint16_t *out_len)
 {
-    switch (fc) {
-    case 0x01: case 0x02: case 0x03: case 0x04: case 0x05:
-    case 0x06: case 0x08: case 0x0F: case 0x10:
-        return true;
-    default:
+    if (a == MODCP_PDU_FAIL) {
+        return fail(s, env, pdu, out_len);
+    }
+    if (a == MODCP_PDU_DONE) {
+        return encode(s, env, pdu, out_len);
+    }
+    return a;
+}
+
+/* ---- requests ----------------------------------------------------------------------- */
+
+#if MODCP_WITH_EXTENDED
+/* FC12 receive event; in listen-only mode (Application Protocol §6.8 sub 04) requests
+ * are monitored and counted, neither executed nor answered; only FC08 sub 01 is
+ * processed (without a reply). True when the request is taken here. */
+static bool listen_only(modcp_pdu_t *s, const modcp_pdu_env_t *env, const uint8_t *pdu,
+                        uint16_t len)
+{
+    modcp_comm_t *c = &env->diag->comm;
+    modcp_comm_rx(c, s->broadcast);
+    if (!c->listen_only) {
         return false;
     }
+    s->x.quiet = 1;
+    modcp_diag_count(env->diag, MODCP_CNT_NO_RESPONSE);
+    if (!s->broadcast && s->fc == 0x08u && len == 5u && modcp_get16(pdu + 1) == 0x0001u) {
+        uint16_t data = modcp_get16(pdu + 3);
+        if (data == 0x0000u) {
+            s->x.after = MODCP_X_AFTER_RESTART;
+        } else if (data == 0xFF00u) {
+            s->x.after = MODCP_X_AFTER_RESTART_CLEAR;
+        }
+    }
+    return true;
 }
+#endif
 
-static bool fc_broadcast_allowed(uint8_t fc)
+static modcp_pdu_action_t dispatch(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                   uint16_t len, uint16_t cap, uint16_t *out_len)
 {
-    return fc == 0x05 || fc == 0x06 || fc == 0x0F || fc == 0x10;
-}
-
-static modcp_pdu_action_t start_job(modcp_pdu_t *s, uint8_t op, const modcp_operand_t *o,
-                                    uint16_t len, const uint8_t *wdata, uint8_t *pdu,
-                                    uint16_t cap)
-{
-    s->job.op = op;
-    s->job.opnd = *o;
-    s->job.len = len;
-    s->wdata = wdata;
-    s->rdata = pdu + 2; /* FC01..04 replies: fc, byte count, data */
-    s->rcap = (uint16_t)(cap > 2u ? cap - 2u : 0u);
-    return MODCP_PDU_JOB;
-}
-
-/* FC01 / FC02: read bits. */
-static modcp_pdu_action_t read_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                    uint16_t len, uint16_t cap, uint16_t *out_len)
-{
-    if (len != 5u) {
-        return fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
+    if (!env->fb_ready) {
+        return modcp_pdu_err(s, MODCP_EV_FB_NOT_RUNNING, MODCP_EXC_DEVICE_FAILURE);
     }
-    s->addr = get16(pdu + 1);
-    s->qty = get16(pdu + 3);
-    if (s->qty < 1u || s->qty > modcp_qty_max(env->p, s->fc, 0u)) {
-        return fail(s, env, MODCP_EV_QUANTITY, 3, pdu, out_len);
+    const fc_row_t *r = row_of(env->p, s->fc);
+    if (s->broadcast && (r == NULL || (r->flags & F_BCAST) == 0u)) {
+        return modcp_pdu_err(s, MODCP_EV_BCAST_FC, MODCP_EXC_ILLEGAL_FUNCTION); /* silent */
     }
-    modcp_operand_t o;
-    modcp_event_t ev = modcp_map_bits(env->p, env->areas, s->fc, s->addr, s->qty, &o);
-    if (ev != MODCP_EV_NONE) {
-        return fail(s, env, ev, 0, pdu, out_len);
+    if (r == NULL) {
+        return modcp_pdu_err(s, MODCP_EV_ILLEGAL_FC, MODCP_EXC_ILLEGAL_FUNCTION);
     }
-    uint16_t bytes;
-    if (o.area == MODCP_AREA_T || o.area == MODCP_AREA_C) {
-        bytes = (uint16_t)(o.count * 2u); /* whole words, high byte first */
-        s->shift = 0;
-    } else {
-        bytes = (uint16_t)((o.bit + s->qty + 7u) / 8u);
-        s->shift = o.bit;
-        o.count = bytes; /* the job reads whole bytes; bits are aligned by the CP */
-        o.bit = 0;
+    s->fcflags = r->flags;
+    modcp_pdu_handler_t h = r->run;
+    if (len < r->min_len || (r->max_len != 0u && len > r->max_len)) {
+        return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
-    return start_job(s, MODCP_JOB_READ, &o, bytes, NULL, pdu, cap);
-}
-
-/* FC03 / FC04: read registers. */
-static modcp_pdu_action_t read_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                    uint16_t len, uint16_t cap, uint16_t *out_len)
-{
-    if (len != 5u) {
-        return fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
+    if ((r->flags & F_ADDR) != 0u) {
+        s->addr = modcp_get16(pdu + 1);
+        uint16_t qty = r->lim != (uint8_t)MODCP_QLIM_NONE ? modcp_get16(pdu + 3) : 1u;
+        bool scan = false;
+#if MODCP_WITH_EXTENDED
+        if ((r->flags & F_SCAN) != 0u && modcp_scan_touches(env->p, s->addr, qty)) {
+            scan = true; /* scanner addresses: 16-bit operands, the scanner's handlers */
+            h = s->fc == 0x03u ? modcp_pdu_scan_read : modcp_pdu_scan_write;
+        }
+#endif
+        if (!scan && (r->flags & F_R32) != 0u) {
+            s->r32_kind = modcp_regs32_kind(env->p, s->fc, s->addr);
+        }
+        if (r->lim != (uint8_t)MODCP_QLIM_NONE) {
+            s->qty = qty;
+            if (qty < 1u || qty > modcp_qty_limit(env->p, r->lim, s->r32_kind)) {
+                return modcp_pdu_err(s, MODCP_EV_QUANTITY, MODCP_EXC_ILLEGAL_VALUE);
+            }
+        }
     }
-    s->addr = get16(pdu + 1);
-    s->qty = get16(pdu + 3);
-    s->r32_kind = modcp_regs32_kind(env->p, s->fc, s->addr); /* 003 §4.5: by the start */
-    if (s->qty < 1u || s->qty > modcp_qty_max(env->p, s->fc, s->r32_kind)) {
-        return fail(s, env, MODCP_EV_QUANTITY, 3, pdu, out_len);
-    }
-    modcp_operand_t o;
-    modcp_event_t ev = modcp_map_regs(env->p, env->areas, s->fc, s->addr, s->qty, &o);
-    if (ev != MODCP_EV_NONE) {
-        return fail(s, env, ev, 0, pdu, out_len);
-    }
-    s->r32_kind = o.bit;
-    o.bit = 0;
-    return start_job(s, MODCP_JOB_READ, &o, o.count, NULL, pdu, cap);
-}
-
-/* FC05: write single coil. */
-static modcp_pdu_action_t write_coil(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                     uint16_t len, uint16_t cap, uint16_t *out_len)
-{
-    if (len != 5u) {
-        return fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-    }
-    s->addr = get16(pdu + 1);
-    s->qty = 1;
-    uint16_t value = get16(pdu + 3);
-    if (value != 0xFF00u && value != 0x0000u) {
-        return fail(s, env, MODCP_EV_COIL_VALUE, 3, pdu, out_len);
-    }
-    modcp_operand_t o;
-    modcp_event_t ev = modcp_map_bits(env->p, env->areas, s->fc, s->addr, 1, &o);
-    if (ev != MODCP_EV_NONE) {
-        return fail(s, env, ev, 0, pdu, out_len);
-    }
-    s->bitval = value == 0xFF00u ? 1u : 0u;
-    return start_job(s, MODCP_JOB_BITWRITE, &o, 1, &s->bitval, pdu, cap);
-}
-
-/* FC06: write single register. */
-static modcp_pdu_action_t write_reg(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                    uint16_t len, uint16_t cap, uint16_t *out_len)
-{
-    if (len < 3u) {
-        return fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-    }
-    s->addr = get16(pdu + 1);
-    s->qty = 1;
-    s->r32_kind = modcp_regs32_kind(env->p, s->fc, s->addr);
-    if (len != 3u + modcp_reg_bytes(s->r32_kind)) { /* int32 / float: 4 data bytes */
-        return fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-    }
-    modcp_operand_t o;
-    modcp_event_t ev = modcp_map_regs(env->p, env->areas, s->fc, s->addr, 1, &o);
-    if (ev != MODCP_EV_NONE) {
-        return fail(s, env, ev, 0, pdu, out_len);
-    }
-    s->r32_kind = o.bit;
-    o.bit = 0;
-    s->reply_len = len; /* echo: 5, or 7 for an int32 / float register (003 §4.5) */
-    return start_job(s, MODCP_JOB_WRITE, &o, o.count, pdu + 3, pdu, cap);
-}
-
-/* FC15: write multiple coils. */
-static modcp_pdu_action_t write_coils(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                      uint16_t len, uint16_t cap, uint16_t *out_len)
-{
-    if (len < 6u) {
-        return fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-    }
-    s->addr = get16(pdu + 1);
-    s->qty = get16(pdu + 3);
-    uint8_t bc = pdu[5];
-    if (s->qty < 1u || s->qty > modcp_qty_max(env->p, s->fc, 0u)) {
-        return fail(s, env, MODCP_EV_QUANTITY, 3, pdu, out_len);
-    }
-    if (bc != (s->qty + 7u) / 8u || len != 6u + bc) {
-        return fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-    }
-    modcp_operand_t o;
-    modcp_event_t ev = modcp_map_bits(env->p, env->areas, s->fc, s->addr, s->qty, &o);
-    if (ev != MODCP_EV_NONE) {
-        return fail(s, env, ev, 0, pdu, out_len);
-    }
-    return start_job(s, MODCP_JOB_BITWRITE, &o, bc, pdu + 6, pdu, cap);
-}
-
-/* FC16: write multiple registers. */
-static modcp_pdu_action_t write_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                     uint16_t len, uint16_t cap, uint16_t *out_len)
-{
-    if (len < 6u) {
-        return fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-    }
-    s->addr = get16(pdu + 1);
-    s->qty = get16(pdu + 3);
-    uint8_t bc = pdu[5];
-    s->r32_kind = modcp_regs32_kind(env->p, s->fc, s->addr); /* 003 §4.5: by the start */
-    if (s->qty < 1u || s->qty > modcp_qty_max(env->p, s->fc, s->r32_kind)) {
-        return fail(s, env, MODCP_EV_QUANTITY, 3, pdu, out_len);
-    }
-    if (bc != (unsigned)modcp_reg_bytes(s->r32_kind) * s->qty || len != 6u + bc) {
-        return fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-    }
-    modcp_operand_t o;
-    modcp_event_t ev = modcp_map_regs(env->p, env->areas, s->fc, s->addr, s->qty, &o);
-    if (ev != MODCP_EV_NONE) {
-        return fail(s, env, ev, 0, pdu, out_len);
-    }
-    s->r32_kind = o.bit;
-    o.bit = 0;
-    if (o.count != bc) {
-        return fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-    }
-    return start_job(s, MODCP_JOB_WRITE, &o, bc, pdu + 6, pdu, cap);
-}
-
-/* FC08: diagnostics, sub-function 0000 (return query data). */
-static modcp_pdu_action_t diagnostics(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                      uint16_t len, uint16_t *out_len)
-{
-    if (len < 3u) {
-        return fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-    }
-    uint16_t sub = get16(pdu + 1);
-    if (sub != 0x0000u) {
-        return fail(s, env, MODCP_EV_DIAG_SUBFC, 3, pdu, out_len);
-    }
-    *out_len = len; /* echo, unchanged */
-    return MODCP_PDU_REPLY;
+    return h(s, env, pdu, len, cap, out_len);
 }
 
 modcp_pdu_action_t modcp_pdu_request(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t addr,
@@ -277,68 +248,13 @@ modcp_pdu_action_t modcp_pdu_request(modcp_pdu_t *s, const modcp_pdu_env_t *env,
     }
     s->fc = pdu[0];
     s->broadcast = addr == 0u;
-
 #if MODCP_WITH_EXTENDED
-    modcp_pdu_action_t pre;
-    if (modcp_pdu_ext_pre(s, env, pdu, len, &pre)) {
-        return pre; /* listen-only mode */
+    if (listen_only(s, env, pdu, len)) {
+        return MODCP_PDU_NO_REPLY;
     }
 #endif
-    if (s->broadcast && !fc_broadcast_allowed(s->fc)) {
-        return fail(s, env, MODCP_EV_BCAST_FC, 1, pdu, out_len); /* silent, counted */
-    }
-#if MODCP_WITH_EXTENDED
-    if (!fc_supported(s->fc) && !modcp_pdu_ext_supported(env, s->fc)) {
-        return fail(s, env, MODCP_EV_ILLEGAL_FC, 1, pdu, out_len);
-    }
-#else
-    if (!fc_supported(s->fc)) { /* built without the extended set: the cp341 set */
-        return fail(s, env, MODCP_EV_ILLEGAL_FC, 1, pdu, out_len);
-    }
-#endif
-    if (!env->fb_ready) {
-        return fail(s, env, MODCP_EV_FB_NOT_RUNNING, 4, pdu, out_len);
-    }
-#if MODCP_WITH_EXTENDED
-    if (modcp_pdu_ext_claims(env, pdu, len)) {
-        return modcp_pdu_ext_request(s, env, pdu, len, cap, out_len);
-    }
-#endif
-    switch (s->fc) {
-    case 0x01:
-    case 0x02:
-        return read_bits(s, env, pdu, len, cap, out_len);
-    case 0x03:
-    case 0x04:
-        return read_regs(s, env, pdu, len, cap, out_len);
-    case 0x05:
-        return write_coil(s, env, pdu, len, cap, out_len);
-    case 0x06:
-        return write_reg(s, env, pdu, len, cap, out_len);
-    case 0x08:
-        return diagnostics(s, env, pdu, len, out_len);
-    case 0x0F:
-        return write_coils(s, env, pdu, len, cap, out_len);
-    case 0x10:
-        return write_regs(s, env, pdu, len, cap, out_len);
-    default:
-        return fail(s, env, MODCP_EV_ILLEGAL_FC, 1, pdu, out_len);
-    }
-}
-
-/* Align a bit string read from byte boundaries: drop `shift` low bits of the first
- * byte, keep qty bits, clear the unused high bits of the last byte. */
-static void align_bits(uint8_t *d, uint8_t shift, uint16_t qty)
-{
-    uint16_t n = (uint16_t)((qty + 7u) / 8u);
-    if (shift != 0u) {
-        for (uint16_t i = 0; i < n; i++) {
-            d[i] = (uint8_t)((d[i] >> shift) | (d[i + 1u] << (8u - shift)));
-        }
-    }
-    if ((qty & 7u) != 0u) {
-        d[n - 1u] &= (uint8_t)((1u << (qty & 7u)) - 1u);
-    }
+    modcp_pdu_action_t a = dispatch(s, env, pdu, len, cap, out_len);
+    return a == MODCP_PDU_JOB ? a : settle(s, env, a, pdu, out_len);
 }
 
 modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env,
@@ -346,47 +262,103 @@ modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env
 {
     *out_len = 0;
 #if MODCP_WITH_EXTENDED
-    if (s->x.seq != 0u) {
-        return modcp_pdu_ext_complete(s, env, ev, pdu, out_len); /* extended set */
-    }
+    const bool sequence = s->x.seq != 0u;
+#else
+    const bool sequence = false;
 #endif
+    if (ev == MODCP_EV_NONE && !sequence && s->job.op != 0u) {
+        return encode(s, env, pdu, out_len); /* the single job of the manual set */
+    }
+    modcp_pdu_action_t a;
     if (ev != MODCP_EV_NONE) {
-        return fail(s, env, ev, 4, pdu, out_len);
+        a = modcp_pdu_err(s, ev, MODCP_EXC_DEVICE_FAILURE); /* whatever the CPU side said */
+    } else if (s->job.op == 0u) {
+        a = modcp_pdu_err(s, MODCP_EV_INTERNAL_SEND, MODCP_EXC_DEVICE_FAILURE); /* no job ran */
+#if MODCP_WITH_EXTENDED
+    } else if (sequence) {
+        a = modcp_pdu_seq_next(s, env, pdu); /* FC22, FC23, scanner: next job */
+#endif
+    } else {
+        a = MODCP_PDU_DONE;
     }
-    if (s->broadcast) {
-        modcp_diag_count(env->diag, MODCP_CNT_NO_RESPONSE);
-        return MODCP_PDU_NO_REPLY;
-    }
-    switch (s->fc) {
-    case 0x01:
-    case 0x02: {
-        uint16_t bytes;
-        if (s->job.opnd.area == MODCP_AREA_T || s->job.opnd.area == MODCP_AREA_C) {
-            bytes = s->job.len;
-        } else {
-            align_bits(s->rdata, s->shift, s->qty);
-            bytes = (uint16_t)((s->qty + 7u) / 8u);
-        }
-        pdu[0] = s->fc;
-        pdu[1] = (uint8_t)bytes;
-        *out_len = (uint16_t)(2u + bytes);
-        return MODCP_PDU_REPLY;
-    }
-    case 0x03:
-    case 0x04:
-        pdu[0] = s->fc;
-        pdu[1] = (uint8_t)s->job.len;
-        *out_len = (uint16_t)(2u + s->job.len);
-        return MODCP_PDU_REPLY;
-    case 0x05:
-    case 0x06:
-        *out_len = s->fc == 0x06 ? s->reply_len : 5u; /* echo of the request */
-        return MODCP_PDU_REPLY;
-    case 0x0F:
-    case 0x10:
-        *out_len = 5; /* fc, start, quantity: the request's first five bytes */
-        return MODCP_PDU_REPLY;
+    return settle(s, env, a, pdu, out_len);
+}
+
+/* ---- end of a request (extended set) ------------------------------------------------ */
+
+#if MODCP_WITH_EXTENDED
+static bool write_op(uint8_t op)
+{
+    return op == MODCP_JOB_WRITE || op == MODCP_JOB_BITWRITE || op == MODCP_JOB_MASKWRITE;
+}
+
+/* FC12 send event (Serial Line V1.02 §6.10) of the finished request. */
+static uint8_t send_event(const modcp_pdu_t *s, const modcp_comm_t *c)
+{
+    uint8_t ev = MODCP_COMM_TX;
+    switch (s->x.exc) {
+    case MODCP_EXC_NONE:
+        break;
+    case MODCP_EXC_ILLEGAL_FUNCTION:
+    case MODCP_EXC_ILLEGAL_ADDRESS:
+    case MODCP_EXC_ILLEGAL_VALUE:
+        ev |= MODCP_COMM_TX_READ_EXC;
+        break;
+    case MODCP_EXC_DEVICE_FAILURE:
+        ev |= MODCP_COMM_TX_ABORT_EXC;
+        break;
+    case MODCP_EXC_ACKNOWLEDGE:
+    case MODCP_EXC_BUSY:
+        ev |= MODCP_COMM_TX_BUSY_EXC;
+        break;
     default:
-        return fail(s, env, MODCP_EV_INTERNAL_SEND, 4, pdu, out_len);
+        ev |= MODCP_COMM_TX_NAK_EXC;
+        break;
+    }
+    if (s->x.timeout != 0u && write_op(s->job.op)) {
+        ev |= MODCP_COMM_TX_WRITE_TIMEOUT;
+    }
+    if (c->listen_only) {
+        ev |= MODCP_COMM_TX_LISTEN;
+    }
+    return ev;
+}
+
+void modcp_pdu_finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_pdu_action_t a,
+                        uint32_t now_us)
+{
+    (void)a;
+    modcp_diag_t *d = env->diag;
+    modcp_ext_t *x = env->ext;
+    if (x != NULL && !s->broadcast) {
+        modcp_commloss_request(x, now_us); /* a valid request for our address */
+    }
+    if (s->x.quiet == 0u) {
+        modcp_comm_log(&d->comm, send_event(s, &d->comm));
+        if (s->x.exc == MODCP_EXC_NONE && (s->fcflags & F_NOCOUNT) == 0u) {
+            d->comm.event_count++; /* successful completion; wraps 65535 -> 0 */
+        }
+        if (x != NULL) {
+            if (s->x.timeout != 0u) {
+                x->cpu_stalled = true;
+            } else if (s->job.op != 0u && s->x.exc == MODCP_EXC_NONE) {
+                x->cpu_stalled = false;
+            }
+            if (!s->broadcast && s->x.exc == MODCP_EXC_NONE && (s->fcflags & F_WRITE) != 0u) {
+                modcp_commloss_write(x, env->p, now_us);
+            }
+        }
+    }
+    switch (s->x.after) {
+    case MODCP_X_AFTER_CLEAR:
+        modcp_ext_clear_counters(d);
+        break;
+    case MODCP_X_AFTER_RESTART:
+    case MODCP_X_AFTER_RESTART_CLEAR:
+        modcp_ext_restart(x, d, s->x.after == MODCP_X_AFTER_RESTART_CLEAR);
+        break;
+    default:
+        break;
     }
 }
+#endif

@@ -1,209 +1,223 @@
-/* modcp — PDU engine, extended function set (SPEC §5.3): dispatch, exception
- * accounting, listen-only, FC22 mask write, FC23 read/write multiple registers, the
- * indirection scanner's request handling, and the end-of-request accounting (FC11
- * event counter, FC12 send events, comm-loss supervision).
+/* modcp — handlers of the extended function set (SPEC §5.3) that run CPU jobs in
+ * sequence: FC22 mask write register, FC23 read/write multiple registers, and FC03 /
+ * FC06 / FC16 on the indirection scanner's addresses (one job per scattered operand).
  *
- * modcp_pdu_fail() (exception accounting, needed by the manual set too) is in pdu.c.
+ * A handler checks everything the CP can check (lengths, quantities, byte counts,
+ * every range and every operand, the CPU job limit) and then returns the first job;
+ * modcp_pdu_seq_next() returns the next one until the reply can be encoded (pdu.c).
  *
- * Requests that need several CPU jobs (scanner: one job per scattered operand; FC23:
- * the write, then the read) run as a sequence: modcp_pdu_ext_request() returns the
- * first job, modcp_pdu_ext_complete() the next one, until the reply is built. Every
- * range and every operand of a request is checked before its first job, so a request
- * that fails the checks writes nothing. The reply goes out only after all jobs came
- * back; a job that fails (CPU side error or timeout) stops the sequence with
- * exception 04 (what was written before stays written: FC23's write happens before its
- * read, as the Modbus Application Protocol §6.17 specifies).
+ * An exception means that nothing was written (docs/extended-functions.md). A single
+ * CPU job is atomic: the CPU side refuses it before it writes. What only the CPU side
+ * can check - a DB that is missing or too short - is therefore checked, for requests
+ * with several jobs, before the first write. The jobs run as
+ *   1. early reads (FC23): reads of DB operands that no write of the request touches;
+ *      their values are the same before and after the writes, and their jobs check
+ *      the DBs. Only when the reply and the write data both fit into the buffer (the
+ *      write data move to its end);
+ *   2. check reads: a 2-byte read of the last word of every other DB operand that a
+ *      job after the first write touches;
+ *   3. the writes, DB operands first (the first one checks its own DB), then M / Q
+ *      (checked by the CP against the sizes the CPU side reported);
+ *   4. the other reads (they see the written values: Application Protocol §6.17).
+ * A failing job stops the sequence with exception 04. Only a CPU side that stops
+ * answering between a write and a later job (timeout) leaves a write done behind an
+ * exception.
  *
- * Limits (registers): FC23 read 1..125, write 1..121 (Modbus Application Protocol);
- * with 32-bit registers (int32 / float range, 4 bytes each) read 1..62, write 1..60,
- * so that the reply's byte count and an ASCII frame hold them. Scanner requests
- * (16-bit operands) have the FC03 / FC16 limits of the framing. */
+ * Limits (registers, quantity.c): FC23 read 1..125, write 1..121 (Modbus Application
+ * Protocol); with 32-bit registers (int32 / float range, 4 bytes each) read 1..62,
+ * write 1..60. Scanner requests (16-bit operands) have the FC03 / FC16 limits of the
+ * framing, checked by the function-code table. */
 #include <stddef.h>
 #include <string.h>
 
 #include "modcp/quantity.h"
 #include "pdu_internal.h"
 
-enum { PH_WRITE = 0, PH_READ = 1 };
+enum { PH_EARLY = 0, PH_CHECK = 1, PH_WRITE = 2, PH_READ = 3 };
 
-#define FC23_READ_MAX 125u
-#define FC23_WRITE_MAX 121u
-#define FC23_READ_MAX32 62u
-#define FC23_WRITE_MAX32 60u
-
-static uint16_t get16(const uint8_t *p)
+/* Operand k of the write part (write) or the read part. */
+static modcp_event_t operand(const modcp_pdu_t *s, const modcp_pdu_env_t *env, bool write,
+                             uint16_t k, modcp_operand_t *o)
 {
-    return (uint16_t)(((unsigned)p[0] << 8) | p[1]);
+    const modcp_pdu_x_t *x = &s->x;
+    if (write ? !x->wscan : !x->rscan) {
+        *o = write ? x->wdir : x->rdir;
+        return MODCP_EV_NONE;
+    }
+    return modcp_scan_map(env->p, env->areas, (uint16_t)((write ? x->wstart : x->rstart) + k),
+                          write, o);
 }
 
-static bool extended(const modcp_pdu_env_t *env)
+static uint16_t write_jobs(const modcp_pdu_x_t *x)
 {
-    return env->p->fset == (uint8_t)MODCP_FSET_EXTENDED;
+    return x->wop == 0u ? 0u : (x->wscan ? x->wqty : 1u);
 }
 
-/* ---- receive event, listen-only mode -------------------------------------------- */
-
-bool modcp_pdu_ext_pre(modcp_pdu_t *s, const modcp_pdu_env_t *env, const uint8_t *pdu,
-                       uint16_t len, modcp_pdu_action_t *a)
+static uint16_t read_jobs(const modcp_pdu_x_t *x)
 {
-    modcp_comm_t *c = &env->diag->comm;
-    modcp_comm_rx(c, s->broadcast);
-    if (!c->listen_only) {
+    return x->rqty == 0u ? 0u : (x->rscan ? x->rqty : 1u);
+}
+
+static bool overlap(const modcp_operand_t *a, const modcp_operand_t *b)
+{
+    return a->area == b->area && a->db == b->db &&
+           (uint32_t)a->offset < (uint32_t)b->offset + b->count &&
+           (uint32_t)b->offset < (uint32_t)a->offset + a->count;
+}
+
+/* A DB read of FC23 that no write of the request touches runs before the writes: its
+ * data are the same before and after them, and its job checks the DB. */
+static bool early_read(const modcp_pdu_t *s, const modcp_pdu_env_t *env,
+                       const modcp_operand_t *o)
+{
+    const modcp_pdu_x_t *x = &s->x;
+    if (x->early == 0u || o->area != MODCP_AREA_DB) {
         return false;
     }
-    /* Listen-only (Application Protocol §6.8 sub 04): requests are monitored, counted,
-     * neither executed nor answered; only FC08 sub 01 is processed (without a reply). */
-    *a = MODCP_PDU_NO_REPLY;
-    s->x.quiet = 1;
-    modcp_diag_count(env->diag, MODCP_CNT_NO_RESPONSE);
-    if (!s->broadcast && s->fc == 0x08u && len == 5u && get16(pdu + 1) == 0x0001u) {
-        uint16_t data = get16(pdu + 3);
-        if (data == 0x0000u) {
-            s->x.after = MODCP_X_AFTER_RESTART;
-        } else if (data == 0xFF00u) {
-            s->x.after = MODCP_X_AFTER_RESTART_CLEAR;
+    for (uint16_t k = 0; k < write_jobs(x); k++) {
+        modcp_operand_t w;
+        if (operand(s, env, true, k, &w) != MODCP_EV_NONE || overlap(o, &w)) {
+            return false;
         }
     }
     return true;
 }
 
-/* ---- dispatch ------------------------------------------------------------------- */
-
-bool modcp_pdu_ext_supported(const modcp_pdu_env_t *env, uint8_t fc)
+/* Needs operand o (of the write part: write) a check read before the first write?
+ * The writes run DB operands first, so the first DB write checks itself; the other
+ * areas are checked by the CP against the sizes the CPU side reported. */
+static bool needs_check(modcp_pdu_x_t *x, bool write, const modcp_operand_t *o)
 {
-    if (!extended(env)) {
+    if (o->area != MODCP_AREA_DB) {
         return false;
     }
-    switch (fc) {
-    case 0x08: case 0x0B: case 0x0C: case 0x11: case 0x16: case 0x17: case 0x2B:
-        return true;
-    default:
+    if (write && x->wfirst == 0u) {
+        x->wfirst = 1;
         return false;
     }
-}
-
-bool modcp_pdu_ext_claims(const modcp_pdu_env_t *env, const uint8_t *pdu, uint16_t len)
-{
-    if (len < 1u || !extended(env)) {
-        return false;
+    if (!write && !x->wscan && x->wdir.area == MODCP_AREA_DB && o->db == x->wdir.db &&
+        (uint32_t)o->offset + o->count <= (uint32_t)x->wdir.offset + x->wdir.count) {
+        return false; /* the write job proves the DB at least this long */
     }
-    switch (pdu[0]) {
-    case 0x03:
-    case 0x10:
-        return len >= 5u && modcp_scan_touches(env->p, get16(pdu + 1), get16(pdu + 3));
-    case 0x06:
-        return len >= 3u && modcp_scan_touches(env->p, get16(pdu + 1), 1u);
-    default:
-        return modcp_pdu_ext_supported(env, pdu[0]);
-    }
+    return true;
 }
 
-/* ---- job sequences -------------------------------------------------------------- */
-
-static modcp_pdu_action_t job(modcp_pdu_t *s, uint8_t op, const modcp_operand_t *o, uint16_t len,
-                              const uint8_t *wdata, uint8_t *rdata, uint16_t rcap)
+/* The read job of operand o (read part, entry k) into its place in the reply. */
+static modcp_pdu_action_t read_job(modcp_pdu_t *s, const modcp_operand_t *o, uint16_t k,
+                                   uint8_t *pdu)
 {
-    s->job.op = op;
-    s->job.opnd = *o;
-    s->job.len = len;
-    s->wdata = wdata;
-    s->rdata = rdata;
-    s->rcap = rcap;
-    return MODCP_PDU_JOB;
+    const modcp_pdu_x_t *x = &s->x;
+    if (!x->rscan) {
+        return modcp_pdu_job(s, MODCP_JOB_READ, o, o->count, NULL, pdu + x->roff,
+                             (uint16_t)(x->cap - x->roff));
+    }
+    return modcp_pdu_job(s, MODCP_JOB_READ, o, 2, NULL, pdu + x->roff + 2u * k, 2);
 }
 
-/* The next job of the sequence, or the reply when all are done. */
-static modcp_pdu_action_t step(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                               uint16_t *out_len)
+modcp_pdu_action_t modcp_pdu_seq_next(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu)
 {
     modcp_pdu_x_t *x = &s->x;
+    const uint16_t nw = write_jobs(x);
+    const uint16_t nr = read_jobs(x);
     modcp_operand_t o;
     for (;;) {
         if (x->phase == PH_WRITE) {
-            uint16_t n = x->wop == 0u ? 0u : (x->wscan ? x->wqty : 1u);
-            if (x->idx >= n) {
+            /* DB operands first (in request order), then the others */
+            if (x->idx >= 2u * nw) {
                 x->phase = PH_READ;
                 x->idx = 0;
                 continue;
             }
-            uint16_t k = x->idx++;
-            if (!x->wscan) {
-                return job(s, x->wop, &x->wdir, x->wlen, pdu + x->woff, NULL, 0);
-            }
-            modcp_event_t ev =
-                modcp_scan_map(env->p, env->areas, (uint16_t)(x->wstart + k), true, &o);
+            const bool pass0 = x->idx < nw;
+            const uint16_t k = (uint16_t)(pass0 ? x->idx : x->idx - nw);
+            x->idx++;
+            modcp_event_t ev = operand(s, env, true, k, &o);
             if (ev != MODCP_EV_NONE) {
-                return modcp_pdu_fail(s, env, ev, 0, pdu, out_len);
+                return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
             }
-            if (o.area == MODCP_AREA_NONE) {
+            if (o.area == MODCP_AREA_NONE || (o.area == MODCP_AREA_DB) != pass0) {
                 continue; /* unused scanner entry: the value is discarded */
             }
-            if (x->wop == MODCP_JOB_MASKWRITE) {
-                return job(s, x->wop, &o, 4, pdu + x->woff, NULL, 0);
+            if (!x->wscan) {
+                return modcp_pdu_job(s, x->wop, &o, x->wlen, pdu + x->woff, NULL, 0);
             }
-            return job(s, x->wop, &o, 2, pdu + x->woff + 2u * k, NULL, 0);
+            if (x->wop == MODCP_JOB_MASKWRITE) {
+                return modcp_pdu_job(s, x->wop, &o, 4, pdu + x->woff, NULL, 0);
+            }
+            return modcp_pdu_job(s, x->wop, &o, 2, pdu + x->woff + 2u * k, NULL, 0);
         }
-        uint16_t n = x->rqty == 0u ? 0u : (x->rscan ? x->rqty : 1u);
+        const uint16_t n = x->phase == PH_CHECK ? (uint16_t)(nw + nr) : nr;
         if (x->idx >= n) {
-            break;
-        }
-        uint16_t k = x->idx++;
-        if (!x->rscan) {
-            return job(s, MODCP_JOB_READ, &x->rdir, x->rdir.count, NULL, pdu + x->roff,
-                       (uint16_t)(x->cap - x->roff));
-        }
-        modcp_event_t ev = modcp_scan_map(env->p, env->areas, (uint16_t)(x->rstart + k), false, &o);
-        if (ev != MODCP_EV_NONE) {
-            return modcp_pdu_fail(s, env, ev, 0, pdu, out_len);
-        }
-        uint8_t *r = pdu + x->roff + 2u * k;
-        if (o.area == MODCP_AREA_NONE) {
-            r[0] = 0;
-            r[1] = 0;
+            if (x->phase == PH_READ) {
+                return MODCP_PDU_DONE;
+            }
+            x->phase++; /* early reads -> check reads -> writes */
+            x->idx = 0;
+            if (nw == 0u) {
+                x->phase = PH_READ;
+            }
             continue;
         }
-        return job(s, MODCP_JOB_READ, &o, 2, NULL, r, 2);
+        const uint16_t i = x->idx++;
+        const bool write = x->phase == PH_CHECK && i < nw;
+        const uint16_t k = x->phase == PH_CHECK && !write ? (uint16_t)(i - nw) : i;
+        modcp_event_t ev = operand(s, env, write, k, &o);
+        if (ev != MODCP_EV_NONE) {
+            return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+        }
+        if (o.area == MODCP_AREA_NONE) {
+            if (x->phase == PH_READ) {
+                uint8_t *r = pdu + x->roff + 2u * k;
+                r[0] = 0; /* unused scanner entry: reads 0000 */
+                r[1] = 0;
+            }
+            continue;
+        }
+        const bool early = !write && early_read(s, env, &o);
+        if (x->phase == PH_EARLY) {
+            if (early) {
+                return read_job(s, &o, k, pdu);
+            }
+            continue;
+        }
+        if (x->phase == PH_READ) {
+            if (!early) {
+                return read_job(s, &o, k, pdu);
+            }
+            continue;
+        }
+        if (early || !needs_check(x, write, &o)) {
+            continue;
+        }
+        o.offset = (uint16_t)(o.offset + o.count - 2u); /* check read: the last word */
+        o.count = 2;
+        o.bit = 0;
+        return modcp_pdu_job(s, MODCP_JOB_READ, &o, 2, NULL, x->probe, sizeof x->probe);
     }
-    if (s->broadcast) {
-        modcp_diag_count(env->diag, MODCP_CNT_NO_RESPONSE);
-        return MODCP_PDU_NO_REPLY;
-    }
-    if (x->echo != 0u) {
-        *out_len = x->echo; /* the request's first bytes, untouched */
-        return MODCP_PDU_REPLY;
-    }
-    pdu[0] = s->fc;
-    pdu[1] = (uint8_t)x->rbytes;
-    *out_len = (uint16_t)(2u + x->rbytes);
-    return MODCP_PDU_REPLY;
 }
 
-modcp_pdu_action_t modcp_pdu_ext_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                          modcp_event_t ev, uint8_t *pdu, uint16_t *out_len)
+/* Start the sequence described in s->x. */
+static modcp_pdu_action_t start(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                uint16_t cap)
 {
-    *out_len = 0;
-    if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_fail(s, env, ev, 4, pdu, out_len);
-    }
-    return step(s, env, pdu, out_len);
+    modcp_pdu_x_t *x = &s->x;
+    x->seq = 1; /* completions come to modcp_pdu_seq_next() */
+    x->cap = cap;
+    x->phase = write_jobs(x) == 0u ? PH_READ : (x->early != 0u ? PH_EARLY : PH_CHECK);
+    return modcp_pdu_seq_next(s, env, pdu);
 }
 
 /* ---- scanner: FC03, FC06, FC16 on scanner addresses ------------------------------- */
 
-static modcp_pdu_action_t scan_read(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                    uint16_t len, uint16_t cap, uint16_t *out_len)
+modcp_pdu_action_t modcp_pdu_scan_read(modcp_pdu_t *s, const modcp_pdu_env_t *env,
+                                       uint8_t *pdu, uint16_t len, uint16_t cap,
+                                       uint16_t *out_len)
 {
-    if (len != 5u) {
-        return modcp_pdu_fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-    }
-    s->addr = get16(pdu + 1);
-    s->qty = get16(pdu + 3);
-    if (s->qty < 1u || s->qty > modcp_qty_max(env->p, 3u, 0u)) {
-        return modcp_pdu_fail(s, env, MODCP_EV_QUANTITY, 3, pdu, out_len);
-    }
+    (void)len;
+    (void)out_len;
     modcp_event_t ev = modcp_scan_check(env->p, env->areas, s->addr, s->qty, false);
     if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_fail(s, env, ev, 0, pdu, out_len);
+        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
     }
     s->x.rscan = true;
     s->x.rstart = s->addr;
@@ -211,57 +225,49 @@ static modcp_pdu_action_t scan_read(modcp_pdu_t *s, const modcp_pdu_env_t *env, 
     s->x.roff = 2;
     s->x.rbytes = (uint16_t)(2u * s->qty);
     if (2u + s->x.rbytes > cap) {
-        return modcp_pdu_fail(s, env, MODCP_EV_JOB_LENGTH, 4, pdu, out_len);
+        return modcp_pdu_err(s, MODCP_EV_JOB_LENGTH, MODCP_EXC_DEVICE_FAILURE);
     }
-    return step(s, env, pdu, out_len);
+    return start(s, env, pdu, cap);
 }
 
-static modcp_pdu_action_t scan_write(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                     uint16_t len, uint16_t *out_len)
+modcp_pdu_action_t modcp_pdu_scan_write(modcp_pdu_t *s, const modcp_pdu_env_t *env,
+                                        uint8_t *pdu, uint16_t len, uint16_t cap,
+                                        uint16_t *out_len)
 {
+    (void)out_len;
     if (s->fc == 0x06u) {
         if (len != 5u) {
-            return modcp_pdu_fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
+            return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
         }
-        s->addr = get16(pdu + 1);
         s->qty = 1;
         s->x.woff = 3;
     } else {
-        if (len < 6u) {
-            return modcp_pdu_fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-        }
-        s->addr = get16(pdu + 1);
-        s->qty = get16(pdu + 3);
-        uint8_t bc = pdu[5];
-        if (s->qty < 1u || s->qty > modcp_qty_max(env->p, 16u, 0u)) {
-            return modcp_pdu_fail(s, env, MODCP_EV_QUANTITY, 3, pdu, out_len);
-        }
+        const uint8_t bc = pdu[5];
         if (bc != 2u * s->qty || len != 6u + bc) {
-            return modcp_pdu_fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
+            return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
         }
         s->x.woff = 6;
     }
     modcp_event_t ev = modcp_scan_check(env->p, env->areas, s->addr, s->qty, true);
     if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_fail(s, env, ev, 0, pdu, out_len);
+        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
     }
     s->x.wop = MODCP_JOB_WRITE;
     s->x.wscan = true;
     s->x.wstart = s->addr;
     s->x.wqty = s->qty;
     s->x.echo = 5; /* FC06: the whole request; FC16: fc, start, quantity */
-    return step(s, env, pdu, out_len);
+    return start(s, env, pdu, cap);
 }
 
 /* ---- FC22 mask write register ----------------------------------------------------- */
 
-static modcp_pdu_action_t mask_write(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                     uint16_t len, uint16_t *out_len)
+modcp_pdu_action_t modcp_pdu_fc22(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                  uint16_t len, uint16_t cap, uint16_t *out_len)
 {
-    if (len != 7u) {
-        return modcp_pdu_fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-    }
-    s->addr = get16(pdu + 1);
+    (void)len;
+    (void)out_len;
+    s->addr = modcp_get16(pdu + 1);
     s->qty = 1;
     modcp_event_t ev;
     if (modcp_scan_touches(env->p, s->addr, 1u)) {
@@ -275,27 +281,25 @@ static modcp_pdu_action_t mask_write(modcp_pdu_t *s, const modcp_pdu_env_t *env,
         s->x.wlen = 4;
     }
     if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_fail(s, env, ev, 0, pdu, out_len);
+        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
     }
     s->x.wop = MODCP_JOB_MASKWRITE;
     s->x.woff = 3;
     s->x.echo = 7; /* the request, unchanged */
-    return step(s, env, pdu, out_len);
+    return start(s, env, pdu, cap);
 }
 
 /* ---- FC23 read/write multiple registers ----------------------------------------- */
 
-static modcp_pdu_action_t read_write(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                     uint16_t len, uint16_t cap, uint16_t *out_len)
+modcp_pdu_action_t modcp_pdu_fc23(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                  uint16_t len, uint16_t cap, uint16_t *out_len)
 {
-    if (len < 10u) {
-        return modcp_pdu_fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-    }
+    (void)out_len;
     modcp_pdu_x_t *x = &s->x;
-    x->rstart = get16(pdu + 1);
-    x->rqty = get16(pdu + 3);
-    x->wstart = get16(pdu + 5);
-    x->wqty = get16(pdu + 7);
+    x->rstart = modcp_get16(pdu + 1);
+    x->rqty = modcp_get16(pdu + 3);
+    x->wstart = modcp_get16(pdu + 5);
+    x->wqty = modcp_get16(pdu + 7);
     const uint8_t bc = pdu[9];
     s->addr = x->rstart;
     s->qty = x->rqty;
@@ -304,13 +308,12 @@ static modcp_pdu_action_t read_write(modcp_pdu_t *s, const modcp_pdu_env_t *env,
     /* quantities and byte count (exception 03) before any address (02) */
     const uint8_t rk = x->rscan ? 0u : modcp_regs32_kind(env->p, 3u, x->rstart);
     const uint8_t wk = x->wscan ? 0u : modcp_regs32_kind(env->p, 23u, x->wstart);
-    const uint16_t rmax = modcp_reg_bytes(rk) == 4u ? FC23_READ_MAX32 : FC23_READ_MAX;
-    const uint16_t wmax = modcp_reg_bytes(wk) == 4u ? FC23_WRITE_MAX32 : FC23_WRITE_MAX;
-    if (x->rqty < 1u || x->rqty > rmax || x->wqty < 1u || x->wqty > wmax) {
-        return modcp_pdu_fail(s, env, MODCP_EV_QUANTITY, 3, pdu, out_len);
+    if (x->rqty < 1u || x->rqty > modcp_qty_limit(env->p, MODCP_QLIM_RW_READ, rk) ||
+        x->wqty < 1u || x->wqty > modcp_qty_limit(env->p, MODCP_QLIM_RW_WRITE, wk)) {
+        return modcp_pdu_err(s, MODCP_EV_QUANTITY, MODCP_EXC_ILLEGAL_VALUE);
     }
     if (bc != (uint32_t)x->wqty * modcp_reg_bytes(wk) || len != 10u + bc) {
-        return modcp_pdu_fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
+        return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
     /* both ranges are checked before anything is written */
     modcp_event_t ev;
@@ -324,7 +327,7 @@ static modcp_pdu_action_t read_write(modcp_pdu_t *s, const modcp_pdu_env_t *env,
         }
     }
     if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_fail(s, env, ev, 0, pdu, out_len);
+        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
     }
     if (x->rscan) {
         ev = modcp_scan_check(env->p, env->areas, x->rstart, x->rqty, false);
@@ -336,127 +339,26 @@ static modcp_pdu_action_t read_write(modcp_pdu_t *s, const modcp_pdu_env_t *env,
         x->rbytes = x->rdir.count;
     }
     if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_fail(s, env, ev, 0, pdu, out_len);
+        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
     }
     if (x->rbytes > 250u || 2u + (uint32_t)x->rbytes > cap) {
-        return modcp_pdu_fail(s, env, MODCP_EV_QUANTITY, 3, pdu, out_len);
+        return modcp_pdu_err(s, MODCP_EV_QUANTITY, MODCP_EXC_ILLEGAL_VALUE);
+    }
+    /* the CPU job limit would refuse the read after the write: refuse both now */
+    const uint16_t limit = modcp_params_job_limit(env->p);
+    if ((!x->wscan && bc > limit) || (!x->rscan && x->rbytes > limit)) {
+        return modcp_pdu_err(s, MODCP_EV_JOB_LENGTH, MODCP_EXC_DEVICE_FAILURE);
     }
     x->wop = MODCP_JOB_WRITE;
     x->woff = 10;
     x->wlen = bc;
-    x->roff = 2; /* read data replace the request only after the write has been done */
-    return step(s, env, pdu, out_len);
-}
-
-modcp_pdu_action_t modcp_pdu_ext_request(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                         uint8_t *pdu, uint16_t len, uint16_t cap,
-                                         uint16_t *out_len)
-{
-    s->x.seq = 1; /* completions come to modcp_pdu_ext_complete() */
-    s->x.cap = cap;
-    switch (s->fc) {
-    case 0x03:
-        return scan_read(s, env, pdu, len, cap, out_len);
-    case 0x06:
-    case 0x10:
-        return scan_write(s, env, pdu, len, out_len);
-    case 0x08:
-        return modcp_pdu_fc08(s, env, pdu, len, out_len);
-    case 0x0B:
-        return modcp_pdu_fc11(s, env, pdu, len, out_len);
-    case 0x0C:
-        return modcp_pdu_fc12(s, env, pdu, len, cap, out_len);
-    case 0x11:
-        return modcp_pdu_fc17(s, env, pdu, len, cap, out_len);
-    case 0x16:
-        return mask_write(s, env, pdu, len, out_len);
-    case 0x17:
-        return read_write(s, env, pdu, len, cap, out_len);
-    case 0x2B:
-        return modcp_pdu_fc43(s, env, pdu, len, cap, out_len);
-    default:
-        return modcp_pdu_fail(s, env, MODCP_EV_ILLEGAL_FC, 1, pdu, out_len);
+    x->roff = 2;
+    if (2u + (uint32_t)x->rbytes + bc <= cap) {
+        /* room for both: the write data move to the buffer's end, so reads that no
+         * write touches can land in the reply before the writes run */
+        memmove(pdu + cap - bc, pdu + 10, bc);
+        x->woff = (uint16_t)(cap - bc);
+        x->early = 1;
     }
-}
-
-/* ---- end of a request ------------------------------------------------------------- */
-
-static bool write_fc(uint8_t fc)
-{
-    return fc == 0x05u || fc == 0x06u || fc == 0x0Fu || fc == 0x10u || fc == 0x16u ||
-           fc == 0x17u;
-}
-
-static bool write_op(uint8_t op)
-{
-    return op == MODCP_JOB_WRITE || op == MODCP_JOB_BITWRITE || op == MODCP_JOB_MASKWRITE;
-}
-
-static uint8_t send_event(const modcp_pdu_t *s, const modcp_comm_t *c)
-{
-    uint8_t ev = MODCP_COMM_TX;
-    switch (s->x.exc) {
-    case 0:
-        break;
-    case 1:
-    case 2:
-    case 3:
-        ev |= MODCP_COMM_TX_READ_EXC;
-        break;
-    case 4:
-        ev |= MODCP_COMM_TX_ABORT_EXC;
-        break;
-    case 5:
-    case 6:
-        ev |= MODCP_COMM_TX_BUSY_EXC;
-        break;
-    default:
-        ev |= MODCP_COMM_TX_NAK_EXC;
-        break;
-    }
-    if (s->x.timeout != 0u && write_op(s->job.op)) {
-        ev |= MODCP_COMM_TX_WRITE_TIMEOUT;
-    }
-    if (c->listen_only) {
-        ev |= MODCP_COMM_TX_LISTEN;
-    }
-    return ev;
-}
-
-void modcp_pdu_finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_pdu_action_t a,
-                        uint32_t now_us)
-{
-    (void)a;
-    modcp_diag_t *d = env->diag;
-    modcp_ext_t *x = env->ext;
-    if (x != NULL && !s->broadcast) {
-        modcp_commloss_request(x, now_us); /* a valid request for our address */
-    }
-    if (s->x.quiet == 0u) {
-        modcp_comm_log(&d->comm, send_event(s, &d->comm));
-        if (s->x.exc == 0u && s->fc != 0x0Bu && s->fc != 0x0Cu) {
-            d->comm.event_count++; /* successful completion; wraps 65535 -> 0 */
-        }
-        if (x != NULL) {
-            if (s->x.timeout != 0u) {
-                x->cpu_stalled = true;
-            } else if (s->job.op != 0u && s->x.exc == 0u) {
-                x->cpu_stalled = false;
-            }
-            if (!s->broadcast && s->x.exc == 0u && write_fc(s->fc)) {
-                modcp_commloss_write(x, env->p, now_us);
-            }
-        }
-    }
-    switch (s->x.after) {
-    case MODCP_X_AFTER_CLEAR:
-        modcp_ext_clear_counters(d);
-        break;
-    case MODCP_X_AFTER_RESTART:
-    case MODCP_X_AFTER_RESTART_CLEAR:
-        modcp_ext_restart(x, d, s->x.after == MODCP_X_AFTER_RESTART_CLEAR);
-        break;
-    default:
-        break;
-    }
+    return start(s, env, pdu, cap);
 }

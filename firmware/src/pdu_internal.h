@@ -1,5 +1,17 @@
-/* modcp — internal interface between the PDU engine (pdu.c) and the extended function
- * set (pdu_ext.c, serial_diag.c, devid.c). Not for other modules. */
+/* modcp — internal interface of the PDU engine: the function-code table's handler
+ * type, the named exception codes, and the handlers the table (pdu.c) points at.
+ * Not for other modules.
+ *
+ * Call structure (no cycles): pdu.c (table, dispatch, exceptions, reply encoding,
+ * end-of-request accounting) calls the handlers in pdu_rw.c (manual set), pdu_ext.c
+ * (FC22, FC23, scanner: job sequences), serial_diag.c (FC08 extended, FC11, FC12) and
+ * devid.c (FC17, FC43). A handler never calls back into pdu.c: it returns
+ *   MODCP_PDU_JOB    s->job (and wdata / rdata) set up: run it;
+ *   MODCP_PDU_REPLY  a CP-local reply is ready in place, length in *out_len;
+ *   MODCP_PDU_DONE   nothing (more) to run: pdu.c encodes the reply described by
+ *                    s->x.echo / s->x.rbytes (s->bits: align a bit string);
+ *   MODCP_PDU_FAIL   refused: pdu.c records s->err and answers exception s->x.exc
+ *                    (modcp_pdu_err below), or stays silent for a broadcast. */
 #ifndef MODCP_PDU_INTERNAL_H
 #define MODCP_PDU_INTERNAL_H
 
@@ -8,39 +20,98 @@
 
 #include "modcp/pdu.h"
 
-/* pdu.c: record ev and answer with exception `code` (0: the event's code, else 04). Counts
- * the exception (also for broadcast, Serial Line V1.02 §6.1 counter 3) and, for a
- * broadcast, the missing response. */
-modcp_pdu_action_t modcp_pdu_fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_event_t ev,
-                                  uint8_t code, uint8_t *pdu, uint16_t *out_len);
+/* Modbus exception codes (Application Protocol V1.1b3 §7). */
+enum {
+    MODCP_EXC_NONE = 0,              /* s->x.exc: no exception (yet) */
+    MODCP_EXC_OF_EVENT = 0,          /* modcp_pdu_err: the event's code
+                                        (modcp_event_exception), else 04 */
+    MODCP_EXC_ILLEGAL_FUNCTION = 1,
+    MODCP_EXC_ILLEGAL_ADDRESS = 2,
+    MODCP_EXC_ILLEGAL_VALUE = 3,
+    MODCP_EXC_DEVICE_FAILURE = 4,
+    MODCP_EXC_ACKNOWLEDGE = 5,
+    MODCP_EXC_BUSY = 6,
+    MODCP_EXC_NAK = 7,
+};
 
-/* First look at every request (s->fc, s->broadcast set): logs the FC12 receive event;
- * in listen-only mode takes the request (returns true, *a = NO_REPLY) unless it is
- * processed as FC08 sub 01 there. */
-bool modcp_pdu_ext_pre(modcp_pdu_t *s, const modcp_pdu_env_t *env, const uint8_t *pdu,
-                       uint16_t len, modcp_pdu_action_t *a);
+/* A handler of the function-code table: the request is pdu[0 .. len) (pdu[0] = fc),
+ * its length already checked against the table's minimum / maximum, s->addr and
+ * s->qty set for function codes with a quantity field (checked against the table's
+ * limit class), cap bytes of room for the reply in place. */
+typedef modcp_pdu_action_t (*modcp_pdu_handler_t)(modcp_pdu_t *s, const modcp_pdu_env_t *env,
+                                                  uint8_t *pdu, uint16_t len, uint16_t cap,
+                                                  uint16_t *out_len);
 
-/* Function codes of the extended set (only with function set `extended`). */
-bool modcp_pdu_ext_supported(const modcp_pdu_env_t *env, uint8_t fc);
+/* Refuse the request with event ev and exception exc (MODCP_EXC_*). */
+static inline modcp_pdu_action_t modcp_pdu_err(modcp_pdu_t *s, modcp_event_t ev, uint8_t exc)
+{
+    s->err = ev;
+    s->x.exc = exc;
+    return MODCP_PDU_FAIL;
+}
 
-/* True when pdu_ext.c serves this request: FC08 / 0B / 0C / 11 / 16 / 17 / 2B in the
- * extended set, and FC03 / 06 / 10 on scanner addresses. */
-bool modcp_pdu_ext_claims(const modcp_pdu_env_t *env, const uint8_t *pdu, uint16_t len);
+static inline uint16_t modcp_get16(const uint8_t *p)
+{
+    return (uint16_t)(((unsigned)p[0] << 8) | p[1]);
+}
 
-/* Serve a claimed request (after the broadcast, function-code and FB-ready checks). */
-modcp_pdu_action_t modcp_pdu_ext_request(modcp_pdu_t *s, const modcp_pdu_env_t *env,
+/* Set up one job: op on operand o, len data bytes (written from wdata, or read into
+ * rdata with rcap bytes of room). */
+static inline modcp_pdu_action_t modcp_pdu_job(modcp_pdu_t *s, uint8_t op,
+                                               const modcp_operand_t *o, uint16_t len,
+                                               const uint8_t *wdata, uint8_t *rdata,
+                                               uint16_t rcap)
+{
+    s->job.op = op;
+    s->job.opnd = *o;
+    s->job.len = len;
+    s->wdata = wdata;
+    s->rdata = rdata;
+    s->rcap = rcap;
+    return MODCP_PDU_JOB;
+}
+
+/* pdu_rw.c: the manual's function set (004 §6). */
+modcp_pdu_action_t modcp_pdu_read_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                       uint16_t len, uint16_t cap, uint16_t *out_len);
+modcp_pdu_action_t modcp_pdu_read_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                       uint16_t len, uint16_t cap, uint16_t *out_len);
+modcp_pdu_action_t modcp_pdu_write_coil(modcp_pdu_t *s, const modcp_pdu_env_t *env,
+                                        uint8_t *pdu, uint16_t len, uint16_t cap,
+                                        uint16_t *out_len);
+modcp_pdu_action_t modcp_pdu_write_reg(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                       uint16_t len, uint16_t cap, uint16_t *out_len);
+modcp_pdu_action_t modcp_pdu_write_coils(modcp_pdu_t *s, const modcp_pdu_env_t *env,
                                          uint8_t *pdu, uint16_t len, uint16_t cap,
                                          uint16_t *out_len);
+modcp_pdu_action_t modcp_pdu_write_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env,
+                                        uint8_t *pdu, uint16_t len, uint16_t cap,
+                                        uint16_t *out_len);
+/* The FC01 / FC02 reply data read from byte boundaries: drop `shift` low bits of the
+ * first byte, keep qty bits, clear the unused high bits of the last byte. */
+void modcp_pdu_align_bits(uint8_t *d, uint8_t shift, uint16_t qty);
+modcp_pdu_action_t modcp_pdu_diag0(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                   uint16_t len, uint16_t cap, uint16_t *out_len);
 
-/* A job of a request with s->x.seq != 0 finished: next job, the reply, or 04. */
-modcp_pdu_action_t modcp_pdu_ext_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                          modcp_event_t ev, uint8_t *pdu, uint16_t *out_len);
+/* pdu_ext.c: FC22, FC23 and FC03 / 06 / 16 on scanner addresses (job sequences). */
+modcp_pdu_action_t modcp_pdu_scan_read(modcp_pdu_t *s, const modcp_pdu_env_t *env,
+                                       uint8_t *pdu, uint16_t len, uint16_t cap,
+                                       uint16_t *out_len);
+modcp_pdu_action_t modcp_pdu_scan_write(modcp_pdu_t *s, const modcp_pdu_env_t *env,
+                                        uint8_t *pdu, uint16_t len, uint16_t cap,
+                                        uint16_t *out_len);
+modcp_pdu_action_t modcp_pdu_fc22(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                  uint16_t len, uint16_t cap, uint16_t *out_len);
+modcp_pdu_action_t modcp_pdu_fc23(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                  uint16_t len, uint16_t cap, uint16_t *out_len);
+/* The job of a sequence (s->x.seq != 0) succeeded: the next job, or DONE / FAIL. */
+modcp_pdu_action_t modcp_pdu_seq_next(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu);
 
 /* serial_diag.c: FC08 (extended), FC11, FC12. */
 modcp_pdu_action_t modcp_pdu_fc08(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                  uint16_t len, uint16_t *out_len);
+                                  uint16_t len, uint16_t cap, uint16_t *out_len);
 modcp_pdu_action_t modcp_pdu_fc11(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                  uint16_t len, uint16_t *out_len);
+                                  uint16_t len, uint16_t cap, uint16_t *out_len);
 modcp_pdu_action_t modcp_pdu_fc12(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
                                   uint16_t len, uint16_t cap, uint16_t *out_len);
 

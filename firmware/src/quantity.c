@@ -28,28 +28,37 @@ uint8_t modcp_reg_bytes(uint8_t r32_kind)
                : 2u;
 }
 
+const uint16_t modcp_qty_limits[MODCP_QLIM_COUNT][4] = {
+    [MODCP_QLIM_NONE] = {0u, 0u, 0u, 0u},
+    [MODCP_QLIM_READ_BITS] = {2040u, 2008u, 2040u, 2008u},
+    [MODCP_QLIM_WRITE_BITS] = {2040u, 1976u, 2040u, 1976u},
+    [MODCP_QLIM_READ_REGS] = {127u, 125u, 63u, 62u},
+    [MODCP_QLIM_WRITE_REGS] = {127u, 123u, 63u, 61u},
+    [MODCP_QLIM_RW_READ] = {125u, 125u, 62u, 62u},
+    [MODCP_QLIM_RW_WRITE] = {121u, 121u, 60u, 60u},
+};
+
 uint16_t modcp_qty_max(const modcp_params_t *p, uint8_t fc, uint8_t r32_kind)
 {
-    const bool ascii = p->framing == (uint8_t)MODCP_FRAMING_ASCII;
-    const bool wide = modcp_reg_bytes(r32_kind) == 4u;
+    uint8_t lim;
     switch (fc) {
     case 1u:
     case 2u:
-        return ascii ? 2008u : 2040u;
+        lim = MODCP_QLIM_READ_BITS;
+        break;
     case 15u:
-        return ascii ? 1976u : 2040u;
+        lim = MODCP_QLIM_WRITE_BITS;
+        break;
     case 3u:
     case 4u:
-        if (wide) {
-            return ascii ? 62u : 63u;
-        }
-        return ascii ? 125u : 127u;
+        lim = MODCP_QLIM_READ_REGS;
+        break;
     case 16u:
-        if (wide) {
-            return ascii ? 61u : 63u;
-        }
-        return ascii ? 123u : 127u;
+        lim = MODCP_QLIM_WRITE_REGS;
+        break;
     default:
-        return 0u;
+        lim = MODCP_QLIM_NONE;
+        break;
     }
+    return modcp_qty_limit(p, lim, r32_kind);
 }

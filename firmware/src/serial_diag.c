@@ -82,21 +82,19 @@ static bool delimiter_ok(uint8_t ch)
 }
 
 modcp_pdu_action_t modcp_pdu_fc08(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                  uint16_t len, uint16_t *out_len)
+                                  uint16_t len, uint16_t cap, uint16_t *out_len)
 {
-    if (len < 3u) {
-        return modcp_pdu_fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-    }
+    (void)cap; /* length >= 3: the function-code table */
     const uint16_t sub = get16(pdu + 1);
     if (sub == 0x0000u) {
         *out_len = len; /* return query data: echo, unchanged */
         return MODCP_PDU_REPLY;
     }
     if (!sub_supported(sub)) {
-        return modcp_pdu_fail(s, env, MODCP_EV_DIAG_SUBFC, 1, pdu, out_len);
+        return modcp_pdu_err(s, MODCP_EV_DIAG_SUBFC, MODCP_EXC_ILLEGAL_FUNCTION);
     }
     if (len != 5u) {
-        return modcp_pdu_fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
+        return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
     const uint16_t data = get16(pdu + 3);
     modcp_diag_t *d = env->diag;
@@ -113,7 +111,7 @@ modcp_pdu_action_t modcp_pdu_fc08(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         break;
     }
     if (!ok) {
-        return modcp_pdu_fail(s, env, MODCP_EV_DIAG_SUBFC, 3, pdu, out_len);
+        return modcp_pdu_err(s, MODCP_EV_DIAG_SUBFC, MODCP_EXC_ILLEGAL_VALUE);
     }
     *out_len = 5; /* fc, sub-function, data */
     switch (sub) {
@@ -152,11 +150,11 @@ modcp_pdu_action_t modcp_pdu_fc08(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
 }
 
 modcp_pdu_action_t modcp_pdu_fc11(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                  uint16_t len, uint16_t *out_len)
+                                  uint16_t len, uint16_t cap, uint16_t *out_len)
 {
-    if (len != 1u) {
-        return modcp_pdu_fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-    }
+    (void)s; /* length 1: the function-code table */
+    (void)len;
+    (void)cap;
     put16(pdu + 1, 0x0000u); /* status: never busy (one request at a time) */
     put16(pdu + 3, env->diag->comm.event_count);
     *out_len = 5;
@@ -166,9 +164,8 @@ modcp_pdu_action_t modcp_pdu_fc11(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
 modcp_pdu_action_t modcp_pdu_fc12(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
                                   uint16_t len, uint16_t cap, uint16_t *out_len)
 {
-    if (len != 1u) {
-        return modcp_pdu_fail(s, env, MODCP_EV_BYTE_COUNT, 3, pdu, out_len);
-    }
+    (void)s; /* length 1: the function-code table */
+    (void)len;
     const modcp_diag_t *d = env->diag;
     uint16_t n = d->comm.log_len;
     if (8u + (uint32_t)n > cap) {

@@ -5,9 +5,10 @@
  *  - the indirection scanner (scanner.c): scan_count consecutive holding registers
  *    from scan_start, each pointing at a word operand (MW, IW, QW, DBn.DBWm, T, C)
  *  - comm-loss supervision (commloss.c)
- * The PDU engine (pdu.c) hands these requests to pdu_ext.c; the CP (cp.c) keeps the
- * persistent state below, reports every finished request (modcp_pdu_finished) and
- * polls the supervision with the time (modcp_ext_poll).
+ * The PDU engine's function-code table (pdu.c) hands these requests to their
+ * handlers; the CP (cp.c) keeps the persistent state below, reports every finished
+ * request (modcp_pdu_finished) and polls the supervision with the time
+ * (modcp_ext_poll).
  * docs/extended-functions.md has every frame and every decision. */
 #ifndef MODCP_EXT_H
 #define MODCP_EXT_H
@@ -17,6 +18,7 @@
 
 #include "modcp/diag.h"
 #include "modcp/events.h"
+#include "modcp/features.h"
 #include "modcp/map.h"
 #include "modcp/params.h"
 
@@ -36,16 +38,24 @@ typedef struct {
     bool cpu_stalled;
 } modcp_ext_t;
 
-/* Per-request state of the extended set (modcp_pdu_t.x, cleared for every request). */
+/* Per-request state of the PDU engine beyond the request itself (modcp_pdu_t.x,
+ * cleared for every request): the reply's description and the exception for both
+ * sets; the job sequence of the extended set (FC22, FC23, scanner) only with it. */
 typedef struct {
     uint8_t exc;     /* exception code detected for this request (0 = none) */
     uint8_t quiet;   /* listen-only: not processed, nothing more to account */
     uint8_t timeout; /* a CPU job of this request timed out */
     uint8_t after;   /* action after the reply: MODCP_X_AFTER_* */
-    /* job sequence (scanner, FC22, FC23); seq 0: a core request that pdu.c finishes */
+    uint16_t echo;   /* reply = the first `echo` request bytes; 0: read reply */
+    uint16_t rbytes; /* read data bytes in the reply */
+#if MODCP_WITH_EXTENDED
+    /* job sequence (scanner, FC22, FC23); seq 0: a single job (manual set) */
     uint8_t seq;
-    uint8_t phase;
+    uint8_t phase;   /* early reads, check reads, writes, reads (pdu_ext.c) */
     uint8_t idx;
+    uint8_t early;   /* FC23: write data moved to the buffer's end, early reads allowed */
+    uint8_t wfirst;  /* check reads: the first DB write was passed */
+    uint8_t probe[2]; /* data of a check read (discarded) */
     uint8_t wop;     /* job op of the write part, 0 = none */
     bool wscan;      /* write part through the scanner */
     bool rscan;      /* read part through the scanner */
@@ -53,11 +63,10 @@ typedef struct {
     uint16_t woff;   /* write data: offset in the PDU buffer */
     uint16_t wlen;   /* direct write: data bytes */
     uint16_t roff;   /* read data: offset in the PDU buffer */
-    uint16_t rbytes; /* read data bytes in the reply */
     uint16_t cap;    /* PDU buffer capacity */
-    uint16_t echo;   /* reply = the first `echo` request bytes; 0: read reply */
     modcp_operand_t wdir; /* write part, direct mapping */
     modcp_operand_t rdir; /* read part, direct mapping */
+#endif
 } modcp_pdu_x_t;
 
 enum {

@@ -16,6 +16,9 @@ typedef enum {
     MODCP_PDU_NO_REPLY = 0, /* nothing to send (broadcast, silent discard) */
     MODCP_PDU_REPLY,        /* reply PDU ready in place, length in *out_len */
     MODCP_PDU_JOB,          /* start the job in s->job (see wdata / rdata) */
+    /* inside the engine only (pdu_internal.h), never returned to the caller: */
+    MODCP_PDU_FAIL,         /* a handler refused the request: s->err, s->x.exc */
+    MODCP_PDU_DONE,         /* all jobs done: encode the reply s->x describes */
 } modcp_pdu_action_t;
 
 /* What the engine reads from the CP. */
@@ -30,18 +33,20 @@ typedef struct {
 typedef struct {
     /* the request in progress */
     uint8_t fc;
+    uint8_t fcflags;     /* the function-code table's flags of fc (pdu.c) */
     bool broadcast;
     uint16_t addr;
     uint16_t qty;
     uint8_t shift;       /* FC01/02: bit offset of the first bit in the first byte read */
+    uint8_t bits;        /* FC01/02 on I / Q / M: the read data are a bit string to align */
     uint8_t r32_kind;    /* 32-bit scheme: modcp_r32_kind_t + 1, 0 = 16-bit */
     uint8_t bitval;      /* FC05: the coil value as a 1-bit write job */
-    uint16_t reply_len;  /* FC06: length of the echo */
+    modcp_event_t err;   /* the event of a refused request (MODCP_PDU_FAIL) */
     modcp_bp_job_t job;  /* the job to run for MODCP_PDU_JOB */
     const uint8_t *wdata; /* job write data (inside the request) */
     uint8_t *rdata;      /* where the job's read data must land (inside the PDU buffer) */
     uint16_t rcap;
-    modcp_pdu_x_t x;     /* extended set: state of this request (pdu_ext.c) */
+    modcp_pdu_x_t x;     /* reply description (echo / rbytes), exception, job sequence */
 } modcp_pdu_t;
 
 /* Handle a request PDU (pdu[0] = function code) received for addr (0 = broadcast).
@@ -58,8 +63,8 @@ modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env
 uint16_t modcp_pdu_exception(uint8_t *pdu, uint8_t fc, uint8_t code);
 
 /* The request ended with action a (REPLY or NO_REPLY): FC11 event counter, FC12 send
- * event, comm-loss supervision, FC08 sub 01 / 0A effects (pdu_ext.c). The CP calls it
- * once per request, right before the reply goes out. */
+ * event, comm-loss supervision, FC08 sub 01 / 0A effects. The CP calls it once per
+ * request, right before the reply goes out (built with the extended set only). */
 void modcp_pdu_finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_pdu_action_t a,
                         uint32_t now_us);
 

@@ -9,6 +9,8 @@
  *   FC16               1 ... 127                1 ... 123
  *   FC03, 32-bit       1 ... 63                 1 ... 62
  *   FC16, 32-bit       1 ... 63                 1 ... 61
+ *   FC23 read / write  1 ... 125 / 121          (the same; extended set)
+ *   FC23, 32-bit       1 ... 62 / 60            (the same)
  * "32-bit" is the int32 and float range of the 32-bit scheme; its int16 range has
  * the 16-bit limits. The RTU 32-bit limit (the manual has none: the 32-bit extension
  * exists only in the ASCII driver) is a decision of modcp: the largest count whose
@@ -29,6 +31,33 @@ uint8_t modcp_regs32_kind(const modcp_params_t *p, uint8_t fc, uint16_t reg);
 /* Bytes per register for a kind returned by modcp_regs32_kind(): 4 for int32 and
  * float, else 2. */
 uint8_t modcp_reg_bytes(uint8_t r32_kind);
+
+/* Limit classes: the function-code table (pdu.c) names one per function code. */
+enum {
+    MODCP_QLIM_NONE = 0,   /* no quantity field */
+    MODCP_QLIM_READ_BITS,  /* FC01 / FC02 */
+    MODCP_QLIM_WRITE_BITS, /* FC15 */
+    MODCP_QLIM_READ_REGS,  /* FC03 / FC04, the scanner's FC03 */
+    MODCP_QLIM_WRITE_REGS, /* FC16, the scanner's FC16 */
+    MODCP_QLIM_RW_READ,    /* FC23 read part: 125, 32-bit 62 (both framings) */
+    MODCP_QLIM_RW_WRITE,   /* FC23 write part: 121, 32-bit 60 (both framings) */
+    MODCP_QLIM_COUNT
+};
+
+/* The limits: [class][column], columns RTU, ASCII, RTU 32-bit, ASCII 32-bit. */
+extern const uint16_t modcp_qty_limits[MODCP_QLIM_COUNT][4];
+
+/* Largest quantity of limit class lim (MODCP_QLIM_*, < MODCP_QLIM_COUNT) for the
+ * framing of p and the register kind (0 for bits and 16-bit registers); 0 for
+ * MODCP_QLIM_NONE. */
+static inline uint16_t modcp_qty_limit(const modcp_params_t *p, uint8_t lim, uint8_t r32_kind)
+{
+    unsigned col = p->framing == (uint8_t)MODCP_FRAMING_ASCII ? 1u : 0u;
+    if (r32_kind == (uint8_t)(MODCP_R32_INT32 + 1u) || r32_kind == (uint8_t)(MODCP_R32_FLOAT + 1u)) {
+        col += 2u; /* 4 bytes per register */
+    }
+    return modcp_qty_limits[lim][col];
+}
 
 /* Largest quantity of fc (01, 02, 03, 04, 15, 16) for the framing of p and the
  * register kind (0 for bits and 16-bit registers). 0 for other function codes. */

@@ -1,0 +1,181 @@
+/* modcp — handlers of the manual's function set (004 §6): FC 01, 02, 03, 04, 05, 06,
+ * 08 (sub-function 0000), 15, 16. Each maps its request and sets up one CPU job; the
+ * reply is encoded by pdu.c from s->x.echo / s->x.rbytes when the job is done.
+ *
+ * The function-code table (pdu.c) has already checked the length against its minimum
+ * and maximum and, for FC01/02/03/04/15/16, the quantity against the limits of the
+ * framing and register width (s->addr, s->qty, s->r32_kind set). What is left here:
+ * byte counts, values ((08)33H / (08)34H / (08)35H, exception 03), then the address
+ * mapping ((0E)5xH, exception 02; map.c). Every field of the request is read before
+ * the first reply byte is written. */
+#include <stddef.h>
+
+#include "modcp/quantity.h"
+#include "pdu_internal.h"
+
+/* A read job whose data land after the reply's function code and byte count. */
+static modcp_pdu_action_t read_job(modcp_pdu_t *s, const modcp_operand_t *o, uint16_t len,
+                                   uint8_t *pdu, uint16_t cap)
+{
+    return modcp_pdu_job(s, MODCP_JOB_READ, o, len, NULL, pdu + 2,
+                         (uint16_t)(cap > 2u ? cap - 2u : 0u));
+}
+
+void modcp_pdu_align_bits(uint8_t *d, uint8_t shift, uint16_t qty)
+{
+    uint16_t n = (uint16_t)((qty + 7u) / 8u);
+    if (shift != 0u) {
+        for (uint16_t i = 0; i < n; i++) {
+            d[i] = (uint8_t)((d[i] >> shift) | (d[i + 1u] << (8u - shift)));
+        }
+    }
+    if ((qty & 7u) != 0u) {
+        d[n - 1u] &= (uint8_t)((1u << (qty & 7u)) - 1u);
+    }
+}
+
+/* FC01 / FC02: read bits. */
+modcp_pdu_action_t modcp_pdu_read_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                       uint16_t len, uint16_t cap, uint16_t *out_len)
+{
+    (void)len;
+    (void)out_len;
+    modcp_operand_t o;
+    modcp_event_t ev = modcp_map_bits(env->p, env->areas, s->fc, s->addr, s->qty, &o);
+    if (ev != MODCP_EV_NONE) {
+        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+    }
+    uint16_t bytes;
+    if (o.area == MODCP_AREA_T || o.area == MODCP_AREA_C) {
+        bytes = (uint16_t)(o.count * 2u); /* whole words, high byte first */
+        s->x.rbytes = bytes;
+    } else {
+        bytes = (uint16_t)((o.bit + s->qty + 7u) / 8u);
+        s->shift = o.bit;
+        s->bits = 1; /* pdu.c aligns the bit string */
+        s->x.rbytes = (uint16_t)((s->qty + 7u) / 8u);
+        o.count = bytes; /* the job reads whole bytes */
+        o.bit = 0;
+    }
+    return read_job(s, &o, bytes, pdu, cap);
+}
+
+/* FC03 / FC04: read registers. */
+modcp_pdu_action_t modcp_pdu_read_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                       uint16_t len, uint16_t cap, uint16_t *out_len)
+{
+    (void)len;
+    (void)out_len;
+    modcp_operand_t o;
+    modcp_event_t ev = modcp_map_regs(env->p, env->areas, s->fc, s->addr, s->qty, &o);
+    if (ev != MODCP_EV_NONE) {
+        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+    }
+    s->r32_kind = o.bit;
+    o.bit = 0;
+    s->x.rbytes = o.count;
+    return read_job(s, &o, o.count, pdu, cap);
+}
+
+/* FC05: write single coil (reply: echo of the request). */
+modcp_pdu_action_t modcp_pdu_write_coil(modcp_pdu_t *s, const modcp_pdu_env_t *env,
+                                        uint8_t *pdu, uint16_t len, uint16_t cap,
+                                        uint16_t *out_len)
+{
+    (void)len;
+    (void)cap;
+    (void)out_len;
+    s->qty = 1;
+    const uint16_t value = modcp_get16(pdu + 3);
+    if (value != 0xFF00u && value != 0x0000u) {
+        return modcp_pdu_err(s, MODCP_EV_COIL_VALUE, MODCP_EXC_ILLEGAL_VALUE);
+    }
+    modcp_operand_t o;
+    modcp_event_t ev = modcp_map_bits(env->p, env->areas, s->fc, s->addr, 1, &o);
+    if (ev != MODCP_EV_NONE) {
+        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+    }
+    s->bitval = value == 0xFF00u ? 1u : 0u;
+    s->x.echo = 5;
+    return modcp_pdu_job(s, MODCP_JOB_BITWRITE, &o, 1, &s->bitval, NULL, 0);
+}
+
+/* FC06: write single register (reply: echo; 5 bytes, 7 for an int32 / float register
+ * of the 32-bit scheme, 003 §4.5). */
+modcp_pdu_action_t modcp_pdu_write_reg(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                       uint16_t len, uint16_t cap, uint16_t *out_len)
+{
+    (void)cap;
+    (void)out_len;
+    s->qty = 1;
+    if (len != 3u + modcp_reg_bytes(s->r32_kind)) {
+        return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
+    }
+    modcp_operand_t o;
+    modcp_event_t ev = modcp_map_regs(env->p, env->areas, s->fc, s->addr, 1, &o);
+    if (ev != MODCP_EV_NONE) {
+        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+    }
+    s->r32_kind = o.bit;
+    o.bit = 0;
+    s->x.echo = len;
+    return modcp_pdu_job(s, MODCP_JOB_WRITE, &o, o.count, pdu + 3, NULL, 0);
+}
+
+/* FC15: write multiple coils (reply: fc, start, quantity). */
+modcp_pdu_action_t modcp_pdu_write_coils(modcp_pdu_t *s, const modcp_pdu_env_t *env,
+                                         uint8_t *pdu, uint16_t len, uint16_t cap,
+                                         uint16_t *out_len)
+{
+    (void)cap;
+    (void)out_len;
+    const uint8_t bc = pdu[5];
+    if (bc != (s->qty + 7u) / 8u || len != 6u + bc) {
+        return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
+    }
+    modcp_operand_t o;
+    modcp_event_t ev = modcp_map_bits(env->p, env->areas, s->fc, s->addr, s->qty, &o);
+    if (ev != MODCP_EV_NONE) {
+        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+    }
+    s->x.echo = 5;
+    return modcp_pdu_job(s, MODCP_JOB_BITWRITE, &o, bc, pdu + 6, NULL, 0);
+}
+
+/* FC16: write multiple registers (reply: fc, start, quantity). */
+modcp_pdu_action_t modcp_pdu_write_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env,
+                                        uint8_t *pdu, uint16_t len, uint16_t cap,
+                                        uint16_t *out_len)
+{
+    (void)cap;
+    (void)out_len;
+    const uint8_t bc = pdu[5];
+    if (bc != (unsigned)modcp_reg_bytes(s->r32_kind) * s->qty || len != 6u + bc) {
+        return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
+    }
+    modcp_operand_t o;
+    modcp_event_t ev = modcp_map_regs(env->p, env->areas, s->fc, s->addr, s->qty, &o);
+    if (ev != MODCP_EV_NONE) {
+        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+    }
+    s->r32_kind = o.bit;
+    o.bit = 0;
+    if (o.count != bc) {
+        return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
+    }
+    s->x.echo = 5;
+    return modcp_pdu_job(s, MODCP_JOB_WRITE, &o, bc, pdu + 6, NULL, 0);
+}
+
+/* FC08 in the manual set: sub-function 0000 (return query data) only. */
+modcp_pdu_action_t modcp_pdu_diag0(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                   uint16_t len, uint16_t cap, uint16_t *out_len)
+{
+    (void)env;
+    (void)cap;
+    if (modcp_get16(pdu + 1) != 0x0000u) {
+        return modcp_pdu_err(s, MODCP_EV_DIAG_SUBFC, MODCP_EXC_ILLEGAL_VALUE);
+    }
+    *out_len = len; /* echo, unchanged */
+    return MODCP_PDU_REPLY;
+}
