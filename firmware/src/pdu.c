@@ -102,6 +102,25 @@ uint16_t modcp_pdu_exception(uint8_t *pdu, uint8_t fc, uint8_t code)
     return 2;
 }
 
+/* Event word -> Modbus exception code (events.h, 004 ch. 7, SPEC §5.2); 0 for events
+ * that name no code (the caller answers 04). */
+uint8_t modcp_event_exception(modcp_event_t ev)
+{
+    if (ev == MODCP_EV_ILLEGAL_FC) {
+        return MODCP_EXC_ILLEGAL_FUNCTION; /* (08)31H */
+    }
+    if (ev >= MODCP_EV_QUANTITY && ev <= MODCP_EV_DIAG_SUBFC) {
+        return MODCP_EXC_ILLEGAL_VALUE; /* (08)32H..35H */
+    }
+    if (ev == MODCP_EV_DB_ACCESS || (ev >= MODCP_EV_TC_ALIGN && ev <= MODCP_EV_AREA_READONLY)) {
+        return MODCP_EXC_ILLEGAL_ADDRESS; /* (0E)39H DB boundary, (0E)50H..55H */
+    }
+    if (ev == MODCP_EV_FB_NOT_RUNNING) {
+        return MODCP_EXC_DEVICE_FAILURE; /* (0E)56H */
+    }
+    return MODCP_EXC_NONE;
+}
+
 /* A refused request (s->err, s->x.exc): record the event, count the exception (also
  * for a broadcast, Serial Line V1.02 §6.1 counter 3), answer it or, for a broadcast,
  * count the missing response. */
