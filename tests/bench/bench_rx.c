@@ -5,6 +5,7 @@
  * as a port's timer interrupt would.
  *
  *   bench_rx link FRAMES   bytes into modcp_link_on_byte() (the link and its framing)
+ *   bench_rx link-t15 FRAMES  the same with the t1.5 check on
  *   bench_rx cp FRAMES     bytes into modcp_cp_on_rx() (the port's entry: CP hooks too)
  *
  * Instructions per byte, under callgrind (nothing else is counted):
@@ -78,11 +79,12 @@ static uint8_t buf[MODCP_LINK_BUF_MAX];
 static modcp_frame_t fr;
 static uint32_t char_us;
 
-static void link_setup(void)
+static void link_setup(int t15)
 {
     modcp_params_t p;
     modcp_params_defaults(&p);
     p.slave_addr = 5;
+    p.t15_check = t15 ? 1u : 0u;
     modcp_diag_init(&diag);
     modcp_link_init(&link_, &hal, &diag, buf, (uint16_t)sizeof buf);
     modcp_link_configure(&link_, &p);
@@ -186,15 +188,16 @@ static int cp_frame(void)
 
 int main(int argc, char **argv)
 {
-    if (argc < 3 || (strcmp(argv[1], "link") != 0 && strcmp(argv[1], "cp") != 0)) {
-        fprintf(stderr, "usage: bench_rx link|cp FRAMES\n");
+    if (argc < 3 || (strcmp(argv[1], "link") != 0 && strcmp(argv[1], "link-t15") != 0 &&
+                     strcmp(argv[1], "cp") != 0)) {
+        fprintf(stderr, "usage: bench_rx link|link-t15|cp FRAMES\n");
         return 2;
     }
-    const int link_mode = strcmp(argv[1], "link") == 0;
+    const int link_mode = strcmp(argv[1], "cp") != 0;
     unsigned n = (unsigned)strtoul(argv[2], NULL, 0);
     make_frame();
     if (link_mode) {
-        link_setup();
+        link_setup(strcmp(argv[1], "link-t15") == 0);
     } else {
         cp_setup();
     }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # modcp — receive-path cost per byte under callgrind (nothing asserted), as key=value:
 #   rx_instr_per_byte=       modcp_link_on_byte() (link + framing), per received byte
+#   rx_t15_instr_per_byte=   the same with the t1.5 check on
 #   rx_timer_instr_per_byte= modcp_link_on_timer() while the frames arrive and at their
 #                            end, spread over the bytes (the timer interrupt's share)
 #   rx_cp_instr_per_byte=    modcp_cp_on_rx() (the port's entry, CP hooks included)
@@ -25,5 +26,6 @@ per_byte() { # mode function -> instructions per byte
   awk -v c="$coll" -v b="$bytes" 'BEGIN { printf "%.1f\n", c / b }'
 }
 echo "rx_instr_per_byte=$(per_byte link modcp_link_on_byte)"
+echo "rx_t15_instr_per_byte=$(per_byte link-t15 modcp_link_on_byte)"
 echo "rx_timer_instr_per_byte=$(per_byte link modcp_link_on_timer)"
 echo "rx_cp_instr_per_byte=$(per_byte cp modcp_cp_on_rx)"
