@@ -41,40 +41,15 @@ static void reset_rx(modcp_link_t *l)
     l->tx_len = 0;
 }
 
-/* A disabled (or not yet configured) link: the line is ignored. */
-static const modcp_framing_ops_t *off_configure(modcp_link_t *l, const modcp_params_t *p)
-{
-    (void)l;
-    (void)p;
-    return NULL;
-}
+/* A disabled (or not yet configured) link: the line is ignored. Only on_byte is ever
+ * reached through it: every other entry point checks l->enabled first. */
 static void off_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     (void)l;
     (void)b;
     (void)now_us;
 }
-static void off_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
-{
-    (void)l;
-    (void)line_errors;
-    (void)now_us;
-}
-static bool off_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
-{
-    (void)l;
-    (void)now_us;
-    (void)f;
-    return false;
-}
-static uint16_t off_encode(modcp_link_t *l, uint16_t pdu_len)
-{
-    (void)l;
-    (void)pdu_len;
-    return 0;
-}
-static const modcp_framing_ops_t off_ops = {off_configure, off_byte, off_error, off_timer,
-                                            off_encode};
+static const modcp_framing_ops_t off_ops = {NULL, off_byte, NULL, NULL, NULL};
 
 /* The backend for the framing parameter (the only place that names the framings). */
 static const modcp_framing_ops_t *framing_ops(uint8_t framing)
@@ -87,7 +62,7 @@ static const modcp_framing_ops_t *framing_ops(uint8_t framing)
         return &modcp_ascii_ops;
 #endif
     default:
-        return &off_ops;
+        return NULL;
     }
 }
 
@@ -130,16 +105,22 @@ void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag
     l->buf = buf;
     l->size = buf != NULL ? cap : 0u;
     l->cap = l->size < MODCP_ADU_MAX ? l->size : (uint16_t)MODCP_ADU_MAX;
-    l->ops = &off_ops;
-    l->enabled = false;
-    l->state = MODCP_LINK_IDLE;
+    l->ops = &off_ops; /* disabled: enabled false, state IDLE (zero) */
 }
 
-void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
+/* Timer off, driver off, nothing received, the line ignored. */
+static void stop(modcp_link_t *l)
 {
     link_arm(l, 0);
     set_de(l, false);
     reset_rx(l);
+    l->ops = &off_ops;
+    l->enabled = false;
+}
+
+void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
+{
+    stop(l);
     l->own_addr = p->slave_addr;
     l->rs485 = p->iface == (uint8_t)MODCP_IFACE_RS485;
     l->suppress = p->opmode == (uint8_t)MODCP_OPMODE_SUPPRESS || l->rs485;
@@ -150,19 +131,19 @@ void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
     l->tx_hold = p->rs232_auto != 0u && p->iface == (uint8_t)MODCP_IFACE_RS232;
     l->ascii_timeout_us = (uint32_t)p->ascii_timeout_ms * 1000u;
     l->ascii_delim = 0x0Au; /* LF until FC08 sub-function 03 changes it */
-    l->silence_us = l->t35_us;
-    const modcp_framing_ops_t *ops = framing_ops(p->framing)->configure(l, p);
-    l->enabled = ops != NULL;
-    l->ops = ops != NULL ? ops : &off_ops;
+    const modcp_framing_ops_t *ops = framing_ops(p->framing);
+    if (ops != NULL) {
+        ops = ops->configure(l, p); /* the variant to run (sets silence_us), NULL if it cannot */
+    }
+    if (ops != NULL) {
+        l->ops = ops;
+        l->enabled = true;
+    }
 }
 
 void modcp_link_disable(modcp_link_t *l)
 {
-    link_arm(l, 0);
-    set_de(l, false);
-    reset_rx(l);
-    l->ops = &off_ops;
-    l->enabled = false;
+    stop(l);
 }
 
 /* The hot path: straight to the framing (a disabled link has the "off" backend). */

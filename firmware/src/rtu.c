@@ -66,12 +66,8 @@ static void frame_start(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
     } else {
         r->crc = modcp_crc16_byte(MODCP_CRC_INIT, b);
         if (b == l->own_addr || b == 0u) {
-            if (l->cap > 0u && l->buf != NULL) {
-                l->buf[0] = b;
-                l->len = 1;
-            } else {
-                l->rx_overflow = true;
-            }
+            l->buf[0] = b; /* configured: cap >= RTU_MIN_FRAME */
+            l->len = 1;
             l->state = MODCP_LINK_RX;
         } else {
             l->state = MODCP_LINK_SKIP; /* not checked, not answered */
@@ -88,22 +84,6 @@ static void skip_end(modcp_link_t *l)
         link_count(l, (r->count >= RTU_MIN_FRAME && r->crc == 0u) ? MODCP_CNT_BUS_MSG : MODCP_CNT_BUS_CRC);
     }
     l->state = MODCP_LINK_IDLE;
-}
-
-/* t1.5: the silence between two characters of our frame (distance of their ends minus
- * one character time) exceeded t1.5 (checked by the caller). */
-static void t15_violated(modcp_link_t *l)
-{
-    if (l->rx_bad) {
-        return;
-    }
-    link_mark_bad(l);
-    if (l->diag != NULL) {
-        l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
-    }
-    if (!l->suppress) {
-        link_event(l, MODCP_EV_ZVZ);
-    }
 }
 
 /* Default branch of the receive automaton (a state RTU never uses, i.e. corrupted):
@@ -132,8 +112,8 @@ static void busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
     l->last_us = now_us;
 }
 
-/* Every case but the plain one of rtu_on_byte(): another state, a t1.5 violation, a
- * full buffer. Kept out of line so the hot path stays a leaf. */
+/* Every case but the plain one of rtu_on_byte(): another state or a full buffer. Kept
+ * out of line so the hot path stays a leaf. */
 static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     modcp_rtu_t *r = &l->fr.rtu;
@@ -141,17 +121,9 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
     case MODCP_LINK_IDLE:
         frame_start(l, b, false, now_us);
         break;
-    case MODCP_LINK_RX:
-        if (now_us - l->last_us > r->t15_max_us) {
-            t15_violated(l);
-        }
+    case MODCP_LINK_RX: /* the buffer is full: the frame is too long */
+        l->rx_overflow = true;
         l->last_us = now_us;
-        r->crc = modcp_crc16_byte(r->crc, b);
-        if (l->len < l->cap) {
-            l->buf[l->len++] = b;
-        } else {
-            l->rx_overflow = true;
-        }
         break;
     case MODCP_LINK_SKIP:
         if (now_us - l->last_us >= l->t35_us) {
@@ -177,36 +149,41 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
 
 /* The hot path: a character of our frame, with room in the buffer, is stored and goes
  * through one CRC step; nothing else. */
-static inline bool rx_plain(const modcp_link_t *l)
+static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
-    return l->state == MODCP_LINK_RX && l->len < l->cap;
-}
-
-static inline void rx_store(modcp_link_t *l, uint8_t b, uint32_t now_us)
-{
+    if (l->state != MODCP_LINK_RX || l->len >= l->cap) {
+        byte_other(l, b, now_us);
+        return;
+    }
     l->last_us = now_us;
     l->fr.rtu.crc = modcp_crc16_byte(l->fr.rtu.crc, b);
     l->buf[l->len++] = b;
 }
 
-static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
+/* With the t1.5 check on: the silence before a character of our frame (distance of the
+ * two character ends minus one character time) must not exceed t1.5. A separate entry,
+ * so that the check costs nothing when it is off. */
+static MODCP_NOINLINE void t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
-    if (!rx_plain(l)) {
-        byte_other(l, b, now_us);
-        return;
+    if (!l->rx_bad) {
+        link_mark_bad(l);
+        if (l->diag != NULL) {
+            l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
+        }
+        if (!l->suppress) {
+            link_event(l, MODCP_EV_ZVZ);
+        }
     }
-    rx_store(l, b, now_us);
+    rtu_on_byte(l, b, now_us);
 }
 
-/* The same with the t1.5 check on (a separate entry, so that the check costs nothing
- * when it is off). */
 static void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
-    if (!rx_plain(l) || now_us - l->last_us > l->fr.rtu.t15_max_us) {
-        byte_other(l, b, now_us);
+    if (l->state == MODCP_LINK_RX && now_us - l->last_us > l->t15_us + l->char_us) {
+        t15_violated(l, b, now_us);
         return;
     }
-    rx_store(l, b, now_us);
+    rtu_on_byte(l, b, now_us);
 }
 
 static void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
@@ -308,7 +285,6 @@ static const modcp_framing_ops_t rtu_t15_ops;
 static const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
 {
     (void)p;
-    l->fr.rtu.t15_max_us = l->t15_us != 0u ? l->t15_us + l->char_us : UINT32_MAX;
     l->silence_us = l->t35_us;
     if (l->cap < RTU_MIN_FRAME) {
         return NULL;

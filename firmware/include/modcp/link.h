@@ -62,10 +62,8 @@ typedef struct {
 
 /* RTU receive state (rtu.c). */
 typedef struct {
-    uint16_t crc;        /* running CRC over the current frame */
-    uint16_t count;      /* characters of a skipped frame (bus counters) */
-    uint32_t t15_max_us; /* t1.5 check: largest distance of two character ends in a frame
-                            (t1.5 + one character); UINT32_MAX = no check */
+    uint16_t crc;   /* running CRC over the current frame */
+    uint16_t count; /* characters of a skipped frame (bus counters) */
 } modcp_rtu_t;
 
 /* ASCII receive state (ascii.c). */
@@ -81,17 +79,12 @@ typedef struct {
 
 struct modcp_framing_ops; /* link_internal.h */
 
-typedef struct {
+typedef struct { /* members by size: no padding */
     const modcp_hal_t *hal;
     modcp_diag_t *diag;
     uint8_t *buf;
-    uint16_t cap;     /* receive / RTU capacity: the buffer, at most MODCP_ADU_MAX */
-    uint16_t size;    /* the whole buffer (ASCII replies are hex-encoded in place) */
     const struct modcp_framing_ops *ops; /* the framing (never NULL: "off" when disabled) */
     /* configuration */
-    uint8_t own_addr;
-    bool suppress;    /* interference suppression (also RS485) */
-    bool rs485;
     uint32_t silence_us; /* the silence that ends a frame: t35_us (RTU) or
                             ascii_timeout_us (ASCII) */
     uint32_t t35_us;
@@ -100,26 +93,30 @@ typedef struct {
                          silence between two bytes is their distance minus char_us */
     uint32_t turnaround_us;
     uint32_t ascii_timeout_us; /* ASCII character delay time */
-    uint8_t ascii_delim; /* ASCII: end of frame is CR + this (LF; FC08 sub-function 03) */
-    bool enabled;     /* configured; a disabled link ignores the line */
-    /* receive state shared by the framings */
-    uint8_t state;    /* modcp_link_state_t */
+    /* receive and transmit state shared by the framings */
+    uint32_t last_us;  /* time of the last received byte */
+    uint32_t tx_at_us; /* when the reply was handed over (start of the turnaround) */
+    uint16_t cap;     /* receive / RTU capacity: the buffer, at most MODCP_ADU_MAX */
+    uint16_t size;    /* the whole buffer (ASCII replies are hex-encoded in place) */
     uint16_t len;     /* bytes stored */
-    bool rx_bad;      /* character error / BREAK / t1.5 violation inside the frame */
-    bool rx_overflow;
-    uint32_t last_us; /* time of the last received byte */
-    bool busy_rx;     /* a frame is being followed while BUSY/TURNAROUND/TX */
+    uint16_t tx_len;
     union {           /* the framing's own receive state */
         modcp_rtu_t rtu;
 #if MODCP_WITH_ASCII
         modcp_ascii_t ascii;
 #endif
     } fr;
-    /* transmit */
-    uint16_t tx_len;
-    uint32_t tx_at_us; /* when the reply was handed over (start of the turnaround) */
-    bool tx_hold;      /* RS232 automatic signals: a reply waits in TURNAROUND until
-                          modcp_link_tx_release() (signals.c decides RTS / CTS) */
+    uint8_t own_addr;
+    bool suppress;    /* interference suppression (also RS485) */
+    bool rs485;
+    uint8_t ascii_delim; /* ASCII: end of frame is CR + this (LF; FC08 sub-function 03) */
+    bool enabled;     /* configured; a disabled link ignores the line */
+    uint8_t state;    /* modcp_link_state_t */
+    bool rx_bad;      /* character error / BREAK / t1.5 violation inside the frame */
+    bool rx_overflow;
+    bool busy_rx;     /* a frame is being followed while BUSY/TURNAROUND/TX */
+    bool tx_hold;     /* RS232 automatic signals: a reply waits in TURNAROUND until
+                         modcp_link_tx_release() (signals.c decides RTS / CTS) */
 } modcp_link_t;
 
 void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag, uint8_t *buf,
