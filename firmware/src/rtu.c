@@ -2,8 +2,9 @@
  * filter, running CRC, t1.5 check, frames that arrive while a request is in progress.
  *
  * The backend behind modcp_rtu_ops (link_internal.h), its state in l->fr.rtu. A
- * character of our frame costs a store, one table-CRC step and the t1.5 comparison;
- * the end-of-frame timer is armed once, by the frame's first character (or line error
+ * character of our frame costs a store and one table-CRC step (plus one comparison with
+ * the t1.5 check on: a second entry, rtu_t15_ops, chosen at configuration); the
+ * end-of-frame timer is armed once, by the frame's first character (or line error
  * in place of one), and link.c re-arms it for the rest of t3.5 after the last one; the
  * frame is checked only when t3.5 has passed. Time stamps are the ends of characters,
  * as the UART receive interrupt sees them.
