@@ -3,6 +3,8 @@
  * buf + 1, LRC last) while the characters arrive; the PDU engine and the mapping are
  * the ones RTU uses.
  *
+ * The backend behind modcp_ascii_ops (link_internal.h), its state in l->fr.ascii.
+ *
  * Receive, by link state:
  *   IDLE  waiting for ':'. Any other character: wrong start character, event (08)38H
  *         (normal mode; interference suppression and RS485 are silent, 003 §3.2:
@@ -16,9 +18,11 @@
  *   EOF   CR + delimiter of a good frame received: the frame is handed over on the
  *         one-shot timer, armed with 1 us (link.c delivers frames on timer expiry).
  * End of a frame: CR followed by the input delimiter (l->ascii_delim, LF unless
- * FC08 sub-function 03 changed it). There is no t3.5 in ASCII: every character in a
- * frame (RX / SKIP) re-arms the timer with the character delay time (ASCII timeout,
- * 1 ... 6500 ms); its expiry inside a frame for us discards it with (08)06H.
+ * FC08 sub-function 03 changed it). There is no t3.5 in ASCII: the character delay time
+ * (ASCII timeout, 1 ... 6500 ms) is the link's silence; the timer is armed with it once,
+ * at the start of a frame or of a run of stray characters, and link.c re-arms it for the
+ * rest after the last character; a silence that long inside a frame for us discards it
+ * with (08)06H.
  *
  * Errors inside a frame for us discard it with no reply (003 §8.1, §6):
  *   ':' inside the frame ............ (08)39H, reception restarts at the new ':'
@@ -73,21 +77,23 @@ static uint8_t hexval(uint8_t c)
     return HEX_BAD;
 }
 
-/* A ':' starts a frame (l->first = ':' marks a frame, 0 a run of stray characters). */
+/* A ':' starts a frame (in_frame; false: a run of stray characters); the timer is
+ * armed here, once per frame. */
 static void frame_start(modcp_link_t *l, uint32_t now_us)
 {
+    modcp_ascii_t *a = &l->fr.ascii;
     l->state = MODCP_LINK_RX;
-    l->first = (uint8_t)ASCII_COLON;
+    a->in_frame = true;
     l->len = 0;
-    l->count = 0;
-    l->crc = 0; /* running byte sum for the LRC */
-    l->hex_half = false;
-    l->hex_hi = 0;
-    l->got_cr = false;
+    a->count = 0;
+    a->lrc = 0; /* running byte sum for the LRC */
+    a->hex_half = false;
+    a->hex_hi = 0;
+    a->got_cr = false;
     l->rx_bad = false;
     l->rx_overflow = false;
     l->last_us = now_us;
-    link_arm(l, l->ascii_timeout_us);
+    link_arm(l, l->silence_us);
 }
 
 /* The frame is bad: report ev for our frame (NONE: already reported by link.c) and
@@ -104,7 +110,7 @@ static void discard(modcp_link_t *l, modcp_event_t ev)
 /* CR + delimiter: the end of the frame in RX or SKIP. */
 static void frame_end(modcp_link_t *l)
 {
-    const bool lrc_ok = l->count >= ASCII_MIN_FRAME && (l->crc & 0xFFu) == 0u;
+    const bool lrc_ok = l->fr.ascii.count >= ASCII_MIN_FRAME && l->fr.ascii.lrc == 0u;
     link_arm(l, 0);
     if (l->state == MODCP_LINK_SKIP) {
         if (!l->rx_bad) {
@@ -118,10 +124,7 @@ static void frame_end(modcp_link_t *l)
         return; /* dropped by the link (modcp_link_rx_discard: DSR OFF) */
     }
     if (l->rx_overflow) {
-        if (l->diag != NULL) {
-            l->diag->frames_too_long = (uint16_t)(l->diag->frames_too_long + 1u);
-        }
-        link_event(l, MODCP_EV_FRAME_TOO_LONG);
+        link_frame_too_long(l);
         return;
     }
     if (!lrc_ok) {
@@ -138,14 +141,15 @@ static void frame_end(modcp_link_t *l)
 /* One decoded byte of the frame in RX / SKIP. */
 static void frame_byte(modcp_link_t *l, uint8_t b)
 {
-    l->crc = (uint16_t)((l->crc + b) & 0xFFu);
-    if (l->count < UINT16_MAX) {
-        l->count++;
+    modcp_ascii_t *a = &l->fr.ascii;
+    a->lrc = (uint8_t)(a->lrc + b);
+    if (a->count < UINT16_MAX) {
+        a->count++;
     }
     if (l->state != MODCP_LINK_RX) {
         return;
     }
-    if (l->count == 1u && b != l->own_addr && b != 0u) {
+    if (a->count == 1u && b != l->own_addr && b != 0u) {
         l->state = MODCP_LINK_SKIP; /* another slave's frame: not checked, not answered */
         return;
     }
@@ -160,8 +164,9 @@ static void frame_byte(modcp_link_t *l, uint8_t b)
 /* A character in RX / SKIP (a frame or a run of stray characters). */
 static void frame_char(modcp_link_t *l, uint8_t c, uint32_t now_us)
 {
+    modcp_ascii_t *a = &l->fr.ascii;
     if (c == ASCII_COLON) {
-        if (l->first == ASCII_COLON) {
+        if (a->in_frame) {
             /* the first part is discarded (003 §8.5 (08)39H; another slave's: silently) */
             discard(l, MODCP_EV_ASCII_RESTART);
         }
@@ -169,23 +174,22 @@ static void frame_char(modcp_link_t *l, uint8_t c, uint32_t now_us)
         return;
     }
     l->last_us = now_us;
-    link_arm(l, l->ascii_timeout_us);
-    if (l->first != ASCII_COLON) {
+    if (!a->in_frame) {
         return; /* stray characters before a start character */
     }
-    if (l->got_cr) {
+    if (a->got_cr) {
         if (c == l->ascii_delim) {
             frame_end(l);
             return;
         }
         discard(l, MODCP_EV_ASCII_NOT_HEX); /* CR not followed by the delimiter */
-        l->got_cr = c == ASCII_CR;
+        a->got_cr = c == ASCII_CR;
         return;
     }
     if (c == ASCII_CR) {
-        l->got_cr = true;
-        if (l->hex_half) {
-            l->hex_half = false;
+        a->got_cr = true;
+        if (a->hex_half) {
+            a->hex_half = false;
             discard(l, MODCP_EV_ASCII_NOT_HEX); /* odd number of hex characters */
         }
         return;
@@ -195,57 +199,58 @@ static void frame_char(modcp_link_t *l, uint8_t c, uint32_t now_us)
         discard(l, MODCP_EV_ASCII_NOT_HEX);
         return;
     }
-    if (!l->hex_half) {
-        l->hex_hi = v;
-        l->hex_half = true;
+    if (!a->hex_half) {
+        a->hex_hi = v;
+        a->hex_half = true;
         return;
     }
-    l->hex_half = false;
-    frame_byte(l, (uint8_t)((unsigned)l->hex_hi << 4 | v));
+    a->hex_half = false;
+    frame_byte(l, (uint8_t)((unsigned)a->hex_hi << 4 | v));
 }
 
 /* A character while a request is processed or its reply pending. */
 static void busy_track(modcp_link_t *l, uint8_t c, uint32_t now_us)
 {
+    modcp_ascii_t *a = &l->fr.ascii;
     if (l->rs485 && l->state == MODCP_LINK_TX) {
         return; /* echo of our own transmission */
     }
     l->last_us = now_us;
     if (c == ASCII_COLON) {
         l->busy_rx = true;
-        l->count = 0;
-        l->hex_half = false;
-        l->got_cr = false;
+        a->count = 0;
+        a->hex_half = false;
+        a->got_cr = false;
         return;
     }
     if (!l->busy_rx) {
         return;
     }
-    if (l->got_cr && c == l->ascii_delim) {
+    if (a->got_cr && c == l->ascii_delim) {
         l->busy_rx = false; /* that frame is complete */
-        l->got_cr = false;
+        a->got_cr = false;
         return;
     }
-    l->got_cr = c == ASCII_CR;
+    a->got_cr = c == ASCII_CR;
     uint8_t v = hexval(c);
-    if (v == HEX_BAD || l->count != 0u) {
+    if (v == HEX_BAD || a->count != 0u) {
         return;
     }
-    if (!l->hex_half) {
-        l->hex_hi = v;
-        l->hex_half = true;
+    if (!a->hex_half) {
+        a->hex_hi = v;
+        a->hex_half = true;
         return;
     }
-    l->hex_half = false;
-    l->count = 1;
-    if ((uint8_t)((unsigned)l->hex_hi << 4 | v) == l->own_addr) {
+    a->hex_half = false;
+    a->count = 1;
+    if ((uint8_t)((unsigned)a->hex_hi << 4 | v) == l->own_addr) {
         link_event(l, MODCP_EV_SEQUENCE);
     }
 }
 
-void modcp_ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
+static void ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
-    if (l->ascii7) {
+    if (l->fr.ascii.seven_bit) {
         b &= 0x7Fu;
     }
     switch (l->state) {
@@ -258,10 +263,10 @@ void modcp_ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
             link_event(l, MODCP_EV_ASCII_START);
         }
         l->state = MODCP_LINK_SKIP; /* ignore the rest of the stray characters */
-        l->first = 0;
+        l->fr.ascii.in_frame = false;
         l->rx_bad = true;
         l->last_us = now_us;
-        link_arm(l, l->ascii_timeout_us);
+        link_arm(l, l->silence_us); /* once, for the whole run */
         break;
     case MODCP_LINK_RX:
     case MODCP_LINK_SKIP:
@@ -273,23 +278,25 @@ void modcp_ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
     }
 }
 
-void modcp_ascii_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
+static void ascii_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
     (void)line_errors; /* every kind of error has the same effect on framing */
     if (l->state != MODCP_LINK_RX && l->state != MODCP_LINK_SKIP) {
         return; /* between frames, after CR LF, or while busy: the frame is not touched */
     }
-    if (l->first != ASCII_COLON) {
+    if (!l->fr.ascii.in_frame) {
         return; /* among stray characters */
     }
     discard(l, MODCP_EV_NONE); /* link.c reported it (normal mode) */
-    l->got_cr = false;
+    l->fr.ascii.got_cr = false;
     l->last_us = now_us;
-    link_arm(l, l->ascii_timeout_us);
 }
 
-bool modcp_ascii_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
+/* EOF: hand the frame over. RX / SKIP: the character delay time has passed since the
+ * last character (link.c checked it). */
+static bool ascii_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
+    (void)now_us;
     if (l->state == MODCP_LINK_EOF) {
         if (f == NULL || l->buf == NULL) {
             l->state = MODCP_LINK_IDLE;
@@ -310,19 +317,14 @@ bool modcp_ascii_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
     if (l->state != MODCP_LINK_RX && l->state != MODCP_LINK_SKIP) {
         return false; /* stale or spurious expiry */
     }
-    uint32_t gap = now_us - l->last_us;
-    if (gap < l->ascii_timeout_us) {
-        link_arm(l, l->ascii_timeout_us - gap); /* an expiry that raced a character */
-        return false;
-    }
-    if (l->first == ASCII_COLON) {
+    if (l->fr.ascii.in_frame) {
         discard(l, MODCP_EV_ZVZ); /* character delay time exceeded inside a frame */
     }
     l->state = MODCP_LINK_IDLE;
     return false;
 }
 
-uint16_t modcp_ascii_encode(modcp_link_t *l, uint16_t pdu_len)
+static uint16_t ascii_encode(modcp_link_t *l, uint16_t pdu_len)
 {
     const uint32_t n = 1u + (uint32_t)pdu_len;    /* address + PDU */
     const uint32_t out = 1u + 2u * (n + 1u) + 2u; /* ':' hex(address PDU LRC) CR LF */
@@ -341,3 +343,13 @@ uint16_t modcp_ascii_encode(modcp_link_t *l, uint16_t pdu_len)
     l->buf[out - 1u] = 0x0Au; /* LF */
     return (uint16_t)out;
 }
+
+static const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p)
+{
+    l->fr.ascii.seven_bit = p->data_bits == 7u;
+    l->silence_us = l->ascii_timeout_us; /* the character delay time plays t3.5's part */
+    return l->cap >= ASCII_MIN_FRAME && l->size >= 11u ? &modcp_ascii_ops : NULL;
+}
+
+const modcp_framing_ops_t modcp_ascii_ops = {ascii_configure, ascii_on_byte, ascii_on_error,
+                                             ascii_on_timer, ascii_encode};

@@ -2,7 +2,7 @@
 #include "modcp/crc.h"
 
 /* Reflected polynomial 0xA001 (x^16 + x^15 + x^2 + 1). */
-static const uint16_t crc_table[256] = {
+const uint16_t modcp_crc16_table[256] = {
     0x0000, 0xC0C1, 0xC181, 0x0140, 0xC301, 0x03C0, 0x0280, 0xC241,
     0xC601, 0x06C0, 0x0780, 0xC741, 0x0500, 0xC5C1, 0xC481, 0x0440,
     0xCC01, 0x0CC0, 0x0D80, 0xCD41, 0x0F00, 0xCFC1, 0xCE81, 0x0E40,
@@ -40,7 +40,7 @@ static const uint16_t crc_table[256] = {
 uint16_t modcp_crc16_update(uint16_t crc, const uint8_t *p, size_t n)
 {
     while (n-- > 0u) {
-        crc = (uint16_t)((crc >> 8) ^ crc_table[(crc ^ *p++) & 0xFFu]);
+        crc = modcp_crc16_byte(crc, *p++);
     }
     return crc;
 }

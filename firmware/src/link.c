@@ -1,5 +1,6 @@
-/* modcp — serial link layer: configuration, dispatch to the framing (RTU in rtu.c,
- * ASCII in ascii.c), line-error accounting, transmit, turnaround and RS485 driver
+/* modcp — serial link layer: configuration, the framing backend behind its ops struct
+ * (RTU in rtu.c, ASCII in ascii.c, selected once in modcp_link_configure), the
+ * end-of-frame silence, line-error accounting, transmit, turnaround and RS485 driver
  * enable (SPEC §3).
  *
  * RS485: DE is switched on before the first byte (before the turnaround delay, so the
@@ -32,17 +33,45 @@ static void reset_rx(modcp_link_t *l)
 {
     l->state = MODCP_LINK_IDLE;
     l->len = 0;
-    l->count = 0;
-    l->crc = 0;
-    l->first = 0;
     l->rx_bad = false;
     l->rx_overflow = false;
     l->last_us = 0;
     l->busy_rx = false;
-    l->hex_hi = 0;
-    l->hex_half = false;
-    l->got_cr = false;
+    memset(&l->fr, 0, sizeof l->fr);
     l->tx_len = 0;
+}
+
+/* A disabled (or not yet configured) link: the line is ignored. Only on_byte is ever
+ * reached through it: every other entry point checks l->enabled first. */
+static void off_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    (void)l;
+    (void)b;
+    (void)now_us;
+}
+static const modcp_framing_ops_t off_ops = {NULL, off_byte, NULL, NULL, NULL};
+
+/* The backend for the framing parameter (the only place that names the framings). */
+static const modcp_framing_ops_t *framing_ops(uint8_t framing)
+{
+    switch (framing) {
+    case MODCP_FRAMING_RTU:
+        return &modcp_rtu_ops;
+#if MODCP_WITH_ASCII
+    case MODCP_FRAMING_ASCII:
+        return &modcp_ascii_ops;
+#endif
+    default:
+        return NULL;
+    }
+}
+
+void link_frame_too_long(modcp_link_t *l)
+{
+    if (l->diag != NULL) {
+        l->diag->frames_too_long = (uint16_t)(l->diag->frames_too_long + 1u);
+    }
+    link_event(l, MODCP_EV_FRAME_TOO_LONG);
 }
 
 /* Back to receiving after a request. If a frame that started while we were busy is
@@ -52,18 +81,14 @@ static void reset_rx(modcp_link_t *l)
 static void resume_rx(modcp_link_t *l, uint32_t now_us, bool have_now)
 {
     if (l->busy_rx) {
-        /* ASCII: the character delay time plays the part of t3.5 */
-        const uint32_t quiet =
-            l->framing == (uint8_t)MODCP_FRAMING_ASCII ? l->ascii_timeout_us : l->t35_us;
         uint32_t gap = have_now ? now_us - l->last_us : 0u;
-        if (gap < quiet) {
+        if (gap < l->silence_us) {
             l->busy_rx = false;
             l->state = MODCP_LINK_SKIP;
             l->rx_bad = true; /* only its tail was seen: not counted */
             l->rx_overflow = false;
             l->len = 0;
-            l->count = 1;
-            link_arm(l, quiet - gap);
+            link_arm(l, l->silence_us - gap);
             return;
         }
     }
@@ -80,16 +105,22 @@ void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag
     l->buf = buf;
     l->size = buf != NULL ? cap : 0u;
     l->cap = l->size < MODCP_ADU_MAX ? l->size : (uint16_t)MODCP_ADU_MAX;
-    l->enabled = false;
-    l->state = MODCP_LINK_IDLE;
+    l->ops = &off_ops; /* disabled: enabled false, state IDLE (zero) */
 }
 
-void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
+/* Timer off, driver off, nothing received, the line ignored. */
+static void stop(modcp_link_t *l)
 {
     link_arm(l, 0);
     set_de(l, false);
     reset_rx(l);
-    l->framing = p->framing;
+    l->ops = &off_ops;
+    l->enabled = false;
+}
+
+void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
+{
+    stop(l);
     l->own_addr = p->slave_addr;
     l->rs485 = p->iface == (uint8_t)MODCP_IFACE_RS485;
     l->suppress = p->opmode == (uint8_t)MODCP_OPMODE_SUPPRESS || l->rs485;
@@ -99,43 +130,26 @@ void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
     l->turnaround_us = l->rs485 ? (uint32_t)p->turnaround_ms * 1000u : 0u;
     l->tx_hold = p->rs232_auto != 0u && p->iface == (uint8_t)MODCP_IFACE_RS232;
     l->ascii_timeout_us = (uint32_t)p->ascii_timeout_ms * 1000u;
-    switch (p->framing) {
-    case MODCP_FRAMING_RTU:
-        l->enabled = l->cap >= 4u;
-        break;
-#if MODCP_WITH_ASCII
-    case MODCP_FRAMING_ASCII: /* ascii.c */
-        l->ascii7 = p->data_bits == 7u;
-        l->ascii_delim = 0x0Au; /* LF until FC08 sub-function 03 changes it */
-        l->enabled = l->cap >= 3u && l->size >= 11u;
-        break;
-#endif
-    default:
-        l->enabled = false;
-        break;
+    l->ascii_delim = 0x0Au; /* LF until FC08 sub-function 03 changes it */
+    const modcp_framing_ops_t *ops = framing_ops(p->framing);
+    if (ops != NULL) {
+        ops = ops->configure(l, p); /* the variant to run (sets silence_us), NULL if it cannot */
+    }
+    if (ops != NULL) {
+        l->ops = ops;
+        l->enabled = true;
     }
 }
 
 void modcp_link_disable(modcp_link_t *l)
 {
-    link_arm(l, 0);
-    set_de(l, false);
-    reset_rx(l);
-    l->enabled = false;
+    stop(l);
 }
 
+/* The hot path: straight to the framing (a disabled link has the "off" backend). */
 void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
-    if (!l->enabled) {
-        return;
-    }
-#if MODCP_WITH_ASCII
-    if (l->framing != (uint8_t)MODCP_FRAMING_RTU) {
-        modcp_ascii_on_byte(l, b, now_us);
-        return;
-    }
-#endif
-    modcp_rtu_on_byte(l, b, now_us);
+    l->ops->on_byte(l, b, now_us);
 }
 
 void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
@@ -159,13 +173,7 @@ void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
             modcp_diag_count(l->diag, MODCP_CNT_CHAR_OVERRUN);
         }
     }
-#if MODCP_WITH_ASCII
-    if (l->framing != (uint8_t)MODCP_FRAMING_RTU) {
-        modcp_ascii_on_error(l, line_errors, now_us);
-        return;
-    }
-#endif
-    modcp_rtu_on_error(l, line_errors, now_us);
+    l->ops->on_error(l, line_errors, now_us);
 }
 
 bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
@@ -185,12 +193,16 @@ bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         start_tx(l);
         return false;
     }
-#if MODCP_WITH_ASCII
-    if (l->framing != (uint8_t)MODCP_FRAMING_RTU) {
-        return modcp_ascii_on_timer(l, now_us, f);
+    if (l->state == MODCP_LINK_RX || l->state == MODCP_LINK_SKIP) {
+        /* armed once at the frame's first character: while characters kept coming,
+         * wait for the rest of the silence after the last one */
+        uint32_t gap = now_us - l->last_us;
+        if (gap < l->silence_us) {
+            link_arm(l, l->silence_us - gap);
+            return false;
+        }
     }
-#endif
-    return modcp_rtu_on_timer(l, now_us, f);
+    return l->ops->on_timer(l, now_us, f);
 }
 
 void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us)
@@ -199,12 +211,7 @@ void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us)
         return;
     }
     l->tx_at_us = now_us;
-#if MODCP_WITH_ASCII
-    l->tx_len = l->framing == (uint8_t)MODCP_FRAMING_ASCII ? modcp_ascii_encode(l, pdu_len)
-                                                           : modcp_rtu_encode(l, pdu_len);
-#else
-    l->tx_len = modcp_rtu_encode(l, pdu_len); /* RTU only: no ASCII in this build */
-#endif
+    l->tx_len = l->ops->encode(l, pdu_len);
     if (l->tx_len == 0u) {
         if (l->diag != NULL) {
             modcp_diag_event(l->diag, MODCP_EV_INTERNAL_SEND); /* reply does not fit */

@@ -1,9 +1,47 @@
-/* modcp — helpers shared by the link layer and its framings (link.c, rtu.c, ascii.c).
+/* modcp — the link layer and its framing backends (link.c, rtu.c, ascii.c).
  * Internal to the core: not part of the public API. */
 #ifndef MODCP_LINK_INTERNAL_H
 #define MODCP_LINK_INTERNAL_H
 
 #include "modcp/link.h"
+
+/* Keep a cold path out of the hot one (a leaf function needs no stack frame). */
+#if defined(__GNUC__)
+#define MODCP_NOINLINE __attribute__((noinline))
+#else
+#define MODCP_NOINLINE
+#endif
+
+/* A framing backend. The link calls it and never asks which one it runs; the backend
+ * keeps its own state in l->fr and uses the link's shared fields (state, buffer, len,
+ * rx_bad, rx_overflow, last_us, busy_rx) and configuration.
+ *
+ * Timer contract: the backend arms the one-shot timer (link_arm) once when a frame
+ * starts (RX / SKIP entered from IDLE), never per character; it keeps l->last_us at the
+ * end of the last character of the frame. The link handles every expiry in RX / SKIP
+ * that comes before l->silence_us has passed since l->last_us by re-arming the rest. */
+typedef struct modcp_framing_ops {
+    /* The framing's part of modcp_link_configure(): its state (already zeroed), and
+     * l->silence_us. Returns the ops to run (the backend may have variants, e.g. RTU
+     * with and without the t1.5 check), NULL if the buffer is too small. */
+    const struct modcp_framing_ops *(*configure)(modcp_link_t *l, const modcp_params_t *p);
+    /* A received character (the hot path: per byte a store and a check step). */
+    void (*on_byte)(modcp_link_t *l, uint8_t b, uint32_t now_us);
+    /* A line error in place of a character (counted and reported by link.c). */
+    void (*on_error)(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
+    /* A timer expiry the link did not claim: in RX / SKIP only once the silence has
+     * passed since the last character (the frame has ended). True: a frame for us is
+     * in *f and the state is BUSY. */
+    bool (*on_timer)(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f);
+    /* The reply PDU at buf + 1 (address at buf[0]) framed in place; its length on the
+     * line, 0 if it does not fit. */
+    uint16_t (*encode)(modcp_link_t *l, uint16_t pdu_len);
+} modcp_framing_ops_t;
+
+extern const modcp_framing_ops_t modcp_rtu_ops;   /* rtu.c */
+#if MODCP_WITH_ASCII
+extern const modcp_framing_ops_t modcp_ascii_ops; /* ascii.c */
+#endif
 
 /* Arm the one-shot timer (0 disarms). */
 static inline void link_arm(const modcp_link_t *l, uint32_t us)
@@ -38,5 +76,8 @@ static inline void link_mark_bad(modcp_link_t *l)
         link_count(l, MODCP_CNT_BUS_CRC);
     }
 }
+
+/* A frame for us was too long for the buffer: (08)16H. */
+void link_frame_too_long(modcp_link_t *l);
 
 #endif

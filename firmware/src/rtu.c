@@ -1,9 +1,13 @@
 /* modcp — RTU framing (004 §5, SPEC §3.1): frame boundaries by the t3.5 gap, address
  * filter, running CRC, t1.5 check, frames that arrive while a request is in progress.
  *
- * Every received character (or line error in place of one) restarts the end-of-frame
- * timer; the frame is checked only when the timer expires. Time stamps are the ends of
- * characters, as the UART receive interrupt sees them.
+ * The backend behind modcp_rtu_ops (link_internal.h), its state in l->fr.rtu. A
+ * character of our frame costs a store and one table-CRC step (plus one comparison with
+ * the t1.5 check on: a second entry, rtu_t15_ops, chosen at configuration); the
+ * end-of-frame timer is armed once, by the frame's first character (or line error
+ * in place of one), and link.c re-arms it for the rest of t3.5 after the last one; the
+ * frame is checked only when t3.5 has passed. Time stamps are the ends of characters,
+ * as the UART receive interrupt sees them.
  *
  * Decisions where the manual is silent:
  *  - A byte that arrives in SKIP after a gap >= t3.5 (the expiry is late or the SKIP
@@ -37,18 +41,19 @@
 
 #define RTU_MIN_FRAME 4u /* address, function, CRC */
 
-static void count_char(modcp_link_t *l)
+static void count_char(modcp_rtu_t *r)
 {
-    if (l->count < UINT16_MAX) {
-        l->count++;
+    if (r->count < UINT16_MAX) {
+        r->count++;
     }
 }
 
-/* A frame starts with b (or with a line error in place of the first character). */
+/* A frame starts with b (or with a line error in place of the first character): the
+ * end-of-frame timer is armed here, once per frame. */
 static void frame_start(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
 {
-    l->count = 1;
-    l->first = b;
+    modcp_rtu_t *r = &l->fr.rtu;
+    r->count = 1;
     l->rx_bad = false;
     if (error) {
         link_mark_bad(l);
@@ -57,17 +62,13 @@ static void frame_start(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
     l->len = 0;
     l->last_us = now_us;
     if (error) {
-        l->crc = MODCP_CRC_INIT;
+        r->crc = MODCP_CRC_INIT;
         l->state = MODCP_LINK_SKIP;
     } else {
-        l->crc = modcp_crc16_update(MODCP_CRC_INIT, &b, 1);
+        r->crc = modcp_crc16_byte(MODCP_CRC_INIT, b);
         if (b == l->own_addr || b == 0u) {
-            if (l->cap > 0u && l->buf != NULL) {
-                l->buf[0] = b;
-                l->len = 1;
-            } else {
-                l->rx_overflow = true;
-            }
+            l->buf[0] = b; /* configured: cap >= RTU_MIN_FRAME */
+            l->len = 1;
             l->state = MODCP_LINK_RX;
         } else {
             l->state = MODCP_LINK_SKIP; /* not checked, not answered */
@@ -79,29 +80,11 @@ static void frame_start(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
 /* End of a frame for another address: only the serial-line bus counters. */
 static void skip_end(modcp_link_t *l)
 {
+    const modcp_rtu_t *r = &l->fr.rtu;
     if (!l->rx_bad) {
-        link_count(l, (l->count >= RTU_MIN_FRAME && l->crc == 0u) ? MODCP_CNT_BUS_MSG : MODCP_CNT_BUS_CRC);
+        link_count(l, (r->count >= RTU_MIN_FRAME && r->crc == 0u) ? MODCP_CNT_BUS_MSG : MODCP_CNT_BUS_CRC);
     }
     l->state = MODCP_LINK_IDLE;
-}
-
-/* t1.5: the silence between two characters of our frame (distance of their ends minus
- * one character time) must not exceed t1.5. */
-static void check_t15(modcp_link_t *l, uint32_t now_us)
-{
-    if (l->t15_us == 0u || l->rx_bad) {
-        return;
-    }
-    uint32_t dist = now_us - l->last_us;
-    if (dist > l->t15_us + l->char_us) {
-        link_mark_bad(l);
-        if (l->diag != NULL) {
-            l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
-        }
-        if (!l->suppress) {
-            link_event(l, MODCP_EV_ZVZ);
-        }
-    }
 }
 
 /* Default branch of the receive automaton (a state RTU never uses, i.e. corrupted):
@@ -130,24 +113,18 @@ static void busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
     l->last_us = now_us;
 }
 
-void modcp_rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
+/* Every case but the plain one of rtu_on_byte(): another state or a full buffer. Kept
+ * out of line so the hot path stays a leaf. */
+static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
+    modcp_rtu_t *r = &l->fr.rtu;
     switch (l->state) {
     case MODCP_LINK_IDLE:
         frame_start(l, b, false, now_us);
         break;
-    case MODCP_LINK_RX:
-        check_t15(l, now_us);
-        count_char(l);
-        l->crc = modcp_crc16_update(l->crc, &b, 1);
-        if (l->len < l->cap) {
-            l->buf[l->len] = b;
-            l->len++;
-        } else {
-            l->rx_overflow = true;
-        }
+    case MODCP_LINK_RX: /* the buffer is full: the frame is too long */
+        l->rx_overflow = true;
         l->last_us = now_us;
-        link_arm(l, l->t35_us);
         break;
     case MODCP_LINK_SKIP:
         if (now_us - l->last_us >= l->t35_us) {
@@ -155,10 +132,9 @@ void modcp_rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
             frame_start(l, b, false, now_us);
             break;
         }
-        count_char(l);
-        l->crc = modcp_crc16_update(l->crc, &b, 1);
+        count_char(r);
+        r->crc = modcp_crc16_byte(r->crc, b);
         l->last_us = now_us;
-        link_arm(l, l->t35_us);
         break;
     case MODCP_LINK_BUSY:
     case MODCP_LINK_TURNAROUND:
@@ -172,9 +148,49 @@ void modcp_rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
     }
 }
 
-void modcp_rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
+/* The hot path: a character of our frame, with room in the buffer, is stored and goes
+ * through one CRC step; nothing else. */
+static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    if (l->state != MODCP_LINK_RX || l->len >= l->cap) {
+        byte_other(l, b, now_us);
+        return;
+    }
+    l->last_us = now_us;
+    l->fr.rtu.crc = modcp_crc16_byte(l->fr.rtu.crc, b);
+    l->buf[l->len++] = b;
+}
+
+/* With the t1.5 check on: the silence before a character of our frame (distance of the
+ * two character ends minus one character time) must not exceed t1.5. A separate entry,
+ * so that the check costs nothing when it is off. */
+static MODCP_NOINLINE void t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    if (!l->rx_bad) {
+        link_mark_bad(l);
+        if (l->diag != NULL) {
+            l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
+        }
+        if (!l->suppress) {
+            link_event(l, MODCP_EV_ZVZ);
+        }
+    }
+    rtu_on_byte(l, b, now_us);
+}
+
+static void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    if (l->state == MODCP_LINK_RX && now_us - l->last_us > l->t15_us + l->char_us) {
+        t15_violated(l, b, now_us);
+        return;
+    }
+    rtu_on_byte(l, b, now_us);
+}
+
+static void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
     (void)line_errors; /* every kind of error has the same effect on framing */
+    modcp_rtu_t *r = &l->fr.rtu;
     switch (l->state) {
     case MODCP_LINK_IDLE:
         if (l->suppress) {
@@ -183,13 +199,11 @@ void modcp_rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
         frame_start(l, 0, true, now_us);
         break;
     case MODCP_LINK_RX:
-        if (!l->rx_bad && !l->rx_overflow && l->len >= RTU_MIN_FRAME && l->crc == 0u) {
+        if (!l->rx_bad && !l->rx_overflow && l->len >= RTU_MIN_FRAME && r->crc == 0u) {
             return; /* after the CRC: not part of the frame */
         }
         link_mark_bad(l);
-        count_char(l);
         l->last_us = now_us;
-        link_arm(l, l->t35_us);
         break;
     case MODCP_LINK_SKIP:
         if (now_us - l->last_us >= l->t35_us) {
@@ -200,9 +214,8 @@ void modcp_rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
             break;
         }
         link_mark_bad(l);
-        count_char(l);
+        count_char(r);
         l->last_us = now_us;
-        link_arm(l, l->t35_us);
         break;
     case MODCP_LINK_BUSY:
     case MODCP_LINK_TURNAROUND:
@@ -218,15 +231,12 @@ void modcp_rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
     }
 }
 
-bool modcp_rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
+/* t3.5 has passed since the last character of the frame (link.c checked it). */
+static bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
+    (void)now_us;
     if (l->state != MODCP_LINK_RX && l->state != MODCP_LINK_SKIP) {
         return false; /* stale or spurious expiry */
-    }
-    uint32_t gap = now_us - l->last_us;
-    if (gap < l->t35_us) {
-        link_arm(l, l->t35_us - gap); /* an expiry that raced a character */
-        return false;
     }
     if (l->state == MODCP_LINK_SKIP) {
         skip_end(l);
@@ -237,13 +247,10 @@ bool modcp_rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         return false; /* already reported (normal mode) or silently discarded */
     }
     if (l->rx_overflow) {
-        if (l->diag != NULL) {
-            l->diag->frames_too_long = (uint16_t)(l->diag->frames_too_long + 1u);
-        }
-        link_event(l, MODCP_EV_FRAME_TOO_LONG);
+        link_frame_too_long(l);
         return false;
     }
-    if (l->len < RTU_MIN_FRAME || l->crc != 0u) {
+    if (l->len < RTU_MIN_FRAME || l->fr.rtu.crc != 0u) {
         link_event(l, MODCP_EV_CRC);
         link_count(l, MODCP_CNT_BUS_CRC);
         return false;
@@ -262,7 +269,7 @@ bool modcp_rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
     return true;
 }
 
-uint16_t modcp_rtu_encode(modcp_link_t *l, uint16_t pdu_len)
+static uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
 {
     uint32_t n = 1u + (uint32_t)pdu_len; /* address + PDU */
     if (l->buf == NULL || n + 2u > (uint32_t)l->cap) {
@@ -273,3 +280,20 @@ uint16_t modcp_rtu_encode(modcp_link_t *l, uint16_t pdu_len)
     l->buf[n + 1u] = (uint8_t)(crc >> 8);
     return (uint16_t)(n + 2u);
 }
+
+static const modcp_framing_ops_t rtu_t15_ops;
+
+static const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
+{
+    (void)p;
+    l->silence_us = l->t35_us;
+    if (l->cap < RTU_MIN_FRAME) {
+        return NULL;
+    }
+    return l->t15_us != 0u ? &rtu_t15_ops : &modcp_rtu_ops;
+}
+
+const modcp_framing_ops_t modcp_rtu_ops = {rtu_configure, rtu_on_byte, rtu_on_error,
+                                           rtu_on_timer, rtu_encode};
+static const modcp_framing_ops_t rtu_t15_ops = {rtu_configure, rtu_on_byte_t15, rtu_on_error,
+                                                rtu_on_timer, rtu_encode};

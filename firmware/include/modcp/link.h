@@ -1,13 +1,19 @@
-/* modcp — serial link layer: frame boundaries, CRC, transmit and RS485 direction.
- * RTU framing lives in rtu.c (ASCII framing in ascii.c, same interface); the
- * transmit side, turnaround and driver-enable handling are shared.
+/* modcp — serial link layer: frame boundaries, transmit and RS485 direction.
+ * The framing is a backend behind an ops struct (link_internal.h): RTU in rtu.c, ASCII
+ * in ascii.c, each with its own receive state (modcp_rtu_t / modcp_ascii_t below);
+ * link.c never asks which one it runs. The transmit side, turnaround, driver enable
+ * and the end-of-frame silence are shared.
  *
- * Receive: every byte (byte, now_us) restarts the end-of-frame timer (t3.5 from the
- * parameters). When the timer expires the frame is checked: address (own or 0,
- * others ignored without checking), length, CRC ((08)36H and silence on mismatch).
- * Bytes that arrive while a request is being processed or its reply is pending are
- * not stored; their frame is followed, and if it is for us, (08)37H is reported.
- * Frames longer than the buffer are discarded and counted ((08)16H).
+ * Receive: per byte the framing stores it and updates its check (CRC / LRC) and the
+ * time of the last character. The end-of-frame timer is armed once, at a frame's first
+ * character, with the silence that ends a frame (RTU t3.5, ASCII the character delay
+ * time); when it expires the link compares now - last character with the silence and
+ * re-arms for the remainder while characters kept coming, so the frame ends exactly one
+ * silence after its last character without a HAL call per byte. Then the frame is
+ * checked: address (own or 0, others ignored without checking), length, CRC ((08)36H
+ * and silence on mismatch). Bytes that arrive while a request is being processed or
+ * its reply is pending are not stored; their frame is followed, and if it is for us,
+ * (08)37H is reported. Frames longer than the buffer are discarded and counted ((08)16H).
  *
  * Buffer: one buffer holds the request and then, in place, the reply. */
 #ifndef MODCP_LINK_H
@@ -54,45 +60,63 @@ typedef struct {
     uint16_t pdu_cap;    /* room for the reply PDU at pdu[] */
 } modcp_frame_t;
 
+/* RTU receive state (rtu.c). */
 typedef struct {
+    uint16_t crc;   /* running CRC over the current frame */
+    uint16_t count; /* characters of a skipped frame (bus counters) */
+} modcp_rtu_t;
+
+/* ASCII receive state (ascii.c). */
+typedef struct {
+    uint16_t count;  /* bytes decoded in the current frame (busy: address decoded) */
+    uint8_t lrc;     /* running byte sum */
+    uint8_t hex_hi;  /* first hex character of a pair */
+    bool hex_half;   /* a pair is half received */
+    bool got_cr;     /* the last character was CR */
+    bool in_frame;   /* a ':' started what is being followed (false: stray characters) */
+    bool seven_bit;  /* 7 data bits: the eighth bit of a received character is masked */
+} modcp_ascii_t;
+
+struct modcp_framing_ops; /* link_internal.h */
+
+typedef struct { /* members by size: no padding */
     const modcp_hal_t *hal;
     modcp_diag_t *diag;
     uint8_t *buf;
-    uint16_t cap;     /* receive / RTU capacity: the buffer, at most MODCP_ADU_MAX */
-    uint16_t size;    /* the whole buffer (ASCII replies are hex-encoded in place) */
+    const struct modcp_framing_ops *ops; /* the framing (never NULL: "off" when disabled) */
     /* configuration */
-    uint8_t framing;  /* modcp_framing_t */
-    uint8_t own_addr;
-    bool suppress;    /* interference suppression (also RS485) */
-    bool rs485;
+    uint32_t silence_us; /* the silence that ends a frame: t35_us (RTU) or
+                            ascii_timeout_us (ASCII) */
     uint32_t t35_us;
     uint32_t t15_us;  /* 0 = no t1.5 check */
     uint32_t char_us; /* one character time; byte timestamps are character ends, so the
                          silence between two bytes is their distance minus char_us */
     uint32_t turnaround_us;
-    uint32_t ascii_timeout_us;
-    bool enabled;     /* configured; a disabled link ignores the line */
-    /* receive state */
-    uint8_t state;    /* modcp_link_state_t */
+    uint32_t ascii_timeout_us; /* ASCII character delay time */
+    /* receive and transmit state shared by the framings */
+    uint32_t last_us;  /* time of the last received byte */
+    uint32_t tx_at_us; /* when the reply was handed over (start of the turnaround) */
+    uint16_t cap;     /* receive / RTU capacity: the buffer, at most MODCP_ADU_MAX */
+    uint16_t size;    /* the whole buffer (ASCII replies are hex-encoded in place) */
     uint16_t len;     /* bytes stored */
-    uint16_t count;   /* bytes seen in the current frame */
-    uint16_t crc;     /* running CRC over the current frame */
-    uint8_t first;    /* first byte of the current frame */
+    uint16_t tx_len;
+    union {           /* the framing's own receive state */
+        modcp_rtu_t rtu;
+#if MODCP_WITH_ASCII
+        modcp_ascii_t ascii;
+#endif
+    } fr;
+    uint8_t own_addr;
+    bool suppress;    /* interference suppression (also RS485) */
+    bool rs485;
+    uint8_t ascii_delim; /* ASCII: end of frame is CR + this (LF; FC08 sub-function 03) */
+    bool enabled;     /* configured; a disabled link ignores the line */
+    uint8_t state;    /* modcp_link_state_t */
     bool rx_bad;      /* character error / BREAK / t1.5 violation inside the frame */
     bool rx_overflow;
-    uint32_t last_us; /* time of the last received byte */
     bool busy_rx;     /* a frame is being followed while BUSY/TURNAROUND/TX */
-    /* ASCII receive state (ascii.c) */
-    uint8_t hex_hi;
-    bool hex_half;
-    bool got_cr;
-    bool ascii7;        /* 7 data bits: the eighth bit of a received character is masked */
-    uint8_t ascii_delim; /* end of frame is CR + this (LF; FC08 sub-function 03 sets it) */
-    /* transmit */
-    uint16_t tx_len;
-    uint32_t tx_at_us; /* when the reply was handed over (start of the turnaround) */
-    bool tx_hold;      /* RS232 automatic signals: a reply waits in TURNAROUND until
-                          modcp_link_tx_release() (signals.c decides RTS / CTS) */
+    bool tx_hold;     /* RS232 automatic signals: a reply waits in TURNAROUND until
+                         modcp_link_tx_release() (signals.c decides RTS / CTS) */
 } modcp_link_t;
 
 void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag, uint8_t *buf,
@@ -117,18 +141,5 @@ void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us);
 void modcp_link_tx_release(modcp_link_t *l, bool send, uint32_t now_us);
 /* Drop the frame being received (DSR went OFF): it ends silently at t3.5. */
 void modcp_link_rx_discard(modcp_link_t *l);
-
-/* RTU / ASCII framing internals, called by link.c (not for other modules). */
-void modcp_rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
-/* A line error in place of a character (counted and reported by link.c). */
-void modcp_rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
-bool modcp_rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f);
-uint16_t modcp_rtu_encode(modcp_link_t *l, uint16_t pdu_len);
-/* ASCII framing (ascii.c): the same interface; a frame ends with CR + ascii_delim and
- * is handed over by modcp_ascii_on_timer() on the timer expiry that follows it. */
-void modcp_ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
-void modcp_ascii_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
-bool modcp_ascii_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f);
-uint16_t modcp_ascii_encode(modcp_link_t *l, uint16_t pdu_len);
 
 #endif

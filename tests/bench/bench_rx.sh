@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# modcp — receive-path cost per byte under callgrind (nothing asserted), as key=value:
+#   rx_instr_per_byte=       modcp_link_on_byte() (link + framing), per received byte
+#   rx_t15_instr_per_byte=   the same with the t1.5 check on
+#   rx_timer_instr_per_byte= modcp_link_on_timer() while the frames arrive and at their
+#                            end, spread over the bytes (the timer interrupt's share)
+#   rx_cp_instr_per_byte=    modcp_cp_on_rx() (the port's entry, CP hooks included)
+# Frames: FC16 with 123 registers (255 bytes), 9600 baud, see bench_rx.c.
+#   tests/bench/bench_rx.sh [BUILD_DIR]     default build/host (built if needed)
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+B=${1:-build/host}
+FRAMES=${BENCH_RX_FRAMES:-200}
+command -v valgrind >/dev/null || { echo "bench_rx.sh: valgrind is needed" >&2; exit 2; }
+if [ -z "${1:-}" ]; then
+  cmake --preset host >/dev/null
+  cmake --build --preset host --target bench_rx >/dev/null
+fi
+X=$B/tests/bench/bench_rx
+per_byte() { # mode function -> instructions per byte
+  local out bytes coll
+  out=$(valgrind --tool=callgrind --callgrind-out-file=/dev/null --toggle-collect="$2" \
+        "$X" "$1" "$FRAMES" 2>&1)
+  bytes=$(sed -n 's/^bytes=\([0-9]*\).*/\1/p' <<<"$out")
+  coll=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' <<<"$out")
+  awk -v c="$coll" -v b="$bytes" 'BEGIN { printf "%.1f\n", c / b }'
+}
+echo "rx_instr_per_byte=$(per_byte link modcp_link_on_byte)"
+echo "rx_t15_instr_per_byte=$(per_byte link-t15 modcp_link_on_byte)"
+echo "rx_timer_instr_per_byte=$(per_byte link modcp_link_on_timer)"
+echo "rx_cp_instr_per_byte=$(per_byte cp modcp_cp_on_rx)"
