@@ -7,7 +7,7 @@
  *   modcp-conf fields                  self-check: every parameter field has an INI key
  *
  * Problems go to stderr, one per line:
- *   FILE: [section] key = value: rule (event (0E)23H)
+ *   FILE:LINE: section.key = value: rule (event (0E)23H)
  * Warnings (the CP corrects the value, e.g. f_mul -> 1) are listed but do not fail.
  * Exit codes: 0 ok, 1 usage or I/O error, 2 configuration problems. */
 #define _POSIX_C_SOURCE 200809L
