@@ -171,6 +171,38 @@ def loses_nothing(t, a, tmp):
         "overrides, key before [section], text after [section] (%r)" % lines)
 
 
+def doc_tables(path):
+    """The "| key | meaning | values | default | source | event |" table of each
+    "## [section]" of docs/parameters.md, as modcp-conf doc-table prints them."""
+    out, sec, lines = [], None, open(path, encoding="utf-8").read().split("\n")
+    i = 0
+    while i < len(lines):
+        m = re.match(r"## \[([a-z]+)\]", lines[i])
+        if m:
+            sec = m.group(1)
+        if lines[i] == "| key | meaning | values | default | source | event |" and sec:
+            j = i
+            while j < len(lines) and lines[j].startswith("|"):
+                j += 1
+            out.append("[%s]\n%s\n" % (sec, "\n".join(lines[i:j])))
+            sec, i = None, j
+            continue
+        i += 1
+    return "\n".join(out)
+
+
+def doc_table_matches(t, a):
+    """Issue 12 item 3: the parameter tables of docs/parameters.md are the descriptor's."""
+    docs = os.path.join(a.configs, os.pardir, "docs", "parameters.md")
+    rc, out, err = run([a.conf, "doc-table"])
+    want = doc_tables(docs)
+    t.ok(rc == 0 and out.count("[") >= 10 and out.strip() == want.strip(),
+         "docs/parameters.md tables == modcp-conf doc-table (the parameter rows)%s" % (
+             "" if out.strip() == want.strip() else ":\n" + "\n".join(
+                 "  docs: %s\n  rows: %s" % (x, y) for x, y in zip(want.strip().split("\n"),
+                                                            out.strip().split("\n")) if x != y)))
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--conf", required=True)
@@ -253,6 +285,7 @@ def main():
     t.ok(rc == 2 and not os.path.exists(os.path.join(tmp, "bad.bin")), "build bad.ini: exit 2, no file")
     rc, out, err = run([a.conf, "fields"])
     t.ok(rc == 0, "schema: every modcp_param_field_t has an INI key (%s)" % out.strip())
+    doc_table_matches(t, a)
     rc, out, err = run([a.conf, "frobnicate"])
     t.ok(rc == 1 and "usage" in err, "usage error: exit 1")
     shutil.rmtree(tmp, ignore_errors=True)

@@ -13,6 +13,7 @@
 #include <strings.h>
 
 #include "modcp/events.h"
+#include "params_fields.h"
 
 #define IDX_GLOBAL 16u /* src[] slot for issue index 0xFF */
 
@@ -199,166 +200,171 @@ static void set_src(modcp_conf_t *c, modcp_param_field_t f, unsigned idx, const 
 
 /* ---- key table ------------------------------------------------------------------------ */
 
-typedef enum { K_U8, K_U16, K_U32, K_ENUM, K_BOOL, K_STR } kind_t;
+/* The keys of the record's scalar fields are the rows of params_fields.h: section, key,
+ * syntax, names, message, event, legal range. */
+
+typedef enum { NUM, ENUM, BOOL, STR } syntax_t;
 
 typedef struct {
     const char *name;
     uint8_t value;
 } enum_name_t;
 
-static const enum_name_t parity_names[] = {
+static const enum_name_t names_parity[] = {
     {"none", MODCP_PARITY_NONE}, {"odd", MODCP_PARITY_ODD}, {"even", MODCP_PARITY_EVEN},
     {"n", MODCP_PARITY_NONE},    {"o", MODCP_PARITY_ODD},   {"e", MODCP_PARITY_EVEN},
     {NULL, 0}};
-static const enum_name_t framing_names[] = {
+static const enum_name_t names_framing[] = {
     {"rtu", MODCP_FRAMING_RTU}, {"ascii", MODCP_FRAMING_ASCII}, {NULL, 0}};
-static const enum_name_t mode_names[] = {{"normal", MODCP_OPMODE_NORMAL},
+static const enum_name_t names_mode[] = {{"normal", MODCP_OPMODE_NORMAL},
                                          {"suppress", MODCP_OPMODE_SUPPRESS},
                                          {"interference_suppression", MODCP_OPMODE_SUPPRESS},
                                          {NULL, 0}};
-static const enum_name_t eof_names[] = {
+static const enum_name_t names_eof[] = {
     {"manual", MODCP_EOF_MANUAL}, {"modbus", MODCP_EOF_MODBUS}, {NULL, 0}};
-static const enum_name_t iface_names[] = {{"rs232", MODCP_IFACE_RS232},
+static const enum_name_t names_iface[] = {{"rs232", MODCP_IFACE_RS232},
                                           {"rs422", MODCP_IFACE_RS422},
                                           {"rs485", MODCP_IFACE_RS485},
                                           {NULL, 0}};
-static const enum_name_t fset_names[] = {
+static const enum_name_t names_fset[] = {
     {"cp341", MODCP_FSET_CP341}, {"extended", MODCP_FSET_EXTENDED}, {NULL, 0}};
-static const enum_name_t model_names[] = {
+static const enum_name_t names_model[] = {
     {"cp341", MODCP_CPU_CP341}, {"cp441", MODCP_CPU_CP441}, {"cp441-2", MODCP_CPU_CP441}, {NULL, 0}};
+#define names_none NULL
 
 typedef struct {
     const char *section;
-    const char *key;
-    uint8_t field; /* modcp_param_field_t */
+    const char *key; /* "" = no key of its own */
+    uint8_t field;   /* modcp_param_field_t */
     uint8_t index;
-    uint8_t kind;
+    uint8_t width;   /* 1, 2, 4, MODCP_PW_STR */
+    uint8_t syntax;  /* syntax_t */
+    uint8_t flags;   /* MODCP_PF_* */
+    uint32_t min, max;
+    modcp_event_t event;
     size_t off;
     const enum_name_t *names;
+    const char *rule;
+    const char *meaning, *values, *source; /* docs/parameters.md */
 } conf_key_t;
 
-#define P(f) offsetof(modcp_params_t, f)
+#define KEY_S(member, width, field, index, min, max, def, ev, flags, section, key, syntax, names, \
+              rule, meaning, values, source)                                                     \
+    {section, key,   field,   index, width, syntax,   flags,  min,     max,                       \
+     ev,      offsetof(modcp_params_t, member), names_##names, rule, meaning, values, source},
+#define KEY_G(...)
+#define KEY_M(...)
 
-static const conf_key_t keys[] = {
-    {"serial", "baud", MODCP_PF_BAUD, 0, K_U32, P(baud), NULL},
-    {"serial", "data_bits", MODCP_PF_DATA_BITS, 0, K_U8, P(data_bits), NULL},
-    {"serial", "parity", MODCP_PF_PARITY, 0, K_ENUM, P(parity), parity_names},
-    {"serial", "stop_bits", MODCP_PF_STOP_BITS, 0, K_U8, P(stop_bits), NULL},
-    {"protocol", "slave_address", MODCP_PF_SLAVE_ADDR, 0, K_U8, P(slave_addr), NULL},
-    {"protocol", "framing", MODCP_PF_FRAMING, 0, K_ENUM, P(framing), framing_names},
-    {"protocol", "mode", MODCP_PF_OPMODE, 0, K_ENUM, P(opmode), mode_names},
-    {"protocol", "f_mul", MODCP_PF_FMUL, 0, K_U8, P(f_mul), NULL},
-    {"protocol", "eof_timing", MODCP_PF_EOF_TIMING, 0, K_ENUM, P(eof_timing), eof_names},
-    {"protocol", "t15_check", MODCP_PF_T15_CHECK, 0, K_BOOL, P(t15_check), NULL},
-    {"protocol", "ascii_timeout_ms", MODCP_PF_ASCII_TIMEOUT, 0, K_U16, P(ascii_timeout_ms), NULL},
-    {"protocol", "function_set", MODCP_PF_FSET, 0, K_ENUM, P(fset), fset_names},
-    {"interface", "type", MODCP_PF_IFACE, 0, K_ENUM, P(iface), iface_names},
-    {"interface", "turnaround_ms", MODCP_PF_TURNAROUND, 0, K_U16, P(turnaround_ms), NULL},
-    {"interface", "rs232_auto", MODCP_PF_RS232_AUTO, 0, K_BOOL, P(rs232_auto), NULL},
-    {"interface", "rts_on_delay_ms", MODCP_PF_RTS_ON_DELAY, 0, K_U16, P(rts_on_delay_ms), NULL},
-    {"interface", "rts_off_delay_ms", MODCP_PF_RTS_OFF_DELAY, 0, K_U16, P(rts_off_delay_ms), NULL},
-    {"registers", "holding_base_db", MODCP_PF_HR_BASE, 0, K_U16, P(hr_base_db), NULL},
-    {"registers", "input_base_db", MODCP_PF_IR_BASE, 0, K_U16, P(ir_base_db), NULL},
-    {"registers", "with_32bit_registers", MODCP_PF_REGS32, 0, K_BOOL, P(regs32), NULL},
-    {"cpu", "model", MODCP_PF_CPU_MODEL, 0, K_ENUM, P(cpu_model), model_names},
-    {"cpu", "job_limit", MODCP_PF_JOB_LIMIT, 0, K_U16, P(job_limit), NULL},
-    {"cpu", "timeout_ms", MODCP_PF_CPU_TIMEOUT, 0, K_U16, P(cpu_timeout_ms), NULL},
-    {"cpu", "start_time_ms", MODCP_PF_START_TIME, 0, K_U16, P(start_time_ms), NULL},
-    {"supervision", "commloss_ms", MODCP_PF_COMMLOSS, 0, K_U16, P(commloss_ms), NULL},
-    {"scanner", "start", MODCP_PF_SCANNER, 0xFF, K_U16, P(scan_start), NULL},
-    {"identification", "vendor", MODCP_PF_ID_STRING, 0, K_STR, P(vendor), NULL},
-    {"identification", "product", MODCP_PF_ID_STRING, 1, K_STR, P(product), NULL},
-    {"identification", "revision", MODCP_PF_ID_STRING, 2, K_STR, P(revision), NULL},
-    {"identification", "app_name", MODCP_PF_ID_STRING, 3, K_STR, P(app_name), NULL},
-    {"diagnostics", "interrupt", MODCP_PF_DIAG_IRQ, 0, K_BOOL, P(diag_irq), NULL},
+static const conf_key_t keys[] = {MODCP_PARAM_ROWS(KEY_S, KEY_G, KEY_M)};
+
+typedef struct {
+    const char *section, *key, *meaning, *values, *def, *source, *event;
+} doc_row_t;
+
+#define DOC_D(section, key, meaning, values, def, source, event) \
+    {section, key, meaning, values, def, source, event},
+
+static const doc_row_t doc_rows[] = {MODCP_PARAM_DOC_ROWS(DOC_D)};
+
+/* The [cpu] keys of the controller, not in the record (handle_cpu_tool). */
+typedef struct {
+    const char *key, *meaning, *values;
+    uint32_t def; /* UINT32_MAX: "none" */
+    const char *source, *event;
+} tool_row_t;
+
+static const tool_row_t cpu_tool_rows[] = {
+    {"cycle_ms",
+     "cycle time of the user program that calls the FB (simulator; `--cycle-ms` overrides)",
+     "1 … 60000", DEF_CYCLE_MS, "—", "—"},
+    {"work_db", "the FB's work area (instance DB), never writable by the master; must be in `dbs`",
+     "0 (none) or a listed DB", 0u, "004 §4.2", "(0E)3AH"},
+    {"i_bytes", "size of the input area I", "0 … 65535", DEF_I_BYTES, "004 §4.2", "—"},
+    {"q_bytes", "size of the output area Q", "0 … 65535", DEF_Q_BYTES, "", "—"},
+    {"m_bytes", "size of the flag area M", "0 … 65535", DEF_M_BYTES, "", "—"},
+    {"timers", "number of timers T", "0 … 65535", DEF_TIMERS, "", "—"},
+    {"counters", "number of counters C", "0 … 65535", DEF_COUNTERS, "", "—"},
+    {"dbs", "data blocks `NUMBER:SIZE`, space separated, e.g. `800:1024 801:1024`",
+     "up to 64 DBs, 1 … 65535 each", UINT32_MAX, "", "—"},
 };
 
-/* Keys handled outside the table, for "unknown key" messages. */
+/* Sections in the order of docs/parameters.md; coils, inputs and memory have keys of
+ * their own syntax (their list is given here), the others the keys of the rows. */
 static const char *const section_keys[][2] = {
-    {"serial", "baud, data_bits, parity, stop_bits"},
-    {"protocol", "slave_address, framing, mode, f_mul, eof_timing, t15_check, ascii_timeout_ms, "
-                 "function_set"},
-    {"interface", "type, turnaround_ms, rs232_auto, rts_on_delay_ms, rts_off_delay_ms"},
+    {"serial", NULL},
+    {"protocol", NULL},
+    {"interface", NULL},
     {"coils", "m, q, t, c, dbN (FROM-TO @ START)"},
     {"inputs", "m, i, dbN (FROM-TO @ START)"},
-    {"registers", "holding_base_db, input_base_db, with_32bit_registers, int16, int32, float"},
-    {"limits", "db, m, q (MIN-MAX or off)"},
-    {"cpu", "model, job_limit, timeout_ms, start_time_ms, cycle_ms, work_db, i_bytes, q_bytes, "
-            "m_bytes, timers, counters, dbs"},
+    {"registers", NULL},
+    {"limits", NULL},
+    {"cpu", NULL},
     {"memory", "S7 operands, e.g. MB1008, M1000.3, DB800.DBW160, T100"},
-    {"supervision", "commloss_ms"},
-    {"scanner", "start, entries"},
-    {"identification", "vendor, product, revision, app_name"},
-    {"diagnostics", "interrupt"},
+    {"supervision", NULL},
+    {"scanner", NULL},
+    {"identification", NULL},
+    {"diagnostics", NULL},
 };
 
-static const char *known_keys(const char *section)
+/* The keys of a section ("baud, data_bits, ..."), or false for an unknown section. */
+static bool known_keys(const char *section, char *buf, size_t cap)
 {
     for (size_t i = 0; i < sizeof section_keys / sizeof section_keys[0]; i++) {
-        if (strcasecmp(section_keys[i][0], section) == 0) {
-            return section_keys[i][1];
+        if (strcasecmp(section_keys[i][0], section) != 0) {
+            continue;
+        }
+        buf[0] = '\0';
+        if (section_keys[i][1] != NULL) {
+            copy_str(buf, cap, section_keys[i][1]);
+            return true;
+        }
+        size_t n = 0;
+        for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++) {
+            if (strcmp(keys[k].section, section_keys[i][0]) == 0 && keys[k].key[0] != '\0') {
+                n += (size_t)snprintf(buf + n, n < cap ? cap - n : 0u, "%s%s", n > 0u ? ", " : "",
+                                      keys[k].key);
+            }
+        }
+        for (size_t k = 0; k < sizeof doc_rows / sizeof doc_rows[0]; k++) {
+            if (strcmp(doc_rows[k].section, section_keys[i][0]) == 0) {
+                n += (size_t)snprintf(buf + n, n < cap ? cap - n : 0u, "%s%s", n > 0u ? ", " : "",
+                                      doc_rows[k].key);
+            }
+        }
+        for (size_t k = 0; strcmp(section_keys[i][0], "cpu") == 0 &&
+                           k < sizeof cpu_tool_rows / sizeof cpu_tool_rows[0];
+             k++) {
+            n += (size_t)snprintf(buf + n, n < cap ? cap - n : 0u, "%s%s", n > 0u ? ", " : "",
+                                  cpu_tool_rows[k].key);
+        }
+        return true;
+    }
+    return false;
+}
+
+/* ---- rules in words --------------------------------------------------------------------- */
+
+static const conf_key_t *key_of_field(uint8_t field)
+{
+    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
+        if (keys[i].field == field && keys[i].rule[0] != '\0') {
+            return &keys[i];
         }
     }
     return NULL;
 }
 
-/* ---- rules in words --------------------------------------------------------------------- */
-
-static modcp_event_t field_event(uint8_t field)
-{
-    switch (field) {
-    case MODCP_PF_DATA_BITS: return MODCP_EV_DATA_BITS;
-    case MODCP_PF_SLAVE_ADDR: return MODCP_EV_SLAVE_ADDR;
-    case MODCP_PF_OPMODE: return MODCP_EV_OPMODE;
-    case MODCP_PF_FMUL:
-    case MODCP_PF_ASCII_TIMEOUT: return MODCP_EV_FMUL;
-    case MODCP_PF_LIM_DB:
-    case MODCP_PF_LIM_M:
-    case MODCP_PF_LIM_Q: return MODCP_EV_WRITE_LIMITS;
-    case MODCP_PF_COILS: return MODCP_EV_COIL_FROMTO;
-    case MODCP_PF_INPUTS: return MODCP_EV_INPUT_FROMTO;
-    default: return MODCP_EV_PARAM_RECORD;
-    }
-}
-
 static const char *field_rule(uint8_t field)
 {
+    const conf_key_t *k = key_of_field(field);
+    if (k != NULL) {
+        return k->rule;
+    }
     switch (field) {
-    case MODCP_PF_BAUD:
-        return "must be one of 300, 600, 1200, 2400, 4800, 9600, 19200, 38400, 57600, 76800, "
-               "115200";
-    case MODCP_PF_DATA_BITS: return "must be 8 for RTU, 7 or 8 for ASCII";
-    case MODCP_PF_PARITY: return "must be none, odd or even";
-    case MODCP_PF_STOP_BITS: return "must be 1 or 2";
-    case MODCP_PF_SLAVE_ADDR: return "must be 1..255";
-    case MODCP_PF_FRAMING: return "must be rtu or ascii";
-    case MODCP_PF_OPMODE: return "must be normal or suppress (interference suppression)";
-    case MODCP_PF_FMUL: return "must be 1..10; the CP runs with 1";
-    case MODCP_PF_EOF_TIMING: return "must be manual or modbus";
-    case MODCP_PF_T15_CHECK: return "must be on or off";
-    case MODCP_PF_ASCII_TIMEOUT: return "must be 1..6500 ms; the CP runs with 1000 ms";
-    case MODCP_PF_IFACE: return "must be rs232, rs422 or rs485";
-    case MODCP_PF_TURNAROUND: return "must be 0..100 ms";
-    case MODCP_PF_RS232_AUTO: return "must be on or off, and on only with interface.type = rs232";
-    case MODCP_PF_RTS_ON_DELAY:
-    case MODCP_PF_RTS_OFF_DELAY: return "must be 0..65535 ms";
-    case MODCP_PF_HR_BASE:
-    case MODCP_PF_IR_BASE: return "must be a DB number 1..65535 (0: not configured)";
-    case MODCP_PF_REGS32: return "must be on or off";
     case MODCP_PF_LIM_DB:
     case MODCP_PF_LIM_M:
     case MODCP_PF_LIM_Q:
         return "must be MIN-MAX with MIN <= MAX (DB MIN >= 1), or off to disable writes";
-    case MODCP_PF_FSET: return "must be cp341 or extended";
-    case MODCP_PF_CPU_MODEL: return "must be cp341 or cp441";
-    case MODCP_PF_JOB_LIMIT:
-        return "must be 0 (the model's limit) or 32..1024 bytes (cp341) / 32..450 (cp441)";
-    case MODCP_PF_CPU_TIMEOUT: return "must be 1..65535 ms";
-    case MODCP_PF_START_TIME: return "must be 1..65535 ms";
-    case MODCP_PF_COMMLOSS: return "must be 0 (off) or 100..30000 ms";
-    case MODCP_PF_SCANNER: return "must be 0..65535";
-    case MODCP_PF_ID_STRING: return "at most 16 characters";
-    case MODCP_PF_DIAG_IRQ: return "must be on or off";
     default: return "invalid value";
     }
 }
@@ -556,13 +562,13 @@ static void handle_table_key(modcp_conf_t *c, const conf_key_t *k, const char *s
 {
     uint8_t *base = (uint8_t *)&c->params;
     unsigned idx = k->index == 0xFFu ? IDX_GLOBAL : k->index;
-    modcp_event_t ev = field_event(k->field);
-    const char *rule = field_rule(k->field);
+    modcp_event_t ev = k->event;
+    const char *rule = k->rule;
     uint32_t v = 0;
     set_src(c, (modcp_param_field_t)k->field, idx, section, name, value);
 
-    switch (k->kind) {
-    case K_ENUM:
+    switch (k->syntax) {
+    case ENUM:
         for (const enum_name_t *e = k->names; e->name != NULL; e++) {
             if (strcasecmp(e->name, value) == 0) {
                 base[k->off] = e->value;
@@ -571,7 +577,7 @@ static void handle_table_key(modcp_conf_t *c, const conf_key_t *k, const char *s
         }
         add_key_problem(c, true, section, name, value, rule, ev);
         return;
-    case K_BOOL:
+    case BOOL:
         if (strcasecmp(value, "on") == 0 || strcasecmp(value, "yes") == 0 ||
             strcasecmp(value, "true") == 0 || strcmp(value, "1") == 0) {
             base[k->off] = 1u;
@@ -582,7 +588,7 @@ static void handle_table_key(modcp_conf_t *c, const conf_key_t *k, const char *s
             add_key_problem(c, true, section, name, value, "must be on or off", ev);
         }
         return;
-    case K_STR:
+    case STR:
         if (strlen(value) > MODCP_ID_STRING_MAX) {
             add_key_problem(c, true, section, name, value, rule, ev);
             return;
@@ -594,8 +600,8 @@ static void handle_table_key(modcp_conf_t *c, const conf_key_t *k, const char *s
         break;
     }
     bool ok = parse_u32(value, &v);
-    bool soft = k->field == MODCP_PF_FMUL || k->field == MODCP_PF_ASCII_TIMEOUT;
-    uint32_t max = k->kind == K_U8 ? 0xFFu : (k->kind == K_U16 ? 0xFFFFu : 0xFFFFFFFFu);
+    bool soft = (k->flags & MODCP_PF_WARN) != 0u;
+    uint32_t max = k->width == 1u ? 0xFFu : (k->width == 2u ? 0xFFFFu : 0xFFFFFFFFu);
     if (!ok) {
         add_key_problem(c, true, section, name, value, "not a number", ev);
         return;
@@ -608,9 +614,9 @@ static void handle_table_key(modcp_conf_t *c, const conf_key_t *k, const char *s
             return;
         }
     }
-    switch (k->kind) {
-    case K_U8: base[k->off] = (uint8_t)v; break;
-    case K_U16: {
+    switch (k->width) {
+    case 1u: base[k->off] = (uint8_t)v; break;
+    case 2u: {
         uint16_t x = (uint16_t)v;
         memcpy(base + k->off, &x, sizeof x);
         break;
@@ -908,8 +914,10 @@ static void handle_cpu_tool(modcp_conf_t *c, const char *section, const char *na
         c->cycle_ms = v;
         return;
     }
-    char rule[256];
-    (void)snprintf(rule, sizeof rule, "unknown key (keys: %s)", known_keys("cpu"));
+    char list[256];
+    char rule[300];
+    (void)known_keys("cpu", list, sizeof list);
+    (void)snprintf(rule, sizeof rule, "unknown key (keys: %s)", list);
     add_key_problem(c, true, section, name, value, rule, MODCP_EV_NONE);
 }
 
@@ -1050,8 +1058,8 @@ static void on_ini_line(parse_ctx_t *px, const char *section, const char *name,
                         const char *value)
 {
     modcp_conf_t *c = px->c;
-    const char *keys_of = known_keys(section);
-    if (keys_of == NULL) {
+    char keys_of[300];
+    if (!known_keys(section, keys_of, sizeof keys_of)) {
         const char *ov = override_of(px, section, name, &c->cur);
         if (ov != NULL) {
             value = ov;
@@ -1087,7 +1095,8 @@ static void on_ini_line(parse_ctx_t *px, const char *section, const char *name,
         value = ov;
     }
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
-        if (strcasecmp(keys[i].section, section) == 0 && strcasecmp(keys[i].key, name) == 0) {
+        if (keys[i].key[0] != '\0' && strcasecmp(keys[i].section, section) == 0 &&
+            strcasecmp(keys[i].key, name) == 0) {
             handle_table_key(c, &keys[i], section, name, value);
             return;
         }
@@ -1117,7 +1126,7 @@ static void on_ini_line(parse_ctx_t *px, const char *section, const char *name,
         handle_scanner_entries(c, section, name, value);
         return;
     }
-    char rule[300];
+    char rule[340];
     (void)snprintf(rule, sizeof rule, "unknown key (keys: %s)", keys_of);
     add_key_problem(c, true, section, name, value, rule, MODCP_EV_NONE);
     return;
@@ -1145,12 +1154,102 @@ size_t modcp_conf_uncovered(uint8_t *fields, size_t cap)
     return n;
 }
 
+/* ---- the parameter tables of docs/parameters.md ---------------------------------------- */
+
+static void doc_default(const modcp_params_t *d, const conf_key_t *k, char *out, size_t cap)
+{
+    const uint8_t *f = (const uint8_t *)d + k->off;
+    uint32_t v = 0;
+    if (k->width == 1u) {
+        v = *f;
+    } else if (k->width == 2u) {
+        uint16_t x;
+        memcpy(&x, f, sizeof x);
+        v = x;
+    } else if (k->width == 4u) {
+        memcpy(&v, f, sizeof v);
+    }
+    switch (k->syntax) {
+    case ENUM:
+        for (const enum_name_t *e = k->names; e->name != NULL; e++) {
+            if (e->value == v) {
+                copy_str(out, cap, e->name);
+                return;
+            }
+        }
+        break;
+    case BOOL: copy_str(out, cap, v != 0u ? "on" : "off"); return;
+    case STR: copy_str(out, cap, f[0] != 0u ? (const char *)f : "empty"); return;
+    default: break;
+    }
+    (void)snprintf(out, cap, "%lu", (unsigned long)v);
+}
+
+static void doc_event(const conf_key_t *k, char *out, size_t cap)
+{
+    uint32_t type_max = k->width == 1u ? 0xFFu : (k->width == 2u ? 0xFFFFu : 0xFFFFFFFFu);
+    if (k->min == 0u && k->max >= type_max && (k->flags & MODCP_PF_CUSTOM) == 0u) {
+        copy_str(out, cap, "—"); /* every value is legal */
+        return;
+    }
+    char en[16];
+    event_name(k->event, en, sizeof en);
+    (void)snprintf(out, cap, "%s%s", en, (k->flags & MODCP_PF_WARN) != 0u ? " (not fatal)" : "");
+}
+
+bool modcp_conf_write_doc_table(FILE *f)
+{
+    modcp_params_t d;
+    modcp_params_defaults(&d);
+    for (size_t i = 0; i < sizeof section_keys / sizeof section_keys[0]; i++) {
+        const char *sec = section_keys[i][0];
+        if (section_keys[i][1] != NULL) {
+            continue; /* coils, inputs, memory: their own syntax, described in prose */
+        }
+        fprintf(f, "[%s]\n| key | meaning | values | default | source | event |\n"
+                   "|---|---|---|---|---|---|\n",
+                sec);
+        for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++) {
+            const conf_key_t *key = &keys[k];
+            if (strcmp(key->section, sec) != 0 || key->key[0] == '\0') {
+                continue;
+            }
+            char def[40];
+            char ev[40];
+            doc_default(&d, key, def, sizeof def);
+            doc_event(key, ev, sizeof ev);
+            fprintf(f, "| `%s` | %s | %s | %s | %s | %s |\n", key->key, key->meaning, key->values,
+                    def, key->source, ev);
+        }
+        for (size_t k = 0; k < sizeof doc_rows / sizeof doc_rows[0]; k++) {
+            const doc_row_t *r = &doc_rows[k];
+            if (strcmp(r->section, sec) == 0) {
+                fprintf(f, "| `%s` | %s | %s | %s | %s | %s |\n", r->key, r->meaning, r->values,
+                        r->def, r->source, r->event);
+            }
+        }
+        for (size_t k = 0; strcmp(sec, "cpu") == 0 && k < sizeof cpu_tool_rows / sizeof cpu_tool_rows[0];
+             k++) {
+            const tool_row_t *r = &cpu_tool_rows[k];
+            char def[16] = "none";
+            if (r->def != UINT32_MAX) {
+                (void)snprintf(def, sizeof def, "%lu", (unsigned long)r->def);
+            }
+            fprintf(f, "| `%s` | %s | %s | %s | %s | %s |\n", r->key, r->meaning, r->values, def,
+                    r->source, r->event);
+        }
+        fprintf(f, "\n");
+    }
+    return ferror(f) == 0;
+}
+
 /* ---- validation issues -> problems ---------------------------------------------------------- */
 
 static const char *default_key(uint8_t field, unsigned index, const char **section)
 {
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
-        if (keys[i].field == field && (keys[i].index == index || keys[i].index == 0xFFu)) {
+        if (keys[i].field == field && keys[i].key[0] != '\0' &&
+            (keys[i].index == index || keys[i].index == 0xFFu)) {
             *section = keys[i].section;
             return keys[i].key;
         }

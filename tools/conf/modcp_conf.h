@@ -117,6 +117,12 @@ bool modcp_conf_write_c(const modcp_conf_t *c, FILE *f);
  * how many, their ids in fields[0 .. cap). (`modcp-conf fields` prints them.) */
 size_t modcp_conf_uncovered(uint8_t *fields, size_t cap);
 
+/* The parameter tables of docs/parameters.md, rendered from the parameter rows
+ * (params_fields.h): per section "[section]", the markdown table, an empty line.
+ * (`modcp-conf doc-table` prints them; the integration.conf test compares them with the
+ * document.) Returns false on a write error. */
+bool modcp_conf_write_doc_table(FILE *f);
+
 /* "9600 8E1 RTU" */
 void modcp_conf_line_settings(const modcp_params_t *p, char *out, size_t cap);
 
