@@ -53,90 +53,100 @@
  * a 32-bit same-DB the DB number; for a scanner entry the area (db 0: the db,
  * offset: the offset); for the scanner start/count (index 0xFF) scan_count.
  *
- * Binary record (little-endian, fixed widths, fields in declaration order):
- *   "MCPR" | u16 version | u16 payload length | payload | u16 CRC-16 (low byte first)
- * ID strings occupy 16 bytes each (the characters up to the NUL, zero padded; the
- * decoder always terminates them). The record is 316 bytes (RECORD_BYTES);
- * decode accepts trailing bytes after it (the record may sit in a padded block). */
+ * The fields, their order in the record, widths, defaults, ranges, events and INI keys
+ * are the rows of params_fields.h; this file expands them into modcp_param_rows[] and
+ * adds the rules a range cannot say (marked MODCP_PF_CUSTOM there, and the groups:
+ * windows, 32-bit ranges, limits, scanner entries). The binary record: params_record.c. */
 #include "modcp/params.h"
 
 #include <string.h>
 
-#include "modcp/crc.h"
+#include "params_fields.h"
 
-/* ---- binary layout ---------------------------------------------------------- */
+/* ---- the rows ------------------------------------------------------------------ */
 
-#define BITWIN_BYTES 9u  /* area u8, from, to, start, db u16 */
-#define R32_BYTES 6u     /* from, to, db */
-#define LIMIT_BYTES 4u   /* min, max */
-#define SCAN_BYTES 5u    /* area u8, db, offset */
-#define HEADER_BYTES 8u  /* magic, version, length */
-#define CRC_BYTES 2u
+#define ROW_S(member, width, field, index, min, max, def, ev, flags, ...)                      \
+    {(uint16_t)offsetof(modcp_params_t, member), (uint16_t)((min) > 0xFFFF ? 0 : (min)),     \
+     (uint16_t)((max) > 0xFFFF ? 0xFFFF : (max)), (uint16_t)(def), (uint8_t)(field),          \
+     MODCP_EVENT_NUMBER(ev), (uint8_t)((width) | ((flags) << 5)), (uint8_t)(index)},
+#define ROW_G(member, count, type, members, field)                                           \
+    {(uint16_t)offsetof(modcp_params_t, member), (uint16_t)sizeof(type), 0u, 0u,            \
+     (uint8_t)(field), (uint8_t)(members), 0u, (uint8_t)(count)},
+#define ROW_M(...)
+#define MEMBER_S(...)
+#define MEMBER_G(...)
+#define MEMBER_M(type, member, width, count) {(uint8_t)offsetof(type, member), (uint8_t)(width)},
 
-#define PAYLOAD_BYTES                                                                     \
-    (4u + 9u /* data_bits .. t15_check */ + 2u /* ascii timeout */ + 1u /* iface */ +     \
-     2u /* turnaround */ + 1u /* rs232_auto */ + 2u + 2u /* rts delays */ +               \
-     MODCP_COIL_WINDOWS * BITWIN_BYTES + MODCP_INPUT_WINDOWS * BITWIN_BYTES + 2u + 2u +   \
-     1u /* regs32 */ + 3u * R32_BYTES + 3u * LIMIT_BYTES + 1u + 1u /* fset, cpu */ +     \
-     4u * 2u /* job limit, cpu timeout, start time, commloss */ + 2u + 1u /* scan */ +   \
-     MODCP_SCANNER_MAX * SCAN_BYTES + 4u * MODCP_ID_STRING_MAX + 1u /* diag_irq */)
+const modcp_param_row_t modcp_param_rows[] = {MODCP_PARAM_ROWS(ROW_S, ROW_G, ROW_M)};
+const uint8_t modcp_param_row_count = (uint8_t)(sizeof modcp_param_rows / sizeof modcp_param_rows[0]);
+const modcp_param_member_t modcp_param_members[] = {MODCP_PARAM_ROWS(MEMBER_S, MEMBER_G, MEMBER_M)};
 
-#define RECORD_BYTES (HEADER_BYTES + PAYLOAD_BYTES + CRC_BYTES)
+/* every event of a row is a parameter event of class 0EH; ranges and defaults of rows up to
+ * 16 bits fit the table's u16 (a 32-bit row, the baud rate, is checked by its own rule) */
+#define EV_CLASS_S(member, width, field, index, min, max, def, ev, flags, ...)                 \
+    _Static_assert(MODCP_EVENT_CLASS(ev) == 0x0Eu, #member ": event class 0EH");             \
+    _Static_assert(((width) > 2 && ((flags) & MODCP_PF_CUSTOM) != 0) || (max) <= 0xFFFF,      \
+                   #member ": range fits u16");                                               \
+    _Static_assert((def) <= 0xFFFF && (flags) < 8, #member ": default fits u16");
+#define EV_CLASS_G(...)
+#define EV_CLASS_M(...)
+MODCP_PARAM_ROWS(EV_CLASS_S, EV_CLASS_G, EV_CLASS_M)
+_Static_assert(offsetof(modcp_params_t, lim_q) ==
+                   offsetof(modcp_params_t, lim_db) + 2u * sizeof(modcp_limit_t),
+               "lim_db, lim_m, lim_q are one group of three");
 
-_Static_assert(RECORD_BYTES <= MODCP_PARAMS_RECORD_MAX, "parameter record too large");
-_Static_assert(PAYLOAD_BYTES <= 0xFFFFu, "payload length must fit u16");
+static uint32_t param_get(const modcp_params_t *p, const modcp_param_row_t *r)
+{
+    const uint8_t *b = (const uint8_t *)p + r->off;
+    if (MODCP_PARAM_WIDTH(r) == 1u) {
+        return *b;
+    }
+    if (MODCP_PARAM_WIDTH(r) == 2u) {
+        uint16_t v;
+        memcpy(&v, b, sizeof v);
+        return v;
+    }
+    uint32_t v;
+    memcpy(&v, b, sizeof v);
+    return v;
+}
 
-static const uint8_t record_magic[4] = {'M', 'C', 'P', 'R'};
+static void param_put(modcp_params_t *p, const modcp_param_row_t *r, uint32_t v)
+{
+    uint8_t *b = (uint8_t *)p + r->off;
+    if (MODCP_PARAM_WIDTH(r) == 1u) {
+        *b = (uint8_t)v;
+    } else if (MODCP_PARAM_WIDTH(r) == 2u) {
+        uint16_t x = (uint16_t)v;
+        memcpy(b, &x, sizeof x);
+    } else {
+        memcpy(b, &v, sizeof v);
+    }
+}
 
 /* ---- defaults ----------------------------------------------------------------- */
 
 static void set_id(char *dst, const char *src)
 {
     size_t n = strlen(src);
-    if (n > MODCP_ID_STRING_MAX) {
-        n = MODCP_ID_STRING_MAX;
-    }
     memset(dst, 0, MODCP_ID_STRING_MAX + 1u);
-    memcpy(dst, src, n);
+    memcpy(dst, src, n <= MODCP_ID_STRING_MAX ? n : MODCP_ID_STRING_MAX);
 }
 
 void modcp_params_defaults(modcp_params_t *p)
 {
+    /* everything not in a row is 0: no windows, no ranges, writes disabled */
     memset(p, 0, sizeof *p);
-    p->baud = 9600u;
-    p->data_bits = 8u;
-    p->parity = MODCP_PARITY_EVEN;
-    p->stop_bits = 1u;
-    p->slave_addr = 222u; /* as the manuals print it (004 §2.2) */
-    p->framing = MODCP_FRAMING_RTU;
-    p->opmode = MODCP_OPMODE_NORMAL;
-    p->f_mul = 1u;
-    p->eof_timing = MODCP_EOF_MANUAL;
-    p->t15_check = 0u;
-    p->ascii_timeout_ms = 1000u;
-    p->iface = MODCP_IFACE_RS232;
-    p->turnaround_ms = 0u;
-    p->rs232_auto = 0u;
-    p->rts_on_delay_ms = 0u;
-    p->rts_off_delay_ms = 0u;
-    /* coils / inputs: area NONE (memset); hr/ir base 0 = register functions not
-     * configured; regs32 off; limits {0,0} = writes disabled */
-#if MODCP_WITH_EXTENDED
-    p->fset = MODCP_FSET_EXTENDED;
-#else
-    p->fset = MODCP_FSET_CP341; /* the only set in a build without the extended set */
-#endif
-    p->cpu_model = MODCP_CPU_CP341;
-    p->job_limit = 0u;
-    p->cpu_timeout_ms = 1000u;
-    p->start_time_ms = 5000u;
-    p->commloss_ms = 0u;
-    p->scan_start = 0u;
-    p->scan_count = 0u;
+    for (uint8_t i = 0; i < modcp_param_row_count; i++) {
+        const modcp_param_row_t *r = &modcp_param_rows[i];
+        uint8_t w = MODCP_PARAM_WIDTH(r);
+        if (w != 0u && w != MODCP_PW_STR) {
+            param_put(p, r, r->def);
+        }
+    }
     set_id(p->vendor, "modcp");
     set_id(p->product, "modcp-cp");
     set_id(p->revision, "0.1");
-    set_id(p->app_name, "");
 }
 
 /* ---- validation ----------------------------------------------------------------- */
@@ -188,19 +198,17 @@ static bool baud_ok(uint32_t baud)
     return false;
 }
 
-static bool fmul_ok(uint8_t f)
-{
-    return f >= 1u && f <= 10u;
-}
-
-static bool ascii_timeout_ok(uint16_t t)
-{
-    return t >= 1u && t <= 6500u;
-}
-
 static uint16_t model_limit(uint8_t cpu_model)
 {
     return cpu_model == MODCP_CPU_CP441 ? 450u : 1024u;
+}
+
+/* scan_count's range is its row (0 .. 16, 0 without the extended set); the entries must
+ * also fit the register space. */
+static bool scan_count_ok(const modcp_params_t *p)
+{
+    return p->scan_count <= (MODCP_WITH_EXTENDED ? MODCP_SCANNER_MAX : 0u) &&
+           (uint32_t)p->scan_start + (uint32_t)p->scan_count <= 0x10000u;
 }
 
 static bool is_tc(uint8_t area)
@@ -355,11 +363,10 @@ static bool id_terminated(const char *str)
     return false;
 }
 
+/* The entries, when the count is usable (its own row reports it otherwise). */
 static void check_scanner(issue_sink_t *s, const modcp_params_t *p)
 {
-    if (p->scan_count > MODCP_SCANNER_MAX || (!MODCP_WITH_EXTENDED && p->scan_count != 0u) ||
-        (uint32_t)p->scan_start + (uint32_t)p->scan_count > 0x10000u) {
-        add_fatal(s, MODCP_PF_SCANNER, 0xFFu, MODCP_EV_PARAM_RECORD, p->scan_count);
+    if (!scan_count_ok(p)) {
         return;
     }
     for (uint8_t i = 0; i < p->scan_count; i++) {
@@ -386,104 +393,75 @@ static void check_scanner(issue_sink_t *s, const modcp_params_t *p)
     }
 }
 
-static void run_checks(const modcp_params_t *p, issue_sink_t *s)
+/* The rules a row's range cannot say (MODCP_PF_CUSTOM); *v: the value to report. */
+static bool custom_ok(const modcp_params_t *p, const modcp_param_row_t *r, uint32_t *v)
 {
-    const modcp_event_t rec = MODCP_EV_PARAM_RECORD;
+    switch (r->field) {
+    case MODCP_PF_BAUD: return baud_ok(*v);
+    case MODCP_PF_DATA_BITS: return p->framing == MODCP_FRAMING_ASCII || *v == 8u;
+    case MODCP_PF_RS232_AUTO: return *v == 0u || p->iface == MODCP_IFACE_RS232;
+    case MODCP_PF_JOB_LIMIT: return *v <= model_limit(p->cpu_model);
+    case MODCP_PF_SCANNER: return MODCP_PARAM_WIDTH(r) != 1u || scan_count_ok(p);
+    case MODCP_PF_ID_STRING: {
+        const char *str = (const char *)p + r->off;
+        *v = (uint8_t)str[MODCP_ID_STRING_MAX];
+        return id_terminated(str);
+    }
+    default: return true;
+    }
+}
 
-    if (!baud_ok(p->baud)) {
-        add_fatal(s, MODCP_PF_BAUD, 0u, rec, p->baud);
-    }
-    if (p->framing == MODCP_FRAMING_ASCII ? (p->data_bits != 7u && p->data_bits != 8u)
-                                          : p->data_bits != 8u) {
-        add_fatal(s, MODCP_PF_DATA_BITS, 0u, MODCP_EV_DATA_BITS, p->data_bits);
-    }
-    if (p->parity > MODCP_PARITY_EVEN) {
-        add_fatal(s, MODCP_PF_PARITY, 0u, rec, p->parity);
-    }
-    if (p->stop_bits != 1u && p->stop_bits != 2u) {
-        add_fatal(s, MODCP_PF_STOP_BITS, 0u, rec, p->stop_bits);
-    }
-    if (p->slave_addr == 0u) {
-        add_fatal(s, MODCP_PF_SLAVE_ADDR, 0u, MODCP_EV_SLAVE_ADDR, p->slave_addr);
-    }
-    if (p->framing > MODCP_FRAMING_ASCII ||
-        (!MODCP_WITH_ASCII && p->framing == MODCP_FRAMING_ASCII)) { /* compiled out */
-        add_fatal(s, MODCP_PF_FRAMING, 0u, rec, p->framing);
-    }
-    if (p->opmode > MODCP_OPMODE_SUPPRESS) {
-        add_fatal(s, MODCP_PF_OPMODE, 0u, MODCP_EV_OPMODE, p->opmode);
-    }
-    if (!fmul_ok(p->f_mul)) {
-        add_issue(s, MODCP_PF_FMUL, 0u, MODCP_EV_FMUL, false, p->f_mul);
-    }
-    if (p->eof_timing > MODCP_EOF_MODBUS) {
-        add_fatal(s, MODCP_PF_EOF_TIMING, 0u, rec, p->eof_timing);
-    }
-    if (p->t15_check > 1u) {
-        add_fatal(s, MODCP_PF_T15_CHECK, 0u, rec, p->t15_check);
-    }
-    if (!ascii_timeout_ok(p->ascii_timeout_ms)) {
-        add_issue(s, MODCP_PF_ASCII_TIMEOUT, 0u, MODCP_EV_FMUL, false, p->ascii_timeout_ms);
-    }
-    if (p->iface > MODCP_IFACE_RS485) {
-        add_fatal(s, MODCP_PF_IFACE, 0u, rec, p->iface);
-    }
-    if (p->turnaround_ms > 100u) {
-        add_fatal(s, MODCP_PF_TURNAROUND, 0u, rec, p->turnaround_ms);
-    }
-    if (p->rs232_auto > 1u || (p->rs232_auto == 1u && p->iface != MODCP_IFACE_RS232) ||
-        (!MODCP_WITH_RS232_SIGNALS && p->rs232_auto != 0u)) { /* compiled out */
-        add_fatal(s, MODCP_PF_RS232_AUTO, 0u, rec, p->rs232_auto);
-    }
-    /* rts delays: every value 0 ... 65535 ms is legal */
-    check_windows(s, p->coils, MODCP_COIL_WINDOWS, true);
-    check_windows(s, p->inputs, MODCP_INPUT_WINDOWS, false);
-    /* hr/ir base: 0 = not configured, 1 ... 65535 legal */
-    if (p->regs32 > 1u) {
-        add_fatal(s, MODCP_PF_REGS32, 0u, rec, p->regs32);
-    }
-    if (p->regs32 != 0u) {
-        check_r32(s, p);
-    }
-    check_limit(s, MODCP_PF_LIM_DB, &p->lim_db, true);
-    check_limit(s, MODCP_PF_LIM_M, &p->lim_m, false);
-    check_limit(s, MODCP_PF_LIM_Q, &p->lim_q, false);
-    if (p->fset > MODCP_FSET_EXTENDED ||
-        (!MODCP_WITH_EXTENDED && p->fset == MODCP_FSET_EXTENDED)) { /* compiled out */
-        add_fatal(s, MODCP_PF_FSET, 0u, rec, p->fset);
-    }
-    if (p->cpu_model > MODCP_CPU_CP441) {
-        add_fatal(s, MODCP_PF_CPU_MODEL, 0u, rec, p->cpu_model);
-    }
-    if (p->job_limit != 0u && (p->job_limit < 32u || p->job_limit > model_limit(p->cpu_model))) {
-        add_fatal(s, MODCP_PF_JOB_LIMIT, 0u, rec, p->job_limit);
-    }
-    if (p->cpu_timeout_ms == 0u) {
-        add_fatal(s, MODCP_PF_CPU_TIMEOUT, 0u, rec, p->cpu_timeout_ms);
-    }
-    if (p->start_time_ms == 0u) {
-        add_fatal(s, MODCP_PF_START_TIME, 0u, rec, p->start_time_ms);
-    }
-    if (p->commloss_ms != 0u &&
-        (p->commloss_ms < 100u || p->commloss_ms > 30000u || !MODCP_WITH_EXTENDED)) {
-        add_fatal(s, MODCP_PF_COMMLOSS, 0u, rec, p->commloss_ms);
-    }
-    check_scanner(s, p);
-    const char *ids[4] = {p->vendor, p->product, p->revision, p->app_name};
-    for (uint8_t i = 0; i < 4u; i++) {
-        if (!id_terminated(ids[i])) {
-            add_fatal(s, MODCP_PF_ID_STRING, i, rec, (uint8_t)ids[i][MODCP_ID_STRING_MAX]);
+static void check_group(const modcp_params_t *p, issue_sink_t *s, uint8_t field)
+{
+    switch (field) {
+    case MODCP_PF_COILS: check_windows(s, p->coils, MODCP_COIL_WINDOWS, true); break;
+    case MODCP_PF_INPUTS: check_windows(s, p->inputs, MODCP_INPUT_WINDOWS, false); break;
+    case MODCP_PF_R32:
+        if (p->regs32 != 0u) {
+            check_r32(s, p);
         }
+        break;
+    case MODCP_PF_LIM_DB:
+        check_limit(s, MODCP_PF_LIM_DB, &p->lim_db, true);
+        check_limit(s, MODCP_PF_LIM_M, &p->lim_m, false);
+        check_limit(s, MODCP_PF_LIM_Q, &p->lim_q, false);
+        break;
+    default: check_scanner(s, p); break;
     }
-    if (p->diag_irq > 1u) {
-        add_fatal(s, MODCP_PF_DIAG_IRQ, 0u, rec, p->diag_irq);
+}
+
+/* Every row in record order; fix != NULL: a bad MODCP_PF_WARN field gets its default. */
+static void run_checks(const modcp_params_t *p, issue_sink_t *s, modcp_params_t *fix)
+{
+    for (uint8_t i = 0; i < modcp_param_row_count; i++) {
+        const modcp_param_row_t *r = &modcp_param_rows[i];
+        uint8_t w = MODCP_PARAM_WIDTH(r);
+        uint8_t flags = MODCP_PARAM_FLAGS(r);
+        if (w == 0u) {
+            check_group(p, s, r->field);
+            continue;
+        }
+        uint32_t v = w == MODCP_PW_STR ? 0u : param_get(p, r);
+        bool ok = w > 2u || (v >= r->min && v <= r->max) ||
+                  ((flags & MODCP_PF_ZERO_OK) != 0u && v == 0u);
+        if (ok && (flags & MODCP_PF_CUSTOM) != 0u) {
+            ok = custom_ok(p, r, &v);
+        }
+        if (!ok) {
+            bool warn = (flags & MODCP_PF_WARN) != 0u;
+            add_issue(s, (modcp_param_field_t)r->field, r->index,
+                      (modcp_event_t)(0x0E00u | r->event), !warn, v);
+            if (warn && fix != NULL) {
+                param_put(fix, r, r->def);
+            }
+        }
     }
 }
 
 size_t modcp_params_validate(const modcp_params_t *p, modcp_param_issue_t *out, size_t max)
 {
     issue_sink_t s = {out, max, 0u, MODCP_EV_NONE, MODCP_EV_NONE};
-    run_checks(p, &s);
+    run_checks(p, &s, NULL);
     return s.n;
 }
 
@@ -491,16 +469,10 @@ modcp_event_t modcp_params_apply(const modcp_params_t *in, modcp_params_t *out,
                                  modcp_event_t *first_warning)
 {
     issue_sink_t s = {NULL, 0u, 0u, MODCP_EV_NONE, MODCP_EV_NONE};
-    run_checks(in, &s);
     if (out != in) {
         memcpy(out, in, sizeof *out);
     }
-    if (!fmul_ok(out->f_mul)) {
-        out->f_mul = 1u;
-    }
-    if (!ascii_timeout_ok(out->ascii_timeout_ms)) {
-        out->ascii_timeout_ms = 1000u;
-    }
+    run_checks(out, &s, out);
     if (first_warning != NULL) {
         *first_warning = s.first_warning;
     }
@@ -510,242 +482,4 @@ modcp_event_t modcp_params_apply(const modcp_params_t *in, modcp_params_t *out,
 uint16_t modcp_params_job_limit(const modcp_params_t *p)
 {
     return p->job_limit != 0u ? p->job_limit : model_limit(p->cpu_model);
-}
-
-/* ---- binary record ------------------------------------------------------------ */
-
-typedef struct {
-    uint8_t *b;
-    size_t pos;
-} wr_t;
-
-static void w8(wr_t *w, uint8_t v)
-{
-    w->b[w->pos++] = v;
-}
-
-static void w16(wr_t *w, uint16_t v)
-{
-    w8(w, (uint8_t)(v & 0xFFu));
-    w8(w, (uint8_t)(v >> 8));
-}
-
-static void w32(wr_t *w, uint32_t v)
-{
-    w16(w, (uint16_t)(v & 0xFFFFu));
-    w16(w, (uint16_t)(v >> 16));
-}
-
-static void wstr(wr_t *w, const char *str)
-{
-    bool end = false;
-    for (size_t i = 0; i < MODCP_ID_STRING_MAX; i++) {
-        if (str[i] == '\0') {
-            end = true;
-        }
-        w8(w, end ? 0u : (uint8_t)str[i]);
-    }
-}
-
-static void wwin(wr_t *w, const modcp_bitwin_t *win)
-{
-    w8(w, win->area);
-    w16(w, win->from);
-    w16(w, win->to);
-    w16(w, win->start);
-    w16(w, win->db);
-}
-
-typedef struct {
-    const uint8_t *b;
-    size_t pos;
-} rd_t;
-
-static uint8_t r8(rd_t *r)
-{
-    return r->b[r->pos++];
-}
-
-static uint16_t r16(rd_t *r)
-{
-    uint16_t lo = r8(r);
-    uint16_t hi = r8(r);
-    return (uint16_t)(lo | (uint16_t)(hi << 8));
-}
-
-static uint32_t r32(rd_t *r)
-{
-    uint32_t lo = r16(r);
-    uint32_t hi = r16(r);
-    return lo | (hi << 16);
-}
-
-static void rstr(rd_t *r, char *str)
-{
-    for (size_t i = 0; i < MODCP_ID_STRING_MAX; i++) {
-        str[i] = (char)r8(r);
-    }
-    str[MODCP_ID_STRING_MAX] = '\0';
-}
-
-static void rwin(rd_t *r, modcp_bitwin_t *win)
-{
-    win->area = r8(r);
-    win->from = r16(r);
-    win->to = r16(r);
-    win->start = r16(r);
-    win->db = r16(r);
-}
-
-size_t modcp_params_encode(const modcp_params_t *p, uint8_t *buf, size_t cap)
-{
-    if (buf == NULL || cap < RECORD_BYTES) {
-        return 0u;
-    }
-    wr_t w = {buf, 0u};
-    for (size_t i = 0; i < sizeof record_magic; i++) {
-        w8(&w, record_magic[i]);
-    }
-    w16(&w, (uint16_t)MODCP_PARAMS_VERSION);
-    w16(&w, (uint16_t)PAYLOAD_BYTES);
-
-    w32(&w, p->baud);
-    w8(&w, p->data_bits);
-    w8(&w, p->parity);
-    w8(&w, p->stop_bits);
-    w8(&w, p->slave_addr);
-    w8(&w, p->framing);
-    w8(&w, p->opmode);
-    w8(&w, p->f_mul);
-    w8(&w, p->eof_timing);
-    w8(&w, p->t15_check);
-    w16(&w, p->ascii_timeout_ms);
-    w8(&w, p->iface);
-    w16(&w, p->turnaround_ms);
-    w8(&w, p->rs232_auto);
-    w16(&w, p->rts_on_delay_ms);
-    w16(&w, p->rts_off_delay_ms);
-    for (size_t i = 0; i < MODCP_COIL_WINDOWS; i++) {
-        wwin(&w, &p->coils[i]);
-    }
-    for (size_t i = 0; i < MODCP_INPUT_WINDOWS; i++) {
-        wwin(&w, &p->inputs[i]);
-    }
-    w16(&w, p->hr_base_db);
-    w16(&w, p->ir_base_db);
-    w8(&w, p->regs32);
-    for (size_t i = 0; i < 3u; i++) {
-        w16(&w, p->r32[i].from);
-        w16(&w, p->r32[i].to);
-        w16(&w, p->r32[i].db);
-    }
-    w16(&w, p->lim_db.min);
-    w16(&w, p->lim_db.max);
-    w16(&w, p->lim_m.min);
-    w16(&w, p->lim_m.max);
-    w16(&w, p->lim_q.min);
-    w16(&w, p->lim_q.max);
-    w8(&w, p->fset);
-    w8(&w, p->cpu_model);
-    w16(&w, p->job_limit);
-    w16(&w, p->cpu_timeout_ms);
-    w16(&w, p->start_time_ms);
-    w16(&w, p->commloss_ms);
-    w16(&w, p->scan_start);
-    w8(&w, p->scan_count);
-    for (size_t i = 0; i < MODCP_SCANNER_MAX; i++) {
-        w8(&w, p->scan[i].area);
-        w16(&w, p->scan[i].db);
-        w16(&w, p->scan[i].offset);
-    }
-    wstr(&w, p->vendor);
-    wstr(&w, p->product);
-    wstr(&w, p->revision);
-    wstr(&w, p->app_name);
-    w8(&w, p->diag_irq);
-
-    uint16_t crc = modcp_crc16(buf, w.pos);
-    w16(&w, crc);
-    return w.pos;
-}
-
-modcp_event_t modcp_params_decode(const uint8_t *buf, size_t len, modcp_params_t *p)
-{
-    if (buf == NULL || p == NULL || len < RECORD_BYTES) {
-        return MODCP_EV_PARAM_RECORD;
-    }
-    for (size_t i = 0; i < sizeof record_magic; i++) {
-        if (buf[i] != record_magic[i]) {
-            return MODCP_EV_PARAM_RECORD;
-        }
-    }
-    rd_t r = {buf, sizeof record_magic};
-    uint16_t version = r16(&r);
-    uint16_t plen = r16(&r);
-    if (version != MODCP_PARAMS_VERSION || plen != PAYLOAD_BYTES) {
-        return MODCP_EV_PARAM_RECORD;
-    }
-    size_t crc_at = HEADER_BYTES + PAYLOAD_BYTES;
-    uint16_t crc = (uint16_t)(buf[crc_at] | (uint16_t)(buf[crc_at + 1u] << 8));
-    if (modcp_crc16(buf, crc_at) != crc) {
-        return MODCP_EV_PARAM_RECORD;
-    }
-
-    /* The record is sound: from here on nothing can fail, decode straight into p. */
-    memset(p, 0, sizeof *p);
-    p->baud = r32(&r);
-    p->data_bits = r8(&r);
-    p->parity = r8(&r);
-    p->stop_bits = r8(&r);
-    p->slave_addr = r8(&r);
-    p->framing = r8(&r);
-    p->opmode = r8(&r);
-    p->f_mul = r8(&r);
-    p->eof_timing = r8(&r);
-    p->t15_check = r8(&r);
-    p->ascii_timeout_ms = r16(&r);
-    p->iface = r8(&r);
-    p->turnaround_ms = r16(&r);
-    p->rs232_auto = r8(&r);
-    p->rts_on_delay_ms = r16(&r);
-    p->rts_off_delay_ms = r16(&r);
-    for (size_t i = 0; i < MODCP_COIL_WINDOWS; i++) {
-        rwin(&r, &p->coils[i]);
-    }
-    for (size_t i = 0; i < MODCP_INPUT_WINDOWS; i++) {
-        rwin(&r, &p->inputs[i]);
-    }
-    p->hr_base_db = r16(&r);
-    p->ir_base_db = r16(&r);
-    p->regs32 = r8(&r);
-    for (size_t i = 0; i < 3u; i++) {
-        p->r32[i].from = r16(&r);
-        p->r32[i].to = r16(&r);
-        p->r32[i].db = r16(&r);
-    }
-    p->lim_db.min = r16(&r);
-    p->lim_db.max = r16(&r);
-    p->lim_m.min = r16(&r);
-    p->lim_m.max = r16(&r);
-    p->lim_q.min = r16(&r);
-    p->lim_q.max = r16(&r);
-    p->fset = r8(&r);
-    p->cpu_model = r8(&r);
-    p->job_limit = r16(&r);
-    p->cpu_timeout_ms = r16(&r);
-    p->start_time_ms = r16(&r);
-    p->commloss_ms = r16(&r);
-    p->scan_start = r16(&r);
-    p->scan_count = r8(&r);
-    for (size_t i = 0; i < MODCP_SCANNER_MAX; i++) {
-        p->scan[i].area = r8(&r);
-        p->scan[i].db = r16(&r);
-        p->scan[i].offset = r16(&r);
-    }
-    rstr(&r, p->vendor);
-    rstr(&r, p->product);
-    rstr(&r, p->revision);
-    rstr(&r, p->app_name);
-    p->diag_irq = r8(&r);
-    return MODCP_EV_NONE;
 }

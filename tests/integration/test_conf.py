@@ -49,30 +49,158 @@ DB801.DBW0 = 1234
 a = 1
 """
 
+# every problem is "FILE:LINE: section.key = value: rule"
 EXPECTED = [
-    "[serial] baud = 9601: must be one of 300, 600, 1200, 2400, 4800, 9600, 19200, 38400, "
+    "2: serial.baud = 9601: must be one of 300, 600, 1200, 2400, 4800, 9600, 19200, 38400, "
     "57600, 76800, 115200 (event (0E)2EH)",
-    "[serial] parity = mark: must be none, odd or even (event (0E)2EH)",
-    "[serial] speed = 5: unknown key (keys: baud, data_bits, parity, stop_bits)",
-    "[protocol] slave_address = 0: must be 1..255 (event (0E)23H)",
-    "[protocol] f_mul = 11: must be 1..10; the CP runs with 1 (warning, event (0E)21H)",
-    "[protocol] mode = weird: must be normal or suppress (interference suppression) (event (0E)22H)",
-    "[coils] q = 2000-2559 @ 256: overlaps the window [coils] m (event (0E)27H)",
-    "[coils] t = 4096-4600 @ 100: illegal from/to: a T/C window must span a multiple of 16 bits "
+    "3: serial.parity = mark: must be none, odd or even (event (0E)2EH)",
+    "4: serial.speed = 5: unknown key (keys: baud, data_bits, parity, stop_bits)",
+    "7: protocol.slave_address = 0: must be 1..255 (event (0E)23H)",
+    "8: protocol.f_mul = 11: must be 1..10; the CP runs with 1 (warning, event (0E)21H)",
+    "9: protocol.mode = weird: must be normal or suppress (interference suppression) (event (0E)22H)",
+    "13: coils.q = 2000-2559 @ 256: overlaps the window coils.m (event (0E)27H)",
+    "14: coils.t = 4096-4600 @ 100: illegal from/to: a T/C window must span a multiple of 16 bits "
     "(it spans 505) (event (0E)25H)",
-    "[coils] i = 1-2 @ 3: unknown window (keys: m, q, t, c, dbN)",
-    "[limits] db = 900-800: must be MIN-MAX with MIN <= MAX (DB MIN >= 1), or off to disable "
+    "15: coils.i = 1-2 @ 3: unknown window (keys: m, q, t, c, dbN)",
+    "18: limits.db = 900-800: must be MIN-MAX with MIN <= MAX (DB MIN >= 1), or off to disable "
     "writes (event (0E)24H)",
-    "[cpu] work_db = 81: DB81 is not in [cpu] dbs (event (0E)3AH)",
-    "[memory] MB9000 = 01: outside M (m_bytes) of 256 bytes (event (0E)38H)",
-    "[memory] DB801.DBW0 = 1234: DB801 is not in [cpu] dbs (event (0E)39H)",
-    "[nonsense] a = 1: unknown section",
+    "21: cpu.work_db = 81: DB81 is not in cpu.dbs (event (0E)3AH)",
+    "25: memory.MB9000 = 01: outside M (m_bytes) of 256 bytes (event (0E)38H)",
+    "26: memory.DB801.DBW0 = 1234: DB801 is not in cpu.dbs (event (0E)39H)",
+    "29: nonsense.a = 1: unknown section",
 ]
+
+BAUD_RULE = ("must be one of 300, 600, 1200, 2400, 4800, 9600, 19200, 38400, 57600, 76800, 115200 "
+             "(event (0E)2EH)")
+START_RULE = ("must be more than %d ms (2 x cycle_ms %d): the FB sends the record and INIT as 11 "
+              "blocks, 4 per cycle, and sees the CP's answer at the earliest 3 cycles after "
+              "CP_START; a shorter START_TIME always ends in CP_START_ERROR (ERROR_NR 2, "
+              "ERROR_INFO (00)00H)")
 
 
 def run(args):
     p = subprocess.run(args, capture_output=True, text=True, timeout=20)
     return p.returncode, p.stdout, p.stderr
+
+
+def check_text(a, tmp, name, text, *sets):
+    path = os.path.join(tmp, name)
+    with open(path, "w") as f:
+        f.write(text)
+    args = [a.conf, "check", path]
+    for x in sets:
+        args += ["--set", x]
+    rc, out, err = run(args)
+    return path, rc, out, err.splitlines()
+
+
+def loses_nothing(t, a, tmp):
+    """Issue 11 item 5: long lines are read whole, every duplicate is found, a START_TIME the
+    FB cannot meet is refused, every problem is FILE:LINE: section.key = value: rule."""
+    with open(os.path.join(a.configs, "default.ini")) as f:
+        default = f.read()
+
+    # a 300-character comment line: the key after it is read, line numbers stay right
+    text = "[serial]\n; " + "x" * 300 + "\nbaud = 9601\n\n[protocol]\nslave_address = 0\n"
+    p, rc, out, lines = check_text(a, tmp, "longcomment.ini", text)
+    t.ok(rc == 2 and lines == ["%s:3: serial.baud = 9601: %s" % (p, BAUD_RULE),
+                               "%s:6: protocol.slave_address = 0: must be 1..255 (event (0E)23H)" % p],
+         "long comment line: the next key is read, lines 3 and 6 named (%r)" % lines)
+
+    # long value lines, read whole: 40 DBs (the work DB last, at character 390), 16 scanner
+    # entries (> 200 characters)
+    dbs = " ".join("%d:256" % n for n in range(100, 150)) + " 80:64"
+    entries = " ".join("DB%d.DBW%d" % (100 + i, 100 + 2 * i) for i in range(16))
+    text = default.replace("dbs = 80:64 ", "dbs = %s " % dbs).replace(
+        "[supervision]", "[scanner]\nstart = 4096\nentries = %s\n\n[supervision]" % entries, 1)
+    if "[scanner]" not in text:
+        text += "\n[scanner]\nstart = 4096\nentries = %s\n" % entries
+    p, rc, out, lines = check_text(a, tmp, "longvalue.ini", text)
+    t.ok(len(dbs) > 300 and len(entries) > 200 and rc == 0 and lines == [],
+         "long value lines (%d, %d characters) read whole: exit 0 (%r)" % (len(dbs), len(entries), lines))
+    bad_last = entries.rsplit(" ", 1)[0] + " XW1"
+    p, rc, out, lines = check_text(a, tmp, "longvalue2.ini", text.replace(entries, bad_last))
+    line = text[:text.index("entries = ")].count("\n") + 1
+    t.ok(rc == 2 and lines == ["%s:%d: scanner.entries = %s...: entry 16 'XW1' must be a word operand "
+                               "(MWn, IWn, QWn, DBn.DBWm, Tn, Cn) (event (0E)2EH)"
+                               % (p, line, bad_last[:156])],
+         "long value line: its 16th entry (after character 200) is read and checked (%r)" % lines)
+
+    # a long value with a bad element at its end: named, the value shown cut at 156 + "..."
+    vals = " ".join(["01"] * 80) + " zz"
+    text = "[cpu]\nm_bytes = 256\n\n[memory]\nMB0 = %s\n" % vals
+    p, rc, out, lines = check_text(a, tmp, "longbad.ini", text)
+    t.ok(rc == 2 and lines == ["%s:5: memory.MB0 = %s...: bad value 'zz' (hex byte, e.g. 17)"
+                               % (p, vals[:156])],
+         "long value with a bad last element: refused, line 5 (%r)" % lines)
+
+    # more than 256 keys: a duplicate after the 256th is still found
+    mem = "".join("MB%d = 01\n" % i for i in range(250))
+    text = default.replace("[memory]\n", "[memory]\n" + mem, 1)
+    text = text.replace("MB1008 = 01 17 02 18\n", "")
+    head = text[:text.index("[memory]\n")].count("\n") + 1  # line of [memory]
+    text += "\n[memory]\nmb10 = 02\n"
+    nlines = text.count("\n")
+    nkeys = sum(1 for l in text.splitlines() if "=" in l and not l.lstrip().startswith(";"))
+    p, rc, out, lines = check_text(a, tmp, "dup.ini", text)
+    t.ok(nkeys > 256 and rc == 2 and lines == ["%s:%d: memory.mb10 = 02: key given twice (first on "
+                                               "line %d)" % (p, nlines, head + 11)],
+         "duplicate key after %d keys: refused, both lines named (%r)" % (nkeys, lines))
+
+    # START_TIME the FB's initialisation cannot meet (3 cycles: 11 blocks through 4 slots)
+    p, rc, out, lines = check_text(a, tmp, "start.ini", default, "cpu.start_time_ms=20")
+    t.ok(rc == 2 and lines == ["--set:1: cpu.start_time_ms = 20: " + START_RULE % (20, 10)],
+         "start_time_ms = 20 with cycle_ms = 10: refused with the rule (%r)" % lines)
+    p, rc, out, lines = check_text(a, tmp, "start.ini", default, "cpu.start_time_ms=21")
+    t.ok(rc == 0 and lines == [], "start_time_ms = 21 with cycle_ms = 10: accepted (%r)" % lines)
+    text = default.replace("start_time_ms = 5000", "start_time_ms = 100").replace(
+        "cycle_ms = 10", "cycle_ms = 50")
+    line = text[:text.index("start_time_ms = 100")].count("\n") + 1
+    p, rc, out, lines = check_text(a, tmp, "start50.ini", text)
+    t.ok(rc == 2 and lines == ["%s:%d: cpu.start_time_ms = 100: " % (p, line) + START_RULE % (100, 50)],
+         "start_time_ms = 100 with cycle_ms = 50: refused at its line (%r)" % lines)
+
+    # overrides are named by their position; a key before any section; text after [section]
+    p, rc, out, lines = check_text(a, tmp, "ov.ini", "baud = 9600\n[serial] parity = odd\n",
+                                   "serial.baud=7", "nodot=1")
+    t.ok(rc == 2 and lines == [
+        "--set:2: nodot=1: expected section.key=value (at most 32)",
+        "%s:1: baud = 9600: key before the first [section]" % p,
+        "%s:2: syntax error: text after [section]: '[serial] parity = odd'" % p,
+        "--set:1: serial.baud = 7: " + BAUD_RULE],
+        "overrides, key before [section], text after [section] (%r)" % lines)
+
+
+def doc_tables(path):
+    """The "| key | meaning | values | default | source | event |" table of each
+    "## [section]" of docs/parameters.md, as modcp-conf doc-table prints them."""
+    out, sec, lines = [], None, open(path, encoding="utf-8").read().split("\n")
+    i = 0
+    while i < len(lines):
+        m = re.match(r"## \[([a-z]+)\]", lines[i])
+        if m:
+            sec = m.group(1)
+        if lines[i] == "| key | meaning | values | default | source | event |" and sec:
+            j = i
+            while j < len(lines) and lines[j].startswith("|"):
+                j += 1
+            out.append("[%s]\n%s\n" % (sec, "\n".join(lines[i:j])))
+            sec, i = None, j
+            continue
+        i += 1
+    return "\n".join(out)
+
+
+def doc_table_matches(t, a):
+    """Issue 12 item 3: the parameter tables of docs/parameters.md are the descriptor's."""
+    docs = os.path.join(a.configs, os.pardir, "docs", "parameters.md")
+    rc, out, err = run([a.conf, "doc-table"])
+    want = doc_tables(docs)
+    t.ok(rc == 0 and out.count("[") >= 10 and out.strip() == want.strip(),
+         "docs/parameters.md tables == modcp-conf doc-table (the parameter rows)%s" % (
+             "" if out.strip() == want.strip() else ":\n" + "\n".join(
+                 "  docs: %s\n  rows: %s" % (x, y) for x, y in zip(want.strip().split("\n"),
+                                                            out.strip().split("\n")) if x != y)))
 
 
 def main():
@@ -97,10 +225,11 @@ def main():
     lines = err.splitlines()
     t.ok(rc == 2, "check bad.ini: exit code 2 (got %d)" % rc)
     for e in EXPECTED:
-        want = "%s: %s" % (bad, e)
+        want = "%s:%s" % (bad, e)
         t.ok(any(l == want or (e.endswith("unknown section") and l.startswith(want)) for l in lines),
              "check bad.ini: %s" % e)
-    t.ok(all(l.startswith(bad + ": ") for l in lines), "check bad.ini: every line names the file")
+    t.ok(all(re.match(r"%s:\d+: [a-z]+\.\S+ = " % re.escape(bad), l) for l in lines),
+         "check bad.ini: every line is FILE:LINE: section.key = value")
 
     # the simulator refuses the same file with the same lines
     link = os.path.join(tmp, "tty")
@@ -116,15 +245,19 @@ def main():
     with open(warn, "w") as f:
         f.write(text)
     rc, out, err = run([a.conf, "check", warn])
-    t.ok(rc == 0 and err.strip() == "%s: [protocol] f_mul = 0: must be 1..10; the CP runs with 1 "
-         "(warning, event (0E)21H)" % warn, "check f_mul = 0: warning, exit 0 (%r)" % err.strip())
+    line = text[:text.index("f_mul = 0")].count("\n") + 1
+    t.ok(rc == 0 and err.strip() == "%s:%d: protocol.f_mul = 0: must be 1..10; the CP runs with 1 "
+         "(warning, event (0E)21H)" % (warn, line), "check f_mul = 0: warning, exit 0 (%r)" % err.strip())
 
     # syntax error with its line number
     syn = os.path.join(tmp, "syntax.ini")
     with open(syn, "w") as f:
         f.write("[serial]\nbaud = 9600\nthis line is wrong\n")
     rc, out, err = run([a.conf, "check", syn])
-    t.ok(rc == 2 and "%s: line 3: syntax error" % syn in err, "syntax error: line 3 named (%r)" % err)
+    t.ok(rc == 2 and err == "%s:3: syntax error: expected [section] or key = value: "
+         "'this line is wrong'\n" % syn, "syntax error: line 3 named (%r)" % err)
+
+    loses_nothing(t, a, tmp)
 
     # binary record
     binf = os.path.join(tmp, "default.bin")
@@ -152,6 +285,7 @@ def main():
     t.ok(rc == 2 and not os.path.exists(os.path.join(tmp, "bad.bin")), "build bad.ini: exit 2, no file")
     rc, out, err = run([a.conf, "fields"])
     t.ok(rc == 0, "schema: every modcp_param_field_t has an INI key (%s)" % out.strip())
+    doc_table_matches(t, a)
     rc, out, err = run([a.conf, "frobnicate"])
     t.ok(rc == 1 and "usage" in err, "usage error: exit 1")
     shutil.rmtree(tmp, ignore_errors=True)

@@ -832,6 +832,34 @@ static void test_job_limit(void **state)
     assert_int_equal(modcp_params_job_limit(&p), 200);
 }
 
+static void test_start_time_minimum(void **state)
+{
+    (void)state;
+    /* modcp-conf refuses start_time_ms <= (P - 1) x cycle_ms (tools/conf check_start_time,
+     * docs/parameters.md): the FB pushes the record and INIT, P = ceil(blocks / ring depth)
+     * calls, and reads INIT_ACK in the call after. Here the FB runs every 1 ms. */
+    modcp_params_t p;
+    params_004_9(&p);
+    uint8_t buf[MODCP_PARAMS_RECORD_MAX];
+    size_t n = modcp_params_encode(&p, buf, sizeof buf);
+    uint32_t blocks = (uint32_t)((n + MODCP_BLOCK_SIZE - 1u) / MODCP_BLOCK_SIZE) + 1u;
+    uint32_t calls = (blocks + MODCP_BP_DEPTH - 1u) / MODCP_BP_DEPTH;
+    assert_int_equal(calls, 3); /* 11 blocks through 4 slots */
+
+    p.start_time_ms = (uint16_t)(calls - 1u); /* refused by modcp-conf: always fails */
+    world_t *w = world_new(&p);
+    assert_false(world_start(w, 100));
+    assert_true(w->fb_out.cp_start_error);
+    assert_int_equal(w->fb_out.error_nr, MODCP_FB_ERR_INIT);
+    assert_int_equal(w->fb_out.error_info, MODCP_EV_NONE); /* no answer yet: (00)00H */
+    world_free(w);
+
+    p.start_time_ms = (uint16_t)calls; /* the smallest value modcp-conf accepts */
+    w = world_new(&p);
+    assert_true(world_start(w, 100));
+    world_free(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -856,6 +884,7 @@ int main(void)
         cmocka_unit_test(test_record_damaged),
         cmocka_unit_test(test_record_id_strings),
         cmocka_unit_test(test_job_limit),
+        cmocka_unit_test(test_start_time_minimum),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

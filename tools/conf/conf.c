@@ -1,10 +1,10 @@
-/* modcp — INI configuration -> parameter record + controller memory (libinih).
+/* modcp — INI configuration -> parameter record + controller memory.
  * The schema is documented in docs/parameters.md; keep both in step. */
 #define _POSIX_C_SOURCE 200809L
 #include "modcp_conf.h"
 
 #include <ctype.h>
-#include <ini.h>
+#include <errno.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -13,6 +13,7 @@
 #include <strings.h>
 
 #include "modcp/events.h"
+#include "params_fields.h"
 
 #define IDX_GLOBAL 16u /* src[] slot for issue index 0xFF */
 
@@ -38,15 +39,6 @@ static void copy_str(char *dst, size_t cap, const char *src)
     }
     memcpy(dst, src, n);
     dst[n] = '\0';
-}
-
-static void lower_copy(char *dst, size_t cap, const char *src)
-{
-    size_t i = 0;
-    for (; src[i] != '\0' && i + 1u < cap; i++) {
-        dst[i] = (char)tolower((unsigned char)src[i]);
-    }
-    dst[i] = '\0';
 }
 
 static void event_name(modcp_event_t ev, char *buf, size_t cap)
@@ -110,25 +102,28 @@ static bool parse_hex(const char *s, uint32_t max, uint32_t *v)
 
 /* ---- problems ------------------------------------------------------------------------ */
 
-static void add_problem(modcp_conf_t *c, bool fatal, const char *fmt, ...)
+static void vadd_problem(modcp_conf_t *c, bool fatal, modcp_conf_loc_t loc, const char *fmt,
+                         va_list ap)
 {
     if (c->problem_count < MODCP_CONF_MAX_PROBLEMS) {
         modcp_conf_problem_t *p = &c->problems[c->problem_count];
-        size_t nl = strlen(c->name);
-        if (nl > sizeof p->text - 3u) {
-            nl = sizeof p->text - 3u;
+        char where[32];
+        const char *file = loc.override != 0u ? "--set" : c->name;
+        (void)snprintf(where, sizeof where, ":%lu: ",
+                       (unsigned long)(loc.override != 0u ? loc.override : loc.line));
+        size_t fl = strlen(file);
+        if (fl > sizeof p->text / 2u) {
+            fl = sizeof p->text / 2u;
         }
-        memmove(p->text, c->name, nl);
-        p->text[nl] = ':';
-        p->text[nl + 1u] = ' ';
-        p->text[nl + 2u] = '\0';
-        int n = (int)(nl + 2u);
-        va_list ap;
-        va_start(ap, fmt);
+        memcpy(p->text, file, fl); /* c->name and p->text are in the same object */
+        p->text[fl] = '\0';
+        int n = (int)fl;
+        size_t wl = strlen(where);
+        memcpy(p->text + fl, where, wl + 1u);
+        n += (int)wl;
         if (n >= 0 && (size_t)n < sizeof p->text) {
             (void)vsnprintf(p->text + n, sizeof p->text - (size_t)n, fmt, ap);
         }
-        va_end(ap);
         p->fatal = fatal;
     }
     c->problem_count++;
@@ -137,19 +132,61 @@ static void add_problem(modcp_conf_t *c, bool fatal, const char *fmt, ...)
     }
 }
 
-/* "[section] key = value: rule (event (0E)23H)" or with "warning, " */
+/* "NAME:LINE: text" (a problem that is not about one key: syntax, I/O) */
+static void add_problem(modcp_conf_t *c, bool fatal, modcp_conf_loc_t loc, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vadd_problem(c, fatal, loc, fmt, ap);
+    va_end(ap);
+}
+
+/* Values are shown as given, up to 159 characters (a longer one: 156 and "..."). */
+static void show_value(char *dst, size_t cap, const char *value)
+{
+    size_t n = strlen(value);
+    if (n < cap) {
+        memcpy(dst, value, n + 1u);
+    } else {
+        memcpy(dst, value, cap - 4u);
+        memcpy(dst + cap - 4u, "...", 4u);
+    }
+}
+
+/* "NAME:LINE: section.key = value: rule (event (0E)23H)", or with "warning, " */
+static void add_key_problem_at(modcp_conf_t *c, bool fatal, modcp_conf_loc_t loc,
+                               const char *section, const char *key, const char *value,
+                               const char *rule, modcp_event_t ev)
+{
+    char en[16];
+    char shown[160];
+    show_value(shown, sizeof shown, value);
+    const char *dot = section[0] != '\0' ? "." : ""; /* a key before the first section */
+    if (ev != MODCP_EV_NONE) {
+        event_name(ev, en, sizeof en);
+        add_problem(c, fatal, loc, "%s%s%s = %s: %s (%sevent %s)", section, dot, key, shown, rule,
+                    fatal ? "" : "warning, ", en);
+    } else {
+        add_problem(c, fatal, loc, "%s%s%s = %s: %s%s", section, dot, key, shown, rule,
+                    fatal ? "" : " (warning)");
+    }
+}
+
+/* The same at the line being read. */
 static void add_key_problem(modcp_conf_t *c, bool fatal, const char *section, const char *key,
                             const char *value, const char *rule, modcp_event_t ev)
 {
-    char en[16];
-    if (ev != MODCP_EV_NONE) {
-        event_name(ev, en, sizeof en);
-        add_problem(c, fatal, "[%s] %s = %s: %s (%sevent %s)", section, key, value, rule,
-                    fatal ? "" : "warning, ", en);
-    } else {
-        add_problem(c, fatal, "[%s] %s = %s: %s%s", section, key, value, rule,
-                    fatal ? "" : " (warning)");
-    }
+    add_key_problem_at(c, fatal, c->cur, section, key, value, rule, ev);
+}
+
+static void src_set(modcp_conf_src_t *s, modcp_conf_loc_t loc, const char *section,
+                    const char *key, const char *value)
+{
+    s->set = true;
+    s->loc = loc;
+    copy_str(s->section, sizeof s->section, section);
+    copy_str(s->key, sizeof s->key, key);
+    show_value(s->value, sizeof s->value, value);
 }
 
 static void set_src(modcp_conf_t *c, modcp_param_field_t f, unsigned idx, const char *section,
@@ -158,261 +195,366 @@ static void set_src(modcp_conf_t *c, modcp_param_field_t f, unsigned idx, const 
     if ((unsigned)f >= MODCP_PF_COUNT || idx >= MODCP_CONF_SRC_INDEX) {
         return;
     }
-    modcp_conf_src_t *s = &c->src[f][idx];
-    s->set = true;
-    copy_str(s->section, sizeof s->section, section);
-    copy_str(s->key, sizeof s->key, key);
-    copy_str(s->value, sizeof s->value, value);
+    src_set(&c->src[f][idx], c->cur, section, key, value);
 }
 
 /* ---- key table ------------------------------------------------------------------------ */
 
-typedef enum { K_U8, K_U16, K_U32, K_ENUM, K_BOOL, K_STR } kind_t;
+/* The keys of the record's scalar fields are the rows of params_fields.h: section, key,
+ * syntax, names, message, event, legal range. */
+
+typedef enum { NUM, ENUM, BOOL, STR } syntax_t;
 
 typedef struct {
     const char *name;
     uint8_t value;
 } enum_name_t;
 
-static const enum_name_t parity_names[] = {
+static const enum_name_t names_parity[] = {
     {"none", MODCP_PARITY_NONE}, {"odd", MODCP_PARITY_ODD}, {"even", MODCP_PARITY_EVEN},
     {"n", MODCP_PARITY_NONE},    {"o", MODCP_PARITY_ODD},   {"e", MODCP_PARITY_EVEN},
     {NULL, 0}};
-static const enum_name_t framing_names[] = {
+static const enum_name_t names_framing[] = {
     {"rtu", MODCP_FRAMING_RTU}, {"ascii", MODCP_FRAMING_ASCII}, {NULL, 0}};
-static const enum_name_t mode_names[] = {{"normal", MODCP_OPMODE_NORMAL},
+static const enum_name_t names_mode[] = {{"normal", MODCP_OPMODE_NORMAL},
                                          {"suppress", MODCP_OPMODE_SUPPRESS},
                                          {"interference_suppression", MODCP_OPMODE_SUPPRESS},
                                          {NULL, 0}};
-static const enum_name_t eof_names[] = {
+static const enum_name_t names_eof[] = {
     {"manual", MODCP_EOF_MANUAL}, {"modbus", MODCP_EOF_MODBUS}, {NULL, 0}};
-static const enum_name_t iface_names[] = {{"rs232", MODCP_IFACE_RS232},
+static const enum_name_t names_iface[] = {{"rs232", MODCP_IFACE_RS232},
                                           {"rs422", MODCP_IFACE_RS422},
                                           {"rs485", MODCP_IFACE_RS485},
                                           {NULL, 0}};
-static const enum_name_t fset_names[] = {
+static const enum_name_t names_fset[] = {
     {"cp341", MODCP_FSET_CP341}, {"extended", MODCP_FSET_EXTENDED}, {NULL, 0}};
-static const enum_name_t model_names[] = {
+static const enum_name_t names_model[] = {
     {"cp341", MODCP_CPU_CP341}, {"cp441", MODCP_CPU_CP441}, {"cp441-2", MODCP_CPU_CP441}, {NULL, 0}};
+#define names_none NULL
 
 typedef struct {
     const char *section;
-    const char *key;
-    uint8_t field; /* modcp_param_field_t */
+    const char *key; /* "" = no key of its own */
+    uint8_t field;   /* modcp_param_field_t */
     uint8_t index;
-    uint8_t kind;
+    uint8_t width;   /* 1, 2, 4, MODCP_PW_STR */
+    uint8_t syntax;  /* syntax_t */
+    uint8_t flags;   /* MODCP_PF_* */
+    uint32_t min, max;
+    modcp_event_t event;
     size_t off;
     const enum_name_t *names;
+    const char *rule;
+    const char *meaning, *values, *source; /* docs/parameters.md */
 } conf_key_t;
 
-#define P(f) offsetof(modcp_params_t, f)
+#define KEY_S(member, width, field, index, min, max, def, ev, flags, section, key, syntax, names, \
+              rule, meaning, values, source)                                                     \
+    {section, key,   field,   index, width, syntax,   flags,  min,     max,                       \
+     ev,      offsetof(modcp_params_t, member), names_##names, rule, meaning, values, source},
+#define KEY_G(...)
+#define KEY_M(...)
 
-static const conf_key_t keys[] = {
-    {"serial", "baud", MODCP_PF_BAUD, 0, K_U32, P(baud), NULL},
-    {"serial", "data_bits", MODCP_PF_DATA_BITS, 0, K_U8, P(data_bits), NULL},
-    {"serial", "parity", MODCP_PF_PARITY, 0, K_ENUM, P(parity), parity_names},
-    {"serial", "stop_bits", MODCP_PF_STOP_BITS, 0, K_U8, P(stop_bits), NULL},
-    {"protocol", "slave_address", MODCP_PF_SLAVE_ADDR, 0, K_U8, P(slave_addr), NULL},
-    {"protocol", "framing", MODCP_PF_FRAMING, 0, K_ENUM, P(framing), framing_names},
-    {"protocol", "mode", MODCP_PF_OPMODE, 0, K_ENUM, P(opmode), mode_names},
-    {"protocol", "f_mul", MODCP_PF_FMUL, 0, K_U8, P(f_mul), NULL},
-    {"protocol", "eof_timing", MODCP_PF_EOF_TIMING, 0, K_ENUM, P(eof_timing), eof_names},
-    {"protocol", "t15_check", MODCP_PF_T15_CHECK, 0, K_BOOL, P(t15_check), NULL},
-    {"protocol", "ascii_timeout_ms", MODCP_PF_ASCII_TIMEOUT, 0, K_U16, P(ascii_timeout_ms), NULL},
-    {"protocol", "function_set", MODCP_PF_FSET, 0, K_ENUM, P(fset), fset_names},
-    {"interface", "type", MODCP_PF_IFACE, 0, K_ENUM, P(iface), iface_names},
-    {"interface", "turnaround_ms", MODCP_PF_TURNAROUND, 0, K_U16, P(turnaround_ms), NULL},
-    {"interface", "rs232_auto", MODCP_PF_RS232_AUTO, 0, K_BOOL, P(rs232_auto), NULL},
-    {"interface", "rts_on_delay_ms", MODCP_PF_RTS_ON_DELAY, 0, K_U16, P(rts_on_delay_ms), NULL},
-    {"interface", "rts_off_delay_ms", MODCP_PF_RTS_OFF_DELAY, 0, K_U16, P(rts_off_delay_ms), NULL},
-    {"registers", "holding_base_db", MODCP_PF_HR_BASE, 0, K_U16, P(hr_base_db), NULL},
-    {"registers", "input_base_db", MODCP_PF_IR_BASE, 0, K_U16, P(ir_base_db), NULL},
-    {"registers", "with_32bit_registers", MODCP_PF_REGS32, 0, K_BOOL, P(regs32), NULL},
-    {"cpu", "model", MODCP_PF_CPU_MODEL, 0, K_ENUM, P(cpu_model), model_names},
-    {"cpu", "job_limit", MODCP_PF_JOB_LIMIT, 0, K_U16, P(job_limit), NULL},
-    {"cpu", "timeout_ms", MODCP_PF_CPU_TIMEOUT, 0, K_U16, P(cpu_timeout_ms), NULL},
-    {"cpu", "start_time_ms", MODCP_PF_START_TIME, 0, K_U16, P(start_time_ms), NULL},
-    {"supervision", "commloss_ms", MODCP_PF_COMMLOSS, 0, K_U16, P(commloss_ms), NULL},
-    {"scanner", "start", MODCP_PF_SCANNER, 0xFF, K_U16, P(scan_start), NULL},
-    {"identification", "vendor", MODCP_PF_ID_STRING, 0, K_STR, P(vendor), NULL},
-    {"identification", "product", MODCP_PF_ID_STRING, 1, K_STR, P(product), NULL},
-    {"identification", "revision", MODCP_PF_ID_STRING, 2, K_STR, P(revision), NULL},
-    {"identification", "app_name", MODCP_PF_ID_STRING, 3, K_STR, P(app_name), NULL},
-    {"diagnostics", "interrupt", MODCP_PF_DIAG_IRQ, 0, K_BOOL, P(diag_irq), NULL},
+static const conf_key_t keys[] = {MODCP_PARAM_ROWS(KEY_S, KEY_G, KEY_M)};
+
+typedef struct {
+    const char *section, *key, *meaning, *values, *def, *source, *event;
+} doc_row_t;
+
+#define DOC_D(section, key, meaning, values, def, source, event) \
+    {section, key, meaning, values, def, source, event},
+
+static const doc_row_t doc_rows[] = {MODCP_PARAM_DOC_ROWS(DOC_D)};
+
+/* The [cpu] keys of the controller, not in the record (handle_cpu_tool). */
+typedef struct {
+    const char *key, *meaning, *values;
+    uint32_t def; /* UINT32_MAX: "none" */
+    const char *source, *event;
+} tool_row_t;
+
+static const tool_row_t cpu_tool_rows[] = {
+    {"cycle_ms",
+     "cycle time of the user program that calls the FB (simulator; `--cycle-ms` overrides)",
+     "1 … 60000", DEF_CYCLE_MS, "—", "—"},
+    {"work_db", "the FB's work area (instance DB), never writable by the master; must be in `dbs`",
+     "0 (none) or a listed DB", 0u, "004 §4.2", "(0E)3AH"},
+    {"i_bytes", "size of the input area I", "0 … 65535", DEF_I_BYTES, "004 §4.2", "—"},
+    {"q_bytes", "size of the output area Q", "0 … 65535", DEF_Q_BYTES, "", "—"},
+    {"m_bytes", "size of the flag area M", "0 … 65535", DEF_M_BYTES, "", "—"},
+    {"timers", "number of timers T", "0 … 65535", DEF_TIMERS, "", "—"},
+    {"counters", "number of counters C", "0 … 65535", DEF_COUNTERS, "", "—"},
+    {"dbs", "data blocks `NUMBER:SIZE`, space separated, e.g. `800:1024 801:1024`",
+     "up to 64 DBs, 1 … 65535 each", UINT32_MAX, "", "—"},
 };
 
-/* Keys handled outside the table, for "unknown key" messages. */
+/* Sections in the order of docs/parameters.md; coils, inputs and memory have keys of
+ * their own syntax (their list is given here), the others the keys of the rows. */
 static const char *const section_keys[][2] = {
-    {"serial", "baud, data_bits, parity, stop_bits"},
-    {"protocol", "slave_address, framing, mode, f_mul, eof_timing, t15_check, ascii_timeout_ms, "
-                 "function_set"},
-    {"interface", "type, turnaround_ms, rs232_auto, rts_on_delay_ms, rts_off_delay_ms"},
+    {"serial", NULL},
+    {"protocol", NULL},
+    {"interface", NULL},
     {"coils", "m, q, t, c, dbN (FROM-TO @ START)"},
     {"inputs", "m, i, dbN (FROM-TO @ START)"},
-    {"registers", "holding_base_db, input_base_db, with_32bit_registers, int16, int32, float"},
-    {"limits", "db, m, q (MIN-MAX or off)"},
-    {"cpu", "model, job_limit, timeout_ms, start_time_ms, cycle_ms, work_db, i_bytes, q_bytes, "
-            "m_bytes, timers, counters, dbs"},
+    {"registers", NULL},
+    {"limits", NULL},
+    {"cpu", NULL},
     {"memory", "S7 operands, e.g. MB1008, M1000.3, DB800.DBW160, T100"},
-    {"supervision", "commloss_ms"},
-    {"scanner", "start, entries"},
-    {"identification", "vendor, product, revision, app_name"},
-    {"diagnostics", "interrupt"},
+    {"supervision", NULL},
+    {"scanner", NULL},
+    {"identification", NULL},
+    {"diagnostics", NULL},
 };
 
-static const char *known_keys(const char *section)
+/* The keys of a section ("baud, data_bits, ..."), or false for an unknown section. */
+static bool known_keys(const char *section, char *buf, size_t cap)
 {
     for (size_t i = 0; i < sizeof section_keys / sizeof section_keys[0]; i++) {
-        if (strcasecmp(section_keys[i][0], section) == 0) {
-            return section_keys[i][1];
+        if (strcasecmp(section_keys[i][0], section) != 0) {
+            continue;
+        }
+        buf[0] = '\0';
+        if (section_keys[i][1] != NULL) {
+            copy_str(buf, cap, section_keys[i][1]);
+            return true;
+        }
+        size_t n = 0;
+        for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++) {
+            if (strcmp(keys[k].section, section_keys[i][0]) == 0 && keys[k].key[0] != '\0') {
+                n += (size_t)snprintf(buf + n, n < cap ? cap - n : 0u, "%s%s", n > 0u ? ", " : "",
+                                      keys[k].key);
+            }
+        }
+        for (size_t k = 0; k < sizeof doc_rows / sizeof doc_rows[0]; k++) {
+            if (strcmp(doc_rows[k].section, section_keys[i][0]) == 0) {
+                n += (size_t)snprintf(buf + n, n < cap ? cap - n : 0u, "%s%s", n > 0u ? ", " : "",
+                                      doc_rows[k].key);
+            }
+        }
+        for (size_t k = 0; strcmp(section_keys[i][0], "cpu") == 0 &&
+                           k < sizeof cpu_tool_rows / sizeof cpu_tool_rows[0];
+             k++) {
+            n += (size_t)snprintf(buf + n, n < cap ? cap - n : 0u, "%s%s", n > 0u ? ", " : "",
+                                  cpu_tool_rows[k].key);
+        }
+        return true;
+    }
+    return false;
+}
+
+/* ---- rules in words --------------------------------------------------------------------- */
+
+static const conf_key_t *key_of_field(uint8_t field)
+{
+    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
+        if (keys[i].field == field && keys[i].rule[0] != '\0') {
+            return &keys[i];
         }
     }
     return NULL;
 }
 
-/* ---- rules in words --------------------------------------------------------------------- */
-
-static modcp_event_t field_event(uint8_t field)
-{
-    switch (field) {
-    case MODCP_PF_DATA_BITS: return MODCP_EV_DATA_BITS;
-    case MODCP_PF_SLAVE_ADDR: return MODCP_EV_SLAVE_ADDR;
-    case MODCP_PF_OPMODE: return MODCP_EV_OPMODE;
-    case MODCP_PF_FMUL:
-    case MODCP_PF_ASCII_TIMEOUT: return MODCP_EV_FMUL;
-    case MODCP_PF_LIM_DB:
-    case MODCP_PF_LIM_M:
-    case MODCP_PF_LIM_Q: return MODCP_EV_WRITE_LIMITS;
-    case MODCP_PF_COILS: return MODCP_EV_COIL_FROMTO;
-    case MODCP_PF_INPUTS: return MODCP_EV_INPUT_FROMTO;
-    default: return MODCP_EV_PARAM_RECORD;
-    }
-}
-
 static const char *field_rule(uint8_t field)
 {
+    const conf_key_t *k = key_of_field(field);
+    if (k != NULL) {
+        return k->rule;
+    }
     switch (field) {
-    case MODCP_PF_BAUD:
-        return "must be one of 300, 600, 1200, 2400, 4800, 9600, 19200, 38400, 57600, 76800, "
-               "115200";
-    case MODCP_PF_DATA_BITS: return "must be 8 for RTU, 7 or 8 for ASCII";
-    case MODCP_PF_PARITY: return "must be none, odd or even";
-    case MODCP_PF_STOP_BITS: return "must be 1 or 2";
-    case MODCP_PF_SLAVE_ADDR: return "must be 1..255";
-    case MODCP_PF_FRAMING: return "must be rtu or ascii";
-    case MODCP_PF_OPMODE: return "must be normal or suppress (interference suppression)";
-    case MODCP_PF_FMUL: return "must be 1..10; the CP runs with 1";
-    case MODCP_PF_EOF_TIMING: return "must be manual or modbus";
-    case MODCP_PF_T15_CHECK: return "must be on or off";
-    case MODCP_PF_ASCII_TIMEOUT: return "must be 1..6500 ms; the CP runs with 1000 ms";
-    case MODCP_PF_IFACE: return "must be rs232, rs422 or rs485";
-    case MODCP_PF_TURNAROUND: return "must be 0..100 ms";
-    case MODCP_PF_RS232_AUTO: return "must be on or off, and on only with [interface] type = rs232";
-    case MODCP_PF_RTS_ON_DELAY:
-    case MODCP_PF_RTS_OFF_DELAY: return "must be 0..65535 ms";
-    case MODCP_PF_HR_BASE:
-    case MODCP_PF_IR_BASE: return "must be a DB number 1..65535 (0: not configured)";
-    case MODCP_PF_REGS32: return "must be on or off";
     case MODCP_PF_LIM_DB:
     case MODCP_PF_LIM_M:
     case MODCP_PF_LIM_Q:
         return "must be MIN-MAX with MIN <= MAX (DB MIN >= 1), or off to disable writes";
-    case MODCP_PF_FSET: return "must be cp341 or extended";
-    case MODCP_PF_CPU_MODEL: return "must be cp341 or cp441";
-    case MODCP_PF_JOB_LIMIT:
-        return "must be 0 (the model's limit) or 32..1024 bytes (cp341) / 32..450 (cp441)";
-    case MODCP_PF_CPU_TIMEOUT: return "must be 1..65535 ms";
-    case MODCP_PF_START_TIME: return "must be 1..65535 ms";
-    case MODCP_PF_COMMLOSS: return "must be 0 (off) or 100..30000 ms";
-    case MODCP_PF_SCANNER: return "must be 0..65535";
-    case MODCP_PF_ID_STRING: return "at most 16 characters";
-    case MODCP_PF_DIAG_IRQ: return "must be on or off";
     default: return "invalid value";
     }
 }
 
 /* ---- INI handler --------------------------------------------------------------------------- */
 
+/* "section.key=value" of --set: pointers into the caller's string, which outlives the load. */
 typedef struct {
-    char section[24];
-    char key[48];
-    char value[160];
+    const char *section;
+    size_t section_len;
+    const char *key;
+    size_t key_len;
+    const char *value;
+    uint32_t number; /* 1-based position among the --set arguments */
     bool used;
 } override_t;
 
 #define MAX_OVERRIDES 32
 
+/* Keys read so far ("section" NUL "key", lower case) with where they were first given: an
+ * open-addressing hash set that grows with the file, so no key escapes the check. */
+typedef struct {
+    char *name;
+    modcp_conf_loc_t loc;
+} seen_t;
+
 typedef struct {
     modcp_conf_t *c;
-    char bad_section[64]; /* last unknown section reported */
+    char *section;        /* current section, as written */
+    char *bad_section;    /* last unknown section reported */
     override_t ov[MAX_OVERRIDES];
     size_t ov_count;
+    seen_t *seen;
+    size_t seen_cap; /* power of two, 0 before the first key */
+    size_t seen_count;
+    bool oom;
 } parse_ctx_t;
 
-static int on_ini_line(void *user, const char *section, const char *name, const char *value);
+static void on_ini_line(parse_ctx_t *px, const char *section, const char *name,
+                        const char *value);
 
 /* "section.key=value" */
-static bool add_override(parse_ctx_t *px, const char *text)
+static bool add_override(parse_ctx_t *px, const char *text, uint32_t number)
 {
     const char *dot = strchr(text, '.');
     const char *eq = strchr(text, '=');
-    if (px->ov_count >= MAX_OVERRIDES || dot == NULL || eq == NULL || eq < dot || dot == text) {
+    if (px->ov_count >= MAX_OVERRIDES || dot == NULL || eq == NULL || eq < dot || dot == text ||
+        eq == dot + 1) {
         return false;
     }
     override_t *o = &px->ov[px->ov_count];
-    size_t sl = (size_t)(dot - text);
-    size_t kl = (size_t)(eq - dot - 1);
-    if (sl >= sizeof o->section || kl == 0u || kl >= sizeof o->key) {
-        return false;
-    }
-    memcpy(o->section, text, sl);
-    o->section[sl] = '\0';
-    memcpy(o->key, dot + 1, kl);
-    o->key[kl] = '\0';
-    copy_str(o->value, sizeof o->value, eq + 1);
+    o->section = text;
+    o->section_len = (size_t)(dot - text);
+    o->key = dot + 1;
+    o->key_len = (size_t)(eq - dot - 1);
+    o->value = eq + 1;
+    o->number = number;
     o->used = false;
     px->ov_count++;
     return true;
 }
 
-static const char *override_of(parse_ctx_t *px, const char *section, const char *name)
+static bool same_name(const char *a, size_t alen, const char *b)
+{
+    return strlen(b) == alen && strncasecmp(a, b, alen) == 0;
+}
+
+/* The override of section.name, if any; *loc receives its location. */
+static const char *override_of(parse_ctx_t *px, const char *section, const char *name,
+                               modcp_conf_loc_t *loc)
 {
     for (size_t i = 0; i < px->ov_count; i++) {
-        if (strcasecmp(px->ov[i].section, section) == 0 && strcasecmp(px->ov[i].key, name) == 0) {
-            px->ov[i].used = true;
-            return px->ov[i].value;
+        override_t *o = &px->ov[i];
+        if (same_name(o->section, o->section_len, section) && same_name(o->key, o->key_len, name)) {
+            o->used = true;
+            loc->line = 0u;
+            loc->override = o->number;
+            return o->value;
         }
     }
     return NULL;
 }
 
+static char *dup_n(const char *s, size_t n)
+{
+    char *d = malloc(n + 1u);
+    if (d != NULL) {
+        memcpy(d, s, n);
+        d[n] = '\0';
+    }
+    return d;
+}
+
 static void apply_unused_overrides(parse_ctx_t *px)
 {
     for (size_t i = 0; i < px->ov_count; i++) {
-        if (!px->ov[i].used) {
-            px->ov[i].used = true;
-            (void)on_ini_line(px, px->ov[i].section, px->ov[i].key, px->ov[i].value);
+        override_t *o = &px->ov[i];
+        if (!o->used) {
+            px->c->cur.line = 0u;
+            px->c->cur.override = o->number;
+            char *sec = dup_n(o->section, o->section_len);
+            char *key = dup_n(o->key, o->key_len);
+            if (sec != NULL && key != NULL) {
+                on_ini_line(px, sec, key, o->value); /* marks it used */
+            } else {
+                px->oom = true;
+            }
+            free(sec);
+            free(key);
         }
     }
 }
 
-static bool seen_before(modcp_conf_t *c, const char *section, const char *key)
+static uint32_t name_hash(const char *name, size_t len)
 {
-    char k[64];
-    char s[24];
-    char n[40];
-    lower_copy(s, sizeof s, section);
-    lower_copy(n, sizeof n, key);
-    (void)snprintf(k, sizeof k, "%s/%s", s, n);
-    for (size_t i = 0; i < c->seen_count; i++) {
-        if (strcmp(c->seen[i], k) == 0) {
+    uint32_t h = 2166136261u; /* FNV-1a */
+    for (size_t i = 0; i < len; i++) {
+        h = (h ^ (uint8_t)name[i]) * 16777619u;
+    }
+    return h;
+}
+
+static bool seen_grow(parse_ctx_t *px)
+{
+    size_t cap = px->seen_cap == 0u ? 64u : px->seen_cap * 2u;
+    seen_t *t = calloc(cap, sizeof *t);
+    if (t == NULL) {
+        return false;
+    }
+    for (size_t i = 0; i < px->seen_cap; i++) {
+        char *n = px->seen[i].name;
+        if (n != NULL) {
+            size_t len = strlen(n) + 1u;
+            len += strlen(n + len);
+            size_t j = name_hash(n, len) & (cap - 1u);
+            while (t[j].name != NULL) {
+                j = (j + 1u) & (cap - 1u);
+            }
+            t[j] = px->seen[i];
+        }
+    }
+    free(px->seen);
+    px->seen = t;
+    px->seen_cap = cap;
+    return true;
+}
+
+/* True (and *first = where) when section/key was given before; records it otherwise. */
+static bool seen_before(parse_ctx_t *px, const char *section, const char *key,
+                        modcp_conf_loc_t *first)
+{
+    size_t sl = strlen(section);
+    size_t kl = strlen(key);
+    char *name = malloc(sl + kl + 2u);
+    if (name == NULL || (px->seen_count * 2u >= px->seen_cap && !seen_grow(px))) {
+        free(name);
+        px->oom = true;
+        return false;
+    }
+    for (size_t i = 0; i < sl; i++) {
+        name[i] = (char)tolower((unsigned char)section[i]);
+    }
+    name[sl] = '\0';
+    for (size_t i = 0; i <= kl; i++) {
+        name[sl + 1u + i] = (char)tolower((unsigned char)key[i]);
+    }
+    size_t len = sl + 1u + kl;
+    size_t j = name_hash(name, len) & (px->seen_cap - 1u);
+    for (; px->seen[j].name != NULL; j = (j + 1u) & (px->seen_cap - 1u)) {
+        const char *n = px->seen[j].name;
+        if (strcmp(n, name) == 0 && strcmp(n + sl + 1u, name + sl + 1u) == 0) {
+            *first = px->seen[j].loc;
+            free(name);
             return true;
         }
     }
-    if (c->seen_count < MODCP_CONF_MAX_SEEN) {
-        copy_str(c->seen[c->seen_count++], sizeof c->seen[0], k);
-    }
+    px->seen[j].name = name;
+    px->seen[j].loc = px->c->cur;
+    px->seen_count++;
     return false;
+}
+
+static void ctx_free(parse_ctx_t *px)
+{
+    for (size_t i = 0; i < px->seen_cap; i++) {
+        free(px->seen[i].name);
+    }
+    free(px->seen);
+    free(px->section);
+    free(px->bad_section);
 }
 
 static void handle_table_key(modcp_conf_t *c, const conf_key_t *k, const char *section,
@@ -420,13 +562,13 @@ static void handle_table_key(modcp_conf_t *c, const conf_key_t *k, const char *s
 {
     uint8_t *base = (uint8_t *)&c->params;
     unsigned idx = k->index == 0xFFu ? IDX_GLOBAL : k->index;
-    modcp_event_t ev = field_event(k->field);
-    const char *rule = field_rule(k->field);
+    modcp_event_t ev = k->event;
+    const char *rule = k->rule;
     uint32_t v = 0;
     set_src(c, (modcp_param_field_t)k->field, idx, section, name, value);
 
-    switch (k->kind) {
-    case K_ENUM:
+    switch (k->syntax) {
+    case ENUM:
         for (const enum_name_t *e = k->names; e->name != NULL; e++) {
             if (strcasecmp(e->name, value) == 0) {
                 base[k->off] = e->value;
@@ -435,7 +577,7 @@ static void handle_table_key(modcp_conf_t *c, const conf_key_t *k, const char *s
         }
         add_key_problem(c, true, section, name, value, rule, ev);
         return;
-    case K_BOOL:
+    case BOOL:
         if (strcasecmp(value, "on") == 0 || strcasecmp(value, "yes") == 0 ||
             strcasecmp(value, "true") == 0 || strcmp(value, "1") == 0) {
             base[k->off] = 1u;
@@ -446,7 +588,7 @@ static void handle_table_key(modcp_conf_t *c, const conf_key_t *k, const char *s
             add_key_problem(c, true, section, name, value, "must be on or off", ev);
         }
         return;
-    case K_STR:
+    case STR:
         if (strlen(value) > MODCP_ID_STRING_MAX) {
             add_key_problem(c, true, section, name, value, rule, ev);
             return;
@@ -458,8 +600,8 @@ static void handle_table_key(modcp_conf_t *c, const conf_key_t *k, const char *s
         break;
     }
     bool ok = parse_u32(value, &v);
-    bool soft = k->field == MODCP_PF_FMUL || k->field == MODCP_PF_ASCII_TIMEOUT;
-    uint32_t max = k->kind == K_U8 ? 0xFFu : (k->kind == K_U16 ? 0xFFFFu : 0xFFFFFFFFu);
+    bool soft = (k->flags & MODCP_PF_WARN) != 0u;
+    uint32_t max = k->width == 1u ? 0xFFu : (k->width == 2u ? 0xFFFFu : 0xFFFFFFFFu);
     if (!ok) {
         add_key_problem(c, true, section, name, value, "not a number", ev);
         return;
@@ -472,9 +614,9 @@ static void handle_table_key(modcp_conf_t *c, const conf_key_t *k, const char *s
             return;
         }
     }
-    switch (k->kind) {
-    case K_U8: base[k->off] = (uint8_t)v; break;
-    case K_U16: {
+    switch (k->width) {
+    case 1u: base[k->off] = (uint8_t)v; break;
+    case 2u: {
         uint16_t x = (uint16_t)v;
         memcpy(base + k->off, &x, sizeof x);
         break;
@@ -486,14 +628,15 @@ static void handle_table_key(modcp_conf_t *c, const conf_key_t *k, const char *s
 /* "FROM-TO" (numbers decimal or 0x); returns false on a syntax error. */
 static bool parse_range(const char *s, uint32_t *from, uint32_t *to)
 {
-    char buf[96];
-    copy_str(buf, sizeof buf, s);
-    char *dash = strchr(buf, '-');
-    if (dash == NULL) {
-        return false;
+    char *buf = strdup(s);
+    char *dash = buf != NULL ? strchr(buf, '-') : NULL;
+    bool ok = false;
+    if (dash != NULL) {
+        *dash = '\0';
+        ok = parse_u32(buf, from) && parse_u32(dash + 1, to);
     }
-    *dash = '\0';
-    return parse_u32(buf, from) && parse_u32(dash + 1, to);
+    free(buf);
+    return ok;
 }
 
 /* Number with an optional operand prefix: "1000", "MB1000", "M1000", "T100", "DB12". */
@@ -526,14 +669,15 @@ static const char *const pfx_dbno[] = {"DB", NULL};
 static bool parse_window(const char *value, const char *const *pfx, uint32_t *from, uint32_t *to,
                          uint32_t *start)
 {
-    char buf[160];
-    copy_str(buf, sizeof buf, value);
-    char *at = strchr(buf, '@');
-    if (at == NULL) {
-        return false;
+    char *buf = strdup(value);
+    char *at = buf != NULL ? strchr(buf, '@') : NULL;
+    bool ok = false;
+    if (at != NULL) {
+        *at = '\0';
+        ok = parse_range(buf, from, to) && parse_start(at + 1, pfx, start);
     }
-    *at = '\0';
-    return parse_range(buf, from, to) && parse_start(at + 1, pfx, start);
+    free(buf);
+    return ok;
 }
 
 static void handle_window(modcp_conf_t *c, bool coils, const char *section, const char *name,
@@ -673,8 +817,11 @@ static int cmp_db(const void *a, const void *b)
 
 static void handle_dbs(modcp_conf_t *c, const char *section, const char *name, const char *value)
 {
-    char buf[256];
-    copy_str(buf, sizeof buf, value);
+    char *buf = strdup(value);
+    if (buf == NULL) {
+        add_key_problem(c, true, section, name, value, "out of memory", MODCP_EV_NONE);
+        return;
+    }
     c->db_count = 0;
     char *save = NULL;
     for (char *tok = strtok_r(buf, " \t,", &save); tok != NULL; tok = strtok_r(NULL, " \t,", &save)) {
@@ -723,6 +870,7 @@ static void handle_dbs(modcp_conf_t *c, const char *section, const char *name, c
         c->dbs[c->db_count].size = (uint16_t)size;
         c->db_count++;
     }
+    free(buf);
     qsort(c->dbs, c->db_count, sizeof c->dbs[0], cmp_db);
 }
 
@@ -747,6 +895,7 @@ static void handle_cpu_tool(modcp_conf_t *c, const char *section, const char *na
         dst = &c->counters;
     } else if (strcasecmp(name, "work_db") == 0) {
         dst = &c->work_db;
+        src_set(&c->work_db_src, c->cur, section, name, value);
     }
     if (dst != NULL) {
         if (!parse_u32(value, &v) || v > 0xFFFFu) {
@@ -757,6 +906,7 @@ static void handle_cpu_tool(modcp_conf_t *c, const char *section, const char *na
         return;
     }
     if (strcasecmp(name, "cycle_ms") == 0) {
+        src_set(&c->cycle_src, c->cur, section, name, value);
         if (!parse_u32(value, &v) || v < 1u || v > MAX_CYCLE_MS) {
             add_key_problem(c, true, section, name, value, "must be 1..60000 ms", MODCP_EV_NONE);
             return;
@@ -764,16 +914,21 @@ static void handle_cpu_tool(modcp_conf_t *c, const char *section, const char *na
         c->cycle_ms = v;
         return;
     }
-    char rule[256];
-    (void)snprintf(rule, sizeof rule, "unknown key (keys: %s)", known_keys("cpu"));
+    char list[256];
+    char rule[300];
+    (void)known_keys("cpu", list, sizeof list);
+    (void)snprintf(rule, sizeof rule, "unknown key (keys: %s)", list);
     add_key_problem(c, true, section, name, value, rule, MODCP_EV_NONE);
 }
 
 static void handle_scanner_entries(modcp_conf_t *c, const char *section, const char *name,
                                    const char *value)
 {
-    char buf[256];
-    copy_str(buf, sizeof buf, value);
+    char *buf = strdup(value);
+    if (buf == NULL) {
+        add_key_problem(c, true, section, name, value, "out of memory", MODCP_EV_NONE);
+        return;
+    }
     set_src(c, MODCP_PF_SCANNER, IDX_GLOBAL, section, name, value);
     memset(c->params.scan, 0, sizeof c->params.scan);
     unsigned n = 0;
@@ -800,6 +955,7 @@ static void handle_scanner_entries(modcp_conf_t *c, const char *section, const c
         c->params.scan[n].offset = op.offset;
         n++;
     }
+    free(buf);
     c->params.scan_count = (uint8_t)(n > MODCP_SCANNER_MAX ? MODCP_SCANNER_MAX : n);
 }
 
@@ -818,18 +974,23 @@ static void handle_memory(modcp_conf_t *c, const char *section, const char *name
         return;
     }
     modcp_conf_init_t *in = &c->inits[c->init_count];
+    in->loc = c->cur;
     in->op = op;
     in->count = 0;
     in->first = (uint32_t)c->value_count;
     copy_str(in->key, sizeof in->key, name);
-    copy_str(in->value, sizeof in->value, value);
-    char buf[256];
-    copy_str(buf, sizeof buf, value);
+    show_value(in->value, sizeof in->value, value);
+    char *buf = strdup(value);
+    if (buf == NULL) {
+        add_key_problem(c, true, section, name, value, "out of memory", MODCP_EV_NONE);
+        return;
+    }
     char *save = NULL;
     uint32_t max = op.width == MODCP_S7_BIT    ? 1u
                    : op.width == MODCP_S7_BYTE ? 0xFFu
                    : op.width == MODCP_S7_WORD ? 0xFFFFu
                                                : 0xFFFFFFFFu;
+    bool bad = false;
     for (char *tok = strtok_r(buf, " \t,", &save); tok != NULL; tok = strtok_r(NULL, " \t,", &save)) {
         uint32_t v = 0;
         bool ok;
@@ -855,15 +1016,22 @@ static void handle_memory(modcp_conf_t *c, const char *section, const char *name
                                       : (op.width == MODCP_S7_BYTE ? "hex byte, e.g. 17"
                                                                    : "hex word, e.g. 8765")));
             add_key_problem(c, true, section, name, value, rule, MODCP_EV_NONE);
-            return;
+            bad = true;
+            break;
         }
         if (c->value_count >= MODCP_CONF_MAX_VALUES) {
-            add_key_problem(c, true, section, name, value, "too many [memory] values",
+            add_key_problem(c, true, section, name, value, "too many [memory] values (at most 8192)",
                             MODCP_EV_NONE);
-            return;
+            bad = true;
+            break;
         }
         c->values[c->value_count++] = v;
         in->count++;
+    }
+    free(buf);
+    if (bad) {
+        c->value_count = in->first;
+        return;
     }
     if (in->count == 0u) {
         add_key_problem(c, true, section, name, value, "no value", MODCP_EV_NONE);
@@ -886,65 +1054,82 @@ static void handle_memory(modcp_conf_t *c, const char *section, const char *name
     c->init_count++;
 }
 
-static int on_ini_line(void *user, const char *section, const char *name, const char *value)
+static void on_ini_line(parse_ctx_t *px, const char *section, const char *name,
+                        const char *value)
 {
-    parse_ctx_t *px = user;
     modcp_conf_t *c = px->c;
-    const char *keys_of = known_keys(section);
-    const char *ov = override_of(px, section, name);
+    char keys_of[300];
+    if (!known_keys(section, keys_of, sizeof keys_of)) {
+        const char *ov = override_of(px, section, name, &c->cur);
+        if (ov != NULL) {
+            value = ov;
+        }
+        if (px->bad_section == NULL || strcmp(px->bad_section, section) != 0) {
+            free(px->bad_section);
+            px->bad_section = strdup(section);
+            add_key_problem(c, true, section, name, value,
+                            section[0] == '\0'
+                                ? "key before the first [section]"
+                                : "unknown section (sections: serial, protocol, interface, "
+                                  "coils, inputs, registers, limits, cpu, memory, supervision, "
+                                  "scanner, identification, diagnostics)",
+                            MODCP_EV_NONE);
+        }
+        return;
+    }
+    modcp_conf_loc_t first;
+    if (seen_before(px, section, name, &first)) {
+        char rule[64];
+        if (first.override != 0u) {
+            (void)snprintf(rule, sizeof rule, "key given twice (first by --set %lu)",
+                           (unsigned long)first.override);
+        } else {
+            (void)snprintf(rule, sizeof rule, "key given twice (first on line %lu)",
+                           (unsigned long)first.line);
+        }
+        add_key_problem(c, true, section, name, value, rule, MODCP_EV_NONE);
+        return;
+    }
+    const char *ov = override_of(px, section, name, &c->cur);
     if (ov != NULL) {
         value = ov;
     }
-    if (keys_of == NULL) {
-        if (strcmp(px->bad_section, section) != 0) {
-            copy_str(px->bad_section, sizeof px->bad_section, section);
-            add_key_problem(c, true, section, name, value,
-                            "unknown section (sections: serial, protocol, interface, coils, "
-                            "inputs, registers, limits, cpu, memory, supervision, scanner, "
-                            "identification, diagnostics)",
-                            MODCP_EV_NONE);
-        }
-        return 1;
-    }
-    if (seen_before(c, section, name)) {
-        add_key_problem(c, true, section, name, value, "key given twice", MODCP_EV_NONE);
-        return 1;
-    }
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
-        if (strcasecmp(keys[i].section, section) == 0 && strcasecmp(keys[i].key, name) == 0) {
+        if (keys[i].key[0] != '\0' && strcasecmp(keys[i].section, section) == 0 &&
+            strcasecmp(keys[i].key, name) == 0) {
             handle_table_key(c, &keys[i], section, name, value);
-            return 1;
+            return;
         }
     }
     if (strcasecmp(section, "coils") == 0 || strcasecmp(section, "inputs") == 0) {
         handle_window(c, strcasecmp(section, "coils") == 0, section, name, value);
-        return 1;
+        return;
     }
     if (strcasecmp(section, "registers") == 0) {
         static const char *const kinds[3] = {"int16", "int32", "float"};
         for (unsigned k = 0; k < 3u; k++) {
             if (strcasecmp(name, kinds[k]) == 0) {
                 handle_r32(c, k, section, name, value);
-                return 1;
+                return;
             }
         }
     } else if (strcasecmp(section, "limits") == 0) {
         handle_limit(c, section, name, value);
-        return 1;
+        return;
     } else if (strcasecmp(section, "cpu") == 0) {
         handle_cpu_tool(c, section, name, value);
-        return 1;
+        return;
     } else if (strcasecmp(section, "memory") == 0) {
         handle_memory(c, section, name, value);
-        return 1;
+        return;
     } else if (strcasecmp(section, "scanner") == 0 && strcasecmp(name, "entries") == 0) {
         handle_scanner_entries(c, section, name, value);
-        return 1;
+        return;
     }
-    char rule[300];
+    char rule[340];
     (void)snprintf(rule, sizeof rule, "unknown key (keys: %s)", keys_of);
     add_key_problem(c, true, section, name, value, rule, MODCP_EV_NONE);
-    return 1;
+    return;
 }
 
 /* ---- schema coverage ------------------------------------------------------------------ */
@@ -969,12 +1154,102 @@ size_t modcp_conf_uncovered(uint8_t *fields, size_t cap)
     return n;
 }
 
+/* ---- the parameter tables of docs/parameters.md ---------------------------------------- */
+
+static void doc_default(const modcp_params_t *d, const conf_key_t *k, char *out, size_t cap)
+{
+    const uint8_t *f = (const uint8_t *)d + k->off;
+    uint32_t v = 0;
+    if (k->width == 1u) {
+        v = *f;
+    } else if (k->width == 2u) {
+        uint16_t x;
+        memcpy(&x, f, sizeof x);
+        v = x;
+    } else if (k->width == 4u) {
+        memcpy(&v, f, sizeof v);
+    }
+    switch (k->syntax) {
+    case ENUM:
+        for (const enum_name_t *e = k->names; e->name != NULL; e++) {
+            if (e->value == v) {
+                copy_str(out, cap, e->name);
+                return;
+            }
+        }
+        break;
+    case BOOL: copy_str(out, cap, v != 0u ? "on" : "off"); return;
+    case STR: copy_str(out, cap, f[0] != 0u ? (const char *)f : "empty"); return;
+    default: break;
+    }
+    (void)snprintf(out, cap, "%lu", (unsigned long)v);
+}
+
+static void doc_event(const conf_key_t *k, char *out, size_t cap)
+{
+    uint32_t type_max = k->width == 1u ? 0xFFu : (k->width == 2u ? 0xFFFFu : 0xFFFFFFFFu);
+    if (k->min == 0u && k->max >= type_max && (k->flags & MODCP_PF_CUSTOM) == 0u) {
+        copy_str(out, cap, "—"); /* every value is legal */
+        return;
+    }
+    char en[16];
+    event_name(k->event, en, sizeof en);
+    (void)snprintf(out, cap, "%s%s", en, (k->flags & MODCP_PF_WARN) != 0u ? " (not fatal)" : "");
+}
+
+bool modcp_conf_write_doc_table(FILE *f)
+{
+    modcp_params_t d;
+    modcp_params_defaults(&d);
+    for (size_t i = 0; i < sizeof section_keys / sizeof section_keys[0]; i++) {
+        const char *sec = section_keys[i][0];
+        if (section_keys[i][1] != NULL) {
+            continue; /* coils, inputs, memory: their own syntax, described in prose */
+        }
+        fprintf(f, "[%s]\n| key | meaning | values | default | source | event |\n"
+                   "|---|---|---|---|---|---|\n",
+                sec);
+        for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++) {
+            const conf_key_t *key = &keys[k];
+            if (strcmp(key->section, sec) != 0 || key->key[0] == '\0') {
+                continue;
+            }
+            char def[40];
+            char ev[40];
+            doc_default(&d, key, def, sizeof def);
+            doc_event(key, ev, sizeof ev);
+            fprintf(f, "| `%s` | %s | %s | %s | %s | %s |\n", key->key, key->meaning, key->values,
+                    def, key->source, ev);
+        }
+        for (size_t k = 0; k < sizeof doc_rows / sizeof doc_rows[0]; k++) {
+            const doc_row_t *r = &doc_rows[k];
+            if (strcmp(r->section, sec) == 0) {
+                fprintf(f, "| `%s` | %s | %s | %s | %s | %s |\n", r->key, r->meaning, r->values,
+                        r->def, r->source, r->event);
+            }
+        }
+        for (size_t k = 0; strcmp(sec, "cpu") == 0 && k < sizeof cpu_tool_rows / sizeof cpu_tool_rows[0];
+             k++) {
+            const tool_row_t *r = &cpu_tool_rows[k];
+            char def[16] = "none";
+            if (r->def != UINT32_MAX) {
+                (void)snprintf(def, sizeof def, "%lu", (unsigned long)r->def);
+            }
+            fprintf(f, "| `%s` | %s | %s | %s | %s | %s |\n", r->key, r->meaning, r->values, def,
+                    r->source, r->event);
+        }
+        fprintf(f, "\n");
+    }
+    return ferror(f) == 0;
+}
+
 /* ---- validation issues -> problems ---------------------------------------------------------- */
 
 static const char *default_key(uint8_t field, unsigned index, const char **section)
 {
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
-        if (keys[i].field == field && (keys[i].index == index || keys[i].index == 0xFFu)) {
+        if (keys[i].field == field && keys[i].key[0] != '\0' &&
+            (keys[i].index == index || keys[i].index == 0xFFu)) {
             *section = keys[i].section;
             return keys[i].key;
         }
@@ -1002,7 +1277,7 @@ static void window_rule(const modcp_conf_t *c, const modcp_param_issue_t *is, ch
         if (is->value < (coils ? MODCP_COIL_WINDOWS : MODCP_INPUT_WINDOWS)) {
             other = coils ? c->coil_keys[is->value] : c->input_keys[is->value];
         }
-        (void)snprintf(rule, cap, "overlaps the window [%s] %s", coils ? "coils" : "inputs", other);
+        (void)snprintf(rule, cap, "overlaps the window %s.%s", coils ? "coils" : "inputs", other);
         return;
     }
     if (w->from > w->to) {
@@ -1037,11 +1312,11 @@ static void r32_rule(const modcp_conf_t *c, const modcp_param_issue_t *is, char 
         for (unsigned i = 0; i < is->index && i < 3u; i++) {
             const modcp_r32range_t *a = &c->params.r32[i];
             if (a->from <= r->to && r->from <= a->to) {
-                (void)snprintf(rule, cap, "overlaps the range [registers] %s", r32_keys[i]);
+                (void)snprintf(rule, cap, "overlaps the range registers.%s", r32_keys[i]);
                 return;
             }
             if (a->db == r->db) {
-                (void)snprintf(rule, cap, "uses the same DB as [registers] %s", r32_keys[i]);
+                (void)snprintf(rule, cap, "uses the same DB as registers.%s", r32_keys[i]);
                 return;
             }
         }
@@ -1057,8 +1332,10 @@ static void report_issue(modcp_conf_t *c, const modcp_param_issue_t *is)
     const char *key = "?";
     const char *value = "(default)";
     char valbuf[64];
+    modcp_conf_loc_t loc = {0u, 0u};
     if (is->field < MODCP_PF_COUNT && idx < MODCP_CONF_SRC_INDEX && c->src[is->field][idx].set) {
         const modcp_conf_src_t *s = &c->src[is->field][idx];
+        loc = s->loc;
         section = s->section;
         key = s->key;
         value = s->value;
@@ -1084,7 +1361,7 @@ static void report_issue(modcp_conf_t *c, const modcp_param_issue_t *is)
         break;
     default: copy_str(rule, sizeof rule, field_rule(is->field)); break;
     }
-    add_key_problem(c, is->fatal, section, key, value, rule, is->event);
+    add_key_problem_at(c, is->fatal, loc, section, key, value, rule, is->event);
 }
 
 /* ---- tool-level checks: [cpu] and [memory] against the controller ------------------------- */
@@ -1127,8 +1404,8 @@ static void check_memory(modcp_conf_t *c)
             ev = MODCP_EV_DB_ACCESS;
             if (db == NULL) {
                 char rule[96];
-                (void)snprintf(rule, sizeof rule, "DB%u is not in [cpu] dbs", (unsigned)op->db);
-                add_key_problem(c, true, "memory", in->key, in->value, rule, ev);
+                (void)snprintf(rule, sizeof rule, "DB%u is not in cpu.dbs", (unsigned)op->db);
+                add_key_problem_at(c, true, in->loc, "memory", in->key, in->value, rule, ev);
                 continue;
             }
             size = db->size;
@@ -1141,7 +1418,7 @@ static void check_memory(modcp_conf_t *c)
             char rule[128];
             (void)snprintf(rule, sizeof rule, "outside %s of %u %s", what, (unsigned)size,
                            is_tc(op->area) ? "elements" : "bytes");
-            add_key_problem(c, true, "memory", in->key, in->value, rule, ev);
+            add_key_problem_at(c, true, in->loc, "memory", in->key, in->value, rule, ev);
         }
     }
 }
@@ -1159,11 +1436,11 @@ static void window_warnings(modcp_conf_t *c, bool coils)
         uint32_t size;
         char what[48];
         switch (w->area) {
-        case MODCP_AREA_I: size = c->i_bytes; copy_str(what, sizeof what, "[cpu] i_bytes"); break;
-        case MODCP_AREA_Q: size = c->q_bytes; copy_str(what, sizeof what, "[cpu] q_bytes"); break;
-        case MODCP_AREA_M: size = c->m_bytes; copy_str(what, sizeof what, "[cpu] m_bytes"); break;
-        case MODCP_AREA_T: size = c->timers; copy_str(what, sizeof what, "[cpu] timers"); break;
-        case MODCP_AREA_C: size = c->counters; copy_str(what, sizeof what, "[cpu] counters"); break;
+        case MODCP_AREA_I: size = c->i_bytes; copy_str(what, sizeof what, "cpu.i_bytes"); break;
+        case MODCP_AREA_Q: size = c->q_bytes; copy_str(what, sizeof what, "cpu.q_bytes"); break;
+        case MODCP_AREA_M: size = c->m_bytes; copy_str(what, sizeof what, "cpu.m_bytes"); break;
+        case MODCP_AREA_T: size = c->timers; copy_str(what, sizeof what, "cpu.timers"); break;
+        case MODCP_AREA_C: size = c->counters; copy_str(what, sizeof what, "cpu.counters"); break;
         default: {
             const modcp_conf_db_t *db = conf_db(c, w->db);
             size = db != NULL ? db->size : 0u;
@@ -1178,35 +1455,83 @@ static void window_warnings(modcp_conf_t *c, bool coils)
                            "the window reaches %s %u but %s is %u: requests beyond get (0E)54H",
                            is_tc(w->area) ? "element" : "byte", (unsigned)last, what,
                            (unsigned)size);
-            add_key_problem(c, false, s->section, s->key, s->value, rule, MODCP_EV_NONE);
+            add_key_problem_at(c, false, s->loc, s->section, s->key, s->value, rule, MODCP_EV_NONE);
         }
+    }
+}
+
+/* The FB hands the record over as PARAMS blocks followed by one INIT block, at most
+ * MODCP_BP_DEPTH blocks per call (the ring is full until the CP drains it), and reads
+ * INIT_ACK at the earliest in the call after its last block: in call P after the
+ * CP_START edge, P = ceil(blocks / depth). It checks START_TIME in every call before
+ * that, at 1 .. P-1 cycles: START_TIME <= (P-1) cycles always ends in CP_START_ERROR
+ * with ERROR_INFO (00)00H (no answer yet). */
+static uint32_t init_cycles(const modcp_conf_t *c, uint32_t *blocks)
+{
+    uint8_t rec[MODCP_PARAMS_RECORD_MAX];
+    size_t len = modcp_params_encode(&c->params, rec, sizeof rec);
+    *blocks = (uint32_t)((len + MODCP_BLOCK_SIZE - 1u) / MODCP_BLOCK_SIZE) + 1u;
+    return (*blocks + MODCP_BP_DEPTH - 1u) / MODCP_BP_DEPTH;
+}
+
+static void check_start_time(modcp_conf_t *c)
+{
+    uint32_t blocks = 0;
+    uint32_t calls = init_cycles(c, &blocks);
+    uint32_t min = (calls - 1u) * c->cycle_ms; /* START_TIME must be above this */
+    if (c->params.start_time_ms > min) {
+        return;
+    }
+    char rule[320];
+    (void)snprintf(rule, sizeof rule,
+                   "must be more than %lu ms (%lu x cycle_ms %lu): the FB sends the record and "
+                   "INIT as %lu blocks, %u per cycle, and sees the CP's answer at the earliest "
+                   "%lu cycles after CP_START; a shorter START_TIME always ends in "
+                   "CP_START_ERROR (ERROR_NR 2, ERROR_INFO (00)00H)",
+                   (unsigned long)min, (unsigned long)(calls - 1u), (unsigned long)c->cycle_ms,
+                   (unsigned long)blocks, (unsigned)MODCP_BP_DEPTH, (unsigned long)calls);
+    const modcp_conf_src_t *s = &c->src[MODCP_PF_START_TIME][0];
+    if (s->set || !c->cycle_src.set) {
+        char value[32];
+        (void)snprintf(value, sizeof value, "%u (default)", (unsigned)c->params.start_time_ms);
+        add_key_problem_at(c, true, s->loc, "cpu", "start_time_ms", s->set ? s->value : value,
+                           rule, MODCP_EV_NONE);
+    } else { /* the default START_TIME and a long cycle: the cycle is the key to fix */
+        char crule[160];
+        (void)snprintf(crule, sizeof crule,
+                       "must be less than start_time_ms %u (default) / %lu: the FB's "
+                       "initialisation takes %lu cycles",
+                       (unsigned)c->params.start_time_ms, (unsigned long)(calls - 1u),
+                       (unsigned long)calls);
+        add_key_problem_at(c, true, c->cycle_src.loc, c->cycle_src.section, c->cycle_src.key,
+                           c->cycle_src.value, crule, MODCP_EV_NONE);
     }
 }
 
 static void check_cpu(modcp_conf_t *c)
 {
     if (c->work_db != 0u && conf_db(c, c->work_db) == NULL) {
-        char value[16];
-        (void)snprintf(value, sizeof value, "%u", (unsigned)c->work_db);
+        const modcp_conf_src_t *s = &c->work_db_src;
         char rule[96];
-        (void)snprintf(rule, sizeof rule, "DB%u is not in [cpu] dbs", (unsigned)c->work_db);
-        add_key_problem(c, true, "cpu", "work_db", value, rule, MODCP_EV_WORK_DB);
+        (void)snprintf(rule, sizeof rule, "DB%u is not in cpu.dbs", (unsigned)c->work_db);
+        add_key_problem_at(c, true, s->loc, s->section, s->key, s->value, rule, MODCP_EV_WORK_DB);
     }
     window_warnings(c, true);
     window_warnings(c, false);
     const uint16_t bases[2] = {c->params.hr_base_db, c->params.ir_base_db};
-    const char *names[2] = {"holding_base_db", "input_base_db"};
+    const modcp_conf_src_t *srcs[2] = {&c->src[MODCP_PF_HR_BASE][0], &c->src[MODCP_PF_IR_BASE][0]};
     for (unsigned k = 0; k < 2u; k++) {
         if (bases[k] != 0u && conf_db(c, bases[k]) == NULL) {
-            char value[16];
-            (void)snprintf(value, sizeof value, "%u", (unsigned)bases[k]);
+            const modcp_conf_src_t *s = srcs[k];
             char rule[128];
             (void)snprintf(rule, sizeof rule,
-                           "DB%u is not in [cpu] dbs: its registers get exception 04 ((0E)39H)",
+                           "DB%u is not in cpu.dbs: its registers get exception 04 ((0E)39H)",
                            (unsigned)bases[k]);
-            add_key_problem(c, false, "registers", names[k], value, rule, MODCP_EV_NONE);
+            add_key_problem_at(c, false, s->loc, s->section, s->key, s->value, rule,
+                               MODCP_EV_NONE);
         }
     }
+    check_start_time(c);
 }
 
 /* ---- loading ------------------------------------------------------------------------------------ */
@@ -1224,12 +1549,140 @@ static void conf_reset(modcp_conf_t *c, const char *name)
     c->cycle_ms = DEF_CYCLE_MS;
 }
 
-static size_t finish(modcp_conf_t *c, int rc)
+/* ---- reading -------------------------------------------------------------------------------------
+ * The INI dialect of libinih, read whole: a line of any length is one line (libinih
+ * splits lines at 200 characters, so a long comment hid the key after it and shifted
+ * every later line number). "[section]", "key = value" (or "key: value"), comment lines
+ * starting with ';' or '#', an inline comment from a ';' after white space. Names and
+ * values are trimmed. Unlike libinih, an indented line is an ordinary line (not the
+ * continuation of the previous value), and text after "[section]" is a syntax error. */
+
+static char *lskip(char *s)
 {
-    if (rc > 0) {
-        add_problem(c, true, "line %d: syntax error (expected [section] or key = value; lines "
-                             "are at most 199 characters)",
-                    rc);
+    while (*s != '\0' && isspace((unsigned char)*s)) {
+        s++;
+    }
+    return s;
+}
+
+static void rstrip(char *s)
+{
+    size_t n = strlen(s);
+    while (n > 0u && isspace((unsigned char)s[n - 1u])) {
+        s[--n] = '\0';
+    }
+}
+
+/* First of chars (NULL: none) or of an inline comment (';' after white space). */
+static char *find_chars_or_comment(char *s, const char *chars)
+{
+    bool was_space = false;
+    while (*s != '\0' && (chars == NULL || strchr(chars, *s) == NULL) &&
+           !(was_space && *s == ';')) {
+        was_space = isspace((unsigned char)*s) != 0;
+        s++;
+    }
+    return s;
+}
+
+static void syntax_error(parse_ctx_t *px, const char *what, const char *line)
+{
+    char shown[84];
+    size_t n = strlen(line);
+    if (n < sizeof shown) {
+        memcpy(shown, line, n + 1u);
+    } else {
+        memcpy(shown, line, sizeof shown - 4u);
+        memcpy(shown + sizeof shown - 4u, "...", 4u);
+    }
+    add_problem(px->c, true, px->c->cur, "syntax error: %s: '%s'", what, shown);
+}
+
+static void parse_line(parse_ctx_t *px, char *line)
+{
+    rstrip(line);
+    char *s = lskip(line);
+    if (*s == '\0' || *s == ';' || *s == '#') {
+        return;
+    }
+    if (*s == '[') {
+        char *end = find_chars_or_comment(s + 1, "]");
+        if (*end != ']') {
+            syntax_error(px, "expected ']'", s);
+            return;
+        }
+        char *rest = lskip(end + 1);
+        if (*rest != '\0' && *rest != ';' && *rest != '#') {
+            syntax_error(px, "text after [section]", s);
+            return;
+        }
+        *end = '\0';
+        char *name = lskip(s + 1);
+        rstrip(name);
+        char *dup = strdup(name);
+        if (dup == NULL) {
+            px->oom = true;
+            return;
+        }
+        free(px->section);
+        px->section = dup;
+        return;
+    }
+    char *end = find_chars_or_comment(s, "=:");
+    if (*end != '=' && *end != ':') {
+        syntax_error(px, "expected [section] or key = value", s);
+        return;
+    }
+    *end = '\0';
+    rstrip(s);
+    if (*s == '\0') {
+        *end = '=';
+        syntax_error(px, "no key before '='", s);
+        return;
+    }
+    char *value = lskip(end + 1);
+    *find_chars_or_comment(value, NULL) = '\0';
+    rstrip(value);
+    on_ini_line(px, px->section != NULL ? px->section : "", s, value);
+}
+
+/* Every line of text[0 .. len), with its number. */
+static void parse_text(parse_ctx_t *px, const char *text, size_t len)
+{
+    size_t pos = 0;
+    uint32_t lineno = 0;
+    if (len >= 3u && memcmp(text, "\xEF\xBB\xBF", 3u) == 0) {
+        pos = 3u; /* UTF-8 byte order mark */
+    }
+    while (pos < len && !px->oom) {
+        const char *nl = memchr(text + pos, '\n', len - pos);
+        size_t n = nl != NULL ? (size_t)(nl - (text + pos)) : len - pos;
+        lineno++;
+        px->c->cur.line = lineno;
+        px->c->cur.override = 0u;
+        if (memchr(text + pos, '\0', n) != NULL) {
+            add_problem(px->c, true, px->c->cur, "syntax error: a NUL byte in the line");
+        } else {
+            char *line = dup_n(text + pos, n);
+            if (line == NULL) {
+                px->oom = true;
+                break;
+            }
+            parse_line(px, line);
+            free(line);
+        }
+        pos += n + 1u;
+    }
+}
+
+static size_t finish(modcp_conf_t *c, parse_ctx_t *px)
+{
+    apply_unused_overrides(px);
+    bool oom = px->oom;
+    ctx_free(px);
+    if (oom) {
+        modcp_conf_loc_t none = {0u, 0u};
+        add_problem(c, true, none, "out of memory");
     }
     modcp_param_issue_t issues[64];
     size_t n = modcp_params_validate(&c->params, issues, 64);
@@ -1241,32 +1694,75 @@ static size_t finish(modcp_conf_t *c, int rc)
     return c->fatal_count;
 }
 
+/* The whole file, NUL-terminated (heap), or NULL. */
+static char *read_file(FILE *f, size_t *len)
+{
+    size_t cap = 0;
+    size_t n = 0;
+    char *buf = NULL;
+    for (;;) {
+        if (n + 1u >= cap) {
+            size_t ncap = cap == 0u ? 4096u : cap * 2u;
+            char *b = realloc(buf, ncap);
+            if (b == NULL) {
+                free(buf);
+                return NULL;
+            }
+            buf = b;
+            cap = ncap;
+        }
+        size_t got = fread(buf + n, 1, cap - n - 1u, f);
+        n += got;
+        if (got == 0u) {
+            if (ferror(f)) {
+                free(buf);
+                return NULL;
+            }
+            buf[n] = '\0';
+            *len = n;
+            return buf;
+        }
+    }
+}
+
 size_t modcp_conf_load_ex(modcp_conf_t *c, const char *path, const char *const *overrides,
                           size_t n_overrides)
 {
     conf_reset(c, path);
+    modcp_conf_loc_t none = {0u, 0u};
     parse_ctx_t *px = calloc(1, sizeof *px);
     if (px == NULL) {
-        add_problem(c, true, "out of memory");
+        add_problem(c, true, none, "out of memory");
         return c->fatal_count;
     }
     px->c = c;
     for (size_t i = 0; i < n_overrides; i++) {
-        if (!add_override(px, overrides[i])) {
-            add_problem(c, true, "bad override '%s' (expected section.key=value)", overrides[i]);
+        if (!add_override(px, overrides[i], (uint32_t)i + 1u)) {
+            modcp_conf_loc_t at = {0u, (uint32_t)i + 1u};
+            add_problem(c, true, at, "%s: expected section.key=value (at most %u)", overrides[i],
+                        (unsigned)MAX_OVERRIDES);
         }
     }
-    FILE *f = fopen(path, "r");
-    if (f == NULL) {
-        add_problem(c, true, "cannot open the file");
+    FILE *f = fopen(path, "rb");
+    size_t len = 0;
+    char *text = NULL;
+    int err = errno;
+    if (f != NULL) {
+        text = read_file(f, &len);
+        err = errno;
+        fclose(f);
+    }
+    if (text == NULL) {
+        add_problem(c, true, none, "cannot read the file (%s)", strerror(err));
+        ctx_free(px);
         free(px);
         return c->fatal_count;
     }
-    int rc = ini_parse_file(f, on_ini_line, px);
-    fclose(f);
-    apply_unused_overrides(px);
+    parse_text(px, text, len);
+    free(text);
+    size_t fatal = finish(c, px);
     free(px);
-    return finish(c, rc);
+    return fatal;
 }
 
 size_t modcp_conf_load(modcp_conf_t *c, const char *path)
@@ -1280,8 +1776,8 @@ size_t modcp_conf_load_string(modcp_conf_t *c, const char *name, const char *tex
     parse_ctx_t px;
     memset(&px, 0, sizeof px);
     px.c = c;
-    int rc = ini_parse_string(text, on_ini_line, &px);
-    return finish(c, rc);
+    parse_text(&px, text, strlen(text));
+    return finish(c, &px);
 }
 
 size_t modcp_conf_record(const modcp_conf_t *c, uint8_t *buf, size_t cap)

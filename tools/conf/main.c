@@ -5,9 +5,10 @@
  *   modcp-conf c FILE -o OUT.c         C source for firmware images (modcp/cfg_gen.h)
  *   ... --set section.key=value        override / add a key (repeatable)
  *   modcp-conf fields                  self-check: every parameter field has an INI key
+ *   modcp-conf doc-table               the parameter tables of docs/parameters.md
  *
  * Problems go to stderr, one per line:
- *   FILE: [section] key = value: rule (event (0E)23H)
+ *   FILE:LINE: section.key = value: rule (event (0E)23H)
  * Warnings (the CP corrects the value, e.g. f_mul -> 1) are listed but do not fail.
  * Exit codes: 0 ok, 1 usage or I/O error, 2 configuration problems. */
 #define _POSIX_C_SOURCE 200809L
@@ -22,7 +23,8 @@ static int usage(void)
     fprintf(stderr, "usage: modcp-conf check FILE [--set section.key=value]...\n"
                     "       modcp-conf build FILE -o OUT.bin [--set section.key=value]...\n"
                     "       modcp-conf c FILE -o OUT.c [--set section.key=value]...\n"
-                    "       modcp-conf fields\n");
+                    "       modcp-conf fields\n"
+                    "       modcp-conf doc-table\n");
     return 1;
 }
 
@@ -50,6 +52,9 @@ int main(int argc, char **argv)
             printf("every parameter field has an INI key\n");
         }
         return n == 0u ? 0 : 2;
+    }
+    if (argc == 2 && strcmp(argv[1], "doc-table") == 0) {
+        return modcp_conf_write_doc_table(stdout) ? 0 : 1;
     }
     if (argc < 3) {
         return usage();

@@ -1,6 +1,7 @@
-/* modcp — INI configuration (libinih) -> parameter record + controller memory.
+/* modcp — INI configuration -> parameter record + controller memory.
  * Shared by modcp-conf and modcp-sim (host tools; may use POSIX and the heap).
- * Schema: docs/parameters.md. */
+ * Schema: docs/parameters.md. Lines are read whole, whatever their length; every
+ * key is checked for duplicates, whatever the number of keys. */
 #ifndef MODCP_CONF_H
 #define MODCP_CONF_H
 
@@ -17,8 +18,7 @@
 #define MODCP_CONF_MAX_INITS 256
 #define MODCP_CONF_MAX_VALUES 8192
 #define MODCP_CONF_MAX_PROBLEMS 64
-#define MODCP_CONF_PROBLEM_LEN 384
-#define MODCP_CONF_MAX_SEEN 256
+#define MODCP_CONF_PROBLEM_LEN 640
 #define MODCP_CONF_SRC_INDEX 17 /* per field: 16 indexed entries + index 0xFF */
 
 typedef struct {
@@ -26,8 +26,16 @@ typedef struct {
     uint16_t size;
 } modcp_conf_db_t;
 
+/* Where a value came from: a line of the file (override 0), or the N-th --set
+ * override (override N, line 0). line 0 and override 0: a default. */
+typedef struct {
+    uint32_t line;
+    uint32_t override;
+} modcp_conf_loc_t;
+
 /* One [memory] line: consecutive elements from op on. */
 typedef struct {
+    modcp_conf_loc_t loc;
     modcp_s7op_t op;
     uint16_t count;
     uint32_t first; /* index into values[] */
@@ -38,6 +46,7 @@ typedef struct {
 /* Where a parameter came from (for messages). */
 typedef struct {
     bool set;
+    modcp_conf_loc_t loc;
     char section[24];
     char key[40];
     char value[160];
@@ -67,9 +76,9 @@ typedef struct {
     size_t problem_count; /* may exceed MODCP_CONF_MAX_PROBLEMS (then not all stored) */
     size_t fatal_count;
     /* parse state */
+    modcp_conf_loc_t cur; /* the line being read */
     modcp_conf_src_t src[MODCP_PF_COUNT][MODCP_CONF_SRC_INDEX];
-    char seen[MODCP_CONF_MAX_SEEN][64];
-    size_t seen_count;
+    modcp_conf_src_t work_db_src, cycle_src; /* [cpu] keys checked after reading */
     uint8_t coil_count, input_count;
     char coil_keys[MODCP_COIL_WINDOWS][16];
     char input_keys[MODCP_INPUT_WINDOWS][16];
@@ -77,8 +86,11 @@ typedef struct {
 
 /* Load and validate a file (or a string, for tests). Returns the number of fatal
  * problems (0 = usable; warnings may still be listed). Problems are formatted
- *   NAME: [section] key = value: rule (event (0E)23H)
- *   NAME: [protocol] f_mul = 11: must be 1..10; the CP runs with 1 (warning, event (0E)21H) */
+ *   NAME:LINE: section.key = value: rule (event (0E)23H)
+ *   NAME:LINE: protocol.f_mul = 11: must be 1..10; the CP runs with 1 (warning, event (0E)21H)
+ *   NAME:LINE: syntax error: ...
+ * A value given by the N-th override is reported as "--set:N: section.key = value: ...";
+ * a default value that breaks a rule as "NAME:0: section.key = value (default): ...". */
 size_t modcp_conf_load(modcp_conf_t *c, const char *path);
 /* The same with overrides "section.key=value" that replace (or add) keys of the file,
  * e.g. "serial.baud=115200" (modcp-sim --set). */
@@ -104,6 +116,12 @@ bool modcp_conf_write_c(const modcp_conf_t *c, FILE *f);
 /* Parameter fields (modcp_param_field_t) without an INI key: should be none. Returns
  * how many, their ids in fields[0 .. cap). (`modcp-conf fields` prints them.) */
 size_t modcp_conf_uncovered(uint8_t *fields, size_t cap);
+
+/* The parameter tables of docs/parameters.md, rendered from the parameter rows
+ * (params_fields.h): per section "[section]", the markdown table, an empty line.
+ * (`modcp-conf doc-table` prints them; the integration.conf test compares them with the
+ * document.) Returns false on a write error. */
+bool modcp_conf_write_doc_table(FILE *f);
 
 /* "9600 8E1 RTU" */
 void modcp_conf_line_settings(const modcp_params_t *p, char *out, size_t cap);

@@ -4,7 +4,10 @@
  * to the CP, what modcp-conf writes) is a portable little-endian serialisation of it:
  *   "MCPR" magic, u16 version, u16 payload length, payload, u16 CRC-16 (Modbus CRC
  *   over everything before it).
- * Validation returns one issue per bad field with the manual's event number. */
+ * Validation returns one issue per bad field with the manual's event number.
+ * The record's fields, widths, order, defaults, ranges and events are described once, as
+ * the rows of firmware/src/params_fields.h (params.c, params_record.c, tools/conf and the
+ * tables of docs/parameters.md come from them). */
 #ifndef MODCP_PARAMS_H
 #define MODCP_PARAMS_H
 

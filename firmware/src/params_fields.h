@@ -1,0 +1,245 @@
+/* modcp — the parameter record described once (X-macros).
+ *
+ * Everything about a parameter is in one row here: its place in the record (the order of
+ * the rows is the order of the binary record and of validation), its width, default,
+ * legal range, the event and whether it is fatal, its INI section and key, the message
+ * of a bad value, and its line in the table of docs/parameters.md. The core expands the
+ * rows into the const tables of params.c / params_record.c (no strings: the text
+ * columns cost no flash); tools/conf expands them into its key table and renders the
+ * documentation table (`modcp-conf doc-table`, compared with docs/parameters.md by the
+ * integration.conf test).
+ *
+ * MODCP_PARAM_ROWS(S, G, M) in record order:
+ *   S(member, width, field, index, min, max, def, event, flags,
+ *     section, key, syntax, names, rule, meaning, values, source)
+ *       a scalar: width 1, 2 or 4 bytes (little-endian in the record), or
+ *       MODCP_PW_STR: an ID string, 16 bytes (NUL-padded; the decoder terminates it).
+ *       Legal: min <= v <= max, or 0 with MODCP_PF_ZERO_OK; MODCP_PF_CUSTOM: a further rule
+ *       in params.c (named in the comment of the row). MODCP_PF_WARN: not fatal, the CP
+ *       runs with the default. key "" = no INI key (derived from another key).
+ *       syntax: NUM (number), ENUM (one of names), BOOL (on/off), STR (text).
+ *   G(member, count, type, members, field)
+ *       count consecutive structs from member on, each encoded as the members rows
+ *       that follow (window by window); validated by its own function in params.c.
+ *   M(type, member, width, count)   a member of the group above (count = the group's)
+ * The composite keys ([coils], [inputs], [registers] ranges, [limits], [scanner]
+ * entries) and the tool's own [cpu] keys are documented by MODCP_PARAM_DOC_ROWS(D). */
+#ifndef MODCP_PARAMS_FIELDS_H
+#define MODCP_PARAMS_FIELDS_H
+
+#include "modcp/features.h"
+#include "modcp/params.h"
+
+#define MODCP_PW_STR 16u /* width of an ID string in the record */
+
+enum {
+    MODCP_PF_ZERO_OK = 0x01, /* 0 is legal besides min .. max ("0 = off") */
+    MODCP_PF_WARN = 0x02,    /* not fatal: the CP runs with the default */
+    MODCP_PF_CUSTOM = 0x04,  /* a further rule in params.c */
+};
+
+/* The rows as the core keeps them (params.c), 12 bytes each:
+ *   S: field != 0; wf = width | flags << 5 (width 1, 2, 4 or MODCP_PW_STR); off into
+ *      modcp_params_t.
+ *   G: wf = 0; index = count, min = size of one struct, event = number of members,
+ *      which are the next entries of modcp_param_members[] (off into the struct, width). */
+typedef struct {
+    uint16_t off;
+    uint16_t min;
+    uint16_t max;
+    uint16_t def;
+    uint8_t field;
+    uint8_t event; /* event number, class 0EH */
+    uint8_t wf;
+    uint8_t index;
+} modcp_param_row_t;
+
+typedef struct {
+    uint8_t off;
+    uint8_t width;
+} modcp_param_member_t;
+
+#define MODCP_PARAM_WIDTH(r) ((uint8_t)((r)->wf & 0x1Fu))
+#define MODCP_PARAM_FLAGS(r) ((uint8_t)((r)->wf >> 5))
+
+extern const modcp_param_row_t modcp_param_rows[];
+extern const uint8_t modcp_param_row_count;
+extern const modcp_param_member_t modcp_param_members[];
+
+#define MODCP_PARAM_ROWS(S, G, M)                                                                 \
+    S(baud, 4, MODCP_PF_BAUD, 0, 300, 115200, 9600, MODCP_EV_PARAM_RECORD, MODCP_PF_CUSTOM,        \
+      "serial", "baud", NUM, none,                                                                \
+      "must be one of 300, 600, 1200, 2400, 4800, 9600, 19200, 38400, 57600, 76800, 115200",      \
+      "transmission rate, bit/s", /* custom: one of the table */                                  \
+      "300, 600, 1200, 2400, 4800, 9600, 19200, 38400, 57600, 76800, 115200",                     \
+      "004 §2.1, 000 §2.1")                                                                       \
+    S(data_bits, 1, MODCP_PF_DATA_BITS, 0, 7, 8, 8, MODCP_EV_DATA_BITS, MODCP_PF_CUSTOM,          \
+      "serial", "data_bits", NUM, none, "must be 8 for RTU, 7 or 8 for ASCII",                    \
+      "data bits per character", /* custom: 8 for RTU */                                          \
+      "RTU: 8; ASCII: 7 (8 allowed)", "004 §2.1, 003")                                            \
+    S(parity, 1, MODCP_PF_PARITY, 0, 0, 2, MODCP_PARITY_EVEN, MODCP_EV_PARAM_RECORD, 0, "serial",  \
+      "parity", ENUM, parity, "must be none, odd or even", "parity bit",                          \
+      "`none`, `odd`, `even` (`n`, `o`, `e`)", "004 §2.1")                                        \
+    S(stop_bits, 1, MODCP_PF_STOP_BITS, 0, 1, 2, 1, MODCP_EV_PARAM_RECORD, 0, "serial",           \
+      "stop_bits", NUM, none, "must be 1 or 2", "stop bits", "1, 2", "004 §2.1")                  \
+    S(slave_addr, 1, MODCP_PF_SLAVE_ADDR, 0, 1, 255, 222, MODCP_EV_SLAVE_ADDR, 0, "protocol",     \
+      "slave_address", NUM, none, "must be 1..255",                                               \
+      "the CP's own Modbus address; frames for other addresses are not checked and not "         \
+      "answered; 0 is broadcast. The default is the manuals' 222; their examples use 5",          \
+      "1 … 255", "004 §2.2")                                                                      \
+    S(framing, 1, MODCP_PF_FRAMING, 0, 0, MODCP_WITH_ASCII, MODCP_FRAMING_RTU,                    \
+      MODCP_EV_PARAM_RECORD, 0, "protocol", "framing", ENUM, framing, "must be rtu or ascii",     \
+      "RTU (binary, CRC-16) or ASCII (`:` hex LRC CR LF)", "`rtu`, `ascii`", "003")               \
+    S(opmode, 1, MODCP_PF_OPMODE, 0, 0, 1, MODCP_OPMODE_NORMAL, MODCP_EV_OPMODE, 0, "protocol",   \
+      "mode", ENUM, mode, "must be normal or suppress (interference suppression)",                \
+      "operating mode: `normal` reports every character error and BREAK; `suppress` "           \
+      "(interference suppression) silently discards a frame with an error, starts a frame at "   \
+      "the own address and ignores errors after the CRC",                                        \
+      "`normal`, `suppress` (`interference_suppression`)", "004 §2.2")                            \
+    S(f_mul, 1, MODCP_PF_FMUL, 0, 1, 10, 1, MODCP_EV_FMUL, MODCP_PF_WARN, "protocol", "f_mul",    \
+      NUM, none, "must be 1..10; the CP runs with 1",                                             \
+      "character delay multiplier: end of frame = TIME_OUT(baud) × f_MUL",                        \
+      "1 … 10 (outside: warning, the CP runs with 1)", "004 §2.2, §5.3")                          \
+    S(eof_timing, 1, MODCP_PF_EOF_TIMING, 0, 0, 1, MODCP_EOF_MANUAL, MODCP_EV_PARAM_RECORD, 0,    \
+      "protocol", "eof_timing", ENUM, eof, "must be manual or modbus",                            \
+      "end-of-frame rule: `manual` = the table of 004 §5.3 × f_MUL (76800: 0.5 ms … 300: 128 "   \
+      "ms; 57600, 115200 by 3.5 × 11 bits); `modbus` = Modbus serial line (3.5 characters, "     \
+      "1750 µs above 19200)",                                                                     \
+      "`manual`, `modbus`", "004 §5.3, SPEC §2")                                                  \
+    S(t15_check, 1, MODCP_PF_T15_CHECK, 0, 0, 1, 0, MODCP_EV_PARAM_RECORD, 0, "protocol",         \
+      "t15_check", BOOL, none, "must be on or off",                                               \
+      "Modbus t1.5 check: a gap longer than 1.5 characters inside a frame discards it "          \
+      "((08)06H)",                                                                                \
+      "`on`, `off`", "SPEC §2")                                                                   \
+    S(ascii_timeout_ms, 2, MODCP_PF_ASCII_TIMEOUT, 0, 1, 6500, 1000, MODCP_EV_FMUL,               \
+      MODCP_PF_WARN, "protocol", "ascii_timeout_ms", NUM, none,                                   \
+      "must be 1..6500 ms; the CP runs with 1000 ms", "ASCII inter-character timeout",            \
+      "1 … 6500 (outside: warning, the CP runs with 1000)", "003")                                \
+    S(iface, 1, MODCP_PF_IFACE, 0, 0, 2, MODCP_IFACE_RS232, MODCP_EV_PARAM_RECORD, 0,             \
+      "interface", "type", ENUM, iface, "must be rs232, rs422 or rs485",                          \
+      "physical interface; `rs485` = two-wire half duplex with direction switching (behaves "    \
+      "like interference suppression)",                                                           \
+      "`rs232`, `rs422`, `rs485`", "004 §2.3")                                                    \
+    S(turnaround_ms, 2, MODCP_PF_TURNAROUND, 0, 0, 100, 0, MODCP_EV_PARAM_RECORD, 0,              \
+      "interface", "turnaround_ms", NUM, none, "must be 0..100 ms",                               \
+      "RS485: delay between the end of the request and enabling the transmitter", "0 … 100",     \
+      "SPEC §3.1")                                                                                \
+    S(rs232_auto, 1, MODCP_PF_RS232_AUTO, 0, 0, MODCP_WITH_RS232_SIGNALS, 0,                      \
+      MODCP_EV_PARAM_RECORD, MODCP_PF_CUSTOM, "interface", "rs232_auto", BOOL, none,              \
+      "must be on or off, and on only with interface.type = rs232",                              \
+      "RS232 automatic secondary signals (RTS/CTS/DTR/DSR)", /* custom: RS232 only */            \
+      "`on`, `off`; on only with `type = rs232`", "004 §2.4, 001")                                \
+    S(rts_on_delay_ms, 2, MODCP_PF_RTS_ON_DELAY, 0, 0, 65535, 0, MODCP_EV_PARAM_RECORD, 0,        \
+      "interface", "rts_on_delay_ms", NUM, none, "must be 0..65535 ms",                           \
+      "data output waiting time: RTS on → CTS expected", "0 … 65535", "004 §2.4")                 \
+    S(rts_off_delay_ms, 2, MODCP_PF_RTS_OFF_DELAY, 0, 0, 65535, 0, MODCP_EV_PARAM_RECORD, 0,      \
+      "interface", "rts_off_delay_ms", NUM, none, "must be 0..65535 ms",                          \
+      "time to RTS off after the last character", "0 … 65535", "004 §2.4")                        \
+    G(coils, MODCP_COIL_WINDOWS, modcp_bitwin_t, 5, MODCP_PF_COILS)                               \
+    M(modcp_bitwin_t, area, 1, MODCP_COIL_WINDOWS)                                                \
+    M(modcp_bitwin_t, from, 2, MODCP_COIL_WINDOWS)                                                \
+    M(modcp_bitwin_t, to, 2, MODCP_COIL_WINDOWS)                                                  \
+    M(modcp_bitwin_t, start, 2, MODCP_COIL_WINDOWS)                                               \
+    M(modcp_bitwin_t, db, 2, MODCP_COIL_WINDOWS)                                                  \
+    G(inputs, MODCP_INPUT_WINDOWS, modcp_bitwin_t, 5, MODCP_PF_INPUTS)                            \
+    M(modcp_bitwin_t, area, 1, MODCP_INPUT_WINDOWS)                                               \
+    M(modcp_bitwin_t, from, 2, MODCP_INPUT_WINDOWS)                                               \
+    M(modcp_bitwin_t, to, 2, MODCP_INPUT_WINDOWS)                                                 \
+    M(modcp_bitwin_t, start, 2, MODCP_INPUT_WINDOWS)                                              \
+    M(modcp_bitwin_t, db, 2, MODCP_INPUT_WINDOWS)                                                 \
+    S(hr_base_db, 2, MODCP_PF_HR_BASE, 0, 0, 65535, 0, MODCP_EV_PARAM_RECORD, 0, "registers",     \
+      "holding_base_db", NUM, none, "must be a DB number 1..65535 (0: not configured)",           \
+      "base DB of FC03/06/16", "1 … 65535 (0 = no holding registers)", "004 §3.4")                \
+    S(ir_base_db, 2, MODCP_PF_IR_BASE, 0, 0, 65535, 0, MODCP_EV_PARAM_RECORD, 0, "registers",     \
+      "input_base_db", NUM, none, "must be a DB number 1..65535 (0: not configured)",             \
+      "base DB of FC04 (read-only)", "1 … 65535 (0 = none)", "004 §3.4")                          \
+    S(regs32, 1, MODCP_PF_REGS32, 0, 0, 1, 0, MODCP_EV_PARAM_RECORD, 0, "registers",              \
+      "with_32bit_registers", BOOL, none, "must be on or off",                                    \
+      "FC03/06/16 use the three ranges below instead of the DB scheme", "`on`, `off`",           \
+      "003 §4.5")                                                                                 \
+    G(r32, 3, modcp_r32range_t, 3, MODCP_PF_R32)                                                  \
+    M(modcp_r32range_t, from, 2, 3)                                                               \
+    M(modcp_r32range_t, to, 2, 3)                                                                 \
+    M(modcp_r32range_t, db, 2, 3)                                                                 \
+    G(lim_db, 3, modcp_limit_t, 2, MODCP_PF_LIM_DB) /* lim_db, lim_m, lim_q */                    \
+    M(modcp_limit_t, min, 2, 3)                                                                   \
+    M(modcp_limit_t, max, 2, 3)                                                                   \
+    S(fset, 1, MODCP_PF_FSET, 0, 0, MODCP_WITH_EXTENDED, MODCP_WITH_EXTENDED,                     \
+      MODCP_EV_PARAM_RECORD, 0, "protocol", "function_set", ENUM, fset,                           \
+      "must be cp341 or extended",                                                                \
+      "`cp341` = exactly FC 01–06, 08 sub 0, 15, 16; `extended` adds FC08 diagnostics, 11, 12, " \
+      "17, 22, 23, 43/14, the scanner",                                                           \
+      "`cp341`, `extended`", "SPEC §5")                                                           \
+    S(cpu_model, 1, MODCP_PF_CPU_MODEL, 0, 0, 1, MODCP_CPU_CP341, MODCP_EV_PARAM_RECORD, 0,       \
+      "cpu", "model", ENUM, model, "must be cp341 or cp441",                                      \
+      "CPU transfer limit per job: `cp341` 1024 bytes, `cp441` 450 bytes", "`cp341`, `cp441`",   \
+      "004 §4.4, §4.5")                                                                           \
+    S(job_limit, 2, MODCP_PF_JOB_LIMIT, 0, 32, 1024, 0, MODCP_EV_PARAM_RECORD,                    \
+      MODCP_PF_ZERO_OK | MODCP_PF_CUSTOM, "cpu", "job_limit", NUM, none,                          \
+      "must be 0 (the model's limit) or 32..1024 bytes (cp341) / 32..450 (cp441)",                \
+      "bytes per CPU job; 0 = the model's limit", /* custom: the model's limit */                \
+      "0, or 32 … 1024 (cp341) / 450 (cp441)", "SPEC §6")                                         \
+    S(cpu_timeout_ms, 2, MODCP_PF_CPU_TIMEOUT, 0, 1, 65535, 1000, MODCP_EV_PARAM_RECORD, 0,       \
+      "cpu", "timeout_ms", NUM, none, "must be 1..65535 ms",                                      \
+      "CPU job timeout: exception 04 with (0E)31H (read / register write) or (0E)3BH "           \
+      "(FC05/15)",                                                                                \
+      "1 … 65535", "004 §4.3")                                                                    \
+    S(start_time_ms, 2, MODCP_PF_START_TIME, 0, 1, 65535, 5000, MODCP_EV_PARAM_RECORD, 0, "cpu",  \
+      "start_time_ms", NUM, none, "must be 1..65535 ms",                                          \
+      "FB init time START_TIME (CP_START_ERROR after it); `modcp-conf` also refuses "            \
+      "(P − 1) × `cycle_ms` or less, see below",                                                  \
+      "1 … 65535", "004 §4.1")                                                                    \
+    S(commloss_ms, 2, MODCP_PF_COMMLOSS, 0, 100, MODCP_WITH_EXTENDED ? 30000 : 0, 0,              \
+      MODCP_EV_PARAM_RECORD, MODCP_PF_ZERO_OK, "supervision", "commloss_ms", NUM, none,           \
+      "must be 0 (off) or 100..30000 ms",                                                         \
+      "comm-loss supervision: no valid request for our address within this time (armed after "   \
+      "the first master write) raises an event and a flag the CPU side sees",                    \
+      "0 (off) or 100 … 30000", "002 §7")                                                         \
+    S(scan_start, 2, MODCP_PF_SCANNER, 0xFF, 0, 65535, 0, MODCP_EV_PARAM_RECORD,                  \
+      MODCP_PF_CUSTOM, "scanner", "start", NUM, none, "must be 0..65535",                         \
+      "first scanner register address", /* custom: with the entries */                          \
+      "0 … 65535", "002 §11")                                                                     \
+    S(scan_count, 1, MODCP_PF_SCANNER, 0xFF, 0, 255, 0, MODCP_EV_PARAM_RECORD, MODCP_PF_CUSTOM,   \
+      "scanner", "", NUM, none, "", "", "", "") /* the number of [scanner] entries */             \
+    G(scan, MODCP_SCANNER_MAX, modcp_operand_ref_t, 3, MODCP_PF_SCANNER)                          \
+    M(modcp_operand_ref_t, area, 1, MODCP_SCANNER_MAX)                                            \
+    M(modcp_operand_ref_t, db, 2, MODCP_SCANNER_MAX)                                              \
+    M(modcp_operand_ref_t, offset, 2, MODCP_SCANNER_MAX)                                          \
+    S(vendor, MODCP_PW_STR, MODCP_PF_ID_STRING, 0, 0, 0, 0, MODCP_EV_PARAM_RECORD,                \
+      MODCP_PF_CUSTOM, "identification", "vendor", STR, none, "at most 16 characters",            \
+      "vendor name (object 00)", "≤ 16 characters", "002 §10.5")                                  \
+    S(product, MODCP_PW_STR, MODCP_PF_ID_STRING, 1, 0, 0, 0, MODCP_EV_PARAM_RECORD,               \
+      MODCP_PF_CUSTOM, "identification", "product", STR, none, "at most 16 characters",           \
+      "product code (object 01)", "≤ 16 characters", "002 §10.5")                                 \
+    S(revision, MODCP_PW_STR, MODCP_PF_ID_STRING, 2, 0, 0, 0, MODCP_EV_PARAM_RECORD,              \
+      MODCP_PF_CUSTOM, "identification", "revision", STR, none, "at most 16 characters",          \
+      "revision (object 02)", "≤ 16 characters", "002 §10.5")                                     \
+    S(app_name, MODCP_PW_STR, MODCP_PF_ID_STRING, 3, 0, 0, 0, MODCP_EV_PARAM_RECORD,              \
+      MODCP_PF_CUSTOM, "identification", "app_name", STR, none, "at most 16 characters",          \
+      "user application name (object 06)", "≤ 16 characters", "002 §10.5")                        \
+    S(diag_irq, 1, MODCP_PF_DIAG_IRQ, 0, 0, 1, 0, MODCP_EV_PARAM_RECORD, 0, "diagnostics",        \
+      "interrupt", BOOL, none, "must be on or off",                                               \
+      "diagnostic interrupt records for the CPU side", "`on`, `off`", "001 §8.4")
+
+/* The composite record fields' keys in the tables of docs/parameters.md (their rules are
+ * in params.c and the document's prose). D(section, key, meaning, values, default, source,
+ * event). The tool's own [cpu] keys are described in tools/conf/conf.c. */
+#define MODCP_PARAM_DOC_ROWS(D)                                                                   \
+    D("registers", "int16",                                                                       \
+      "registers `FROM-TO @ DB`: 16-bit values, 2 bytes each from DBB0", "`off` or range", "off", \
+      "003 §4.5", "(0E)2EH")                                                                      \
+    D("registers", "int32", "32-bit integers, 4 bytes (one DBD) per register", "`off` or range",  \
+      "off", "003 §4.5", "(0E)2EH")                                                               \
+    D("registers", "float", "32-bit IEEE floats, 4 bytes per register", "`off` or range", "off",  \
+      "003 §4.5", "(0E)2EH")                                                                      \
+    D("limits", "db", "resulting DB numbers writable by FC06/16",                                 \
+      "`MIN-MAX` with 1 ≤ MIN ≤ MAX, or `off`", "off", "004 §3.5", "(0E)24H")                     \
+    D("limits", "m", "flag bytes writable by FC05/15", "`MIN-MAX` with MIN ≤ MAX, or `off`",      \
+      "off", "004 §3.5", "(0E)24H")                                                               \
+    D("limits", "q", "output bytes writable by FC05/15", "`MIN-MAX`, or `off`", "off",            \
+      "004 §3.5", "(0E)24H")                                                                      \
+    D("scanner", "entries",                                                                       \
+      "up to 16 word operands the consecutive registers point at, e.g. `MW10 DB5.DBW20 T3`",      \
+      "`MWn`, `IWn`, `QWn`, `DBn.DBWm`, `Tn`, `Cn`", "none (off)", "002 §11", "(0E)2EH")
+
+#endif

@@ -1,0 +1,148 @@
+/* modcp — the parameter record's binary form, from the rows of params_fields.h.
+ *
+ * Little-endian, fixed widths, fields in the order of the rows:
+ *   "MCPR" | u16 version | u16 payload length | payload | u16 CRC-16 (low byte first)
+ * A group (windows, 32-bit ranges, limits, scanner entries) is encoded struct by
+ * struct. ID strings occupy 16 bytes each (the characters up to the NUL, zero padded;
+ * the decoder always terminates them). The payload length is the sum of the rows'
+ * widths (306 bytes in version 1, record 316); decode accepts trailing bytes after the
+ * record (it may sit in a padded block). */
+#include <stdbool.h>
+#include <string.h>
+
+#include "modcp/crc.h"
+#include "modcp/params.h"
+#include "params_fields.h"
+
+#define SZ_S(member, width, ...) +(width)
+#define SZ_G(...)
+#define SZ_M(type, member, width, count) +(width) * (count)
+#define PAYLOAD_BYTES (0u MODCP_PARAM_ROWS(SZ_S, SZ_G, SZ_M))
+#define HEADER_BYTES 8u /* magic, version, length */
+#define CRC_BYTES 2u
+#define RECORD_BYTES (HEADER_BYTES + PAYLOAD_BYTES + CRC_BYTES)
+
+_Static_assert(RECORD_BYTES <= MODCP_PARAMS_RECORD_MAX, "parameter record too large");
+_Static_assert(PAYLOAD_BYTES <= 0xFFFFu, "payload length must fit u16");
+
+static const uint8_t record_magic[4] = {'M', 'C', 'P', 'R'};
+
+typedef struct {
+    uint8_t *wr;        /* encode: the payload */
+    const uint8_t *src; /*         and the parameters */
+    const uint8_t *rd;  /* decode: the payload */
+    uint8_t *dst;       /*         and the parameters */
+    size_t pos;
+} codec_t;
+
+/* One field: width 1, 2, 4 (little-endian) or MODCP_PW_STR. */
+static void field(codec_t *c, size_t off, uint8_t width)
+{
+    size_t at = c->pos;
+    c->pos += width;
+    if (c->wr != NULL) {
+        uint8_t *r = c->wr + at;
+        const uint8_t *f = c->src + off;
+        if (width == MODCP_PW_STR) { /* up to the NUL, zero padded */
+            bool end = false;
+            for (size_t i = 0; i < MODCP_PW_STR; i++) {
+                end = end || f[i] == 0u;
+                r[i] = end ? 0u : f[i];
+            }
+            return;
+        }
+        uint32_t v = width == 1u ? *f : 0u;
+        if (width == 2u) {
+            uint16_t x;
+            memcpy(&x, f, sizeof x);
+            v = x;
+        } else if (width == 4u) {
+            memcpy(&v, f, sizeof v);
+        }
+        for (uint8_t i = 0; i < width; i++) {
+            r[i] = (uint8_t)(v >> (8u * i));
+        }
+    } else {
+        const uint8_t *r = c->rd + at;
+        uint8_t *f = c->dst + off;
+        if (width == MODCP_PW_STR) {
+            memcpy(f, r, MODCP_PW_STR);
+            f[MODCP_PW_STR] = 0u;
+            return;
+        }
+        uint32_t v = 0;
+        for (uint8_t i = 0; i < width; i++) {
+            v |= (uint32_t)r[i] << (8u * i);
+        }
+        if (width == 1u) {
+            *f = (uint8_t)v;
+        } else if (width == 2u) {
+            uint16_t x = (uint16_t)v;
+            memcpy(f, &x, sizeof x);
+        } else {
+            memcpy(f, &v, sizeof v);
+        }
+    }
+}
+
+/* Every field in record order. */
+static void walk(codec_t *c)
+{
+    const modcp_param_member_t *m = modcp_param_members;
+    for (uint8_t i = 0; i < modcp_param_row_count; i++) {
+        const modcp_param_row_t *r = &modcp_param_rows[i];
+        uint8_t w = MODCP_PARAM_WIDTH(r);
+        if (w != 0u) {
+            field(c, r->off, w);
+            continue;
+        }
+        for (uint8_t k = 0; k < r->index; k++) { /* group: struct by struct */
+            size_t base = (size_t)r->off + (size_t)k * r->min;
+            for (uint8_t j = 0; j < r->event; j++) {
+                field(c, base + m[j].off, m[j].width);
+            }
+        }
+        m += r->event;
+    }
+}
+
+static void put16(uint8_t *b, uint16_t v)
+{
+    b[0] = (uint8_t)(v & 0xFFu);
+    b[1] = (uint8_t)(v >> 8);
+}
+
+static uint16_t get16(const uint8_t *b)
+{
+    return (uint16_t)(b[0] | (uint16_t)(b[1] << 8));
+}
+
+size_t modcp_params_encode(const modcp_params_t *p, uint8_t *buf, size_t cap)
+{
+    if (buf == NULL || cap < RECORD_BYTES) {
+        return 0u;
+    }
+    memcpy(buf, record_magic, sizeof record_magic);
+    put16(buf + 4, (uint16_t)MODCP_PARAMS_VERSION);
+    put16(buf + 6, (uint16_t)PAYLOAD_BYTES);
+    codec_t c = {buf + HEADER_BYTES, (const uint8_t *)p, NULL, NULL, 0u};
+    walk(&c);
+    put16(buf + HEADER_BYTES + PAYLOAD_BYTES, modcp_crc16(buf, HEADER_BYTES + PAYLOAD_BYTES));
+    return RECORD_BYTES;
+}
+
+modcp_event_t modcp_params_decode(const uint8_t *buf, size_t len, modcp_params_t *p)
+{
+    if (buf == NULL || p == NULL || len < RECORD_BYTES ||
+        memcmp(buf, record_magic, sizeof record_magic) != 0 ||
+        get16(buf + 4) != MODCP_PARAMS_VERSION || get16(buf + 6) != PAYLOAD_BYTES ||
+        modcp_crc16(buf, HEADER_BYTES + PAYLOAD_BYTES) !=
+            get16(buf + HEADER_BYTES + PAYLOAD_BYTES)) {
+        return MODCP_EV_PARAM_RECORD;
+    }
+    /* The record is sound: from here on nothing can fail, decode straight into p. */
+    memset(p, 0, sizeof *p);
+    codec_t c = {NULL, NULL, buf + HEADER_BYTES, (uint8_t *)p, 0u};
+    walk(&c);
+    return MODCP_EV_NONE;
+}
