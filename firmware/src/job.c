@@ -3,7 +3,10 @@
  * A job goes out as one header block (kind JOB, FIRST, the job's tag, data = the
  * encoded modcp_bp_job_t; also LAST when no data follows) and ceil(len / 32) data
  * blocks of 32 bytes (the last one shorter and flagged LAST). Each poll pushes as many
- * blocks as the ring has room for.
+ * blocks as the ring has free slots, each written in place into its slot (the write
+ * data is copied once, from the request into the slot); nothing is produced when no
+ * slot is free, so no put ever fails. REPLY blocks are read in place and released
+ * (read data: one copy, from the slot into the caller's buffer).
  *
  * The header of a new job is only pushed once the CPU-bound ring is empty, i.e. once
  * the CPU side has consumed every block of the previous job. In normal operation this
@@ -90,57 +93,53 @@ void modcp_job_abort(modcp_job_t *j)
     j->state = MODCP_JOBST_IDLE;
 }
 
-static bool put_block(modcp_job_t *j, uint8_t kind, uint8_t flags, uint8_t tag,
-                      const uint8_t *data, uint8_t len)
-{
-    return modcp_ring_put_data(&j->bp->to_cpu, &j->tx_seq, kind, flags, tag, data, len);
-}
-
 bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev)
 {
     uint8_t d[2] = {(uint8_t)(ev & 0xFFu), (uint8_t)(ev >> 8)};
-    return put_block(j, MODCP_BP_INIT_ACK, MODCP_BLK_FIRST | MODCP_BLK_LAST, 0, d, 2);
+    return modcp_ring_put_data(&j->bp->to_cpu, &j->tx_seq, MODCP_BP_INIT_ACK,
+                               MODCP_BLK_FIRST | MODCP_BLK_LAST, 0, d, 2);
 }
 
-static bool sends_data(const modcp_job_t *j)
-{
-    return j->hdr.op != MODCP_JOB_READ;
-}
-
-/* Push as many of the job's blocks as fit. */
+/* Push as many of the job's blocks as there are free slots; each block is written
+ * straight into its slot (the write data: one copy from the request). */
 static void push_blocks(modcp_job_t *j)
 {
+    modcp_ring_t *r = &j->bp->to_cpu;
+    modcp_block_t *b;
     if (!j->hdr_sent) {
-        if (modcp_ring_space(&j->bp->to_cpu) < MODCP_BP_DEPTH) {
+        if (modcp_ring_space(r) < MODCP_BP_DEPTH) {
             return; /* previous blocks not consumed yet (see the top of this file) */
         }
         if (atomic_load_explicit(&j->bp->abort_tag, memory_order_acquire) == (uint32_t)j->tag) {
             atomic_store_explicit(&j->bp->abort_tag, JOB_NO_ABORT, memory_order_release);
         }
-        uint8_t d[MODCP_BLOCK_SIZE];
-        uint8_t n = modcp_bp_job_encode(&j->hdr, d);
-        bool last = !sends_data(j) || j->hdr.len == 0u;
-        uint8_t flags = (uint8_t)(MODCP_BLK_FIRST | (last ? MODCP_BLK_LAST : 0u));
-        if (!put_block(j, MODCP_BP_JOB, flags, j->tag, d, n)) {
-            return;
-        }
+        b = modcp_ring_slot(r); /* the ring is empty: there is a slot */
+        bool last = j->hdr.op == MODCP_JOB_READ || j->hdr.len == 0u;
+        b->len = modcp_bp_job_encode(&j->hdr, b->data);
+        b->kind = MODCP_BP_JOB;
+        b->flags = (uint8_t)(MODCP_BLK_FIRST | (last ? MODCP_BLK_LAST : 0u));
+        b->tag = j->tag;
+        modcp_ring_publish(r, &j->tx_seq);
         j->hdr_sent = true;
         if (last) {
             j->state = MODCP_JOBST_WAITING;
             return;
         }
     }
-    while (j->wpos < j->hdr.len) {
+    while (j->wpos < j->hdr.len && (b = modcp_ring_slot(r)) != NULL) {
         uint32_t rest = (uint32_t)j->hdr.len - j->wpos;
         uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
-        bool last = (uint32_t)j->wpos + n == j->hdr.len;
-        if (!put_block(j, MODCP_BP_JOB, last ? MODCP_BLK_LAST : 0u, j->tag, j->wdata + j->wpos,
-                       n)) {
-            return;
-        }
+        memcpy(b->data, j->wdata + j->wpos, n);
+        b->len = n;
+        b->kind = MODCP_BP_JOB;
+        b->flags = n == rest ? MODCP_BLK_LAST : 0u;
+        b->tag = j->tag;
+        modcp_ring_publish(r, &j->tx_seq);
         j->wpos = (uint16_t)(j->wpos + n);
     }
-    j->state = MODCP_JOBST_WAITING;
+    if (j->wpos >= j->hdr.len) {
+        j->state = MODCP_JOBST_WAITING;
+    }
 }
 
 static modcp_jobp_t finish(modcp_job_t *j, modcp_event_t ev, uint16_t error_nr)
@@ -277,20 +276,17 @@ static bool params_wait(const modcp_job_t *j)
 
 modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us)
 {
-    modcp_block_t b;
-    for (;;) {
+    modcp_ring_t *in = &j->bp->to_cp;
+    const modcp_block_t *b;
+    while ((b = modcp_ring_peek(in)) != NULL) {
 #if MODCP_SHARED_PARAMS_BUFFER
         if (params_wait(j)) {
             return MODCP_JOBP_PARAMS_START;
         }
-#endif
-        if (!modcp_ring_get(&j->bp->to_cp, &b)) {
-            break;
-        }
-#if MODCP_SHARED_PARAMS_BUFFER
         j->msg_granted = false; /* a grant covers the one block it was asked for */
 #endif
-        modcp_jobp_t r = rx_block(j, &b);
+        modcp_jobp_t r = rx_block(j, b); /* read in place (one copy out for REPLY data) */
+        modcp_ring_release(in);
         if (r != MODCP_JOBP_NOTHING) {
             return r;
         }

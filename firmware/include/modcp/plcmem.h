@@ -46,9 +46,18 @@ modcp_event_t modcp_plcmem_read(const modcp_plcmem_t *mem, const modcp_operand_t
 modcp_event_t modcp_plcmem_write(modcp_plcmem_t *mem, const modcp_operand_t *op,
                                  const uint8_t *in, uint16_t len);
 
+/* The event modcp_plcmem_read / modcp_plcmem_write of len bytes at op would return;
+ * nothing is copied. */
+modcp_event_t modcp_plcmem_check(const modcp_plcmem_t *mem, const modcp_operand_t *op,
+                                 uint16_t len);
+
+/* The event modcp_plcmem_write_bits(op) would return; nothing is written. */
+modcp_event_t modcp_plcmem_check_bits(const modcp_plcmem_t *mem, const modcp_operand_t *op);
+
 /* Read-modify-write of op->count bits starting at op->offset / op->bit; bit k of the
  * request is bit (k % 8) of bits[k / 8]. Other bits of the touched bytes are untouched.
- * Only M, Q, I and DB. */
+ * Only M, Q, I and DB. Works a byte at a time: whole bytes are stored, masks only at
+ * the first and last byte. */
 modcp_event_t modcp_plcmem_write_bits(modcp_plcmem_t *mem, const modcp_operand_t *op,
                                       const uint8_t *bits);
 
