@@ -141,6 +141,10 @@ void modcp_bp_init(modcp_backplane_t *bp);
 
 /* CP side: publish the status area. */
 void modcp_bp_publish_status(modcp_backplane_t *bp, const modcp_cp_status_t *st);
+/* CP side: write the status area in place — begin (the seqlock turns odd) returns it,
+ * fill in every field, end (even again) publishes it. */
+modcp_cp_status_t *modcp_bp_status_begin(modcp_backplane_t *bp);
+void modcp_bp_status_end(modcp_backplane_t *bp);
 /* CPU side: read a consistent copy; false if the CP was writing (try again). */
 bool modcp_bp_read_status(const modcp_backplane_t *bp, modcp_cp_status_t *out);
 /* CPU side: ask for the SYSTAT image (reading clears SYSTAT in the CP, as SFB STATUS
