@@ -93,9 +93,12 @@ static void pump_reply(modcp_fb_t *fb)
         } else {
             uint32_t rest = (uint32_t)fb->reply.len - fb->reply_pos;
             uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
-            modcp_operand_t o = opnd_at(&fb->job.opnd, fb->reply_pos);
-            /* the whole range was checked when the job started: cannot fail */
-            (void)modcp_plcmem_read(fb->mem, &o, b->data, n);
+            if (fb->job_mem != NULL) {
+                memcpy(b->data, fb->job_mem + fb->reply_pos, n);
+            } else { /* T / C elements; the range was checked on the header */
+                modcp_operand_t o = opnd_at(&fb->job.opnd, fb->reply_pos);
+                (void)modcp_plcmem_read(fb->mem, &o, b->data, n);
+            }
             b->len = n;
             b->flags = n == rest ? MODCP_BLK_LAST : 0u;
             fb->reply_pos = (uint16_t)(fb->reply_pos + n);
@@ -165,7 +168,7 @@ static bool check_bitwrite(modcp_fb_t *fb)
         reply_fb_error(fb, MODCP_FB_ERR_Q_END, end);
         return false;
     }
-    modcp_event_t ev = modcp_plcmem_check_bits(fb->mem, o);
+    modcp_event_t ev = modcp_plcmem_locate_bits(fb->mem, o, &fb->job_mem);
     if (ev != MODCP_EV_NONE) {
         reply(fb, ev, 0, 0);
         return false;
@@ -217,7 +220,7 @@ static void start_job(modcp_fb_t *fb, bool last)
     modcp_event_t ev;
     switch (op) {
     case MODCP_JOB_READ:
-        ev = modcp_plcmem_check(fb->mem, &jb->opnd, jb->len);
+        ev = modcp_plcmem_locate(fb->mem, &jb->opnd, jb->len, &fb->job_mem);
         reply(fb, ev, 0, jb->len);
         return;
     case MODCP_JOB_MASKWRITE:
@@ -225,10 +228,10 @@ static void start_job(modcp_fb_t *fb, bool last)
             reply_fb_error(fb, MODCP_FB_ERR_AMOUNT, jb->len);
             return;
         }
-        ev = modcp_plcmem_check(fb->mem, &jb->opnd, 2);
+        ev = modcp_plcmem_locate(fb->mem, &jb->opnd, 2, &fb->job_mem);
         break;
     case MODCP_JOB_WRITE:
-        ev = modcp_plcmem_check(fb->mem, &jb->opnd, jb->len);
+        ev = modcp_plcmem_locate(fb->mem, &jb->opnd, jb->len, &fb->job_mem);
         break;
     default:
         if (!check_bitwrite(fb)) {
@@ -281,21 +284,22 @@ static void rx_data(modcp_fb_t *fb, const modcp_block_t *b)
         reply(fb, MODCP_EV_XFER_STATE, 0, 0); /* data not as announced */
         return;
     }
-    modcp_operand_t o = opnd_at(&jb->opnd, fb->job_pos);
+    /* WRITE / BITWRITE: only Q, M, DB (area_allowed), so job_mem is the storage */
+    uint8_t *dst = fb->job_mem + fb->job_pos;
     modcp_event_t ev = MODCP_EV_NONE;
     switch (jb->op) {
     case MODCP_JOB_WRITE:
-        ev = modcp_plcmem_write(fb->mem, &o, b->data, n);
+        memcpy(dst, b->data, n);
         break;
     case MODCP_JOB_MASKWRITE:
         ev = exec_maskwrite(fb, b->data);
         break;
-    default: { /* BITWRITE: this block's bits, 256 per block */
+    default: { /* BITWRITE: this block's bits, 256 per block (whole bytes of dst) */
         uint32_t done = (uint32_t)fb->job_pos * 8u;
         if (done < jb->opnd.count) {
             uint32_t k = jb->opnd.count - done;
-            o.count = (uint16_t)(k > (uint32_t)n * 8u ? (uint32_t)n * 8u : k);
-            ev = modcp_plcmem_write_bits(fb->mem, &o, b->data);
+            modcp_bits_put(dst, jb->opnd.bit, k > (uint32_t)n * 8u ? (uint32_t)n * 8u : k,
+                           b->data);
         }
         break;
     }

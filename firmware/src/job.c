@@ -105,7 +105,6 @@ bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev)
 static void push_blocks(modcp_job_t *j)
 {
     modcp_ring_t *r = &j->bp->to_cpu;
-    modcp_block_t *b;
     if (!j->hdr_sent) {
         if (modcp_ring_space(r) < MODCP_BP_DEPTH) {
             return; /* previous blocks not consumed yet (see the top of this file) */
@@ -113,32 +112,30 @@ static void push_blocks(modcp_job_t *j)
         if (atomic_load_explicit(&j->bp->abort_tag, memory_order_acquire) == (uint32_t)j->tag) {
             atomic_store_explicit(&j->bp->abort_tag, JOB_NO_ABORT, memory_order_release);
         }
-        b = modcp_ring_slot(r); /* the ring is empty: there is a slot */
-        bool last = j->hdr.op == MODCP_JOB_READ || j->hdr.len == 0u;
-        b->len = modcp_bp_job_encode(&j->hdr, b->data);
-        b->kind = MODCP_BP_JOB;
-        b->flags = (uint8_t)(MODCP_BLK_FIRST | (last ? MODCP_BLK_LAST : 0u));
-        b->tag = j->tag;
-        modcp_ring_publish(r, &j->tx_seq);
-        j->hdr_sent = true;
-        if (last) {
-            j->state = MODCP_JOBST_WAITING;
-            return;
-        }
     }
-    while (j->wpos < j->hdr.len && (b = modcp_ring_slot(r)) != NULL) {
-        uint32_t rest = (uint32_t)j->hdr.len - j->wpos;
-        uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
-        memcpy(b->data, j->wdata + j->wpos, n);
+    modcp_block_t *b;
+    while (j->state == MODCP_JOBST_SENDING && (b = modcp_ring_slot(r)) != NULL) {
+        uint8_t flags = 0;
+        uint8_t n;
+        if (!j->hdr_sent) {
+            n = modcp_bp_job_encode(&j->hdr, b->data);
+            flags = MODCP_BLK_FIRST;
+            j->hdr_sent = true;
+        } else {
+            uint32_t rest = (uint32_t)j->hdr.len - j->wpos;
+            n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
+            memcpy(b->data, j->wdata + j->wpos, n);
+            j->wpos = (uint16_t)(j->wpos + n);
+        }
+        if (j->hdr.op == MODCP_JOB_READ || j->wpos >= j->hdr.len) {
+            flags |= MODCP_BLK_LAST; /* nothing (more) to send */
+            j->state = MODCP_JOBST_WAITING;
+        }
         b->len = n;
         b->kind = MODCP_BP_JOB;
-        b->flags = n == rest ? MODCP_BLK_LAST : 0u;
+        b->flags = flags;
         b->tag = j->tag;
         modcp_ring_publish(r, &j->tx_seq);
-        j->wpos = (uint16_t)(j->wpos + n);
-    }
-    if (j->wpos >= j->hdr.len) {
-        j->state = MODCP_JOBST_WAITING;
     }
 }
 

@@ -161,16 +161,17 @@ modcp_event_t modcp_plcmem_write(modcp_plcmem_t *mem, const modcp_operand_t *op,
     return MODCP_EV_NONE;
 }
 
-modcp_event_t modcp_plcmem_check(const modcp_plcmem_t *mem, const modcp_operand_t *op,
-                                 uint16_t len)
+modcp_event_t modcp_plcmem_locate(const modcp_plcmem_t *mem, const modcp_operand_t *op,
+                                  uint16_t len, uint8_t **bytes)
 {
+    *bytes = NULL;
     if (is_word_area(op->area)) {
         return (len & 1u) == 0u && word_area(mem, op, (uint32_t)len / 2u) != NULL
                    ? MODCP_EV_NONE
                    : MODCP_EV_AREA_ACCESS;
     }
     modcp_event_t ev;
-    (void)byte_area(mem, op, len, &ev);
+    *bytes = byte_area(mem, op, len, &ev);
     return ev;
 }
 
@@ -180,36 +181,28 @@ static uint32_t bit_span(const modcp_operand_t *op)
     return op->count == 0u ? 0u : ((uint32_t)op->bit + op->count - 1u) / 8u + 1u;
 }
 
-modcp_event_t modcp_plcmem_check_bits(const modcp_plcmem_t *mem, const modcp_operand_t *op)
+modcp_event_t modcp_plcmem_locate_bits(const modcp_plcmem_t *mem, const modcp_operand_t *op,
+                                       uint8_t **bytes)
 {
+    *bytes = NULL;
     if (is_word_area(op->area)) {
         return MODCP_EV_AREA_ACCESS; /* T / C are words, never bit-written */
     }
     modcp_event_t ev;
-    (void)byte_area(mem, op, bit_span(op), &ev);
+    *bytes = byte_area(mem, op, bit_span(op), &ev);
     return ev;
 }
 
-modcp_event_t modcp_plcmem_write_bits(modcp_plcmem_t *mem, const modcp_operand_t *op,
-                                      const uint8_t *bits)
+/* Destination byte k takes its low sh bits from source byte k - 1 (shifted down) and
+ * its high bits from source byte k (shifted up). */
+void modcp_bits_put(uint8_t *dst, uint32_t first, uint32_t count, const uint8_t *bits)
 {
-    if (is_word_area(op->area)) {
-        return MODCP_EV_AREA_ACCESS; /* T / C are words, never bit-written */
+    if (count == 0u) {
+        return;
     }
-    uint32_t count = op->count;
-    modcp_event_t ev;
-    uint8_t *dst = byte_area(mem, op, bit_span(op), &ev);
-    if (dst == NULL || count == 0u) {
-        return ev;
-    }
-    /* Request bit k goes to bit (first + k) of dst, a byte at a time: destination byte
-     * k takes its low sh bits from source byte k - 1 (shifted down) and its high bits
-     * from source byte k (shifted up). Whole bytes are stored; only the first and the
-     * last byte are masked. */
-    uint32_t first = op->bit;
     dst += first / 8u;
     unsigned sh = first & 7u;
-    uint32_t end = sh + count;      /* one past the last bit, counted from dst[0] bit 0 */
+    uint32_t end = sh + count;       /* one past the last bit, counted from dst[0] bit 0 */
     uint32_t last = (end - 1u) / 8u; /* the last destination byte */
     uint32_t sbytes = (count + 7u) / 8u;
     unsigned head = (0xFFu << sh) & 0xFFu;
@@ -217,14 +210,12 @@ modcp_event_t modcp_plcmem_write_bits(modcp_plcmem_t *mem, const modcp_operand_t
     if (last == 0u) {
         unsigned mask = head & tail;
         dst[0] = (uint8_t)((dst[0] & ~mask) | (((unsigned)bits[0] << sh) & mask));
-        return MODCP_EV_NONE;
+        return;
     }
-    if (sh == 0u) { /* byte-aligned: the source bytes as they are */
-        if (last > 0u) {
-            memcpy(dst, bits, last);
-        }
+    if (sh == 0u) { /* byte-aligned: whole source bytes as they are */
+        memcpy(dst, bits, last);
         dst[last] = (uint8_t)((dst[last] & ~tail) | (bits[last] & tail));
-        return MODCP_EV_NONE;
+        return;
     }
     unsigned cur = bits[0];
     dst[0] = (uint8_t)((dst[0] & ~head) | ((cur << sh) & head));
@@ -236,5 +227,15 @@ modcp_event_t modcp_plcmem_write_bits(modcp_plcmem_t *mem, const modcp_operand_t
     }
     cur = last < sbytes ? bits[last] : 0u;
     dst[last] = (uint8_t)((dst[last] & ~tail) | (((cur << sh) | carry) & tail));
-    return MODCP_EV_NONE;
+}
+
+modcp_event_t modcp_plcmem_write_bits(modcp_plcmem_t *mem, const modcp_operand_t *op,
+                                      const uint8_t *bits)
+{
+    uint8_t *dst;
+    modcp_event_t ev = modcp_plcmem_locate_bits(mem, op, &dst);
+    if (dst != NULL) {
+        modcp_bits_put(dst, op->bit, op->count, bits);
+    }
+    return ev;
 }

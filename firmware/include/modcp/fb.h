@@ -88,6 +88,8 @@ typedef struct {
     uint8_t job_tag;
     bool job_active; /* header accepted, write data blocks being executed */
     uint16_t job_pos;  /* write data bytes executed so far */
+    uint8_t *job_mem;  /* controller memory of the job's operand (I Q M DB bytes), NULL
+                          for T / C: located once, on the header */
     bool reply_pending;
     modcp_bp_reply_t reply;
     uint16_t reply_pos; /* read data bytes sent so far */
