@@ -15,9 +15,11 @@
  * Data crosses the backplane once per 32-byte block each way: no job buffer, one copy
  * between a slot and controller memory. Consistency guarantee (SPEC §6): every block
  * is written or read within one call, so each block is consistent; a job whose blocks
- * are all handled in one FB call (a job of up to MODCP_BP_DEPTH blocks, header
- * included, or any job while the CP side keeps the ring filled during the call) is
- * consistent as a whole.
+ * are all handled in one FB call is consistent as a whole: a write job of up to
+ * MODCP_BP_DEPTH blocks, header included, is executed only when all of them are in
+ * (job_in_ring); a read's reply of up to MODCP_BP_DEPTH blocks goes out in the call
+ * that answers it when the ring towards the CP is empty (as in normal operation); a
+ * longer job whenever the other side keeps pace during the call.
  *
  * Job validation by the FB (004 §7.6), replied as (0E)57H + ERROR_NR and shown on
  * ERROR_NR / ERROR_INFO (they stay until the next CP_START edge):
@@ -328,11 +330,30 @@ static void rx_job(modcp_fb_t *fb, const modcp_block_t *b)
     /* else: remainder of a job we never saw the start of, or that was answered */
 }
 
+/* A write job whose blocks all fit the ring waits until all of them are in, so it is
+ * executed within one call however the CP side's publishing interleaves with this
+ * call (two threads). The CP side publishes such a job completely into an empty ring
+ * (job.c), so it never waits for long. */
+static bool job_in_ring(const modcp_fb_t *fb, const modcp_block_t *b)
+{
+    modcp_bp_job_t h;
+    if (b->kind != MODCP_BP_JOB || (b->flags & (MODCP_BLK_FIRST | MODCP_BLK_LAST)) !=
+                                       MODCP_BLK_FIRST ||
+        !modcp_bp_job_decode(b->data, b->len, &h)) {
+        return true;
+    }
+    uint32_t need = 1u + ((uint32_t)h.len + MODCP_BLOCK_SIZE - 1u) / MODCP_BLOCK_SIZE;
+    return h.op == MODCP_JOB_READ || need > MODCP_BP_DEPTH ||
+           MODCP_BP_DEPTH - modcp_ring_space(&fb->bp->to_cpu) >= need ||
+           /* given up by the CP (it never comes complete): take it, it is dropped */
+           atomic_load_explicit(&fb->bp->abort_tag, memory_order_acquire) == (uint32_t)b->tag;
+}
+
 static void rx_blocks(modcp_fb_t *fb)
 {
     modcp_ring_t *r = &fb->bp->to_cpu;
     const modcp_block_t *b;
-    while (!fb->reply_pending && (b = modcp_ring_peek(r)) != NULL) {
+    while (!fb->reply_pending && (b = modcp_ring_peek(r)) != NULL && job_in_ring(fb, b)) {
         if (fb->rx_synced && b->seq != fb->rx_seq) {
             fb->job_active = false; /* a block went missing: nothing more of that job */
         }

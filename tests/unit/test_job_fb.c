@@ -1026,18 +1026,36 @@ static void test_fb_data_checks_per_block(void **state)
     assert_int_equal(f->ndr_calls, 0);
     assert_false(fb_reply(f, &tag, &r)); /* the rest of the job is dropped */
 
-    /* cancelled between two blocks */
-    memset(f->m, 0, 80);
-    cp_put_job(f, 31, MODCP_JOB_WRITE, MODCP_AREA_M, 0, 0, 40, 40, false);
+    /* cancelled between two blocks (a job longer than the ring: 1 + 5 blocks) */
+    memset(f->m, 0, 200);
+    cp_put_job(f, 31, MODCP_JOB_WRITE, MODCP_AREA_M, 0, 0, 136, 136, false);
     cp_put(f, MODCP_BP_JOB, 0, 31, d, 32);
     fb(f, true);
     assert_int_equal(f->m[0], 0x5A);
     atomic_store(&f->bp.abort_tag, 31);
-    cp_put(f, MODCP_BP_JOB, MODCP_BLK_LAST, 31, d, 8);
+    cp_put(f, MODCP_BP_JOB, 0, 31, d, 32);
     fb(f, true);
     assert_int_equal(f->m[32], 0);
     assert_false(fb_reply(f, &tag, &r));
     assert_int_equal(f->ndr_calls, 0);
+
+    /* a write job that fits the ring waits until all of its blocks are in */
+    memset(f->m, 0, 200);
+    cp_put_job(f, 33, MODCP_JOB_WRITE, MODCP_AREA_M, 0, 0, 40, 40, false);
+    cp_put(f, MODCP_BP_JOB, 0, 33, d, 32);
+    fb(f, true);
+    assert_int_equal(f->m[0], 0); /* 2 of its 3 blocks in: not started */
+    assert_non_null(modcp_ring_peek(&f->bp.to_cpu));
+    cp_put(f, MODCP_BP_JOB, MODCP_BLK_LAST, 33, d, 8);
+    fb(f, true);
+    assert_int_equal(f->m[0], 0x5A);
+    assert_int_equal(f->m[39], 0x5A);
+    assert_int_equal(f->m[40], 0);
+    assert_true(fb_reply(f, &tag, &r));
+    assert_int_equal(tag, 33);
+    assert_int_equal(r.event, MODCP_EV_NONE);
+    assert_int_equal(f->ndr_calls, 1);
+    f->ndr_calls = 0;
 
     /* a header flagged LAST for a write that announces data: (0E)33H */
     cp_put_job(f, 32, MODCP_JOB_WRITE, MODCP_AREA_M, 0, 0, 4, 4, true);
