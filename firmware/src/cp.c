@@ -126,10 +126,7 @@ static void line_status(const modcp_cp_t *cp, modcp_cp_status_t *st)
 #if MODCP_WITH_RS232_SIGNALS
     st->signals = modcp_sig_bits(&cp->sig);
     st->signal_aborts = cp->sig.aborts;
-#else
-    st->signals = 0;
-    st->signal_aborts = 0;
-#endif
+#endif /* else: stay 0 from modcp_bp_init (the CP is the status area's only writer) */
     st->char_errors = cp->diag.char_errors;
     st->breaks = cp->diag.breaks;
     st->t15_discards = cp->diag.t15_discards;
