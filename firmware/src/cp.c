@@ -378,12 +378,25 @@ static void take_init(modcp_cp_t *cp)
  * is compared with the published values, a few words: LEDs (time), comm-loss /
  * listen-only flags (time), the event count (an event logged by a poll: comm loss,
  * backplane errors) and the SYSTAT answer / diagnostic interrupt count. */
+/* MODCP_CPST_COMMLOSS / LISTEN_ONLY straight from their owners: the comm-loss
+ * supervision (commloss.c, ext.cl_lost) and the FC08 listen-only mode (diag). */
+static uint32_t ext_flags(const modcp_cp_t *cp)
+{
+#if MODCP_WITH_EXTENDED
+    return (cp->ext.cl_lost ? MODCP_CPST_COMMLOSS : 0u) |
+           (cp->diag.comm.listen_only ? MODCP_CPST_LISTEN_ONLY : 0u);
+#else
+    (void)cp;
+    return 0u; /* no comm-loss supervision, no FC08 in this build */
+#endif
+}
+
 static bool status_current(const modcp_cp_t *cp)
 {
     const modcp_cp_status_t *st = &cp->bp->status; /* only the CP writes it */
     return cp->published && st->events_total == cp->diag.events_total &&
            st->leds == modcp_leds_bits(&cp->leds) &&
-           (st->flags & (MODCP_CPST_COMMLOSS | MODCP_CPST_LISTEN_ONLY)) == cp->status_flags &&
+           (st->flags & (MODCP_CPST_COMMLOSS | MODCP_CPST_LISTEN_ONLY)) == ext_flags(cp) &&
            st->systat_ack == cp->cpdiag.systat_ack && st->diag_irq_count == cp->cpdiag.irq_count;
 }
 
@@ -396,7 +409,7 @@ static void publish(modcp_cp_t *cp)
     modcp_cp_status_t *st = modcp_bp_status_begin(cp->bp);
     st->flags = (cp->configured ? MODCP_CPST_CONFIGURED : 0u) |
                 (modcp_cp_ready(cp) ? MODCP_CPST_READY : 0u) |
-                (sf_on(cp) ? MODCP_CPST_SF : 0u) | cp->status_flags;
+                (sf_on(cp) ? MODCP_CPST_SF : 0u) | ext_flags(cp);
     st->events_total = cp->diag.events_total;
     memcpy(st->buffer, cp->diag.buffer, sizeof st->buffer);
     st->buffer_len = cp->diag.buffer_len;
@@ -445,8 +458,8 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
     }
     line_poll(cp, now_us);
 #if MODCP_WITH_EXTENDED
-    cp->status_flags =
-        modcp_ext_poll(&cp->ext, &cp->params, &cp->diag, cp->status_flags, now_us);
+    /* comm-loss time; the flags are published from ext / diag (ext_flags) */
+    (void)modcp_ext_poll(&cp->ext, &cp->params, &cp->diag, 0u, now_us);
 #endif
     publish(cp);
 }
