@@ -315,12 +315,14 @@ static void rx_data(modcp_fb_t *fb, const modcp_block_t *b)
     }
 }
 
-/* A JOB block, read in place. */
-static void rx_job(modcp_fb_t *fb, const modcp_block_t *b)
+/* A JOB block, read in place; hdr: its decoded header when it is a FIRST block (NULL
+ * if it does not decode). */
+static void rx_job(modcp_fb_t *fb, const modcp_block_t *b, const modcp_bp_job_t *hdr)
 {
     if ((b->flags & MODCP_BLK_FIRST) != 0u) {
         fb->job_active = false; /* a new FIRST abandons an unfinished job */
-        if (modcp_bp_job_decode(b->data, b->len, &fb->job)) {
+        if (hdr != NULL) {
+            fb->job = *hdr;
             fb->job_tag = b->tag;
             start_job(fb, (b->flags & MODCP_BLK_LAST) != 0u);
         }
@@ -334,16 +336,13 @@ static void rx_job(modcp_fb_t *fb, const modcp_block_t *b)
  * executed within one call however the CP side's publishing interleaves with this
  * call (two threads). The CP side publishes such a job completely into an empty ring
  * (job.c), so it never waits for long. */
-static bool job_in_ring(const modcp_fb_t *fb, const modcp_block_t *b)
+static bool job_in_ring(const modcp_fb_t *fb, const modcp_block_t *b, const modcp_bp_job_t *h)
 {
-    modcp_bp_job_t h;
-    if (b->kind != MODCP_BP_JOB || (b->flags & (MODCP_BLK_FIRST | MODCP_BLK_LAST)) !=
-                                       MODCP_BLK_FIRST ||
-        !modcp_bp_job_decode(b->data, b->len, &h)) {
+    if ((b->flags & MODCP_BLK_LAST) != 0u) {
         return true;
     }
-    uint32_t need = 1u + ((uint32_t)h.len + MODCP_BLOCK_SIZE - 1u) / MODCP_BLOCK_SIZE;
-    return h.op == MODCP_JOB_READ || need > MODCP_BP_DEPTH ||
+    uint32_t need = 1u + ((uint32_t)h->len + MODCP_BLOCK_SIZE - 1u) / MODCP_BLOCK_SIZE;
+    return h->op == MODCP_JOB_READ || need > MODCP_BP_DEPTH ||
            MODCP_BP_DEPTH - modcp_ring_space(&fb->bp->to_cpu) >= need ||
            /* given up by the CP (it never comes complete): take it, it is dropped */
            atomic_load_explicit(&fb->bp->abort_tag, memory_order_acquire) == (uint32_t)b->tag;
@@ -353,7 +352,16 @@ static void rx_blocks(modcp_fb_t *fb)
 {
     modcp_ring_t *r = &fb->bp->to_cpu;
     const modcp_block_t *b;
-    while (!fb->reply_pending && (b = modcp_ring_peek(r)) != NULL && job_in_ring(fb, b)) {
+    while (!fb->reply_pending && (b = modcp_ring_peek(r)) != NULL) {
+        modcp_bp_job_t h;
+        const modcp_bp_job_t *hdr = NULL;
+        if (b->kind == MODCP_BP_JOB && (b->flags & MODCP_BLK_FIRST) != 0u &&
+            modcp_bp_job_decode(b->data, b->len, &h)) {
+            if (!job_in_ring(fb, b, &h)) {
+                break; /* not all of its blocks in yet */
+            }
+            hdr = &h;
+        }
         if (fb->rx_synced && b->seq != fb->rx_seq) {
             fb->job_active = false; /* a block went missing: nothing more of that job */
         }
@@ -376,7 +384,7 @@ static void rx_blocks(modcp_fb_t *fb)
                 }
             }
         } else if (b->kind == MODCP_BP_JOB) {
-            rx_job(fb, b);
+            rx_job(fb, b, hdr);
         }
         /* PARAMS / INIT / REPLY travel the other way: ignored */
         modcp_ring_release(r);
