@@ -238,7 +238,7 @@ static void process_request(modcp_cp_t *cp, uint32_t now_us)
         modcp_pdu_request(&cp->pdu, &env, f->addr, f->pdu, f->pdu_len, f->pdu_cap, &out_len);
     run_action(cp, a, out_len, now_us);
     if (cp->request_pending) {
-        modcp_cp_poll(cp, now_us); /* push the first blocks at once */
+        modcp_job_push(&cp->job); /* the first blocks go out at once */
     }
 }
 

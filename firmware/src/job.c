@@ -271,6 +271,13 @@ static bool params_wait(const modcp_job_t *j)
 }
 #endif
 
+void modcp_job_push(modcp_job_t *j)
+{
+    if (j->state == MODCP_JOBST_SENDING) {
+        push_blocks(j);
+    }
+}
+
 modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us)
 {
     modcp_ring_t *in = &j->bp->to_cp;
