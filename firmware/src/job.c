@@ -93,11 +93,27 @@ void modcp_job_abort(modcp_job_t *j)
     j->state = MODCP_JOBST_IDLE;
 }
 
+/* Stamp the block filled in slot b and hand it to the CPU side. */
+static void send(modcp_job_t *j, modcp_block_t *b, uint8_t len, uint8_t kind, uint8_t flags,
+                 uint8_t tag)
+{
+    b->len = len;
+    b->kind = kind;
+    b->flags = flags;
+    b->tag = tag;
+    modcp_ring_publish(&j->bp->to_cpu, &j->tx_seq);
+}
+
 bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev)
 {
-    uint8_t d[2] = {(uint8_t)(ev & 0xFFu), (uint8_t)(ev >> 8)};
-    return modcp_ring_put_data(&j->bp->to_cpu, &j->tx_seq, MODCP_BP_INIT_ACK,
-                               MODCP_BLK_FIRST | MODCP_BLK_LAST, 0, d, 2);
+    modcp_block_t *b = modcp_ring_slot(&j->bp->to_cpu);
+    if (b == NULL) {
+        return false;
+    }
+    b->data[0] = (uint8_t)(ev & 0xFFu);
+    b->data[1] = (uint8_t)(ev >> 8);
+    send(j, b, 2, MODCP_BP_INIT_ACK, MODCP_BLK_FIRST | MODCP_BLK_LAST, 0);
+    return true;
 }
 
 /* Push as many of the job's blocks as there are free slots; each block is written
@@ -131,11 +147,7 @@ static void push_blocks(modcp_job_t *j)
             flags |= MODCP_BLK_LAST; /* nothing (more) to send */
             j->state = MODCP_JOBST_WAITING;
         }
-        b->len = n;
-        b->kind = MODCP_BP_JOB;
-        b->flags = flags;
-        b->tag = j->tag;
-        modcp_ring_publish(r, &j->tx_seq);
+        send(j, b, n, MODCP_BP_JOB, flags, j->tag);
     }
 }
 
