@@ -9,6 +9,10 @@
  *        publish head + 1 (release: the slot contents become visible with it);
  *   get: read head (acquire: pairs with the producer's release), copy the slot out,
  *        acknowledge tail + 1 (release: the slot may now be reused).
+ * The hot path does not copy whole blocks: the producer fills the free slot in place
+ * (modcp_ring_slot, then modcp_ring_publish = head + 1) and the consumer reads the
+ * oldest slot in place (modcp_ring_peek, then modcp_ring_release = tail + 1), so the
+ * data of a block is copied once into the slot and once out of it.
  *
  * Header layouts in block data[], all fields little-endian, fixed offsets:
  *   JOB   (11 bytes)  0 op | 1 area | 2 bit | 3..4 db | 5..6 offset | 7..8 count |
@@ -40,30 +44,49 @@ void modcp_bp_init(modcp_backplane_t *bp)
     atomic_store_explicit(&bp->abort_tag, BP_NO_ABORT, memory_order_release);
 }
 
-bool modcp_ring_put(modcp_ring_t *r, const modcp_block_t *b, uint8_t *seq)
+modcp_block_t *modcp_ring_slot(modcp_ring_t *r)
 {
     uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
     uint32_t tail = atomic_load_explicit(&r->tail, memory_order_acquire);
     if ((uint32_t)(head - tail) >= MODCP_BP_DEPTH) {
-        return false;
+        return NULL;
     }
-    modcp_block_t *slot = &r->slot[head & (MODCP_BP_DEPTH - 1u)];
-    *slot = *b;
-    slot->seq = *seq;
+    return &r->slot[head & (MODCP_BP_DEPTH - 1u)];
+}
+
+void modcp_ring_publish(modcp_ring_t *r, uint8_t *seq)
+{
+    uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
+    r->slot[head & (MODCP_BP_DEPTH - 1u)].seq = *seq;
     *seq = (uint8_t)(*seq + 1u);
     atomic_store_explicit(&r->head, head + 1u, memory_order_release);
+}
+
+void modcp_ring_release(modcp_ring_t *r)
+{
+    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_relaxed);
+    atomic_store_explicit(&r->tail, tail + 1u, memory_order_release);
+}
+
+bool modcp_ring_put(modcp_ring_t *r, const modcp_block_t *b, uint8_t *seq)
+{
+    modcp_block_t *slot = modcp_ring_slot(r);
+    if (slot == NULL) {
+        return false;
+    }
+    *slot = *b;
+    modcp_ring_publish(r, seq);
     return true;
 }
 
 bool modcp_ring_get(modcp_ring_t *r, modcp_block_t *b)
 {
-    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_relaxed);
-    uint32_t head = atomic_load_explicit(&r->head, memory_order_acquire);
-    if (head == tail) {
+    const modcp_block_t *slot = modcp_ring_peek(r);
+    if (slot == NULL) {
         return false;
     }
-    *b = r->slot[tail & (MODCP_BP_DEPTH - 1u)];
-    atomic_store_explicit(&r->tail, tail + 1u, memory_order_release);
+    *b = *slot;
+    modcp_ring_release(r);
     return true;
 }
 
@@ -172,17 +195,17 @@ bool modcp_bp_init_decode(const uint8_t *d, uint8_t len, modcp_bp_init_t *i)
 bool modcp_ring_put_data(modcp_ring_t *r, uint8_t *seq, uint8_t kind, uint8_t flags, uint8_t tag,
                          const uint8_t *data, uint8_t len)
 {
-    modcp_block_t b;
-    memset(&b, 0, sizeof b);
-    if (len > MODCP_BLOCK_SIZE) {
+    modcp_block_t *b = len <= MODCP_BLOCK_SIZE ? modcp_ring_slot(r) : NULL;
+    if (b == NULL) {
         return false;
     }
     if (len > 0u) {
-        memcpy(b.data, data, len);
+        memcpy(b->data, data, len);
     }
-    b.len = len;
-    b.kind = kind;
-    b.flags = flags;
-    b.tag = tag;
-    return modcp_ring_put(r, &b, seq);
+    b->len = len;
+    b->kind = kind;
+    b->flags = flags;
+    b->tag = tag;
+    modcp_ring_publish(r, seq);
+    return true;
 }

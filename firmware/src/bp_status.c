@@ -1,16 +1,28 @@
 /* modcp — the CP status area on the backplane: a single-writer seqlock. The CP side
- * publishes, the CPU side copies; neither ever waits for the other. */
+ * publishes (in place, between begin and end, or from a copy), the CPU side copies;
+ * neither ever waits for the other. */
 #include <string.h>
 
 #include "modcp/backplane.h"
 
-void modcp_bp_publish_status(modcp_backplane_t *bp, const modcp_cp_status_t *st)
+modcp_cp_status_t *modcp_bp_status_begin(modcp_backplane_t *bp)
 {
     uint32_t seq = atomic_load_explicit(&bp->status_seq, memory_order_relaxed);
     atomic_store_explicit(&bp->status_seq, seq + 1u, memory_order_relaxed);
     atomic_thread_fence(memory_order_release);
-    memcpy(&bp->status, st, sizeof *st);
-    atomic_store_explicit(&bp->status_seq, seq + 2u, memory_order_release);
+    return &bp->status;
+}
+
+void modcp_bp_status_end(modcp_backplane_t *bp)
+{
+    uint32_t seq = atomic_load_explicit(&bp->status_seq, memory_order_relaxed);
+    atomic_store_explicit(&bp->status_seq, seq + 1u, memory_order_release);
+}
+
+void modcp_bp_publish_status(modcp_backplane_t *bp, const modcp_cp_status_t *st)
+{
+    memcpy(modcp_bp_status_begin(bp), st, sizeof *st);
+    modcp_bp_status_end(bp);
 }
 
 bool modcp_bp_read_status(const modcp_backplane_t *bp, modcp_cp_status_t *out)

@@ -10,7 +10,10 @@
  * out: event (0E)60H once and MODCP_CPST_COMMLOSS in the backplane status area,
  * which the CPU side's user program reads with modcp_bp_read_status(). The next valid
  * request for our address clears the flag; the supervision stays armed.
- * Like the Altivar (002 §7 pitfall), any request keeps it alive, also reads. */
+ * Like the Altivar (002 §7 pitfall), any request keeps it alive, also reads.
+ * The comm-loss state is x->cl_lost; cp.c publishes MODCP_CPST_COMMLOSS from it (and
+ * ignores the flags modcp_ext_poll returns); d->comm.commloss is a copy for the
+ * console. */
 #include <stddef.h>
 
 #include "modcp/backplane.h"

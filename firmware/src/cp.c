@@ -126,7 +126,7 @@ static void line_status(const modcp_cp_t *cp, modcp_cp_status_t *st)
 #if MODCP_WITH_RS232_SIGNALS
     st->signals = modcp_sig_bits(&cp->sig);
     st->signal_aborts = cp->sig.aborts;
-#endif
+#endif /* else: stay 0 from modcp_bp_init (the CP is the status area's only writer) */
     st->char_errors = cp->diag.char_errors;
     st->breaks = cp->diag.breaks;
     st->t15_discards = cp->diag.t15_discards;
@@ -154,6 +154,7 @@ void modcp_cp_on_signals(modcp_cp_t *cp, bool cts, bool dsr, uint32_t now_us)
     bool was_tx = cp->link.state == MODCP_LINK_TX;
     modcp_sig_on_inputs(&cp->sig, &cp->link, cts, dsr, now_us);
     tx_watch(cp, was_tx);
+    cp->published = false;
 #else
     (void)cp; /* no RS232 automatic signals in this build: inputs not used */
     (void)cts;
@@ -237,7 +238,7 @@ static void process_request(modcp_cp_t *cp, uint32_t now_us)
         modcp_pdu_request(&cp->pdu, &env, f->addr, f->pdu, f->pdu_len, f->pdu_cap, &out_len);
     run_action(cp, a, out_len, now_us);
     if (cp->request_pending) {
-        modcp_cp_poll(cp, now_us); /* push the first blocks at once */
+        modcp_job_push(&cp->job); /* the first blocks go out at once */
     }
 }
 
@@ -250,6 +251,7 @@ void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
     line_rx(cp, now_us);
     modcp_cpdiag_good_char(&cp->cpdiag);
     modcp_link_on_byte(&cp->link, byte, now_us);
+    cp->published = false; /* see publish() */
 }
 
 void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us)
@@ -261,6 +263,7 @@ void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us
     line_rx(cp, now_us);
     modcp_cpdiag_line_error(&cp->cpdiag, line_errors, cp->link.enabled && !cp->link.suppress);
     modcp_link_on_error(&cp->link, line_errors, now_us);
+    cp->published = false;
 }
 
 void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
@@ -268,17 +271,20 @@ void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
     bool was_tx = cp->link.state == MODCP_LINK_TX;
     if (sig_on_timer(cp, now_us)) {
         tx_watch(cp, was_tx); /* data output waiting time over: the reply may start */
+        cp->published = false;
         return;
     }
     if (modcp_link_on_timer(&cp->link, now_us, &cp->frame)) {
         process_request(cp, now_us);
     }
     tx_watch(cp, was_tx); /* RS485 turnaround over: the reply starts */
+    cp->published = false;
 }
 
 void modcp_cp_on_tx_done(modcp_cp_t *cp, uint32_t now_us)
 {
     modcp_leds_tx_end(&cp->leds);
+    cp->published = false;
     if (sig_on_tx_done(cp, now_us)) {
         return; /* RS232 automatic signals: RTS OFF after its delay, then receive */
     }
@@ -365,28 +371,55 @@ static void take_init(modcp_cp_t *cp)
     cp->ack_pending = !modcp_job_send_ack(&cp->job, ev);
 }
 
-/* Publish the status area when anything in it changed. */
+/* The status area is published only when something in it changed, never rebuilt and
+ * compared on every poll. cp->published is true while the status area shows the CP's
+ * state: every entry point that can change it (a character, a line error, a timer, a
+ * transmission complete, RS232 inputs) and every job result, PARAMS or INIT taken by a
+ * poll clear it. What changes without any of them — with time or from the CPU side —
+ * is compared with the published values, a few words: LEDs (time), comm-loss /
+ * listen-only flags (time), the event count (an event logged by a poll: comm loss,
+ * backplane errors) and the SYSTAT answer / diagnostic interrupt count. */
+/* MODCP_CPST_COMMLOSS / LISTEN_ONLY straight from their owners: the comm-loss
+ * supervision (commloss.c, ext.cl_lost) and the FC08 listen-only mode (diag). */
+static uint32_t ext_flags(const modcp_cp_t *cp)
+{
+#if MODCP_WITH_EXTENDED
+    return (cp->ext.cl_lost ? MODCP_CPST_COMMLOSS : 0u) |
+           (cp->diag.comm.listen_only ? MODCP_CPST_LISTEN_ONLY : 0u);
+#else
+    (void)cp;
+    return 0u; /* no comm-loss supervision, no FC08 in this build */
+#endif
+}
+
+static bool status_current(const modcp_cp_t *cp)
+{
+    const modcp_cp_status_t *st = &cp->bp->status; /* only the CP writes it */
+    return cp->published && st->events_total == cp->diag.events_total &&
+           st->leds == modcp_leds_bits(&cp->leds) &&
+           (st->flags & (MODCP_CPST_COMMLOSS | MODCP_CPST_LISTEN_ONLY)) == ext_flags(cp) &&
+           st->systat_ack == cp->cpdiag.systat_ack && st->diag_irq_count == cp->cpdiag.irq_count;
+}
+
+/* Publish the status area, written in place under the seqlock (no copy of it). */
 static void publish(modcp_cp_t *cp)
 {
-    modcp_cp_status_t st;
-    memset(&st, 0, sizeof st);
-    st.flags = (cp->configured ? MODCP_CPST_CONFIGURED : 0u) |
-               (modcp_cp_ready(cp) ? MODCP_CPST_READY : 0u) |
-               (sf_on(cp) ? MODCP_CPST_SF : 0u) | cp->status_flags;
-    st.events_total = cp->diag.events_total;
-    memcpy(st.buffer, cp->diag.buffer, sizeof st.buffer);
-    st.buffer_len = cp->diag.buffer_len;
-    st.status = cp->diag.status;
-    memcpy(st.counters, cp->diag.counters, sizeof st.counters);
-    st.param_event = cp->param_event;
-    line_status(cp, &st);
-    /* The CP is the only writer of the status area, so it may compare with what it
-     * published last without a copy of its own. */
-    if (cp->published && memcmp(&st, &cp->bp->status, sizeof st) == 0) {
+    if (status_current(cp)) {
         return;
     }
+    modcp_cp_status_t *st = modcp_bp_status_begin(cp->bp);
+    st->flags = (cp->configured ? MODCP_CPST_CONFIGURED : 0u) |
+                (modcp_cp_ready(cp) ? MODCP_CPST_READY : 0u) |
+                (sf_on(cp) ? MODCP_CPST_SF : 0u) | ext_flags(cp);
+    st->events_total = cp->diag.events_total;
+    memcpy(st->buffer, cp->diag.buffer, sizeof st->buffer);
+    st->buffer_len = cp->diag.buffer_len;
+    st->status = cp->diag.status;
+    memcpy(st->counters, cp->diag.counters, sizeof st->counters);
+    st->param_event = cp->param_event;
+    line_status(cp, st);
+    modcp_bp_status_end(cp->bp);
     cp->published = true;
-    modcp_bp_publish_status(cp->bp, &st);
 }
 
 void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
@@ -399,6 +432,7 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
         if (r == MODCP_JOBP_NOTHING) {
             break;
         }
+        cp->published = false;
         if (r == MODCP_JOBP_DONE) {
             if (!cp->request_pending) {
                 continue;
@@ -425,8 +459,8 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
     }
     line_poll(cp, now_us);
 #if MODCP_WITH_EXTENDED
-    cp->status_flags =
-        modcp_ext_poll(&cp->ext, &cp->params, &cp->diag, cp->status_flags, now_us);
+    /* comm-loss time; the flags are published from ext / diag (ext_flags) */
+    (void)modcp_ext_poll(&cp->ext, &cp->params, &cp->diag, 0u, now_us);
 #endif
     publish(cp);
 }

@@ -2,16 +2,24 @@
  *
  * One call per CPU cycle does, in this order:
  *   1. CP_START edge: clear the outputs and start the initialisation (PARAMS + INIT);
- *   2. continue pushing a pending REPLY (as many blocks as fit);
- *   3. read CP blocks: INIT_ACK while waiting for it, JOB blocks into buf; a job whose
- *      LAST block is in is executed at once, completely, inside this call (no new
- *      blocks are read while a reply is still going out, buf holds its data);
+ *   2. continue pushing a pending REPLY (as many blocks as there are free slots);
+ *   3. read CP blocks in place: INIT_ACK while waiting for it; a JOB header is checked
+ *      completely (operation, amount, area, range) before any data: a READ is answered
+ *      at once, its data read from controller memory straight into each reply slot; a
+ *      write job's data blocks are written straight from their slots into controller
+ *      memory as they arrive, and the job is answered after its LAST block (no new
+ *      blocks are read while a reply is still going out);
  *   4. initialisation: START_TIME check, retry every MODCP_FB_RETRY_MS while the CP
  *      answers "not ready" or is silent, push PARAMS then INIT.
  *
- * Consistency guarantee (SPEC §6): a job is executed only when all of its blocks are
- * in, and in a single call, so with the CPU executing the user program and the FB in
- * one thread the whole job — not only each 32-byte block — is consistent.
+ * Data crosses the backplane once per 32-byte block each way: no job buffer, one copy
+ * between a slot and controller memory. Consistency guarantee (SPEC §6): every block
+ * is written or read within one call, so each block is consistent; a job whose blocks
+ * are all handled in one FB call is consistent as a whole: a write job of up to
+ * MODCP_BP_DEPTH blocks, header included, is executed only when all of them are in
+ * (job_in_ring); a read's reply of up to MODCP_BP_DEPTH blocks goes out in the call
+ * that answers it when the ring towards the CP is empty (as in normal operation); a
+ * longer job whenever the other side keeps pace during the call.
  *
  * Job validation by the FB (004 §7.6), replied as (0E)57H + ERROR_NR and shown on
  * ERROR_NR / ERROR_INFO (they stay until the next CP_START edge):
@@ -22,8 +30,12 @@
  *   BITWRITE M Q DB (INFO 0) · 11 BITWRITE start bit > 7 (INFO = start byte) · 14 / 15 BITWRITE past
  *   the end of M / Q (INFO = last byte addressed).
  * Other replies: (0E)56H FB not in RUN, (0E)3AH BITWRITE with the work DB missing,
- * (0E)38H / (0E)39H from plcmem, (0E)33H write data not as announced. A job whose tag
- * is the backplane's abort_tag was given up by the CP: neither executed nor answered. */
+ * (0E)38H / (0E)39H from plcmem (checked on the header: nothing is written), (0E)33H
+ * write data not as announced (a data block of another size than announced, or a
+ * header flagged LAST for a write / not LAST for a read: nothing more of the job is
+ * written). A job whose tag is the backplane's abort_tag was given up by the CP:
+ * nothing (more) of it is executed and it is not answered; a job that loses a block
+ * (sequence gap) is not continued and not answered (the CP times out). */
 #include "modcp/fb.h"
 
 #include <stddef.h>
@@ -52,42 +64,57 @@ static bool put_block(modcp_fb_t *fb, uint8_t kind, uint8_t flags, uint8_t tag,
     return modcp_ring_put_data(&fb->bp->to_cp, &fb->tx_seq, kind, flags, tag, data, len);
 }
 
+/* The part of a job's operand that starts `pos` data bytes into the job: byte areas
+ * advance by bytes, T / C by 2-byte elements; a bit write keeps its start bit (a data
+ * block holds 256 bits, whole bytes of the area). */
+static modcp_operand_t opnd_at(const modcp_operand_t *o, uint16_t pos)
+{
+    modcp_operand_t r = *o;
+    bool words = o->area == MODCP_AREA_T || o->area == MODCP_AREA_C;
+    r.offset = (uint16_t)(o->offset + (words ? pos / 2u : pos));
+    return r;
+}
+
 /* ---- replies ---------------------------------------------------------------------- */
 
+/* Push the pending REPLY into the free slots: its header, then for a READ the data,
+ * read from controller memory straight into each slot (one copy). */
 static void pump_reply(modcp_fb_t *fb)
 {
-    while (fb->reply_pending) {
+    modcp_ring_t *r = &fb->bp->to_cp;
+    modcp_block_t *b;
+    while (fb->reply_pending && (b = modcp_ring_slot(r)) != NULL) {
+        b->kind = MODCP_BP_REPLY;
+        b->tag = fb->job_tag;
         if (!fb->reply_hdr_sent) {
-            uint8_t d[MODCP_BLOCK_SIZE];
-            uint8_t n = modcp_bp_reply_encode(&fb->reply, d);
             bool last = fb->reply.len == 0u;
-            uint8_t flags = (uint8_t)(MODCP_BLK_FIRST | (last ? MODCP_BLK_LAST : 0u));
-            if (!put_block(fb, MODCP_BP_REPLY, flags, fb->job_tag, d, n)) {
-                return;
-            }
+            b->len = modcp_bp_reply_encode(&fb->reply, b->data);
+            b->flags = (uint8_t)(MODCP_BLK_FIRST | (last ? MODCP_BLK_LAST : 0u));
             fb->reply_hdr_sent = true;
             fb->reply_pos = 0;
-            if (last) {
-                fb->reply_pending = false;
+        } else {
+            uint32_t rest = (uint32_t)fb->reply.len - fb->reply_pos;
+            uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
+            if (fb->job_mem != NULL) {
+                memcpy(b->data, fb->job_mem + fb->reply_pos, n);
+            } else { /* T / C elements; the range was checked on the header */
+                modcp_operand_t o = opnd_at(&fb->job.opnd, fb->reply_pos);
+                (void)modcp_plcmem_read(fb->mem, &o, b->data, n);
             }
-            continue;
+            b->len = n;
+            b->flags = n == rest ? MODCP_BLK_LAST : 0u;
+            fb->reply_pos = (uint16_t)(fb->reply_pos + n);
         }
-        uint32_t rest = (uint32_t)fb->reply.len - fb->reply_pos;
-        uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
-        bool last = n == rest;
-        if (!put_block(fb, MODCP_BP_REPLY, last ? MODCP_BLK_LAST : 0u, fb->job_tag,
-                       fb->buf + fb->reply_pos, n)) {
-            return;
-        }
-        fb->reply_pos = (uint16_t)(fb->reply_pos + n);
-        if (last) {
+        if ((b->flags & MODCP_BLK_LAST) != 0u) {
             fb->reply_pending = false;
         }
+        modcp_ring_publish(r, &fb->tx_seq);
     }
 }
 
 static void reply(modcp_fb_t *fb, modcp_event_t ev, uint16_t error_nr, uint16_t len)
 {
+    fb->job_active = false;
     fb->reply.event = ev;
     fb->reply.error_nr = error_nr;
     fb->reply.len = ev == MODCP_EV_NONE ? len : 0u;
@@ -122,59 +149,40 @@ static bool area_allowed(uint8_t op, uint8_t area)
     }
 }
 
-static void exec_bitwrite(modcp_fb_t *fb)
+/* BITWRITE checks on the header; false when the job was answered. */
+static bool check_bitwrite(modcp_fb_t *fb)
 {
     const modcp_operand_t *o = &fb->job.opnd;
     if (o->bit > 7u) {
         reply_fb_error(fb, MODCP_FB_ERR_START, o->offset);
-        return;
+        return false;
     }
     if (fb->job.len < ((uint32_t)o->count + 7u) / 8u) {
         reply_fb_error(fb, MODCP_FB_ERR_AMOUNT, o->count);
-        return;
+        return false;
     }
     uint32_t end = (uint32_t)o->offset + ((uint32_t)o->bit + o->count - 1u) / 8u;
     if (o->area == MODCP_AREA_M && end >= fb->mem->m_size) {
         reply_fb_error(fb, MODCP_FB_ERR_M_END, end);
-        return;
+        return false;
     }
     if (o->area == MODCP_AREA_Q && end >= fb->mem->q_size) {
         reply_fb_error(fb, MODCP_FB_ERR_Q_END, end);
-        return;
+        return false;
     }
-    modcp_event_t ev = modcp_plcmem_write_bits(fb->mem, o, fb->buf);
-    if (ev == MODCP_EV_NONE) {
-        fb->out.cp_start_ndr = true;
+    modcp_event_t ev = modcp_plcmem_locate_bits(fb->mem, o, &fb->job_mem);
+    if (ev != MODCP_EV_NONE) {
+        reply(fb, ev, 0, 0);
+        return false;
     }
-    reply(fb, ev, 0, 0);
+    return true;
 }
 
-/* FC22 mask write (MODCP_JOB_MASKWRITE): the word is read, masked and written back in
- * this one call, so nothing of the user program runs in between (atomic). */
-static void exec_maskwrite(modcp_fb_t *fb)
-{
-    const modcp_bp_job_t *jb = &fb->job;
-    if (jb->len != 4u || jb->opnd.count != 2u) {
-        reply_fb_error(fb, MODCP_FB_ERR_AMOUNT, jb->len);
-        return;
-    }
-    uint8_t w[2];
-    modcp_event_t ev = modcp_plcmem_read(fb->mem, &jb->opnd, w, 2);
-    if (ev == MODCP_EV_NONE) {
-        for (unsigned k = 0; k < 2u; k++) {
-            uint8_t and_mask = fb->buf[k];
-            uint8_t or_mask = fb->buf[2u + k];
-            w[k] = (uint8_t)((w[k] & and_mask) | (or_mask & (uint8_t)~and_mask));
-        }
-        ev = modcp_plcmem_write(fb->mem, &jb->opnd, w, 2);
-    }
-    if (ev == MODCP_EV_NONE) {
-        fb->out.cp_start_ndr = true;
-    }
-    reply(fb, ev, 0, 0);
-}
-
-static void execute(modcp_fb_t *fb)
+/* A job header arrived (its tag in job_tag): check everything that can be checked
+ * before the data — nothing is written by a job that is refused. A READ is answered
+ * at once (its data follows from memory, pump_reply); a write job becomes active and
+ * its data blocks are executed as they arrive (rx_data). */
+static void start_job(modcp_fb_t *fb, bool last)
 {
     if (atomic_load_explicit(&fb->bp->abort_tag, memory_order_acquire) == (uint32_t)fb->job_tag) {
         return; /* the CP timed out on this job: nothing is written, nobody waits */
@@ -203,8 +211,7 @@ static void execute(modcp_fb_t *fb)
         reply_fb_error(fb, MODCP_FB_ERR_AMOUNT, jb->len);
         return;
     }
-    uint16_t expect = op == MODCP_JOB_READ ? 0u : jb->len;
-    if (fb->job_pos != expect) {
+    if ((op == MODCP_JOB_READ) != last) {
         reply(fb, MODCP_EV_XFER_STATE, 0, 0); /* data not as announced: execute nothing */
         return;
     }
@@ -215,78 +222,158 @@ static void execute(modcp_fb_t *fb)
     modcp_event_t ev;
     switch (op) {
     case MODCP_JOB_READ:
-        ev = modcp_plcmem_read(fb->mem, &jb->opnd, fb->buf, jb->len);
+        ev = modcp_plcmem_locate(fb->mem, &jb->opnd, jb->len, &fb->job_mem);
         reply(fb, ev, 0, jb->len);
+        return;
+    case MODCP_JOB_MASKWRITE:
+        if (jb->len != 4u || jb->opnd.count != 2u) {
+            reply_fb_error(fb, MODCP_FB_ERR_AMOUNT, jb->len);
+            return;
+        }
+        ev = modcp_plcmem_locate(fb->mem, &jb->opnd, 2, &fb->job_mem);
         break;
     case MODCP_JOB_WRITE:
-        ev = modcp_plcmem_write(fb->mem, &jb->opnd, fb->buf, jb->len);
+        ev = modcp_plcmem_locate(fb->mem, &jb->opnd, jb->len, &fb->job_mem);
+        break;
+    default:
+        if (!check_bitwrite(fb)) {
+            return;
+        }
+        ev = MODCP_EV_NONE;
+        break;
+    }
+    if (ev != MODCP_EV_NONE) {
+        reply(fb, ev, 0, 0);
+        return;
+    }
+    fb->job_pos = 0;
+    fb->job_active = true;
+}
+
+/* FC22 mask write (MODCP_JOB_MASKWRITE): the word is read, masked and written back in
+ * this one call, so nothing of the user program runs in between (atomic). */
+static modcp_event_t exec_maskwrite(modcp_fb_t *fb, const uint8_t *masks)
+{
+    const modcp_operand_t *o = &fb->job.opnd;
+    uint8_t w[2];
+    modcp_event_t ev = modcp_plcmem_read(fb->mem, o, w, 2);
+    if (ev == MODCP_EV_NONE) {
+        for (unsigned k = 0; k < 2u; k++) {
+            uint8_t and_mask = masks[k];
+            uint8_t or_mask = masks[2u + k];
+            w[k] = (uint8_t)((w[k] & and_mask) | (or_mask & (uint8_t)~and_mask));
+        }
+        ev = modcp_plcmem_write(fb->mem, o, w, 2);
+    }
+    return ev;
+}
+
+/* A data block of the active write job, read in place and written straight into
+ * controller memory (one copy). It must be exactly the next piece the header
+ * announced (32 bytes, the last one shorter and flagged LAST); otherwise the job ends
+ * with (0E)33H and nothing more of it is written. */
+static void rx_data(modcp_fb_t *fb, const modcp_block_t *b)
+{
+    if (atomic_load_explicit(&fb->bp->abort_tag, memory_order_acquire) == (uint32_t)fb->job_tag) {
+        fb->job_active = false; /* given up by the CP: nothing more is written */
+        return;
+    }
+    const modcp_bp_job_t *jb = &fb->job;
+    uint32_t rest = (uint32_t)jb->len - fb->job_pos;
+    uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
+    bool last = n == rest;
+    if (b->len != n || ((b->flags & MODCP_BLK_LAST) != 0u) != last) {
+        reply(fb, MODCP_EV_XFER_STATE, 0, 0); /* data not as announced */
+        return;
+    }
+    /* WRITE / BITWRITE: only Q, M, DB (area_allowed), so job_mem is the storage */
+    uint8_t *dst = fb->job_mem + fb->job_pos;
+    modcp_event_t ev = MODCP_EV_NONE;
+    switch (jb->op) {
+    case MODCP_JOB_WRITE:
+        memcpy(dst, b->data, n);
+        break;
+    case MODCP_JOB_MASKWRITE:
+        ev = exec_maskwrite(fb, b->data);
+        break;
+    default: { /* BITWRITE: this block's bits, 256 per block (whole bytes of dst) */
+        uint32_t done = (uint32_t)fb->job_pos * 8u;
+        if (done < jb->opnd.count) {
+            uint32_t k = jb->opnd.count - done;
+            modcp_bits_put(dst, jb->opnd.bit, k > (uint32_t)n * 8u ? (uint32_t)n * 8u : k,
+                           b->data);
+        }
+        break;
+    }
+    }
+    fb->job_pos = (uint16_t)(fb->job_pos + n);
+    if (ev != MODCP_EV_NONE || last) {
         if (ev == MODCP_EV_NONE) {
             fb->out.cp_start_ndr = true;
         }
         reply(fb, ev, 0, 0);
-        break;
-    case MODCP_JOB_MASKWRITE:
-        exec_maskwrite(fb);
-        break;
-    default:
-        exec_bitwrite(fb);
-        break;
     }
 }
 
-/* A JOB block; true when the job is complete (LAST block in). */
-static bool rx_job(modcp_fb_t *fb, const modcp_block_t *b)
+/* A JOB block, read in place; hdr: its decoded header when it is a FIRST block (NULL
+ * if it does not decode). */
+static void rx_job(modcp_fb_t *fb, const modcp_block_t *b, const modcp_bp_job_t *hdr)
 {
     if ((b->flags & MODCP_BLK_FIRST) != 0u) {
-        modcp_bp_job_t h;
-        if (!modcp_bp_job_decode(b->data, b->len, &h)) {
-            fb->job_active = false;
-            return false;
+        fb->job_active = false; /* a new FIRST abandons an unfinished job */
+        if (hdr != NULL) {
+            fb->job = *hdr;
+            fb->job_tag = b->tag;
+            start_job(fb, (b->flags & MODCP_BLK_LAST) != 0u);
         }
-        fb->job = h;
-        fb->job_tag = b->tag;
-        fb->job_pos = 0;
-        fb->job_active = true;
-    } else {
-        if (!fb->job_active || b->tag != fb->job_tag) {
-            return false; /* remainder of a job we never saw the start of */
-        }
-        uint32_t cap = fb->job.len < MODCP_FB_JOB_MAX ? fb->job.len : MODCP_FB_JOB_MAX;
-        if (fb->job_pos < cap) {
-            uint32_t n = cap - fb->job_pos;
-            if (b->len < n) {
-                n = b->len;
-            }
-            memcpy(fb->buf + fb->job_pos, b->data, n);
-        }
-        uint32_t total = (uint32_t)fb->job_pos + b->len; /* count all, store what fits */
-        fb->job_pos = (uint16_t)(total > 0xFFFFu ? 0xFFFFu : total);
+    } else if (fb->job_active && b->tag == fb->job_tag) {
+        rx_data(fb, b);
     }
-    if ((b->flags & MODCP_BLK_LAST) == 0u) {
-        return false;
+    /* else: remainder of a job we never saw the start of, or that was answered */
+}
+
+/* A write job whose blocks all fit the ring waits until all of them are in, so it is
+ * executed within one call however the CP side's publishing interleaves with this
+ * call (two threads). The CP side publishes such a job completely into an empty ring
+ * (job.c), so it never waits for long. */
+static bool job_in_ring(const modcp_fb_t *fb, const modcp_block_t *b, const modcp_bp_job_t *h)
+{
+    if ((b->flags & MODCP_BLK_LAST) != 0u) {
+        return true;
     }
-    fb->job_active = false;
-    return true;
+    uint32_t need = 1u + ((uint32_t)h->len + MODCP_BLOCK_SIZE - 1u) / MODCP_BLOCK_SIZE;
+    return h->op == MODCP_JOB_READ || need > MODCP_BP_DEPTH ||
+           MODCP_BP_DEPTH - modcp_ring_space(&fb->bp->to_cpu) >= need ||
+           /* given up by the CP (it never comes complete): take it, it is dropped */
+           atomic_load_explicit(&fb->bp->abort_tag, memory_order_acquire) == (uint32_t)b->tag;
 }
 
 static void rx_blocks(modcp_fb_t *fb)
 {
-    modcp_block_t b;
-    while (!fb->reply_pending && modcp_ring_get(&fb->bp->to_cpu, &b)) {
-        if (fb->rx_synced && b.seq != fb->rx_seq) {
-            fb->job_active = false; /* a block went missing: never execute that job */
+    modcp_ring_t *r = &fb->bp->to_cpu;
+    const modcp_block_t *b;
+    while (!fb->reply_pending && (b = modcp_ring_peek(r)) != NULL) {
+        modcp_bp_job_t h;
+        const modcp_bp_job_t *hdr = NULL;
+        if (b->kind == MODCP_BP_JOB && (b->flags & MODCP_BLK_FIRST) != 0u &&
+            modcp_bp_job_decode(b->data, b->len, &h)) {
+            if (!job_in_ring(fb, b, &h)) {
+                break; /* not all of its blocks in yet */
+            }
+            hdr = &h;
+        }
+        if (fb->rx_synced && b->seq != fb->rx_seq) {
+            fb->job_active = false; /* a block went missing: nothing more of that job */
         }
         fb->rx_synced = true;
-        fb->rx_seq = (uint8_t)(b.seq + 1u);
-        if (b.len > MODCP_BLOCK_SIZE) {
+        fb->rx_seq = (uint8_t)(b->seq + 1u);
+        if (b->len > MODCP_BLOCK_SIZE) {
             fb->job_active = false;
-            continue;
-        }
-        if (b.kind == MODCP_BP_INIT_ACK) {
+        } else if (b->kind == MODCP_BP_INIT_ACK) {
             if (fb->state == MODCP_FBST_INIT_WAIT) {
-                modcp_event_t ev = b.len >= 2u
-                                       ? (modcp_event_t)((unsigned)b.data[0] |
-                                                         ((unsigned)b.data[1] << 8))
+                modcp_event_t ev = b->len >= 2u
+                                       ? (modcp_event_t)((unsigned)b->data[0] |
+                                                         ((unsigned)b->data[1] << 8))
                                        : MODCP_EV_XFER_STATE;
                 if (ev == MODCP_EV_NONE) {
                     fb->state = MODCP_FBST_RUN;
@@ -296,13 +383,12 @@ static void rx_blocks(modcp_fb_t *fb)
                     fb->init_event = ev; /* not ready: retried on the next interval */
                 }
             }
-        } else if (b.kind == MODCP_BP_JOB) {
-            if (rx_job(fb, &b)) {
-                execute(fb);
-                pump_reply(fb);
-            }
+        } else if (b->kind == MODCP_BP_JOB) {
+            rx_job(fb, b, hdr);
         }
         /* PARAMS / INIT / REPLY travel the other way: ignored */
+        modcp_ring_release(r);
+        pump_reply(fb);
     }
 }
 

@@ -3,7 +3,10 @@
  * A job goes out as one header block (kind JOB, FIRST, the job's tag, data = the
  * encoded modcp_bp_job_t; also LAST when no data follows) and ceil(len / 32) data
  * blocks of 32 bytes (the last one shorter and flagged LAST). Each poll pushes as many
- * blocks as the ring has room for.
+ * blocks as the ring has free slots, each written in place into its slot (the write
+ * data is copied once, from the request into the slot); nothing is produced when no
+ * slot is free, so no put ever fails. REPLY blocks are read in place and released
+ * (read data: one copy, from the slot into the caller's buffer).
  *
  * The header of a new job is only pushed once the CPU-bound ring is empty, i.e. once
  * the CPU side has consumed every block of the previous job. In normal operation this
@@ -90,57 +93,62 @@ void modcp_job_abort(modcp_job_t *j)
     j->state = MODCP_JOBST_IDLE;
 }
 
-static bool put_block(modcp_job_t *j, uint8_t kind, uint8_t flags, uint8_t tag,
-                      const uint8_t *data, uint8_t len)
+/* Stamp the block filled in slot b and hand it to the CPU side. */
+static void send(modcp_job_t *j, modcp_block_t *b, uint8_t len, uint8_t kind, uint8_t flags,
+                 uint8_t tag)
 {
-    return modcp_ring_put_data(&j->bp->to_cpu, &j->tx_seq, kind, flags, tag, data, len);
+    b->len = len;
+    b->kind = kind;
+    b->flags = flags;
+    b->tag = tag;
+    modcp_ring_publish(&j->bp->to_cpu, &j->tx_seq);
 }
 
 bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev)
 {
-    uint8_t d[2] = {(uint8_t)(ev & 0xFFu), (uint8_t)(ev >> 8)};
-    return put_block(j, MODCP_BP_INIT_ACK, MODCP_BLK_FIRST | MODCP_BLK_LAST, 0, d, 2);
+    modcp_block_t *b = modcp_ring_slot(&j->bp->to_cpu);
+    if (b == NULL) {
+        return false;
+    }
+    b->data[0] = (uint8_t)(ev & 0xFFu);
+    b->data[1] = (uint8_t)(ev >> 8);
+    send(j, b, 2, MODCP_BP_INIT_ACK, MODCP_BLK_FIRST | MODCP_BLK_LAST, 0);
+    return true;
 }
 
-static bool sends_data(const modcp_job_t *j)
-{
-    return j->hdr.op != MODCP_JOB_READ;
-}
-
-/* Push as many of the job's blocks as fit. */
+/* Push as many of the job's blocks as there are free slots; each block is written
+ * straight into its slot (the write data: one copy from the request). */
 static void push_blocks(modcp_job_t *j)
 {
+    modcp_ring_t *r = &j->bp->to_cpu;
     if (!j->hdr_sent) {
-        if (modcp_ring_space(&j->bp->to_cpu) < MODCP_BP_DEPTH) {
+        if (modcp_ring_space(r) < MODCP_BP_DEPTH) {
             return; /* previous blocks not consumed yet (see the top of this file) */
         }
         if (atomic_load_explicit(&j->bp->abort_tag, memory_order_acquire) == (uint32_t)j->tag) {
             atomic_store_explicit(&j->bp->abort_tag, JOB_NO_ABORT, memory_order_release);
         }
-        uint8_t d[MODCP_BLOCK_SIZE];
-        uint8_t n = modcp_bp_job_encode(&j->hdr, d);
-        bool last = !sends_data(j) || j->hdr.len == 0u;
-        uint8_t flags = (uint8_t)(MODCP_BLK_FIRST | (last ? MODCP_BLK_LAST : 0u));
-        if (!put_block(j, MODCP_BP_JOB, flags, j->tag, d, n)) {
-            return;
+    }
+    modcp_block_t *b;
+    while (j->state == MODCP_JOBST_SENDING && (b = modcp_ring_slot(r)) != NULL) {
+        uint8_t flags = 0;
+        uint8_t n;
+        if (!j->hdr_sent) {
+            n = modcp_bp_job_encode(&j->hdr, b->data);
+            flags = MODCP_BLK_FIRST;
+            j->hdr_sent = true;
+        } else {
+            uint32_t rest = (uint32_t)j->hdr.len - j->wpos;
+            n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
+            memcpy(b->data, j->wdata + j->wpos, n);
+            j->wpos = (uint16_t)(j->wpos + n);
         }
-        j->hdr_sent = true;
-        if (last) {
+        if (j->hdr.op == MODCP_JOB_READ || j->wpos >= j->hdr.len) {
+            flags |= MODCP_BLK_LAST; /* nothing (more) to send */
             j->state = MODCP_JOBST_WAITING;
-            return;
         }
+        send(j, b, n, MODCP_BP_JOB, flags, j->tag);
     }
-    while (j->wpos < j->hdr.len) {
-        uint32_t rest = (uint32_t)j->hdr.len - j->wpos;
-        uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
-        bool last = (uint32_t)j->wpos + n == j->hdr.len;
-        if (!put_block(j, MODCP_BP_JOB, last ? MODCP_BLK_LAST : 0u, j->tag, j->wdata + j->wpos,
-                       n)) {
-            return;
-        }
-        j->wpos = (uint16_t)(j->wpos + n);
-    }
-    j->state = MODCP_JOBST_WAITING;
 }
 
 static modcp_jobp_t finish(modcp_job_t *j, modcp_event_t ev, uint16_t error_nr)
@@ -275,22 +283,26 @@ static bool params_wait(const modcp_job_t *j)
 }
 #endif
 
+void modcp_job_push(modcp_job_t *j)
+{
+    if (j->state == MODCP_JOBST_SENDING) {
+        push_blocks(j);
+    }
+}
+
 modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us)
 {
-    modcp_block_t b;
-    for (;;) {
+    modcp_ring_t *in = &j->bp->to_cp;
+    const modcp_block_t *b;
+    while ((b = modcp_ring_peek(in)) != NULL) {
 #if MODCP_SHARED_PARAMS_BUFFER
         if (params_wait(j)) {
             return MODCP_JOBP_PARAMS_START;
         }
-#endif
-        if (!modcp_ring_get(&j->bp->to_cp, &b)) {
-            break;
-        }
-#if MODCP_SHARED_PARAMS_BUFFER
         j->msg_granted = false; /* a grant covers the one block it was asked for */
 #endif
-        modcp_jobp_t r = rx_block(j, &b);
+        modcp_jobp_t r = rx_block(j, b); /* read in place (one copy out for REPLY data) */
+        modcp_ring_release(in);
         if (r != MODCP_JOBP_NOTHING) {
             return r;
         }

@@ -161,29 +161,81 @@ modcp_event_t modcp_plcmem_write(modcp_plcmem_t *mem, const modcp_operand_t *op,
     return MODCP_EV_NONE;
 }
 
-modcp_event_t modcp_plcmem_write_bits(modcp_plcmem_t *mem, const modcp_operand_t *op,
-                                      const uint8_t *bits)
+modcp_event_t modcp_plcmem_locate(const modcp_plcmem_t *mem, const modcp_operand_t *op,
+                                  uint16_t len, uint8_t **bytes)
 {
+    *bytes = NULL;
+    if (is_word_area(op->area)) {
+        return (len & 1u) == 0u && word_area(mem, op, (uint32_t)len / 2u) != NULL
+                   ? MODCP_EV_NONE
+                   : MODCP_EV_AREA_ACCESS;
+    }
+    modcp_event_t ev;
+    *bytes = byte_area(mem, op, len, &ev);
+    return ev;
+}
+
+/* Bytes a bit operand touches (op->bit may exceed 7). */
+static uint32_t bit_span(const modcp_operand_t *op)
+{
+    return op->count == 0u ? 0u : ((uint32_t)op->bit + op->count - 1u) / 8u + 1u;
+}
+
+modcp_event_t modcp_plcmem_locate_bits(const modcp_plcmem_t *mem, const modcp_operand_t *op,
+                                       uint8_t **bytes)
+{
+    *bytes = NULL;
     if (is_word_area(op->area)) {
         return MODCP_EV_AREA_ACCESS; /* T / C are words, never bit-written */
     }
-    /* absolute bit index relative to op->offset (op->bit may exceed 7) */
-    uint32_t first = op->bit;
-    uint32_t count = op->count;
-    uint32_t span = count == 0u ? 0u : (first + count - 1u) / 8u + 1u; /* bytes touched */
     modcp_event_t ev;
-    uint8_t *dst = byte_area(mem, op, span, &ev);
-    if (dst == NULL) {
-        return ev;
+    *bytes = byte_area(mem, op, bit_span(op), &ev);
+    return ev;
+}
+
+/* Destination byte k takes its low sh bits from source byte k - 1 (shifted down) and
+ * its high bits from source byte k (shifted up). */
+void modcp_bits_put(uint8_t *dst, uint32_t first, uint32_t count, const uint8_t *bits)
+{
+    if (count == 0u) {
+        return;
     }
-    for (uint32_t k = 0; k < count; k++) {
-        uint32_t pos = first + k;
-        uint8_t mask = (uint8_t)(1u << (pos & 7u));
-        if (((unsigned)bits[k / 8u] >> (k & 7u)) & 1u) {
-            dst[pos / 8u] = (uint8_t)(dst[pos / 8u] | mask);
-        } else {
-            dst[pos / 8u] = (uint8_t)(dst[pos / 8u] & (uint8_t)~mask);
-        }
+    dst += first / 8u;
+    unsigned sh = first & 7u;
+    uint32_t end = sh + count;       /* one past the last bit, counted from dst[0] bit 0 */
+    uint32_t last = (end - 1u) / 8u; /* the last destination byte */
+    uint32_t sbytes = (count + 7u) / 8u;
+    unsigned head = (0xFFu << sh) & 0xFFu;
+    unsigned tail = 0xFFu >> (7u - ((end - 1u) & 7u));
+    if (last == 0u) {
+        unsigned mask = head & tail;
+        dst[0] = (uint8_t)((dst[0] & ~mask) | (((unsigned)bits[0] << sh) & mask));
+        return;
     }
-    return MODCP_EV_NONE;
+    if (sh == 0u) { /* byte-aligned: whole source bytes as they are */
+        memcpy(dst, bits, last);
+        dst[last] = (uint8_t)((dst[last] & ~tail) | (bits[last] & tail));
+        return;
+    }
+    unsigned cur = bits[0];
+    dst[0] = (uint8_t)((dst[0] & ~head) | ((cur << sh) & head));
+    unsigned carry = cur >> (8u - sh);
+    for (uint32_t k = 1; k < last; k++) {
+        cur = bits[k]; /* k < last <= sbytes: inside the source */
+        dst[k] = (uint8_t)((cur << sh) | carry);
+        carry = cur >> (8u - sh);
+    }
+    cur = last < sbytes ? bits[last] : 0u;
+    dst[last] = (uint8_t)((dst[last] & ~tail) | (((cur << sh) | carry) & tail));
+}
+
+modcp_event_t modcp_plcmem_write_bits(modcp_plcmem_t *mem, const modcp_operand_t *op,
+                                      const uint8_t *bits)
+{
+    uint8_t *dst;
+    modcp_event_t ev = modcp_plcmem_locate_bits(mem, op, &dst);
+    if (dst != NULL) {
+        modcp_bits_put(dst, op->bit, op->count, bits);
+    }
+    return ev;
 }

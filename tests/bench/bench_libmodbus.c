@@ -18,6 +18,8 @@ static modbus_t *ctx;
 static modbus_mapping_t *map;
 static int sv[2];
 
+static ssize_t last_reply;
+
 static void one(const uint8_t *req, size_t len)
 {
     uint8_t buf[MODBUS_RTU_MAX_ADU_LENGTH];
@@ -31,7 +33,8 @@ static void one(const uint8_t *req, size_t len)
         exit(1);
     }
     uint8_t reply[300];
-    if (read(sv[1], reply, sizeof reply) <= 0) {
+    last_reply = read(sv[1], reply, sizeof reply);
+    if (last_reply <= 0) {
         perror("read");
         exit(1);
     }
@@ -53,6 +56,8 @@ int main(int argc, char **argv)
     }
     const bench_request_t *r = bench_find(argv[1]);
     unsigned n = (unsigned)strtoul(argv[2], NULL, 0);
+    uint8_t frame[BENCH_FRAME_MAX];
+    size_t len = bench_frame(r, frame);
     if (socketpair(AF_UNIX, SOCK_STREAM, 0, sv) != 0) {
         perror("socketpair");
         return 1;
@@ -61,10 +66,15 @@ int main(int argc, char **argv)
     modbus_set_slave(ctx, 5);
     modbus_set_socket(ctx, sv[0]);
     map = modbus_mapping_new(4096, 0, 1024, 1024);
-    one(r->frame, r->len);
+    one(frame, len);
+    if (last_reply != (ssize_t)r->reply_len) {
+        fprintf(stderr, "bench_libmodbus: %s: reply length %zd, expected %u\n", r->name,
+                last_reply, r->reply_len);
+        return 1;
+    }
     struct timespec a, b;
     clock_gettime(CLOCK_MONOTONIC, &a);
-    bench_loop(r->frame, r->len, n);
+    bench_loop(frame, len, n);
     clock_gettime(CLOCK_MONOTONIC, &b);
     double us = ((double)(b.tv_sec - a.tv_sec) * 1e6 + (double)(b.tv_nsec - a.tv_nsec) / 1e3) / n;
     printf("libmodbus %s: %.2f us per request (wall, %u requests)\n", r->name, us, n);

@@ -79,6 +79,52 @@ static void test_empty_full_space(void **state)
     assert_int_equal(modcp_ring_space(&bp.to_cp), MODCP_BP_DEPTH);
 }
 
+/* Zero-copy use: the producer fills the free slot in place and publishes it, the
+ * consumer reads it in place and releases it. A full ring offers no slot (the producer
+ * produces nothing, so nothing fails); the consumer's block stays put until released. */
+static void test_slot_in_place(void **state)
+{
+    (void)state;
+    modcp_backplane_t bp;
+    modcp_bp_init(&bp);
+    modcp_ring_t *r = &bp.to_cp;
+    uint8_t seq = 200;
+    assert_null(modcp_ring_peek(r));
+    for (uint32_t k = 0; k < MODCP_BP_DEPTH; k++) {
+        modcp_block_t *b = modcp_ring_slot(r);
+        assert_non_null(b);
+        assert_ptr_equal(b, &r->slot[k]);
+        assert_ptr_equal(modcp_ring_slot(r), b); /* not taken until published */
+        b->len = 1;
+        b->data[0] = (uint8_t)(0x40 + k);
+        b->kind = MODCP_BP_REPLY;
+        b->flags = 0;
+        b->tag = 9;
+        modcp_ring_publish(r, &seq);
+        assert_int_equal(atomic_load(&r->head), k + 1u);
+    }
+    assert_int_equal(seq, (uint8_t)(200 + MODCP_BP_DEPTH));
+    assert_null(modcp_ring_slot(r)); /* full */
+    assert_int_equal(modcp_ring_space(r), 0);
+    const modcp_block_t *c = modcp_ring_peek(r);
+    assert_ptr_equal(c, &r->slot[0]);
+    assert_ptr_equal(modcp_ring_peek(r), c); /* peeking does not take it */
+    assert_int_equal(c->seq, 200);
+    assert_int_equal(c->data[0], 0x40);
+    assert_null(modcp_ring_slot(r)); /* still full until released */
+    modcp_ring_release(r);
+    assert_int_equal(atomic_load(&r->tail), 1);
+    assert_ptr_equal(modcp_ring_slot(r), &r->slot[0]); /* the released slot is next */
+    c = modcp_ring_peek(r);
+    assert_int_equal(c->seq, 201);
+    assert_int_equal(c->data[0], 0x41);
+    /* put_data builds in the free slot; a block longer than 32 bytes is refused */
+    uint8_t d[33] = {0};
+    assert_false(modcp_ring_put_data(r, &seq, MODCP_BP_REPLY, 0, 1, d, 33));
+    assert_true(modcp_ring_put_data(r, &seq, MODCP_BP_REPLY, MODCP_BLK_LAST, 1, d, 32));
+    assert_false(modcp_ring_put_data(r, &seq, MODCP_BP_REPLY, 0, 1, d, 1)); /* full */
+}
+
 static void test_sequence_wraps(void **state)
 {
     (void)state;
@@ -273,6 +319,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_init),
         cmocka_unit_test(test_empty_full_space),
+        cmocka_unit_test(test_slot_in_place),
         cmocka_unit_test(test_sequence_wraps),
         cmocka_unit_test(test_counter_wrap),
         cmocka_unit_test(test_two_threads),

@@ -615,6 +615,49 @@ static void test_status_area_fields(void **state)
     lw_free(x);
 }
 
+/* Issue 12 item 4: the status area is published only when something in it changed —
+ * polls in which nothing happened leave it (and its seqlock) alone; a request, the
+ * LEDs going off with time and a SYSTAT request of the CPU side each publish it. */
+static void test_status_area_published_on_change(void **state)
+{
+    (void)state;
+    world_t *w = world_new(NULL);
+    assert_true(world_start(w, 1000));
+    world_run(w, 500000); /* LEDs settled */
+    uint32_t s0 = atomic_load(&w->bp.status_seq);
+    assert_int_equal(s0 & 1u, 0);
+    world_run(w, 100000); /* 100 FB cycles and CP polls, nothing happens */
+    assert_int_equal(atomic_load(&w->bp.status_seq), s0);
+    modcp_cp_status_t st;
+    assert_true(modcp_bp_read_status(&w->bp, &st));
+    assert_true(st.flags & MODCP_CPST_READY);
+    assert_int_equal(st.leds, 0);
+    uint16_t bus = st.counters[MODCP_CNT_BUS_MSG];
+
+    assert_int_equal(world_request(w, FC08_REQ, 100), 8);
+    world_run(w, 1000); /* the next CP poll publishes */
+    uint32_t s1 = atomic_load(&w->bp.status_seq);
+    assert_int_not_equal(s1, s0);
+    assert_true(modcp_bp_read_status(&w->bp, &st));
+    assert_int_equal(st.counters[MODCP_CNT_BUS_MSG], (uint16_t)(bus + 1u));
+    assert_true(st.leds & (1u << MODCP_LED_RXD));
+
+    world_run(w, 500000); /* RXD / TXD off after their minimum on-time */
+    uint32_t s2 = atomic_load(&w->bp.status_seq);
+    assert_int_not_equal(s2, s1);
+    assert_true(modcp_bp_read_status(&w->bp, &st));
+    assert_int_equal(st.leds, 0);
+    world_run(w, 100000);
+    assert_int_equal(atomic_load(&w->bp.status_seq), s2);
+
+    uint32_t req = modcp_bp_systat_request(&w->bp);
+    world_run(w, 2000);
+    uint8_t img[16];
+    assert_true(modcp_bp_systat_result(&w->bp, req, img));
+    assert_int_not_equal(atomic_load(&w->bp.status_seq), s2);
+    world_free(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -636,6 +679,7 @@ int main(void)
         cmocka_unit_test(test_internal_receive_error),
         cmocka_unit_test(test_backplane_protocol_events),
         cmocka_unit_test(test_status_area_fields),
+        cmocka_unit_test(test_status_area_published_on_change),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

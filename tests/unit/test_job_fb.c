@@ -940,6 +940,158 @@ static void test_fb_incomplete_jobs(void **state)
     assert_int_equal(r.error_nr, MODCP_FB_ERR_AREA);
 }
 
+/* Data crosses once per block: a write job's data blocks are written into controller
+ * memory as they arrive, each block within one FB call (each block consistent); a job
+ * whose blocks all arrive in one call is consistent as a whole. CP_START_NDR and the
+ * reply come with the LAST block. */
+static void test_write_streamed_per_block(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    for (unsigned k = 0; k < 200; k++) {
+        f->wbuf[k] = (uint8_t)(k + 1u);
+    }
+    f->ndr_calls = 0;
+    assert_int_equal(start(f, MODCP_JOB_WRITE, MODCP_AREA_DB, 800, 0, 0, 200, 200, 1024),
+                     MODCP_EV_NONE);
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING); /* header + 3 data blocks */
+    fb(f, true);
+    assert_memory_equal(f->db800, f->wbuf, 96); /* the 3 blocks that crossed */
+    assert_int_equal(f->db800[96], 0);
+    assert_int_equal(f->ndr_calls, 0);
+    assert_null(modcp_ring_peek(&f->bp.to_cp)); /* no reply yet */
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING); /* the other 4 data blocks */
+    fb(f, true);
+    assert_memory_equal(f->db800, f->wbuf, 200);
+    assert_int_equal(f->db800[200], 0);
+    assert_int_equal(f->ndr_calls, 1);
+    assert_int_equal(poll(f), MODCP_JOBP_DONE);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+
+    /* a job of up to 4 blocks crosses in one call: written whole in that call */
+    memset(f->wbuf, 0x77, 96);
+    assert_int_equal(start(f, MODCP_JOB_WRITE, MODCP_AREA_M, 0, 100, 0, 96, 96, 1024),
+                     MODCP_EV_NONE);
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    fb(f, true);
+    assert_memory_equal(f->m + 100, f->wbuf, 96);
+    assert_int_equal(f->ndr_calls, 2);
+    assert_int_equal(poll(f), MODCP_JOBP_DONE);
+}
+
+/* A read's reply blocks are read from controller memory into their slots when the
+ * slots are free: each block is a consistent snapshot of its own call. */
+static void test_read_streamed_per_block(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    memset(f->db800, 0x11, 200);
+    assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_DB, 800, 0, 0, 200, 200, 1024),
+                     MODCP_EV_NONE);
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    fb(f, true); /* REPLY header + 3 data blocks (bytes 0 .. 95) */
+    memset(f->db800, 0x22, 200); /* the user program changes the data meanwhile */
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+    assert_int_equal(f->job.rlen, 200);
+    assert_int_equal(f->rbuf[0], 0x11);
+    assert_int_equal(f->rbuf[95], 0x11);
+    assert_int_equal(f->rbuf[96], 0x22);
+    assert_int_equal(f->rbuf[199], 0x22);
+}
+
+/* Data blocks after the header: a block of another size than announced ends the job
+ * with (0E)33H and nothing more of it is written; a block of a job the CP gave up on
+ * (abort_tag) is not written and the job is not answered. */
+static void test_fb_data_checks_per_block(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    uint8_t d[MODCP_BLOCK_SIZE];
+    memset(d, 0x5A, sizeof d);
+    uint8_t tag;
+    modcp_bp_reply_t r;
+
+    /* 70 bytes announced: 32 + 32 + 6; the second block has 20 bytes */
+    cp_put_job(f, 30, MODCP_JOB_WRITE, MODCP_AREA_M, 0, 0, 70, 70, false);
+    cp_put(f, MODCP_BP_JOB, 0, 30, d, 32);
+    cp_put(f, MODCP_BP_JOB, 0, 30, d, 20);
+    cp_put(f, MODCP_BP_JOB, MODCP_BLK_LAST, 30, d, 6);
+    fb(f, true);
+    assert_true(fb_reply(f, &tag, &r));
+    assert_int_equal(tag, 30);
+    assert_int_equal(r.event, MODCP_EV_XFER_STATE);
+    assert_int_equal(f->m[31], 0x5A); /* the first block was in order */
+    assert_int_equal(f->m[32], 0);
+    assert_int_equal(f->ndr_calls, 0);
+    assert_false(fb_reply(f, &tag, &r)); /* the rest of the job is dropped */
+
+    /* cancelled between two blocks (a job longer than the ring: 1 + 5 blocks) */
+    memset(f->m, 0, 200);
+    cp_put_job(f, 31, MODCP_JOB_WRITE, MODCP_AREA_M, 0, 0, 136, 136, false);
+    cp_put(f, MODCP_BP_JOB, 0, 31, d, 32);
+    fb(f, true);
+    assert_int_equal(f->m[0], 0x5A);
+    atomic_store(&f->bp.abort_tag, 31);
+    cp_put(f, MODCP_BP_JOB, 0, 31, d, 32);
+    fb(f, true);
+    assert_int_equal(f->m[32], 0);
+    assert_false(fb_reply(f, &tag, &r));
+    assert_int_equal(f->ndr_calls, 0);
+
+    /* a write job that fits the ring waits until all of its blocks are in */
+    memset(f->m, 0, 200);
+    cp_put_job(f, 33, MODCP_JOB_WRITE, MODCP_AREA_M, 0, 0, 40, 40, false);
+    cp_put(f, MODCP_BP_JOB, 0, 33, d, 32);
+    fb(f, true);
+    assert_int_equal(f->m[0], 0); /* 2 of its 3 blocks in: not started */
+    assert_non_null(modcp_ring_peek(&f->bp.to_cpu));
+    cp_put(f, MODCP_BP_JOB, MODCP_BLK_LAST, 33, d, 8);
+    fb(f, true);
+    assert_int_equal(f->m[0], 0x5A);
+    assert_int_equal(f->m[39], 0x5A);
+    assert_int_equal(f->m[40], 0);
+    assert_true(fb_reply(f, &tag, &r));
+    assert_int_equal(tag, 33);
+    assert_int_equal(r.event, MODCP_EV_NONE);
+    assert_int_equal(f->ndr_calls, 1);
+    f->ndr_calls = 0;
+
+    /* a header flagged LAST for a write that announces data: (0E)33H */
+    cp_put_job(f, 32, MODCP_JOB_WRITE, MODCP_AREA_M, 0, 0, 4, 4, true);
+    fb(f, true);
+    assert_true(fb_reply(f, &tag, &r));
+    assert_int_equal(tag, 32);
+    assert_int_equal(r.event, MODCP_EV_XFER_STATE);
+}
+
+/* FC15 over several blocks: 600 bits from M 10.3, 256 per block, the edges masked. */
+static void test_bitwrite_multi_block(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    for (unsigned k = 0; k < 75; k++) {
+        f->wbuf[k] = (uint8_t)(k * 37u + 11u);
+    }
+    memset(f->m, 0xFF, 100);
+    assert_int_equal(start(f, MODCP_JOB_BITWRITE, MODCP_AREA_M, 0, 10, 3, 600, 75, 1024),
+                     MODCP_EV_NONE);
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+    for (unsigned k = 0; k < 600; k++) {
+        unsigned want = (f->wbuf[k / 8u] >> (k % 8u)) & 1u;
+        unsigned pos = 3u + k;
+        unsigned got = (f->m[10u + pos / 8u] >> (pos % 8u)) & 1u;
+        if (want != got) {
+            fail_msg("bit %u", k);
+        }
+    }
+    assert_int_equal(f->m[10] & 0x07, 0x07); /* M 10.0 .. 10.2 untouched */
+    assert_int_equal(f->m[10 + (3 + 600) / 8] & 0xF8, 0xF8); /* after the last bit */
+    assert_int_equal(f->m[9], 0xFF);
+    assert_int_equal(f->m[86], 0xFF);
+}
+
 /* CP side: a PARAMS message that loses a block is reported empty; blocks of the wrong
  * kind or a short INIT are protocol errors and reported as nothing. */
 static void test_cp_message_checks(void **state)
@@ -1002,6 +1154,10 @@ int main(void)
         T(test_reply_checks),
         T(test_fb_incomplete_jobs),
         T(test_cp_message_checks),
+        T(test_write_streamed_per_block),
+        T(test_read_streamed_per_block),
+        T(test_fb_data_checks_per_block),
+        T(test_bitwrite_multi_block),
     };
 #undef T
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -217,6 +217,82 @@ static void test_write_bits_unaligned(void **state)
 }
 
 /* (0E)38H: I, Q, M, T, C out of range or no such area; nothing is written. */
+/* Reference for modcp_bits_put: one bit at a time. */
+static void bits_put_ref(uint8_t *dst, uint32_t first, uint32_t count, const uint8_t *bits)
+{
+    for (uint32_t k = 0; k < count; k++) {
+        uint32_t pos = first + k;
+        uint8_t mask = (uint8_t)(1u << (pos & 7u));
+        if ((bits[k / 8u] >> (k & 7u)) & 1u) {
+            dst[pos / 8u] = (uint8_t)(dst[pos / 8u] | mask);
+        } else {
+            dst[pos / 8u] = (uint8_t)(dst[pos / 8u] & (uint8_t)~mask);
+        }
+    }
+}
+
+/* The byte-wise bit write equals the bit-by-bit one for every start bit 0..15 and
+ * every count 0..300 (edges masked, whole bytes between, bytes around untouched), and
+ * never reads past ceil(count / 8) source bytes. */
+static void test_bits_put_matches_bitwise(void **state)
+{
+    (void)state;
+    uint32_t rnd = 12345u;
+    for (uint32_t first = 0; first < 16u; first++) {
+        for (uint32_t count = 0; count <= 300u; count++) {
+            uint8_t want[48], got[48], src[48];
+            for (unsigned k = 0; k < sizeof want; k++) {
+                rnd = rnd * 1103515245u + 12345u;
+                want[k] = got[k] = (uint8_t)(rnd >> 16);
+                rnd = rnd * 1103515245u + 12345u;
+                src[k] = (uint8_t)(rnd >> 16);
+            }
+            /* the source ends exactly after ceil(count / 8) bytes: a heap copy, so
+             * ASan catches a read past it */
+            size_t sn = (count + 7u) / 8u;
+            uint8_t *bits = test_malloc(sn > 0u ? sn : 1u);
+            memcpy(bits, src, sn);
+            bits_put_ref(want, first, count, bits);
+            modcp_bits_put(got, first, count, bits);
+            test_free(bits);
+            if (memcmp(want, got, sizeof want) != 0) {
+                fail_msg("first %u count %u", (unsigned)first, (unsigned)count);
+            }
+        }
+    }
+}
+
+/* locate: the storage the FB writes blocks into, with the events of read / write. */
+static void test_locate(void **state)
+{
+    world_t *w = *state;
+    uint8_t *p = (uint8_t *)1;
+    modcp_operand_t o = opnd(MODCP_AREA_DB, 800, 100, 0, 8);
+    assert_int_equal(modcp_plcmem_locate(&w->mem, &o, 8, &p), MODCP_EV_NONE);
+    assert_ptr_equal(p, w->db800 + 100);
+    o = opnd(MODCP_AREA_M, 0, 2040, 0, 8);
+    assert_int_equal(modcp_plcmem_locate(&w->mem, &o, 8, &p), MODCP_EV_NONE);
+    assert_ptr_equal(p, w->m + 2040);
+    assert_int_equal(modcp_plcmem_locate(&w->mem, &o, 9, &p), MODCP_EV_AREA_ACCESS);
+    assert_null(p);
+    o = opnd(MODCP_AREA_DB, 801, 0, 0, 1);
+    assert_int_equal(modcp_plcmem_locate(&w->mem, &o, 1, &p), MODCP_EV_DB_ACCESS);
+    assert_null(p);
+    o = opnd(MODCP_AREA_T, 0, 254, 0, 2);
+    assert_int_equal(modcp_plcmem_locate(&w->mem, &o, 4, &p), MODCP_EV_NONE);
+    assert_null(p); /* elements: no byte storage */
+    assert_int_equal(modcp_plcmem_locate(&w->mem, &o, 6, &p), MODCP_EV_AREA_ACCESS);
+    assert_int_equal(modcp_plcmem_locate(&w->mem, &o, 3, &p), MODCP_EV_AREA_ACCESS);
+    /* bits: M 2047.4 + 4 bits fits, + 5 does not */
+    o = opnd(MODCP_AREA_M, 0, 2047, 4, 4);
+    assert_int_equal(modcp_plcmem_locate_bits(&w->mem, &o, &p), MODCP_EV_NONE);
+    assert_ptr_equal(p, w->m + 2047);
+    o.count = 5;
+    assert_int_equal(modcp_plcmem_locate_bits(&w->mem, &o, &p), MODCP_EV_AREA_ACCESS);
+    o = opnd(MODCP_AREA_C, 0, 0, 0, 1);
+    assert_int_equal(modcp_plcmem_locate_bits(&w->mem, &o, &p), MODCP_EV_AREA_ACCESS);
+}
+
 static void test_area_access_errors(void **state)
 {
     world_t *w = *state;
@@ -290,6 +366,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_write_bits_fc15_example, setup, teardown),
         cmocka_unit_test_setup_teardown(test_write_bits_fc05_example, setup, teardown),
         cmocka_unit_test_setup_teardown(test_write_bits_unaligned, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_bits_put_matches_bitwise, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_locate, setup, teardown),
         cmocka_unit_test_setup_teardown(test_area_access_errors, setup, teardown),
         cmocka_unit_test_setup_teardown(test_db_access_errors, setup, teardown),
     };

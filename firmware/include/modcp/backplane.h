@@ -141,6 +141,10 @@ void modcp_bp_init(modcp_backplane_t *bp);
 
 /* CP side: publish the status area. */
 void modcp_bp_publish_status(modcp_backplane_t *bp, const modcp_cp_status_t *st);
+/* CP side: write the status area in place — begin (the seqlock turns odd) returns it,
+ * fill in every field, end (even again) publishes it. */
+modcp_cp_status_t *modcp_bp_status_begin(modcp_backplane_t *bp);
+void modcp_bp_status_end(modcp_backplane_t *bp);
 /* CPU side: read a consistent copy; false if the CP was writing (try again). */
 bool modcp_bp_read_status(const modcp_backplane_t *bp, modcp_cp_status_t *out);
 /* CPU side: ask for the SYSTAT image (reading clears SYSTAT in the CP, as SFB STATUS
@@ -150,10 +154,23 @@ uint32_t modcp_bp_systat_request(modcp_backplane_t *bp);
  * (byte 0 state 02H RUN / 05H fault, byte 2 flags F U B, bytes 4..15 six events). */
 bool modcp_bp_systat_result(const modcp_backplane_t *bp, uint32_t req, uint8_t out[16]);
 
-/* Producer side: publish one block (seq is filled in from *seq, which is then
- * incremented). Returns false (nothing written) when the ring is full. */
+/* Zero-copy block transfer: the producer writes a block straight into its slot and the
+ * consumer reads it there, so data crosses the backplane with one copy in and one out.
+ * Producer: modcp_ring_slot() gives the free slot (NULL when the ring is full: the
+ * producer produces nothing and tries again later, so a put never fails), it fills
+ * data / len / kind / flags / tag, then modcp_ring_publish() stamps the sequence number
+ * and hands the slot over. Consumer: modcp_ring_peek() gives the oldest block,
+ * modcp_ring_release() hands its slot back when the consumer is done with it. */
+modcp_block_t *modcp_ring_slot(modcp_ring_t *r);
+void modcp_ring_publish(modcp_ring_t *r, uint8_t *seq);
+void modcp_ring_release(modcp_ring_t *r);
+
+/* Copying forms (tests, and messages built elsewhere). Producer side: publish one
+ * block (seq is filled in from *seq, which is then incremented). Returns false (nothing
+ * written) when the ring is full. */
 bool modcp_ring_put(modcp_ring_t *r, const modcp_block_t *b, uint8_t *seq);
-/* Producer side: build a block from its parts and publish it (modcp_ring_put). */
+/* Producer side: a block from its parts, written into the free slot and published;
+ * false (nothing written) when the ring is full or len > 32. */
 bool modcp_ring_put_data(modcp_ring_t *r, uint8_t *seq, uint8_t kind, uint8_t flags, uint8_t tag,
                          const uint8_t *data, uint8_t len);
 /* Consumer side: copy out and acknowledge the oldest block. Returns false when empty. */

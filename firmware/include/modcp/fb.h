@@ -8,11 +8,14 @@
  *    CP answers "not ready" or does not answer, until START_TIME; then CP_START_OK, or
  *    CP_START_ERROR with ERROR_NR 2 / ERROR_INFO = the CP's event;
  *  - executes jobs: reads and register writes against plcmem, FC05/15 bit writes by
- *    read-modify-write; sets CP_START_NDR for one call when a write job arrived.
+ *    read-modify-write; sets CP_START_NDR for one call when a write job was executed.
  *
- * Consistency: a job is executed only when all of its blocks are in, and it is
- * executed completely inside one call (reads take a snapshot of all job data in
- * that call), so every job is consistent as a whole, not only per 32-byte block. */
+ * Data crosses the backplane once per 32-byte block: a write job's data blocks are
+ * written from their slots straight into controller memory as they arrive, a read's
+ * reply blocks are read from memory straight into their slots (no job buffer). Every
+ * job is checked completely on its header, before anything is written.
+ * Consistency: each block is consistent; the whole job is consistent when the FB
+ * handles all of its blocks in one call (see docs/cpu-cp-interface.md). */
 #ifndef MODCP_FB_H
 #define MODCP_FB_H
 
@@ -23,7 +26,7 @@
 #include "modcp/plcmem.h"
 
 #ifndef MODCP_FB_JOB_MAX
-#define MODCP_FB_JOB_MAX 1024u /* the largest job (CP 341 transfer limit) */
+#define MODCP_FB_JOB_MAX 1024u /* the largest job the FB accepts (CP 341 transfer limit) */
 #endif
 #define MODCP_FB_RETRY_MS 200u /* init retry interval */
 
@@ -80,17 +83,18 @@ typedef struct {
     modcp_fb_out_t out;
     uint8_t tx_seq, rx_seq;
     bool rx_synced;
-    /* job being received / reply being sent */
+    /* job being executed / reply being sent */
     modcp_bp_job_t job;
     uint8_t job_tag;
-    bool job_active; /* header in, collecting data */
-    uint16_t job_pos;
+    bool job_active; /* header accepted, write data blocks being executed */
+    uint16_t job_pos;  /* write data bytes executed so far */
+    uint8_t *job_mem;  /* controller memory of the job's operand (I Q M DB bytes), NULL
+                          for T / C: located once, on the header */
     bool reply_pending;
     modcp_bp_reply_t reply;
-    uint16_t reply_pos;
+    uint16_t reply_pos; /* read data bytes sent so far */
     bool reply_hdr_sent;
-    uint32_t jobs_done;
-    uint8_t buf[MODCP_FB_JOB_MAX];
+    uint32_t jobs_done; /* jobs answered */
     modcp_event_t init_event; /* last event the CP answered INIT with (ERROR_INFO of 2) */
 } modcp_fb_t;
 

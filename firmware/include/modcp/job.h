@@ -78,6 +78,10 @@ modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const u
  * BITWRITE; the job's tag is then written to abort_tag). */
 modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us);
 
+/* Push the current job's blocks into the free slots now (what modcp_job_poll does
+ * last), without reading anything: the CP calls it right after modcp_job_start. */
+void modcp_job_push(modcp_job_t *j);
+
 /* Drop the current job without waiting (CP re-parameterised). */
 void modcp_job_abort(modcp_job_t *j);
 
