@@ -534,22 +534,43 @@ static size_t decode(modcp_posix_port_t *p, const uint8_t *in, size_t n, modcp_p
     return k;
 }
 
+/* A sleeping thread wakes some ten microseconds after its deadline, more on a loaded
+ * host. The deadlines a master sees — the one-shot timer (end of frame t3.5, t1.5,
+ * turnaround, RTS delays) and a reply's first byte — are therefore not slept up to:
+ * the wait sleeps until SPIN_US before them and watches the clock (and the
+ * descriptors) for the rest. Later reply bytes just sleep (their times are absolute,
+ * a late one does not delay the next). */
+#define SPIN_US 50u
+
 int modcp_posix_wait(modcp_posix_port_t *p, uint32_t max_us, modcp_posix_rx_t *rx, size_t cap,
                      bool *tx_done, bool *timer_fired, uint32_t *now_us)
 {
     uint32_t now = modcp_posix_now_us();
     uint32_t wait = max_us;
+    uint32_t exact = UINT32_MAX; /* until a deadline that must not be late */
     if (p->timer_armed) {
-        uint32_t u = until(now, p->timer_deadline_us);
-        wait = u < wait ? u : wait;
+        exact = until(now, p->timer_deadline_us);
     }
     uint32_t t = tx_next_us(p, now);
+    if (p->tx_active && p->paced && p->tx_pos == 0u && t < exact) {
+        exact = t;
+    }
     wait = t < wait ? t : wait;
+    wait = exact < wait ? exact : wait;
 
     struct pollfd pfs[2] = {{p->fd, POLLIN, 0}, {p->wake_rd, POLLIN, 0}};
     nfds_t nfds = p->wake_rd >= 0 ? 2u : 1u;
-    struct timespec ts = {(time_t)(wait / 1000000u), (long)(wait % 1000000u) * 1000L};
+    bool spin = exact <= wait;
+    uint32_t sleep_us = spin ? (exact > SPIN_US ? exact - SPIN_US : 0u) : wait;
+    struct timespec ts = {(time_t)(sleep_us / 1000000u), (long)(sleep_us % 1000000u) * 1000L};
     int pr = ppoll(pfs, nfds, &ts, NULL);
+    if (pr == 0 && spin) {
+        const struct timespec zero = {0, 0};
+        const uint32_t at = now + exact;
+        while (pr == 0 && !due(modcp_posix_now_us(), at)) {
+            pr = ppoll(pfs, nfds, &zero, NULL);
+        }
+    }
     if (pr < 0 && errno != EINTR) {
         return -errno;
     }
