@@ -197,7 +197,11 @@ static void *cp_thread(void *arg)
             break;
         }
         bool tr = atomic_load(&s->trace_on);
-        uint64_t t = since_start(s);
+        /* the trace's time is exactly the core's `now` (widened to 64 bits), so its
+         * t3.5 frame cut agrees with the core's timer: a frame is printed before the
+         * events its end raises */
+        uint64_t n64 = modcp_posix_now_us64();
+        uint64_t t = n64 - (uint32_t)((uint32_t)n64 - now) - s->t0_us64;
         s->port.now_us = now;
         bool cts = true, dsr = true;
         if (modcp_posix_modem_inputs(&s->port, &cts, &dsr)) {
