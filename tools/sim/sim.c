@@ -263,6 +263,15 @@ static void exec_console(sim_t *s)
     (void)modcp_console_exec(&env, s->cmd_line, s->cmd_out, sizeof s->cmd_out);
 }
 
+/* Blocks the CPU side has put (to the CP) plus blocks it has taken (from the CP): it
+ * changes whenever an FB call gives the CP something to do. Read on the CPU thread,
+ * which is the only writer of both counters. */
+static uint32_t bp_moves(const modcp_backplane_t *bp)
+{
+    return atomic_load_explicit(&bp->to_cp.head, memory_order_relaxed) +
+           atomic_load_explicit(&bp->to_cpu.tail, memory_order_relaxed);
+}
+
 static void timespec_of(uint64_t us, struct timespec *ts)
 {
     ts->tv_sec = (time_t)(us / 1000000u);
@@ -302,11 +311,9 @@ static void *cpu_thread(void *arg)
         }
         if (!s->paused) {
             modcp_fb_out_t out;
-            uint32_t put0 = atomic_load_explicit(&s->bp.to_cp.head, memory_order_relaxed);
-            uint32_t took0 = atomic_load_explicit(&s->bp.to_cpu.tail, memory_order_relaxed);
+            uint32_t moved0 = bp_moves(&s->bp);
             modcp_fb_call(&s->fb, &s->fb_in, &out, modcp_posix_now_ms());
-            if (atomic_load_explicit(&s->bp.to_cp.head, memory_order_relaxed) != put0 ||
-                atomic_load_explicit(&s->bp.to_cpu.tail, memory_order_relaxed) != took0) {
+            if (bp_moves(&s->bp) != moved0) {
                 modcp_posix_wake(&s->port); /* the CP has blocks to take or room to put */
             }
             s->cycles++;

@@ -89,10 +89,12 @@ void modcp_posix_close(modcp_posix_port_t *p);
 void modcp_posix_hal(modcp_posix_port_t *p, modcp_hal_t *hal);
 
 /* Wait up to max_us for something to happen (received characters, timer expiry,
- * transmission progress, modcp_posix_wake() from another thread). On return *now_us is the current time; *tx_done and
- * *timer_fired tell what is due (deliver tx_done first, then the timer, then the
- * characters), and up to cap received characters are in rx[]. Returns the number of
- * characters, or -errno on a read error. */
+ * transmission progress, modcp_posix_wake() from another thread). On return *now_us
+ * is the current time; *tx_done and *timer_fired tell what is due (deliver tx_done
+ * first, then the timer, then the characters), and up to cap received characters are
+ * in rx[]. Returns the number of characters, or -errno on a read error. The timer's
+ * deadline and a reply's first byte are kept to within a few microseconds (the last
+ * 50 us before them are spent watching the clock, not asleep). */
 int modcp_posix_wait(modcp_posix_port_t *p, uint32_t max_us, modcp_posix_rx_t *rx, size_t cap,
                      bool *tx_done, bool *timer_fired, uint32_t *now_us);
 
