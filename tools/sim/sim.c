@@ -4,12 +4,17 @@
  *             [--script FILE] [--cycle-ms N] [--set section.key=value]... [--control FIFO]
  *
  * Two threads joined only by the backplane (modcp_backplane_t):
- *   CP thread   the CP side: waits on the UART and the one-shot timer (POSIX HAL) and
- *               feeds modcp_cp_on_rx / _on_timer / _on_tx_done / _poll with
- *               CLOCK_MONOTONIC microseconds (poll at least every ms while a job runs).
+ *   CP thread   the CP side: waits on the UART, the one-shot timer and the paced
+ *               reply bytes (POSIX HAL) and feeds modcp_cp_on_rx / _on_timer /
+ *               _on_tx_done / _poll with CLOCK_MONOTONIC microseconds. It sleeps until
+ *               one of those events or a wake-up from the CPU thread; a supervision
+ *               tick (1 ms while a job runs, else 5 ms) only drives job timeouts,
+ *               comm-loss supervision and the LEDs.
  *   CPU thread  the controller: a cyclic user program that calls modcp_fb_call every
  *               cycle_ms (CP_START set from the first cycle on, like OB100) and executes
- *               queued console commands between two calls.
+ *               queued console commands between two calls. When an FB call moved
+ *               blocks on the backplane (a reply or parameters put, job blocks taken)
+ *               it wakes the CP thread (modcp_posix_wake).
  * The parameter record travels from the CPU side to the CP over the backplane (the FB
  * sends it); the main thread reads the console (stdin, --script, --control FIFO). The
  * tool keeps a mutex-protected snapshot of the CP's diagnostics for the console. */
@@ -39,8 +44,9 @@
 #define MAX_SETS 32
 #define RX_CHUNK 512
 #define CMD_OUT_MAX 8192
-#define IDLE_POLL_US 5000u
-#define BUSY_POLL_US 250u
+/* Supervision ticks of the CP thread; nothing on a request's path waits for them. */
+#define IDLE_TICK_US 5000u
+#define BUSY_TICK_US 1000u
 
 typedef struct {
     /* options */
@@ -183,7 +189,7 @@ static void *cp_thread(void *arg)
         bool idle = modcp_cp_ready(&s->cp) && !modcp_job_busy(&s->cp.job) && !s->cp.request_pending;
         bool tx_done = false, timer = false;
         uint32_t now = 0;
-        int n = modcp_posix_wait(&s->port, idle ? IDLE_POLL_US : BUSY_POLL_US, rx, RX_CHUNK,
+        int n = modcp_posix_wait(&s->port, idle ? IDLE_TICK_US : BUSY_TICK_US, rx, RX_CHUNK,
                                  &tx_done, &timer, &now);
         if (n < 0) {
             printf_line(s, "modcp-sim: read error on %s: %s", s->port.path, strerror(-n));
@@ -191,7 +197,11 @@ static void *cp_thread(void *arg)
             break;
         }
         bool tr = atomic_load(&s->trace_on);
-        uint64_t t = since_start(s);
+        /* the trace's time is exactly the core's `now` (widened to 64 bits), so its
+         * t3.5 frame cut agrees with the core's timer: a frame is printed before the
+         * events its end raises */
+        uint64_t n64 = modcp_posix_now_us64();
+        uint64_t t = n64 - (uint32_t)((uint32_t)n64 - now) - s->t0_us64;
         s->port.now_us = now;
         bool cts = true, dsr = true;
         if (modcp_posix_modem_inputs(&s->port, &cts, &dsr)) {
@@ -253,6 +263,15 @@ static void exec_console(sim_t *s)
     (void)modcp_console_exec(&env, s->cmd_line, s->cmd_out, sizeof s->cmd_out);
 }
 
+/* Blocks the CPU side has put (to the CP) plus blocks it has taken (from the CP): it
+ * changes whenever an FB call gives the CP something to do. Read on the CPU thread,
+ * which is the only writer of both counters. */
+static uint32_t bp_moves(const modcp_backplane_t *bp)
+{
+    return atomic_load_explicit(&bp->to_cp.head, memory_order_relaxed) +
+           atomic_load_explicit(&bp->to_cpu.tail, memory_order_relaxed);
+}
+
 static void timespec_of(uint64_t us, struct timespec *ts)
 {
     ts->tv_sec = (time_t)(us / 1000000u);
@@ -292,7 +311,11 @@ static void *cpu_thread(void *arg)
         }
         if (!s->paused) {
             modcp_fb_out_t out;
+            uint32_t moved0 = bp_moves(&s->bp);
             modcp_fb_call(&s->fb, &s->fb_in, &out, modcp_posix_now_ms());
+            if (bp_moves(&s->bp) != moved0) {
+                modcp_posix_wake(&s->port); /* the CP has blocks to take or room to put */
+            }
             s->cycles++;
             if (s->fb.state != last_state) {
                 last_state = s->fb.state;
@@ -726,6 +749,7 @@ int main(int argc, char **argv)
     }
 
     atomic_store(&s->stop, true);
+    modcp_posix_wake(&s->port);
     pthread_mutex_lock(&s->cmd_mu);
     pthread_cond_broadcast(&s->cmd_cv);
     pthread_mutex_unlock(&s->cmd_mu);

@@ -18,6 +18,7 @@
 #include <unistd.h>
 #ifdef __linux__
 #include <linux/serial.h>
+#include <sys/prctl.h>
 #endif
 
 #include "posix_baud.h"
@@ -52,9 +53,23 @@ void modcp_posix_sleep_until_us64(uint64_t t_us)
 
 /* ---- threads -------------------------------------------------------------------- */
 
+/* Every thread of the port's owner waits for deadlines of a few hundred microseconds
+ * (t3.5, a character time, the CPU cycle): ask the kernel not to add its default timer
+ * slack (50 us on Linux) to those waits. */
+static void *thread_entry(void *arg)
+{
+    modcp_posix_thread_t *t = arg;
+#ifdef PR_SET_TIMERSLACK
+    (void)prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL); /* 1 ns: as exact as the clock */
+#endif
+    return t->fn(t->arg);
+}
+
 int modcp_posix_thread_start(modcp_posix_thread_t *t, void *(*fn)(void *), void *arg)
 {
-    int rc = pthread_create(&t->handle, NULL, fn, arg);
+    t->fn = fn;
+    t->arg = arg;
+    int rc = pthread_create(&t->handle, NULL, thread_entry, t);
     return rc == 0 ? 0 : -rc;
 }
 
@@ -70,25 +85,61 @@ static void port_reset(modcp_posix_port_t *p, uint32_t char_us)
     memset(p, 0, sizeof *p);
     p->fd = -1;
     p->slave_fd = -1;
+    p->wake_rd = -1;
+    p->wake_wr = -1;
     p->char_us = char_us != 0u ? char_us : 1u;
+}
+
+/* The wake-up pipe: another thread writes a byte to end the owner's wait. */
+static int wake_open(modcp_posix_port_t *p)
+{
+    int fds[2];
+    if (pipe(fds) != 0) {
+        return -errno;
+    }
+    for (int i = 0; i < 2; i++) {
+        int fl = fcntl(fds[i], F_GETFL);
+        (void)fcntl(fds[i], F_SETFL, fl | O_NONBLOCK);
+        (void)fcntl(fds[i], F_SETFD, FD_CLOEXEC);
+    }
+    p->wake_rd = fds[0];
+    p->wake_wr = fds[1];
+    return 0;
+}
+
+void modcp_posix_wake(modcp_posix_port_t *p)
+{
+    if (p->wake_wr >= 0) {
+        char c = 1;
+        ssize_t r = write(p->wake_wr, &c, 1); /* EAGAIN: a wake-up is pending already */
+        (void)r;
+    }
 }
 
 int modcp_posix_open_pty(modcp_posix_port_t *p, const char *link, uint32_t char_us)
 {
     port_reset(p, char_us);
+    int wrc = wake_open(p);
+    if (wrc != 0) {
+        return wrc;
+    }
     int fd = posix_openpt(O_RDWR | O_NOCTTY);
     if (fd < 0) {
-        return -errno;
+        int e = errno;
+        modcp_posix_close(p);
+        return -e;
     }
     if (grantpt(fd) != 0 || unlockpt(fd) != 0 || ptsname_r(fd, p->path, sizeof p->path) != 0) {
         int e = errno;
         close(fd);
+        modcp_posix_close(p);
         return -e;
     }
     int sfd = open(p->path, O_RDWR | O_NOCTTY | O_NONBLOCK);
     if (sfd < 0) {
         int e = errno;
         close(fd);
+        modcp_posix_close(p);
         return -e;
     }
     struct termios tio;
@@ -146,14 +197,21 @@ int modcp_posix_open_device(modcp_posix_port_t *p, const char *path, uint32_t ba
 {
     port_reset(p, char_us);
     p->parity = parity;
+    int wrc = wake_open(p);
+    if (wrc != 0) {
+        return wrc;
+    }
     int fd = open(path, O_RDWR | O_NOCTTY | O_NONBLOCK);
     if (fd < 0) {
-        return -errno;
+        int e = errno;
+        modcp_posix_close(p);
+        return -e;
     }
     struct termios tio;
     if (tcgetattr(fd, &tio) != 0) {
         int e = errno;
         close(fd);
+        modcp_posix_close(p);
         return -e;
     }
     cfmakeraw(&tio);
@@ -181,12 +239,14 @@ int modcp_posix_open_device(modcp_posix_port_t *p, const char *path, uint32_t ba
     if (tcsetattr(fd, TCSANOW, &tio) != 0) {
         int e = errno;
         close(fd);
+        modcp_posix_close(p);
         return -e;
     }
     if (sp == B0) {
         int rc = modcp_posix_custom_baud(fd, baud);
         if (rc != 0) {
             close(fd);
+            modcp_posix_close(p);
             return rc;
         }
     }
@@ -227,6 +287,14 @@ void modcp_posix_close(modcp_posix_port_t *p)
     if (p->fd >= 0) {
         close(p->fd);
         p->fd = -1;
+    }
+    if (p->wake_rd >= 0) {
+        close(p->wake_rd);
+        p->wake_rd = -1;
+    }
+    if (p->wake_wr >= 0) {
+        close(p->wake_wr);
+        p->wake_wr = -1;
     }
 }
 
@@ -466,24 +534,52 @@ static size_t decode(modcp_posix_port_t *p, const uint8_t *in, size_t n, modcp_p
     return k;
 }
 
+/* A sleeping thread wakes some ten microseconds after its deadline, more on a loaded
+ * host. The deadlines a master sees — the one-shot timer (end of frame t3.5, t1.5,
+ * turnaround, RTS delays) and a reply's first byte — are therefore not slept up to:
+ * the wait sleeps until SPIN_US before them and watches the clock (and the
+ * descriptors) for the rest. Later reply bytes just sleep (their times are absolute,
+ * a late one does not delay the next). */
+#define SPIN_US 50u
+
 int modcp_posix_wait(modcp_posix_port_t *p, uint32_t max_us, modcp_posix_rx_t *rx, size_t cap,
                      bool *tx_done, bool *timer_fired, uint32_t *now_us)
 {
     uint32_t now = modcp_posix_now_us();
     uint32_t wait = max_us;
+    uint32_t exact = UINT32_MAX; /* until a deadline that must not be late */
     if (p->timer_armed) {
-        uint32_t u = until(now, p->timer_deadline_us);
-        wait = u < wait ? u : wait;
+        exact = until(now, p->timer_deadline_us);
     }
     uint32_t t = tx_next_us(p, now);
+    if (p->tx_active && p->paced && p->tx_pos == 0u && t < exact) {
+        exact = t;
+    }
     wait = t < wait ? t : wait;
+    wait = exact < wait ? exact : wait;
 
-    struct pollfd pf = {p->fd, POLLIN, 0};
-    struct timespec ts = {(time_t)(wait / 1000000u), (long)(wait % 1000000u) * 1000L};
-    int pr = ppoll(&pf, 1, &ts, NULL);
+    struct pollfd pfs[2] = {{p->fd, POLLIN, 0}, {p->wake_rd, POLLIN, 0}};
+    nfds_t nfds = p->wake_rd >= 0 ? 2u : 1u;
+    bool spin = exact <= wait;
+    uint32_t sleep_us = spin ? (exact > SPIN_US ? exact - SPIN_US : 0u) : wait;
+    struct timespec ts = {(time_t)(sleep_us / 1000000u), (long)(sleep_us % 1000000u) * 1000L};
+    int pr = ppoll(pfs, nfds, &ts, NULL);
+    if (pr == 0 && spin) {
+        const struct timespec zero = {0, 0};
+        const uint32_t at = now + exact;
+        while (pr == 0 && !due(modcp_posix_now_us(), at)) {
+            pr = ppoll(pfs, nfds, &zero, NULL);
+        }
+    }
     if (pr < 0 && errno != EINTR) {
         return -errno;
     }
+    if (pr > 0 && nfds == 2u && (pfs[1].revents & POLLIN) != 0) {
+        char drain[64];
+        while (read(p->wake_rd, drain, sizeof drain) > 0) {
+        }
+    }
+    const struct pollfd pf = pfs[0];
     now = modcp_posix_now_us();
     *now_us = now;
     *tx_done = tx_progress(p, now);

@@ -3,6 +3,10 @@
  * and threads. It implements modcp_hal_t; it does not call the core: the port's
  * owner (modcp-sim's CP thread) waits with modcp_posix_wait() and feeds what happened
  * to modcp_cp_on_rx() / _on_line_error() / _on_timer() / _on_tx_done().
+ * The wait ends on an event, never on a fixed poll: a character on the line, the
+ * one-shot timer's deadline, the time of the next paced reply byte, or a wake-up from
+ * another thread (modcp_posix_wake(), e.g. the CPU side after it put a reply on the
+ * backplane); max_us only bounds it for the owner's housekeeping.
  *
  * Transmission timing: on a pseudo-terminal nothing paces the bytes, so the port does
  * it: byte k of a reply is written when its last stop bit would have left the line
@@ -32,6 +36,7 @@ typedef struct {
 typedef struct modcp_posix_port {
     int fd;       /* pty master or device */
     int slave_fd; /* pty: a slave fd kept open so the master never reads EIO; else -1 */
+    int wake_rd, wake_wr; /* wake-up pipe (modcp_posix_wake ends modcp_posix_wait) */
     bool is_pty; /* we own the pty master (open_pty) */
     bool paced;  /* nothing paces the bytes (a pty on either side): the port does */
     char path[256]; /* the device a master opens (pty slave name or the device) */
@@ -84,21 +89,31 @@ void modcp_posix_close(modcp_posix_port_t *p);
 void modcp_posix_hal(modcp_posix_port_t *p, modcp_hal_t *hal);
 
 /* Wait up to max_us for something to happen (received characters, timer expiry,
- * transmission progress). On return *now_us is the current time; *tx_done and
- * *timer_fired tell what is due (deliver tx_done first, then the timer, then the
- * characters), and up to cap received characters are in rx[]. Returns the number of
- * characters, or -errno on a read error. */
+ * transmission progress, modcp_posix_wake() from another thread). On return *now_us
+ * is the current time; *tx_done and *timer_fired tell what is due (deliver tx_done
+ * first, then the timer, then the characters), and up to cap received characters are
+ * in rx[]. Returns the number of characters, or -errno on a read error. The timer's
+ * deadline and a reply's first byte are kept to within a few microseconds (the last
+ * 50 us before them are spent watching the clock, not asleep). */
 int modcp_posix_wait(modcp_posix_port_t *p, uint32_t max_us, modcp_posix_rx_t *rx, size_t cap,
                      bool *tx_done, bool *timer_fired, uint32_t *now_us);
+
+/* End the owner's modcp_posix_wait() now (or its next one, if it is not waiting).
+ * Any thread may call it; several calls before the wait ends give one wake-up. */
+void modcp_posix_wake(modcp_posix_port_t *p);
 
 /* RS232 inputs CTS / DSR for modcp_cp_on_signals(): true when they changed since the
  * last call (the first call always reports). A pty has no modem lines: the partner is
  * modelled as always ready (CTS and DSR ON). A device is read with TIOCMGET. */
 bool modcp_posix_modem_inputs(modcp_posix_port_t *p, bool *cts, bool *dsr);
 
-/* Threads (pthreads): start fn(arg); 0 or -errno. */
+/* Threads (pthreads): start fn(arg); 0 or -errno. The thread runs without timer
+ * slack (Linux PR_SET_TIMERSLACK), so its timed waits end when they are due. t must
+ * stay in place until the thread has started fn (keep it until the join). */
 typedef struct {
     pthread_t handle;
+    void *(*fn)(void *);
+    void *arg;
 } modcp_posix_thread_t;
 int modcp_posix_thread_start(modcp_posix_thread_t *t, void *(*fn)(void *), void *arg);
 void modcp_posix_thread_join(modcp_posix_thread_t *t);
