@@ -40,6 +40,7 @@ NOT_RUN = {
     "tools/build-arm": "tools/test builds the images",
     "tools/size": "needs the ARM images; tools/test's build covers it",
     "ctest": "the QEMU suites run in tools/test",
+    "tests/bench/sim_latency.py": "a benchmark: tools/bench --summary runs it",
 }
 PLACEHOLDER = re.compile(r"\[[^\]]*\]|\b(PATH|FILE|COMMAND|CONFIG\.ini|N)\b")
 
@@ -161,6 +162,8 @@ class Docs:
                 argv.append(os.path.join(self.tmp, w) if out_next else w)
                 out_next = w == "-o"
             self.run(argv, where, want)
+        elif head == "cmake":
+            self.run(words, where, want, timeout=300)
         elif head == "modcp-sim":
             self.sim_starts(where, words[1:])
         else:
