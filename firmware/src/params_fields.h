@@ -90,12 +90,16 @@ extern const modcp_param_member_t modcp_param_members[];
     S(framing, 1, MODCP_PF_FRAMING, 0, 0, MODCP_WITH_ASCII, MODCP_FRAMING_RTU,                    \
       MODCP_EV_PARAM_RECORD, 0, "protocol", "framing", ENUM, framing, "must be rtu or ascii",     \
       "RTU (binary, CRC-16) or ASCII (`:` hex LRC CR LF)", "`rtu`, `ascii`", "003")               \
-    S(opmode, 1, MODCP_PF_OPMODE, 0, 0, 1, MODCP_OPMODE_NORMAL, MODCP_EV_OPMODE, 0, "protocol",   \
-      "mode", ENUM, mode, "must be normal or suppress (interference suppression)",                \
+    S(opmode, 1, MODCP_PF_OPMODE, 0, 0, 1, MODCP_OPMODE_NORMAL, MODCP_EV_OPMODE,                 \
+      MODCP_PF_CUSTOM, "protocol", "mode", ENUM, mode,                                            \
+      "must be normal or suppress (interference suppression)",                                    \
       "operating mode: `normal` reports every character error and BREAK; `suppress` "           \
-      "(interference suppression) silently discards a frame with an error, starts a frame at "   \
-      "the own address and ignores errors after the CRC",                                        \
-      "`normal`, `suppress` (`interference_suppression`)", "004 §2.2")                            \
+      "(interference suppression, the 2009 manual's modem mode) silently discards a frame with " \
+      "an error, starts a frame at the own address and ignores errors after the CRC. With "     \
+      "`interface.type = rs485` (two-wire) the default is `suppress`, and `normal` needs "      \
+      "`rs485_mode_select = on`", /* custom: RS485 needs rs485_sel for normal */                 \
+      "`normal`, `suppress` (`interference_suppression`, `modem`)",                               \
+      "004 §2.2, 000 Table 5-2")                                                                  \
     S(f_mul, 1, MODCP_PF_FMUL, 0, 1, 10, 1, MODCP_EV_FMUL, MODCP_PF_WARN, "protocol", "f_mul",    \
       NUM, none, "must be 1..10; the CP runs with 1",                                             \
       "character delay multiplier: end of frame = TIME_OUT(baud) × f_MUL",                        \
@@ -170,6 +174,12 @@ extern const modcp_param_member_t modcp_param_members[];
       "`cp341` = exactly FC 01–06, 08 sub 0, 15, 16; `extended` adds FC08 diagnostics, 11, 12, " \
       "17, 22, 23, 43/14, the scanner",                                                           \
       "`cp341`, `extended`", "SPEC §5")                                                           \
+    S(rs485_sel, 1, MODCP_PF_RS485_SEL, 0, 0, 1, 0, MODCP_EV_PARAM_RECORD, 0, "protocol",         \
+      "rs485_mode_select", BOOL, none, "must be on or off",                                       \
+      "enable operating-mode selection for RS485: `off` = two-wire RS485 runs in interference " \
+      "suppression (modem) mode only, `mode = normal` there is refused with (0E)22H; `on` "     \
+      "allows `mode = normal` on two-wire RS485 too",                                            \
+      "`on`, `off`", "000 Table 5-2")                                                             \
     S(cpu_model, 1, MODCP_PF_CPU_MODEL, 0, 0, 1, MODCP_CPU_CP341, MODCP_EV_PARAM_RECORD, 0,       \
       "cpu", "model", ENUM, model, "must be cp341 or cp441",                                      \
       "CPU transfer limit per job: `cp341` 1024 bytes, `cp441` 450 bytes", "`cp341`, `cp441`",   \

@@ -171,6 +171,53 @@ def loses_nothing(t, a, tmp):
         "overrides, key before [section], text after [section] (%r)" % lines)
 
 
+def record_of(a, tmp, text, *sets):
+    """modcp-conf build of text: (exit code, stderr lines, record bytes)."""
+    path = os.path.join(tmp, "rec.ini")
+    with open(path, "w") as f:
+        f.write(text)
+    binf = os.path.join(tmp, "rec.bin")
+    if os.path.exists(binf):
+        os.remove(binf)
+    args = [a.conf, "build", path, "-o", binf]
+    for x in sets:
+        args += ["--set", x]
+    rc, out, err = run(args)
+    rec = open(binf, "rb").read() if rc == 0 and os.path.exists(binf) else b""
+    return rc, err.splitlines(), rec, path
+
+
+OPMODE_AT = 8 + 9  # header, then baud u32, data bits, parity, stop bits, slave, framing, opmode
+
+
+def rs485_mode_select(t, a, tmp):
+    """Issue 13 item 4, 000 Table 5-2: two-wire RS485 runs in modem (interference
+    suppression) mode unless rs485_mode_select = on allows mode = normal."""
+    with open(os.path.join(a.configs, "default.ini")) as f:
+        default = f.read()
+    text = default.replace("mode = normal\n", "")
+    rc, lines, rec, p = record_of(a, tmp, text, "interface.type=rs485")
+    t.ok(rc == 0 and lines == [] and len(rec) > OPMODE_AT and rec[OPMODE_AT] == 1,
+         "000 Table 5-2: rs485 without mode: default modem (suppress) (%r)" % lines)
+    rc, lines, rec, p = record_of(a, tmp, text, "interface.type=rs422")
+    t.ok(rc == 0 and lines == [] and len(rec) > OPMODE_AT and rec[OPMODE_AT] == 0,
+         "000 Table 5-2: rs422 4-wire without mode: default normal (%r)" % lines)
+    line = default[:default.index("mode = normal")].count("\n") + 1
+    rc, lines, rec, p = record_of(a, tmp, default, "interface.type=rs485")
+    t.ok(rc == 2 and lines == ["%s:%d: protocol.mode = normal: normal is not allowed with "
+                               "interface.type = rs485 (two-wire runs in interference suppression = "
+                               "modem mode) unless protocol.rs485_mode_select = on (000 Table 5-2) "
+                               "(event (0E)22H)" % (p, line)],
+         "000 Table 5-2: rs485 with mode = normal: refused, (0E)22H, rule named (%r)" % lines)
+    rc, lines, rec, p = record_of(a, tmp, default, "interface.type=rs485",
+                                  "protocol.rs485_mode_select=on")
+    t.ok(rc == 0 and lines == [] and len(rec) > OPMODE_AT and rec[OPMODE_AT] == 0,
+         "000 Table 5-2: rs485 with mode = normal and rs485_mode_select = on: accepted (%r)" % lines)
+    rc, lines, rec, p = record_of(a, tmp, default, "interface.type=rs485", "protocol.mode=modem")
+    t.ok(rc == 0 and lines == [] and len(rec) > OPMODE_AT and rec[OPMODE_AT] == 1,
+         "000 Table 5-2: mode = modem is interference suppression (%r)" % lines)
+
+
 def doc_tables(path):
     """The "| key | meaning | values | default | source | event |" table of each
     "## [section]" of docs/parameters.md, as modcp-conf doc-table prints them."""
@@ -258,6 +305,7 @@ def main():
          "'this line is wrong'\n" % syn, "syntax error: line 3 named (%r)" % err)
 
     loses_nothing(t, a, tmp)
+    rs485_mode_select(t, a, tmp)
 
     # binary record
     binf = os.path.join(tmp, "default.bin")
@@ -266,8 +314,8 @@ def main():
     t.ok(rc == 0 and len(rec) >= 10, "build: record of %d bytes" % len(rec))
     if len(rec) >= 10:
         magic, version, plen = struct.unpack_from("<4sHH", rec, 0)
-        t.ok(magic == b"MCPR" and version == 1 and plen == len(rec) - 10,
-             "build: header MCPR v1, payload %d bytes" % plen)
+        t.ok(magic == b"MCPR" and version == 2 and plen == len(rec) - 10,
+             "build: header MCPR v2, payload %d bytes" % plen)
         t.ok(crc16(rec[:-2]) == rec[-2:], "build: CRC-16 over the record")
         baud, db, par, sb, slave = struct.unpack_from("<IBBBB", rec, 8)
         t.ok((baud, db, par, sb, slave) == (9600, 8, 2, 1, 5), "build: 9600 8E1 slave 5")

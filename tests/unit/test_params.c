@@ -12,7 +12,7 @@
 #include "modcp/params.h"
 #include "world.h"
 
-#define RECORD_LEN 316u /* 8 header + 306 payload + 2 CRC */
+#define RECORD_LEN 317u /* 8 header + 307 payload + 2 CRC */
 
 static void set_win(modcp_bitwin_t *w, uint8_t area, uint16_t from, uint16_t to, uint16_t start,
                     uint16_t db)
@@ -100,6 +100,7 @@ static void test_defaults(void **state)
     assert_int_equal(p.lim_q.max, 0);
     assert_int_equal(p.lim_db.min, 0);
     assert_int_equal(p.fset, MODCP_FSET_EXTENDED);
+    assert_int_equal(p.rs485_sel, 0); /* 000 Table 5-2: "Non" */
     assert_int_equal(p.cpu_model, MODCP_CPU_CP341);
     assert_int_equal(p.job_limit, 0);
     assert_int_equal(p.cpu_timeout_ms, 1000);
@@ -148,6 +149,7 @@ static void test_manual_sets_are_valid(void **state)
     p.ascii_timeout_ms = 6500;
     p.turnaround_ms = 100;
     p.iface = MODCP_IFACE_RS485;
+    p.opmode = MODCP_OPMODE_SUPPRESS; /* two-wire: modem mode (000 Table 5-2) */
     p.commloss_ms = 30000;
     p.job_limit = 1024;
     p.scan_count = 16;
@@ -207,6 +209,77 @@ static void test_opmode(void **state)
     expect_one(&p, MODCP_PF_OPMODE, 0, MODCP_EV_OPMODE, true, 2);
     p.opmode = MODCP_OPMODE_SUPPRESS;
     assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+}
+
+/* 000 §5.6.1 Table 5-2 "Activer la sélection du mode de fonctionnement pour RS485"
+ * (default "Non") and "Mode de fonctionnement" (default: full duplex RS422 4-wire
+ * normal, half duplex RS485 2-wire modem): without the selection, two-wire RS485 runs in
+ * modem (interference suppression) mode only; "normal" there is refused with (0E)22H
+ * "selected operating mode not allowed", the driver is not ready. */
+static void test_000_table5_2_rs485_normal_needs_mode_select(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    params_004_9(&p);
+    p.iface = MODCP_IFACE_RS485;
+    p.opmode = MODCP_OPMODE_NORMAL;
+    expect_one(&p, MODCP_PF_OPMODE, 0, MODCP_EV_OPMODE, true, MODCP_OPMODE_NORMAL);
+    p.rs485_sel = 1; /* selection enabled: normal allowed */
+    assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+    p.opmode = MODCP_OPMODE_SUPPRESS;
+    assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+    p.rs485_sel = 0; /* modem on two-wire: always legal */
+    assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+    p.rs485_sel = 2;
+    expect_one(&p, MODCP_PF_RS485_SEL, 0, MODCP_EV_PARAM_RECORD, true, 2);
+}
+
+/* 000 Table 5-2 / Table 5-8: full duplex RS422 4-wire (and RS232) default to normal and
+ * may choose either mode without the RS485 selection. */
+static void test_000_table5_2_four_wire_normal_or_modem(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    params_004_9(&p);
+    static const uint8_t ifaces[] = {MODCP_IFACE_RS232, MODCP_IFACE_RS422};
+    for (size_t i = 0; i < sizeof ifaces; i++) {
+        p.iface = ifaces[i];
+        p.rs485_sel = 0;
+        p.opmode = MODCP_OPMODE_NORMAL;
+        assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+        p.opmode = MODCP_OPMODE_SUPPRESS;
+        assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+    }
+    modcp_params_defaults(&p);
+    assert_int_equal(p.iface, MODCP_IFACE_RS232);
+    assert_int_equal(p.opmode, MODCP_OPMODE_NORMAL);
+}
+
+/* 000 §10 event (0E)22H, driver not ready: the CP refuses such a record at start-up
+ * (FB: CP_START_ERROR, ERROR_INFO 0E22H) and answers nothing; with the selection the
+ * same record starts and answers. */
+static void test_000_table5_2_rs485_normal_refused_by_cp(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    params_004_9(&p);
+    p.iface = MODCP_IFACE_RS485;
+    p.opmode = MODCP_OPMODE_NORMAL;
+    p.start_time_ms = 500;
+    world_t *w = world_new(&p);
+    assert_false(world_start(w, 2000));
+    assert_true(w->fb_out.cp_start_error);
+    assert_int_equal(w->fb_out.error_info, MODCP_EV_OPMODE);
+    assert_false(w->cp.configured);
+    assert_int_equal(w->cp.param_event, MODCP_EV_OPMODE);
+    assert_int_equal(world_request(w, "05 08 00 00 A5 C3 DA 8E", 50), 0);
+    world_free(w);
+
+    p.rs485_sel = 1;
+    w = world_new(&p);
+    assert_true(world_start(w, 2000));
+    assert_int_equal(world_request(w, "05 08 00 00 A5 C3 DA 8E", 50), 8);
+    world_free(w);
 }
 
 static void test_fmul_corrected(void **state)
@@ -409,6 +482,7 @@ static void test_record_field_errors(void **state)
     expect_one(&p, MODCP_PF_RS232_AUTO, 0, rec, true, 2);
     p.rs232_auto = 1; /* 004 §2.4: RS232 only */
     p.iface = MODCP_IFACE_RS485;
+    p.opmode = MODCP_OPMODE_SUPPRESS; /* two-wire: modem mode (000 Table 5-2) */
     expect_one(&p, MODCP_PF_RS232_AUTO, 0, rec, true, 1);
     p.iface = MODCP_IFACE_RS232;
     assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
@@ -587,6 +661,7 @@ static void params_all_fields(modcp_params_t *p)
     p->lim_m = (modcp_limit_t){0x1A1B, 0x1C1D};
     p->lim_q = (modcp_limit_t){0x2A2B, 0x2C2D};
     p->fset = MODCP_FSET_CP341;
+    p->rs485_sel = 1;
     p->cpu_model = MODCP_CPU_CP441;
     p->job_limit = 0x01C2;
     p->cpu_timeout_ms = 0xEEEE;
@@ -654,6 +729,7 @@ static void assert_params_equal(const modcp_params_t *a, const modcp_params_t *b
     assert_int_equal(a->lim_q.min, b->lim_q.min);
     assert_int_equal(a->lim_q.max, b->lim_q.max);
     assert_int_equal(a->fset, b->fset);
+    assert_int_equal(a->rs485_sel, b->rs485_sel);
     assert_int_equal(a->cpu_model, b->cpu_model);
     assert_int_equal(a->job_limit, b->job_limit);
     assert_int_equal(a->cpu_timeout_ms, b->cpu_timeout_ms);
@@ -868,6 +944,9 @@ int main(void)
         cmocka_unit_test(test_data_bits),
         cmocka_unit_test(test_slave_addr),
         cmocka_unit_test(test_opmode),
+        cmocka_unit_test(test_000_table5_2_rs485_normal_needs_mode_select),
+        cmocka_unit_test(test_000_table5_2_four_wire_normal_or_modem),
+        cmocka_unit_test(test_000_table5_2_rs485_normal_refused_by_cp),
         cmocka_unit_test(test_fmul_corrected),
         cmocka_unit_test(test_ascii_timeout_corrected),
         cmocka_unit_test(test_write_limits),

@@ -219,6 +219,7 @@ static const enum_name_t names_framing[] = {
 static const enum_name_t names_mode[] = {{"normal", MODCP_OPMODE_NORMAL},
                                          {"suppress", MODCP_OPMODE_SUPPRESS},
                                          {"interference_suppression", MODCP_OPMODE_SUPPRESS},
+                                         {"modem", MODCP_OPMODE_SUPPRESS},
                                          {NULL, 0}};
 static const enum_name_t names_eof[] = {
     {"manual", MODCP_EOF_MANUAL}, {"modbus", MODCP_EOF_MODBUS}, {NULL, 0}};
@@ -1359,6 +1360,16 @@ static void report_issue(modcp_conf_t *c, const modcp_param_issue_t *is)
                            (unsigned)is->index + 1u);
         }
         break;
+    case MODCP_PF_OPMODE:
+        if (is->value == MODCP_OPMODE_NORMAL) { /* legal value, not on two-wire RS485 */
+            (void)snprintf(rule, sizeof rule,
+                           "normal is not allowed with interface.type = rs485 (two-wire runs in "
+                           "interference suppression = modem mode) unless "
+                           "protocol.rs485_mode_select = on (000 Table 5-2)");
+        } else {
+            copy_str(rule, sizeof rule, field_rule(is->field));
+        }
+        break;
     default: copy_str(rule, sizeof rule, field_rule(is->field)); break;
     }
     add_key_problem_at(c, is->fatal, loc, section, key, value, rule, is->event);
@@ -1675,9 +1686,21 @@ static void parse_text(parse_ctx_t *px, const char *text, size_t len)
     }
 }
 
+/* Defaults that follow another key, as the manuals' parameter dialogs set them: two-wire
+ * RS485 runs in interference suppression (modem) mode unless `mode` says otherwise
+ * (000 Table 5-2, default "half duplex (RS485) 2-wire: modem"). */
+static void derived_defaults(modcp_conf_t *c)
+{
+    modcp_params_t *p = &c->params;
+    if (!c->src[MODCP_PF_OPMODE][0].set && p->iface == MODCP_IFACE_RS485) {
+        p->opmode = MODCP_OPMODE_SUPPRESS;
+    }
+}
+
 static size_t finish(modcp_conf_t *c, parse_ctx_t *px)
 {
     apply_unused_overrides(px);
+    derived_defaults(c);
     bool oom = px->oom;
     ctx_free(px);
     if (oom) {

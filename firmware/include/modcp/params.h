@@ -18,8 +18,8 @@
 #include "modcp/events.h"
 #include "modcp/features.h"
 
-#define MODCP_PARAMS_VERSION 1u
-#define MODCP_PARAMS_RECORD_MAX 320u /* upper bound of the serialised record (316 bytes in version 1; checked at compile time) */
+#define MODCP_PARAMS_VERSION 2u /* 2: rs485_mode_select (000 Table 5-2) */
+#define MODCP_PARAMS_RECORD_MAX 320u /* upper bound of the serialised record (checked at compile time) */
 
 typedef enum { MODCP_PARITY_NONE = 0, MODCP_PARITY_ODD = 1, MODCP_PARITY_EVEN = 2 } modcp_parity_t;
 typedef enum { MODCP_FRAMING_RTU = 0, MODCP_FRAMING_ASCII = 1 } modcp_framing_t;
@@ -112,6 +112,10 @@ typedef struct {
     modcp_limit_t lim_q;  /* output bytes */
     /* function set and CPU link */
     uint8_t fset;           /* modcp_fset_t */
+    uint8_t rs485_sel;      /* 000 Table 5-2 "enable operating-mode selection for RS485":
+                               0 (default): RS485 two-wire runs in interference suppression
+                               (modem) mode only, opmode normal is refused with (0E)22H;
+                               1: opmode normal is allowed on RS485 too */
     uint8_t cpu_model;      /* modcp_cpu_model_t */
     uint16_t job_limit;     /* bytes per CPU job; 0 = the model's limit (1024 / 450) */
     uint16_t cpu_timeout_ms; /* CPU job timeout */
@@ -167,6 +171,7 @@ typedef enum {
     MODCP_PF_SCANNER, /* index = entry, 0xFF = start/count */
     MODCP_PF_ID_STRING,
     MODCP_PF_DIAG_IRQ,
+    MODCP_PF_RS485_SEL,
     MODCP_PF_COUNT
 } modcp_param_field_t;
 
