@@ -4,7 +4,11 @@
  * One issue per bad field (per window / range / scanner entry / ID string); for a
  * field with several problems only the first one found is reported.
  *
- *   data_bits      RTU: 8; ASCII: 7 or 8 ............................ (0E)20H fatal
+ *   data_bits      RTU: 8; ASCII: 7 or 8 (8: modcp extension, SPEC §2) (0E)20H fatal
+ *   stop_bits      ASCII: not 1 with parity even/odd, not 2 with parity none (003
+ *                  §3.1 "with even or odd parity 1 stop bit is pre-defined; none
+ *                  parity effects two stop bits": 7E1, 7O1, 7N2; the same for the
+ *                  8-bit extension) ... (0E)2EH fatal (the manual gives no event)
  *   slave_addr     0 ................................................ (0E)23H fatal
  *   opmode         not 0/1; normal on RS485 (two-wire) while rs485_sel is 0
  *                  (000 Table 5-2: without "enable operating-mode selection for
@@ -403,6 +407,8 @@ static bool custom_ok(const modcp_params_t *p, const modcp_param_row_t *r, uint3
     switch (r->field) {
     case MODCP_PF_BAUD: return baud_ok(*v);
     case MODCP_PF_DATA_BITS: return p->framing == MODCP_FRAMING_ASCII || *v == 8u;
+    case MODCP_PF_STOP_BITS:
+        return p->framing != MODCP_FRAMING_ASCII || *v == (p->parity == MODCP_PARITY_NONE ? 2u : 1u);
     case MODCP_PF_OPMODE:
         return *v != MODCP_OPMODE_NORMAL || p->iface != MODCP_IFACE_RS485 || p->rs485_sel != 0u;
     case MODCP_PF_RS232_AUTO: return *v == 0u || p->iface == MODCP_IFACE_RS232;

@@ -76,12 +76,16 @@ extern const modcp_param_member_t modcp_param_members[];
     S(data_bits, 1, MODCP_PF_DATA_BITS, 0, 7, 8, 8, MODCP_EV_DATA_BITS, MODCP_PF_CUSTOM,          \
       "serial", "data_bits", NUM, none, "must be 8 for RTU, 7 or 8 for ASCII",                    \
       "data bits per character", /* custom: 8 for RTU */                                          \
-      "RTU: 8; ASCII: 7 (8 allowed)", "004 §2.1, 003")                                            \
+      "RTU: 8; ASCII: 7 (8: a modcp extension, SPEC §2)", "004 §2.1, 003 §3.1")                   \
     S(parity, 1, MODCP_PF_PARITY, 0, 0, 2, MODCP_PARITY_EVEN, MODCP_EV_PARAM_RECORD, 0, "serial",  \
       "parity", ENUM, parity, "must be none, odd or even", "parity bit",                          \
       "`none`, `odd`, `even` (`n`, `o`, `e`)", "004 §2.1")                                        \
-    S(stop_bits, 1, MODCP_PF_STOP_BITS, 0, 1, 2, 1, MODCP_EV_PARAM_RECORD, 0, "serial",           \
-      "stop_bits", NUM, none, "must be 1 or 2", "stop bits", "1, 2", "004 §2.1")                  \
+    S(stop_bits, 1, MODCP_PF_STOP_BITS, 0, 1, 2, 1, MODCP_EV_PARAM_RECORD, MODCP_PF_CUSTOM,       \
+      "serial", "stop_bits", NUM, none, "must be 1 or 2",                                         \
+      "stop bits; ASCII: 1 with parity even or odd, 2 with parity none (7E1, 7O1, 7N2), "        \
+      "`modcp-conf` sets them from the parity when the key is absent",                           \
+      /* custom: the ASCII frame */                                                               \
+      "1, 2 (ASCII: by the parity)", "004 §2.1, 003 §3.1")                                        \
     S(slave_addr, 1, MODCP_PF_SLAVE_ADDR, 0, 1, 255, 222, MODCP_EV_SLAVE_ADDR, 0, "protocol",     \
       "slave_address", NUM, none, "must be 1..255",                                               \
       "the CP's own Modbus address; frames for other addresses are not checked and not "         \

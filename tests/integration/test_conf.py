@@ -218,6 +218,47 @@ def rs485_mode_select(t, a, tmp):
          "000 Table 5-2: mode = modem is interference suppression (%r)" % lines)
 
 
+STOP_AT = 8 + 6  # header, baud u32, data bits, parity, stop bits
+
+
+def ascii_frame(t, a, tmp):
+    """Issue 13 item 5, 003 §3.1: "with even or odd parity 1 stop bit is pre-defined; none
+    parity effects two stop bits" -- the ASCII frame is 7E1, 7O1 or 7N2."""
+    with open(os.path.join(a.configs, "ascii.ini")) as f:
+        text = f.read()
+    line = text[:text.index("stop_bits = 1")].count("\n") + 1
+    for par, stop, ok in (("even", 1, True), ("odd", 1, True), ("none", 2, True),
+                          ("none", 1, False), ("even", 2, False), ("odd", 2, False)):
+        frame = "7%s%d" % (par[0].upper(), stop)
+        rc, lines, rec, p = record_of(a, tmp, text, "serial.parity=" + par,
+                                      "serial.stop_bits=%d" % stop)
+        if ok:
+            t.ok(rc == 0 and lines == [] and len(rec) > STOP_AT and rec[STOP_AT] == stop,
+                 "003 §3.1: ASCII %s accepted (%r)" % (frame, lines))
+        else:
+            want = ("--set:2: serial.stop_bits = %d: the ASCII character frame %s is not allowed: "
+                    "with parity even or odd 1 stop bit, with parity none 2 (003 §3.1: 7E1, 7O1 or "
+                    "7N2); stop_bits = %d (event (0E)2EH)" % (stop, frame, 2 if par == "none" else 1))
+            t.ok(rc == 2 and lines == [want], "003 §3.1: ASCII %s refused, rule named (%r)" % (frame, lines))
+    # without a stop_bits key the stop bits follow the parity
+    rc, lines, rec, p = record_of(a, tmp, text.replace("stop_bits = 1\n", ""), "serial.parity=none")
+    t.ok(rc == 0 and lines == [] and len(rec) > STOP_AT and rec[STOP_AT] == 2,
+         "003 §3.1: ASCII parity none without stop_bits: 2 stop bits (%r)" % lines)
+    rc, lines, rec, p = record_of(a, tmp, text.replace("stop_bits = 1\n", ""), "serial.parity=odd")
+    t.ok(rc == 0 and lines == [] and len(rec) > STOP_AT and rec[STOP_AT] == 1,
+         "003 §3.1: ASCII parity odd without stop_bits: 1 stop bit (%r)" % lines)
+    # in the file: the line of stop_bits is named
+    rc, lines, rec, p = record_of(a, tmp, text.replace("parity = even", "parity = none"))
+    t.ok(rc == 2 and len(lines) == 1 and lines[0].startswith("%s:%d: serial.stop_bits = 1: the ASCII "
+                                                            "character frame 7N1" % (p, line)),
+         "003 §3.1: 7N1 in the file: its stop_bits line named (%r)" % lines)
+    # RTU keeps 1 or 2 stop bits with any parity (004 §2.1)
+    with open(os.path.join(a.configs, "default.ini")) as f:
+        rtu = f.read()
+    rc, lines, rec, p = record_of(a, tmp, rtu, "serial.parity=none", "serial.stop_bits=1")
+    t.ok(rc == 0 and lines == [], "004 §2.1: RTU 8N1 accepted (%r)" % lines)
+
+
 def doc_tables(path):
     """The "| key | meaning | values | default | source | event |" table of each
     "## [section]" of docs/parameters.md, as modcp-conf doc-table prints them."""
@@ -306,6 +347,7 @@ def main():
 
     loses_nothing(t, a, tmp)
     rs485_mode_select(t, a, tmp)
+    ascii_frame(t, a, tmp)
 
     # binary record
     binf = os.path.join(tmp, "default.bin")

@@ -187,6 +187,89 @@ static void test_data_bits(void **state)
     expect_one(&p, MODCP_PF_DATA_BITS, 0, MODCP_EV_DATA_BITS, true, 9);
 }
 
+/* 003 §3.1 (CP 341 MODBUS ASCII slave, transmission parameters): "With Modbus ASCII 7
+ * data bits are mandatory." "With even or odd parity 1 stop bit is pre-defined. None
+ * parity effects two stop bits." The ASCII frame is 7E1, 7O1 or 7N2; 7N1, 7E2, 7O2 are
+ * refused on the stop bits ((0E)2EH: the manual gives the rule no event of its own).
+ * The 8-bit extension of SPEC §2 follows the same rule (8E1, 8O1, 8N2). */
+static void test_003_s3_1_ascii_frame_7e1_7o1_7n2(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    params_004_9(&p);
+    p.framing = MODCP_FRAMING_ASCII;
+    static const struct {
+        uint8_t data, parity, stop;
+        bool ok;
+    } frames[] = {
+        {7, MODCP_PARITY_EVEN, 1, true},  {7, MODCP_PARITY_ODD, 1, true},
+        {7, MODCP_PARITY_NONE, 2, true},  {7, MODCP_PARITY_NONE, 1, false},
+        {7, MODCP_PARITY_EVEN, 2, false}, {7, MODCP_PARITY_ODD, 2, false},
+        {8, MODCP_PARITY_EVEN, 1, true},  {8, MODCP_PARITY_ODD, 1, true},
+        {8, MODCP_PARITY_NONE, 2, true},  {8, MODCP_PARITY_NONE, 1, false},
+        {8, MODCP_PARITY_EVEN, 2, false}, {8, MODCP_PARITY_ODD, 2, false},
+    };
+    for (size_t i = 0; i < sizeof frames / sizeof frames[0]; i++) {
+        p.data_bits = frames[i].data;
+        p.parity = frames[i].parity;
+        p.stop_bits = frames[i].stop;
+        if (frames[i].ok) {
+            assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+        } else {
+            expect_one(&p, MODCP_PF_STOP_BITS, 0, MODCP_EV_PARAM_RECORD, true, frames[i].stop);
+        }
+    }
+    /* an out-of-range value is one issue, as before */
+    p.stop_bits = 3;
+    expect_one(&p, MODCP_PF_STOP_BITS, 0, MODCP_EV_PARAM_RECORD, true, 3);
+    /* 6 data bits: the data-bits event alone (the stop bits fit the parity) */
+    p.data_bits = 6;
+    p.parity = MODCP_PARITY_EVEN;
+    p.stop_bits = 1;
+    expect_one(&p, MODCP_PF_DATA_BITS, 0, MODCP_EV_DATA_BITS, true, 6);
+}
+
+/* 004 §2.1 Table 5-1: RTU keeps the manual's free choice of 1 or 2 stop bits with any
+ * parity (8N1, 8E2 ...): the ASCII rule is for ASCII only. */
+static void test_004_s2_1_rtu_stop_bits_free(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    params_004_9(&p);
+    for (uint8_t par = 0; par <= MODCP_PARITY_EVEN; par++) {
+        for (uint8_t stop = 1; stop <= 2; stop++) {
+            p.parity = par;
+            p.stop_bits = stop;
+            assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+        }
+    }
+}
+
+/* 003 §3.1: the CP refuses a 7N1 ASCII record at start-up (driver not ready; FB:
+ * CP_START_ERROR, ERROR_INFO (0E)2EH); the same record as 7N2 starts. */
+static void test_003_s3_1_ascii_7n1_refused_by_cp(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    params_004_9(&p);
+    p.framing = MODCP_FRAMING_ASCII;
+    p.data_bits = 7;
+    p.parity = MODCP_PARITY_NONE;
+    p.stop_bits = 1;
+    p.start_time_ms = 500;
+    world_t *w = world_new(&p);
+    assert_false(world_start(w, 2000));
+    assert_true(w->fb_out.cp_start_error);
+    assert_int_equal(w->fb_out.error_info, MODCP_EV_PARAM_RECORD);
+    assert_false(w->cp.configured);
+    world_free(w);
+    p.stop_bits = 2;
+    w = world_new(&p);
+    assert_true(world_start(w, 2000));
+    assert_true(w->cp.configured);
+    world_free(w);
+}
+
 static void test_slave_addr(void **state)
 {
     (void)state;
@@ -942,6 +1025,9 @@ int main(void)
         cmocka_unit_test(test_defaults),
         cmocka_unit_test(test_manual_sets_are_valid),
         cmocka_unit_test(test_data_bits),
+        cmocka_unit_test(test_003_s3_1_ascii_frame_7e1_7o1_7n2),
+        cmocka_unit_test(test_004_s2_1_rtu_stop_bits_free),
+        cmocka_unit_test(test_003_s3_1_ascii_7n1_refused_by_cp),
         cmocka_unit_test(test_slave_addr),
         cmocka_unit_test(test_opmode),
         cmocka_unit_test(test_000_table5_2_rs485_normal_needs_mode_select),

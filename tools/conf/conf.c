@@ -1360,6 +1360,20 @@ static void report_issue(modcp_conf_t *c, const modcp_param_issue_t *is)
                            (unsigned)is->index + 1u);
         }
         break;
+    case MODCP_PF_STOP_BITS:
+        if (is->value == 1u || is->value == 2u) { /* legal value, not for this ASCII frame */
+            const modcp_params_t *p = &c->params;
+            bool none = p->parity == MODCP_PARITY_NONE;
+            char par = none ? 'N' : (p->parity == MODCP_PARITY_ODD ? 'O' : 'E');
+            (void)snprintf(rule, sizeof rule,
+                           "the ASCII character frame %u%c%lu is not allowed: with parity even or "
+                           "odd 1 stop bit, with parity none 2 (003 §3.1: 7E1, 7O1 or 7N2); "
+                           "stop_bits = %u",
+                           (unsigned)p->data_bits, par, (unsigned long)is->value, none ? 2u : 1u);
+        } else {
+            copy_str(rule, sizeof rule, field_rule(is->field));
+        }
+        break;
     case MODCP_PF_OPMODE:
         if (is->value == MODCP_OPMODE_NORMAL) { /* legal value, not on two-wire RS485 */
             (void)snprintf(rule, sizeof rule,
@@ -1688,12 +1702,18 @@ static void parse_text(parse_ctx_t *px, const char *text, size_t len)
 
 /* Defaults that follow another key, as the manuals' parameter dialogs set them: two-wire
  * RS485 runs in interference suppression (modem) mode unless `mode` says otherwise
- * (000 Table 5-2, default "half duplex (RS485) 2-wire: modem"). */
+ * (000 Table 5-2, default "half duplex (RS485) 2-wire: modem"); the ASCII stop bits follow
+ * the parity (003 §3.1). */
 static void derived_defaults(modcp_conf_t *c)
 {
     modcp_params_t *p = &c->params;
     if (!c->src[MODCP_PF_OPMODE][0].set && p->iface == MODCP_IFACE_RS485) {
         p->opmode = MODCP_OPMODE_SUPPRESS;
+    }
+    /* 003 §3.1: "With even or odd parity 1 stop bit is pre-defined. None parity effects
+     * two stop bits." */
+    if (!c->src[MODCP_PF_STOP_BITS][0].set && p->framing == MODCP_FRAMING_ASCII) {
+        p->stop_bits = p->parity == MODCP_PARITY_NONE ? 2u : 1u;
     }
 }
 
