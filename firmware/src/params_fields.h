@@ -184,6 +184,13 @@ extern const modcp_param_member_t modcp_param_members[];
       "suppression (modem) mode only, `mode = normal` there is refused with (0E)22H; `on` "     \
       "allows `mode = normal` on two-wire RS485 too",                                            \
       "`on`, `off`", "000 Table 5-2")                                                             \
+    S(qty_limits, 1, MODCP_PF_QTY_LIMITS, 0, 0, 1, MODCP_QLIMITS_MANUAL, MODCP_EV_PARAM_RECORD,   \
+      0, "protocol", "quantity_limits", ENUM, qlimits, "must be manual or spec",                  \
+      "largest quantity per request (exception 03 above it): `manual` = the manuals' RTU "       \
+      "limits, FC01/02/15 2040 bits, FC03/04/16 127 registers (a 126/127-register reply is "     \
+      "257/259 bytes); `spec` = the Modbus application protocol's, FC01/02 2000, FC15 1968, "    \
+      "FC03/04 125, FC16 123, FC23 125 / 121: every reply fits the 256-byte RTU ADU",            \
+      "`manual`, `spec`", "004 §6, SPEC §5.1, Modbus V1.1b3 §6")                                  \
     S(cpu_model, 1, MODCP_PF_CPU_MODEL, 0, 0, 1, MODCP_CPU_CP341, MODCP_EV_PARAM_RECORD, 0,       \
       "cpu", "model", ENUM, model, "must be cp341 or cp441",                                      \
       "CPU transfer limit per job: `cp341` 1024 bytes, `cp441` 450 bytes", "`cp341`, `cp441`",   \

@@ -259,6 +259,26 @@ def ascii_frame(t, a, tmp):
     t.ok(rc == 0 and lines == [], "004 §2.1: RTU 8N1 accepted (%r)" % lines)
 
 
+def quantity_limits(t, a, tmp):
+    """Issue 13 item 7: [protocol] quantity_limits = manual | spec, in the record."""
+    with open(os.path.join(a.configs, "default.ini")) as f:
+        default = f.read()
+    rc1, l1, manual, p = record_of(a, tmp, default)
+    rc2, l2, spec, p = record_of(a, tmp, default, "protocol.quantity_limits=spec")
+    diff = [i for i in range(min(len(manual), len(spec)) - 2) if manual[i] != spec[i]]
+    t.ok(rc1 == 0 and rc2 == 0 and len(manual) == len(spec) and len(diff) == 1 and
+         manual[diff[0]] == 0 and spec[diff[0]] == 1,
+         "quantity_limits: manual (default) 0, spec 1, one byte of the record (%r)" % diff)
+    rc, lines, rec, p = record_of(a, tmp, default, "protocol.quantity_limits=libmodbus")
+    t.ok(rc == 2 and lines == ["--set:1: protocol.quantity_limits = libmodbus: must be manual or "
+                               "spec (event (0E)2EH)"],
+         "quantity_limits = libmodbus: refused (%r)" % lines)
+    path = os.path.join(a.configs, "spec-limits.ini")
+    rc, out, err = run([a.conf, "check", path])
+    t.ok(rc == 0 and out.strip() == "%s: ok: slave 17, 9600 8E1 RTU, record %d bytes" % (path, len(spec))
+         and err == "", "check spec-limits.ini: exit 0, no problems (%r %r)" % (out.strip(), err))
+
+
 def doc_tables(path):
     """The "| key | meaning | values | default | source | event |" table of each
     "## [section]" of docs/parameters.md, as modcp-conf doc-table prints them."""
@@ -348,6 +368,7 @@ def main():
     loses_nothing(t, a, tmp)
     rs485_mode_select(t, a, tmp)
     ascii_frame(t, a, tmp)
+    quantity_limits(t, a, tmp)
 
     # binary record
     binf = os.path.join(tmp, "default.bin")

@@ -12,7 +12,7 @@
 #include "modcp/params.h"
 #include "world.h"
 
-#define RECORD_LEN 317u /* 8 header + 307 payload + 2 CRC */
+#define RECORD_LEN 318u /* 8 header + 308 payload + 2 CRC */
 
 static void set_win(modcp_bitwin_t *w, uint8_t area, uint16_t from, uint16_t to, uint16_t start,
                     uint16_t db)
@@ -101,6 +101,7 @@ static void test_defaults(void **state)
     assert_int_equal(p.lim_db.min, 0);
     assert_int_equal(p.fset, MODCP_FSET_EXTENDED);
     assert_int_equal(p.rs485_sel, 0); /* 000 Table 5-2: "Non" */
+    assert_int_equal(p.qty_limits, MODCP_QLIMITS_MANUAL);
     assert_int_equal(p.cpu_model, MODCP_CPU_CP341);
     assert_int_equal(p.job_limit, 0);
     assert_int_equal(p.cpu_timeout_ms, 1000);
@@ -576,6 +577,9 @@ static void test_record_field_errors(void **state)
     p.fset = 2;
     expect_one(&p, MODCP_PF_FSET, 0, rec, true, 2);
     params_004_9(&p);
+    p.qty_limits = 2;
+    expect_one(&p, MODCP_PF_QTY_LIMITS, 0, rec, true, 2);
+    params_004_9(&p);
     p.cpu_model = 2;
     expect_one(&p, MODCP_PF_CPU_MODEL, 0, rec, true, 2);
     params_004_9(&p);
@@ -745,6 +749,7 @@ static void params_all_fields(modcp_params_t *p)
     p->lim_q = (modcp_limit_t){0x2A2B, 0x2C2D};
     p->fset = MODCP_FSET_CP341;
     p->rs485_sel = 1;
+    p->qty_limits = MODCP_QLIMITS_SPEC;
     p->cpu_model = MODCP_CPU_CP441;
     p->job_limit = 0x01C2;
     p->cpu_timeout_ms = 0xEEEE;
@@ -813,6 +818,7 @@ static void assert_params_equal(const modcp_params_t *a, const modcp_params_t *b
     assert_int_equal(a->lim_q.max, b->lim_q.max);
     assert_int_equal(a->fset, b->fset);
     assert_int_equal(a->rs485_sel, b->rs485_sel);
+    assert_int_equal(a->qty_limits, b->qty_limits);
     assert_int_equal(a->cpu_model, b->cpu_model);
     assert_int_equal(a->job_limit, b->job_limit);
     assert_int_equal(a->cpu_timeout_ms, b->cpu_timeout_ms);

@@ -229,6 +229,8 @@ static const enum_name_t names_iface[] = {{"rs232", MODCP_IFACE_RS232},
                                           {NULL, 0}};
 static const enum_name_t names_fset[] = {
     {"cp341", MODCP_FSET_CP341}, {"extended", MODCP_FSET_EXTENDED}, {NULL, 0}};
+static const enum_name_t names_qlimits[] = {
+    {"manual", MODCP_QLIMITS_MANUAL}, {"spec", MODCP_QLIMITS_SPEC}, {NULL, 0}};
 static const enum_name_t names_model[] = {
     {"cp341", MODCP_CPU_CP341}, {"cp441", MODCP_CPU_CP441}, {"cp441-2", MODCP_CPU_CP441}, {NULL, 0}};
 #define names_none NULL
