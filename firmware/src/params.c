@@ -404,13 +404,18 @@ static void check_scanner(issue_sink_t *s, const modcp_params_t *p)
 /* The rules a row's range cannot say (MODCP_PF_CUSTOM); *v: the value to report. */
 static bool custom_ok(const modcp_params_t *p, const modcp_param_row_t *r, uint32_t *v)
 {
+    /* The ASCII character frame (003 §3.1) and the RS485 operating mode (000 Table 5-2);
+     * tested before the switch, which then stays a compare chain (no jump table). */
+    if (r->field == MODCP_PF_STOP_BITS) {
+        return p->framing != MODCP_FRAMING_ASCII ||
+               *v == (p->parity == MODCP_PARITY_NONE ? 2u : 1u);
+    }
+    if (r->field == MODCP_PF_OPMODE) {
+        return *v != MODCP_OPMODE_NORMAL || p->iface != MODCP_IFACE_RS485 || p->rs485_sel != 0u;
+    }
     switch (r->field) {
     case MODCP_PF_BAUD: return baud_ok(*v);
     case MODCP_PF_DATA_BITS: return p->framing == MODCP_FRAMING_ASCII || *v == 8u;
-    case MODCP_PF_STOP_BITS:
-        return p->framing != MODCP_FRAMING_ASCII || *v == (p->parity == MODCP_PARITY_NONE ? 2u : 1u);
-    case MODCP_PF_OPMODE:
-        return *v != MODCP_OPMODE_NORMAL || p->iface != MODCP_IFACE_RS485 || p->rs485_sel != 0u;
     case MODCP_PF_RS232_AUTO: return *v == 0u || p->iface == MODCP_IFACE_RS232;
     case MODCP_PF_JOB_LIMIT: return *v <= model_limit(p->cpu_model);
     case MODCP_PF_SCANNER: return MODCP_PARAM_WIDTH(r) != 1u || scan_count_ok(p);
