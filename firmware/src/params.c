@@ -4,9 +4,17 @@
  * One issue per bad field (per window / range / scanner entry / ID string); for a
  * field with several problems only the first one found is reported.
  *
- *   data_bits      RTU: 8; ASCII: 7 or 8 ............................ (0E)20H fatal
+ *   data_bits      RTU: 8; ASCII: 7 or 8 (8: modcp extension, SPEC §2) (0E)20H fatal
+ *   stop_bits      ASCII: not 1 with parity even/odd, not 2 with parity none (003
+ *                  §3.1 "with even or odd parity 1 stop bit is pre-defined; none
+ *                  parity effects two stop bits": 7E1, 7O1, 7N2; the same for the
+ *                  8-bit extension) ... (0E)2EH fatal (the manual gives no event)
  *   slave_addr     0 ................................................ (0E)23H fatal
- *   opmode         not 0/1 .......................................... (0E)22H fatal
+ *   opmode         not 0/1; normal on RS485 (two-wire) while rs485_sel is 0
+ *                  (000 Table 5-2: without "enable operating-mode selection for
+ *                  RS485" two-wire RS485 runs in modem = interference suppression
+ *                  mode only; event (0E)22H "selected operating mode not allowed")
+ *                  .................................................. (0E)22H fatal
  *   f_mul          outside 1..10 ................. (0E)21H NOT fatal, runs with 1
  *   ascii_timeout  outside 1..6500 ms ............ (0E)21H NOT fatal, runs with 1000
  *                  (003 §8.6 prints this as the second parameter event, at the
@@ -32,7 +40,7 @@
  *                  parameter file"): baud not in the table, parity > 2, stop bits
  *                  not 1/2, framing > 1, eof_timing > 1, t15_check > 1, iface > 2,
  *                  turnaround > 100 ms, rs232_auto > 1 or with an interface other
- *                  than RS232, regs32 > 1, fset > 1, cpu_model > 1, job_limit not 0
+ *                  than RS232, regs32 > 1, fset > 1, rs485_sel > 1, cpu_model > 1, job_limit not 0
  *                  and not 32..model limit, cpu_timeout 0, start_time 0, commloss
  *                  not 0 and not 100..30000, scanner count > 16 or first + count
  *                  beyond 65535 (index 0xFF), an enabled scanner entry (index <
@@ -396,6 +404,15 @@ static void check_scanner(issue_sink_t *s, const modcp_params_t *p)
 /* The rules a row's range cannot say (MODCP_PF_CUSTOM); *v: the value to report. */
 static bool custom_ok(const modcp_params_t *p, const modcp_param_row_t *r, uint32_t *v)
 {
+    /* The ASCII character frame (003 §3.1) and the RS485 operating mode (000 Table 5-2);
+     * tested before the switch, which then stays a compare chain (no jump table). */
+    if (r->field == MODCP_PF_STOP_BITS) {
+        return p->framing != MODCP_FRAMING_ASCII ||
+               *v == (p->parity == MODCP_PARITY_NONE ? 2u : 1u);
+    }
+    if (r->field == MODCP_PF_OPMODE) {
+        return *v != MODCP_OPMODE_NORMAL || p->iface != MODCP_IFACE_RS485 || p->rs485_sel != 0u;
+    }
     switch (r->field) {
     case MODCP_PF_BAUD: return baud_ok(*v);
     case MODCP_PF_DATA_BITS: return p->framing == MODCP_FRAMING_ASCII || *v == 8u;

@@ -76,12 +76,16 @@ extern const modcp_param_member_t modcp_param_members[];
     S(data_bits, 1, MODCP_PF_DATA_BITS, 0, 7, 8, 8, MODCP_EV_DATA_BITS, MODCP_PF_CUSTOM,          \
       "serial", "data_bits", NUM, none, "must be 8 for RTU, 7 or 8 for ASCII",                    \
       "data bits per character", /* custom: 8 for RTU */                                          \
-      "RTU: 8; ASCII: 7 (8 allowed)", "004 §2.1, 003")                                            \
+      "RTU: 8; ASCII: 7 (8: a modcp extension, SPEC §2)", "004 §2.1, 003 §3.1")                   \
     S(parity, 1, MODCP_PF_PARITY, 0, 0, 2, MODCP_PARITY_EVEN, MODCP_EV_PARAM_RECORD, 0, "serial",  \
       "parity", ENUM, parity, "must be none, odd or even", "parity bit",                          \
       "`none`, `odd`, `even` (`n`, `o`, `e`)", "004 §2.1")                                        \
-    S(stop_bits, 1, MODCP_PF_STOP_BITS, 0, 1, 2, 1, MODCP_EV_PARAM_RECORD, 0, "serial",           \
-      "stop_bits", NUM, none, "must be 1 or 2", "stop bits", "1, 2", "004 §2.1")                  \
+    S(stop_bits, 1, MODCP_PF_STOP_BITS, 0, 1, 2, 1, MODCP_EV_PARAM_RECORD, MODCP_PF_CUSTOM,       \
+      "serial", "stop_bits", NUM, none, "must be 1 or 2",                                         \
+      "stop bits; ASCII: 1 with parity even or odd, 2 with parity none (7E1, 7O1, 7N2), "        \
+      "`modcp-conf` sets them from the parity when the key is absent",                           \
+      /* custom: the ASCII frame */                                                               \
+      "1, 2 (ASCII: by the parity)", "004 §2.1, 003 §3.1")                                        \
     S(slave_addr, 1, MODCP_PF_SLAVE_ADDR, 0, 1, 255, 222, MODCP_EV_SLAVE_ADDR, 0, "protocol",     \
       "slave_address", NUM, none, "must be 1..255",                                               \
       "the CP's own Modbus address; frames for other addresses are not checked and not "         \
@@ -90,12 +94,16 @@ extern const modcp_param_member_t modcp_param_members[];
     S(framing, 1, MODCP_PF_FRAMING, 0, 0, MODCP_WITH_ASCII, MODCP_FRAMING_RTU,                    \
       MODCP_EV_PARAM_RECORD, 0, "protocol", "framing", ENUM, framing, "must be rtu or ascii",     \
       "RTU (binary, CRC-16) or ASCII (`:` hex LRC CR LF)", "`rtu`, `ascii`", "003")               \
-    S(opmode, 1, MODCP_PF_OPMODE, 0, 0, 1, MODCP_OPMODE_NORMAL, MODCP_EV_OPMODE, 0, "protocol",   \
-      "mode", ENUM, mode, "must be normal or suppress (interference suppression)",                \
+    S(opmode, 1, MODCP_PF_OPMODE, 0, 0, 1, MODCP_OPMODE_NORMAL, MODCP_EV_OPMODE,                 \
+      MODCP_PF_CUSTOM, "protocol", "mode", ENUM, mode,                                            \
+      "must be normal or suppress (interference suppression)",                                    \
       "operating mode: `normal` reports every character error and BREAK; `suppress` "           \
-      "(interference suppression) silently discards a frame with an error, starts a frame at "   \
-      "the own address and ignores errors after the CRC",                                        \
-      "`normal`, `suppress` (`interference_suppression`)", "004 §2.2")                            \
+      "(interference suppression, the 2009 manual's modem mode) silently discards a frame with " \
+      "an error, starts a frame at the own address and ignores errors after the CRC. With "     \
+      "`interface.type = rs485` (two-wire) the default is `suppress`, and `normal` needs "      \
+      "`rs485_mode_select = on`", /* custom: RS485 needs rs485_sel for normal */                 \
+      "`normal`, `suppress` (`interference_suppression`, `modem`)",                               \
+      "004 §2.2, 000 Table 5-2")                                                                  \
     S(f_mul, 1, MODCP_PF_FMUL, 0, 1, 10, 1, MODCP_EV_FMUL, MODCP_PF_WARN, "protocol", "f_mul",    \
       NUM, none, "must be 1..10; the CP runs with 1",                                             \
       "character delay multiplier: end of frame = TIME_OUT(baud) × f_MUL",                        \
@@ -170,6 +178,19 @@ extern const modcp_param_member_t modcp_param_members[];
       "`cp341` = exactly FC 01–06, 08 sub 0, 15, 16; `extended` adds FC08 diagnostics, 11, 12, " \
       "17, 22, 23, 43/14, the scanner",                                                           \
       "`cp341`, `extended`", "SPEC §5")                                                           \
+    S(rs485_sel, 1, MODCP_PF_RS485_SEL, 0, 0, 1, 0, MODCP_EV_PARAM_RECORD, 0, "protocol",         \
+      "rs485_mode_select", BOOL, none, "must be on or off",                                       \
+      "enable operating-mode selection for RS485: `off` = two-wire RS485 runs in interference " \
+      "suppression (modem) mode only, `mode = normal` there is refused with (0E)22H; `on` "     \
+      "allows `mode = normal` on two-wire RS485 too",                                            \
+      "`on`, `off`", "000 Table 5-2")                                                             \
+    S(qty_limits, 1, MODCP_PF_QTY_LIMITS, 0, 0, 1, MODCP_QLIMITS_MANUAL, MODCP_EV_PARAM_RECORD,   \
+      0, "protocol", "quantity_limits", ENUM, qlimits, "must be manual or spec",                  \
+      "largest quantity per request (exception 03 above it): `manual` = the manuals' RTU "       \
+      "limits, FC01/02/15 2040 bits, FC03/04/16 127 registers (a 126/127-register reply is "     \
+      "257/259 bytes); `spec` = the Modbus application protocol's, FC01/02 2000, FC15 1968, "    \
+      "FC03/04 125, FC16 123, FC23 125 / 121: every reply fits the 256-byte RTU ADU",            \
+      "`manual`, `spec`", "004 §6, SPEC §5.1, Modbus V1.1b3 §6")                                  \
     S(cpu_model, 1, MODCP_PF_CPU_MODEL, 0, 0, 1, MODCP_CPU_CP341, MODCP_EV_PARAM_RECORD, 0,       \
       "cpu", "model", ENUM, model, "must be cp341 or cp441",                                      \
       "CPU transfer limit per job: `cp341` 1024 bytes, `cp441` 450 bytes", "`cp341`, `cp441`",   \

@@ -5,7 +5,7 @@
  * A group (windows, 32-bit ranges, limits, scanner entries) is encoded struct by
  * struct. ID strings occupy 16 bytes each (the characters up to the NUL, zero padded;
  * the decoder always terminates them). The payload length is the sum of the rows'
- * widths (306 bytes in version 1, record 316); decode accepts trailing bytes after the
+ * widths (308 bytes in version 2, record 318); decode accepts trailing bytes after the
  * record (it may sit in a padded block). */
 #include <stdbool.h>
 #include <string.h>

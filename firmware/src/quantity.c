@@ -1,5 +1,6 @@
-/* modcp — quantity limits by framing and register width; register width of a holding
- * register in the 32-bit scheme. See modcp/quantity.h for the table. */
+/* modcp — quantity limits by limit set (manual / spec), framing and register width;
+ * register width of a holding register in the 32-bit scheme. See modcp/quantity.h for
+ * the table. */
 #include "modcp/quantity.h"
 
 #include <stdbool.h>
@@ -28,14 +29,15 @@ uint8_t modcp_reg_bytes(uint8_t r32_kind)
                : 2u;
 }
 
-const uint16_t modcp_qty_limits[MODCP_QLIM_COUNT][4] = {
-    [MODCP_QLIM_NONE] = {0u, 0u, 0u, 0u},
-    [MODCP_QLIM_READ_BITS] = {2040u, 2008u, 2040u, 2008u},
-    [MODCP_QLIM_WRITE_BITS] = {2040u, 1976u, 2040u, 1976u},
-    [MODCP_QLIM_READ_REGS] = {127u, 125u, 63u, 62u},
-    [MODCP_QLIM_WRITE_REGS] = {127u, 123u, 63u, 61u},
-    [MODCP_QLIM_RW_READ] = {125u, 125u, 62u, 62u},
-    [MODCP_QLIM_RW_WRITE] = {121u, 121u, 60u, 60u},
+/*                                 RTU    ASCII  spec   RTU32  ASCII32 spec32 */
+const uint16_t modcp_qty_limits[MODCP_QLIM_COUNT][6] = {
+    [MODCP_QLIM_NONE] = {0u, 0u, 0u, 0u, 0u, 0u},
+    [MODCP_QLIM_READ_BITS] = {2040u, 2008u, 2000u, 2040u, 2008u, 2000u},
+    [MODCP_QLIM_WRITE_BITS] = {2040u, 1976u, 1968u, 2040u, 1976u, 1968u},
+    [MODCP_QLIM_READ_REGS] = {127u, 125u, 125u, 63u, 62u, 62u},
+    [MODCP_QLIM_WRITE_REGS] = {127u, 123u, 123u, 63u, 61u, 61u},
+    [MODCP_QLIM_RW_READ] = {125u, 125u, 125u, 62u, 62u, 62u},
+    [MODCP_QLIM_RW_WRITE] = {121u, 121u, 121u, 60u, 60u, 60u},
 };
 
 uint16_t modcp_qty_max(const modcp_params_t *p, uint8_t fc, uint8_t r32_kind)

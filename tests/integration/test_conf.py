@@ -171,6 +171,114 @@ def loses_nothing(t, a, tmp):
         "overrides, key before [section], text after [section] (%r)" % lines)
 
 
+def record_of(a, tmp, text, *sets):
+    """modcp-conf build of text: (exit code, stderr lines, record bytes)."""
+    path = os.path.join(tmp, "rec.ini")
+    with open(path, "w") as f:
+        f.write(text)
+    binf = os.path.join(tmp, "rec.bin")
+    if os.path.exists(binf):
+        os.remove(binf)
+    args = [a.conf, "build", path, "-o", binf]
+    for x in sets:
+        args += ["--set", x]
+    rc, out, err = run(args)
+    rec = open(binf, "rb").read() if rc == 0 and os.path.exists(binf) else b""
+    return rc, err.splitlines(), rec, path
+
+
+OPMODE_AT = 8 + 9  # header, then baud u32, data bits, parity, stop bits, slave, framing, opmode
+
+
+def rs485_mode_select(t, a, tmp):
+    """Issue 13 item 4, 000 Table 5-2: two-wire RS485 runs in modem (interference
+    suppression) mode unless rs485_mode_select = on allows mode = normal."""
+    with open(os.path.join(a.configs, "default.ini")) as f:
+        default = f.read()
+    text = default.replace("mode = normal\n", "")
+    rc, lines, rec, p = record_of(a, tmp, text, "interface.type=rs485")
+    t.ok(rc == 0 and lines == [] and len(rec) > OPMODE_AT and rec[OPMODE_AT] == 1,
+         "000 Table 5-2: rs485 without mode: default modem (suppress) (%r)" % lines)
+    rc, lines, rec, p = record_of(a, tmp, text, "interface.type=rs422")
+    t.ok(rc == 0 and lines == [] and len(rec) > OPMODE_AT and rec[OPMODE_AT] == 0,
+         "000 Table 5-2: rs422 4-wire without mode: default normal (%r)" % lines)
+    line = default[:default.index("mode = normal")].count("\n") + 1
+    rc, lines, rec, p = record_of(a, tmp, default, "interface.type=rs485")
+    t.ok(rc == 2 and lines == ["%s:%d: protocol.mode = normal: normal is not allowed with "
+                               "interface.type = rs485 (two-wire runs in interference suppression = "
+                               "modem mode) unless protocol.rs485_mode_select = on (000 Table 5-2) "
+                               "(event (0E)22H)" % (p, line)],
+         "000 Table 5-2: rs485 with mode = normal: refused, (0E)22H, rule named (%r)" % lines)
+    rc, lines, rec, p = record_of(a, tmp, default, "interface.type=rs485",
+                                  "protocol.rs485_mode_select=on")
+    t.ok(rc == 0 and lines == [] and len(rec) > OPMODE_AT and rec[OPMODE_AT] == 0,
+         "000 Table 5-2: rs485 with mode = normal and rs485_mode_select = on: accepted (%r)" % lines)
+    rc, lines, rec, p = record_of(a, tmp, default, "interface.type=rs485", "protocol.mode=modem")
+    t.ok(rc == 0 and lines == [] and len(rec) > OPMODE_AT and rec[OPMODE_AT] == 1,
+         "000 Table 5-2: mode = modem is interference suppression (%r)" % lines)
+
+
+STOP_AT = 8 + 6  # header, baud u32, data bits, parity, stop bits
+
+
+def ascii_frame(t, a, tmp):
+    """Issue 13 item 5, 003 §3.1: "with even or odd parity 1 stop bit is pre-defined; none
+    parity effects two stop bits" -- the ASCII frame is 7E1, 7O1 or 7N2."""
+    with open(os.path.join(a.configs, "ascii.ini")) as f:
+        text = f.read()
+    line = text[:text.index("stop_bits = 1")].count("\n") + 1
+    for par, stop, ok in (("even", 1, True), ("odd", 1, True), ("none", 2, True),
+                          ("none", 1, False), ("even", 2, False), ("odd", 2, False)):
+        frame = "7%s%d" % (par[0].upper(), stop)
+        rc, lines, rec, p = record_of(a, tmp, text, "serial.parity=" + par,
+                                      "serial.stop_bits=%d" % stop)
+        if ok:
+            t.ok(rc == 0 and lines == [] and len(rec) > STOP_AT and rec[STOP_AT] == stop,
+                 "003 §3.1: ASCII %s accepted (%r)" % (frame, lines))
+        else:
+            want = ("--set:2: serial.stop_bits = %d: the ASCII character frame %s is not allowed: "
+                    "with parity even or odd 1 stop bit, with parity none 2 (003 §3.1: 7E1, 7O1 or "
+                    "7N2); stop_bits = %d (event (0E)2EH)" % (stop, frame, 2 if par == "none" else 1))
+            t.ok(rc == 2 and lines == [want], "003 §3.1: ASCII %s refused, rule named (%r)" % (frame, lines))
+    # without a stop_bits key the stop bits follow the parity
+    rc, lines, rec, p = record_of(a, tmp, text.replace("stop_bits = 1\n", ""), "serial.parity=none")
+    t.ok(rc == 0 and lines == [] and len(rec) > STOP_AT and rec[STOP_AT] == 2,
+         "003 §3.1: ASCII parity none without stop_bits: 2 stop bits (%r)" % lines)
+    rc, lines, rec, p = record_of(a, tmp, text.replace("stop_bits = 1\n", ""), "serial.parity=odd")
+    t.ok(rc == 0 and lines == [] and len(rec) > STOP_AT and rec[STOP_AT] == 1,
+         "003 §3.1: ASCII parity odd without stop_bits: 1 stop bit (%r)" % lines)
+    # in the file: the line of stop_bits is named
+    rc, lines, rec, p = record_of(a, tmp, text.replace("parity = even", "parity = none"))
+    t.ok(rc == 2 and len(lines) == 1 and lines[0].startswith("%s:%d: serial.stop_bits = 1: the ASCII "
+                                                            "character frame 7N1" % (p, line)),
+         "003 §3.1: 7N1 in the file: its stop_bits line named (%r)" % lines)
+    # RTU keeps 1 or 2 stop bits with any parity (004 §2.1)
+    with open(os.path.join(a.configs, "default.ini")) as f:
+        rtu = f.read()
+    rc, lines, rec, p = record_of(a, tmp, rtu, "serial.parity=none", "serial.stop_bits=1")
+    t.ok(rc == 0 and lines == [], "004 §2.1: RTU 8N1 accepted (%r)" % lines)
+
+
+def quantity_limits(t, a, tmp):
+    """Issue 13 item 7: [protocol] quantity_limits = manual | spec, in the record."""
+    with open(os.path.join(a.configs, "default.ini")) as f:
+        default = f.read()
+    rc1, l1, manual, p = record_of(a, tmp, default)
+    rc2, l2, spec, p = record_of(a, tmp, default, "protocol.quantity_limits=spec")
+    diff = [i for i in range(min(len(manual), len(spec)) - 2) if manual[i] != spec[i]]
+    t.ok(rc1 == 0 and rc2 == 0 and len(manual) == len(spec) and len(diff) == 1 and
+         manual[diff[0]] == 0 and spec[diff[0]] == 1,
+         "quantity_limits: manual (default) 0, spec 1, one byte of the record (%r)" % diff)
+    rc, lines, rec, p = record_of(a, tmp, default, "protocol.quantity_limits=libmodbus")
+    t.ok(rc == 2 and lines == ["--set:1: protocol.quantity_limits = libmodbus: must be manual or "
+                               "spec (event (0E)2EH)"],
+         "quantity_limits = libmodbus: refused (%r)" % lines)
+    path = os.path.join(a.configs, "spec-limits.ini")
+    rc, out, err = run([a.conf, "check", path])
+    t.ok(rc == 0 and out.strip() == "%s: ok: slave 17, 9600 8E1 RTU, record %d bytes" % (path, len(spec))
+         and err == "", "check spec-limits.ini: exit 0, no problems (%r %r)" % (out.strip(), err))
+
+
 def doc_tables(path):
     """The "| key | meaning | values | default | source | event |" table of each
     "## [section]" of docs/parameters.md, as modcp-conf doc-table prints them."""
@@ -258,6 +366,9 @@ def main():
          "'this line is wrong'\n" % syn, "syntax error: line 3 named (%r)" % err)
 
     loses_nothing(t, a, tmp)
+    rs485_mode_select(t, a, tmp)
+    ascii_frame(t, a, tmp)
+    quantity_limits(t, a, tmp)
 
     # binary record
     binf = os.path.join(tmp, "default.bin")
@@ -266,8 +377,8 @@ def main():
     t.ok(rc == 0 and len(rec) >= 10, "build: record of %d bytes" % len(rec))
     if len(rec) >= 10:
         magic, version, plen = struct.unpack_from("<4sHH", rec, 0)
-        t.ok(magic == b"MCPR" and version == 1 and plen == len(rec) - 10,
-             "build: header MCPR v1, payload %d bytes" % plen)
+        t.ok(magic == b"MCPR" and version == 2 and plen == len(rec) - 10,
+             "build: header MCPR v2, payload %d bytes" % plen)
         t.ok(crc16(rec[:-2]) == rec[-2:], "build: CRC-16 over the record")
         baud, db, par, sb, slave = struct.unpack_from("<IBBBB", rec, 8)
         t.ok((baud, db, par, sb, slave) == (9600, 8, 2, 1, 5), "build: 9600 8E1 slave 5")

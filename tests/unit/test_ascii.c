@@ -649,6 +649,7 @@ static void test_rs485_echo(void **state)
     modcp_params_t p;
     ascii_example_params(&p);
     p.iface = MODCP_IFACE_RS485;
+    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 (000 Table 5-2) */
     world_t *w = ascii_world_started(&p);
     ascii_feed(w, ":05080000A5C38B\r\n", ASCII_CHAR_US);
     assert_true(ascii_fire(w));

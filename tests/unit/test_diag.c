@@ -514,6 +514,7 @@ static void test_leds_rs485_echo(void **state)
     (void)state;
     modcp_params_t p = example();
     p.iface = MODCP_IFACE_RS485;
+    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 (000 Table 5-2) */
     lw_t *x = start(&p);
     x->cycles = false;
     x->auto_tx_done = false; /* the reply stays on the line */

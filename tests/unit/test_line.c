@@ -132,6 +132,7 @@ static void test_parity_error_rs485(void **state)
     (void)state;
     modcp_params_t p = example();
     p.iface = MODCP_IFACE_RS485;
+    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 (000 Table 5-2) */
     lw_t *x = start(&p);
     uint32_t last = fc03_with_error(x, MODCP_LINE_PARITY);
     lw_advance(x, last + 100000);
@@ -152,6 +153,7 @@ static void check_glitch_before_request(uint8_t opmode, uint8_t iface, uint8_t f
     modcp_params_t p = example();
     p.opmode = opmode;
     p.iface = iface;
+    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 (000 Table 5-2) */
     lw_t *x = start(&p);
     lw_error(x, flags);
     lw_advance(x, lw_now(x) + 300); /* 300 us later the master starts */
@@ -355,6 +357,7 @@ static void check_turnaround(uint16_t turnaround_ms)
 {
     modcp_params_t p = example();
     p.iface = MODCP_IFACE_RS485;
+    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 (000 Table 5-2) */
     p.turnaround_ms = turnaround_ms;
     lw_t *x = start(&p);
     uint32_t ta = (uint32_t)turnaround_ms * 1000u;
@@ -411,6 +414,7 @@ static void test_rs485_turnaround_after_job(void **state)
     (void)state;
     modcp_params_t p = example();
     p.iface = MODCP_IFACE_RS485;
+    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 (000 Table 5-2) */
     p.turnaround_ms = 3;
     lw_t *x = start(&p);
     uint32_t last = lw_send(x, FC03_REQ);
@@ -433,6 +437,7 @@ static void test_sequence_error_during_turnaround(void **state)
     (void)state;
     modcp_params_t p = example();
     p.iface = MODCP_IFACE_RS485;
+    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 (000 Table 5-2) */
     p.turnaround_ms = 20;
     lw_t *x = start(&p);
     uint32_t last = lw_send(x, FC08_REQ);

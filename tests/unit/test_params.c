@@ -12,7 +12,7 @@
 #include "modcp/params.h"
 #include "world.h"
 
-#define RECORD_LEN 316u /* 8 header + 306 payload + 2 CRC */
+#define RECORD_LEN 318u /* 8 header + 308 payload + 2 CRC */
 
 static void set_win(modcp_bitwin_t *w, uint8_t area, uint16_t from, uint16_t to, uint16_t start,
                     uint16_t db)
@@ -100,6 +100,8 @@ static void test_defaults(void **state)
     assert_int_equal(p.lim_q.max, 0);
     assert_int_equal(p.lim_db.min, 0);
     assert_int_equal(p.fset, MODCP_FSET_EXTENDED);
+    assert_int_equal(p.rs485_sel, 0); /* 000 Table 5-2: "Non" */
+    assert_int_equal(p.qty_limits, MODCP_QLIMITS_MANUAL);
     assert_int_equal(p.cpu_model, MODCP_CPU_CP341);
     assert_int_equal(p.job_limit, 0);
     assert_int_equal(p.cpu_timeout_ms, 1000);
@@ -148,6 +150,7 @@ static void test_manual_sets_are_valid(void **state)
     p.ascii_timeout_ms = 6500;
     p.turnaround_ms = 100;
     p.iface = MODCP_IFACE_RS485;
+    p.opmode = MODCP_OPMODE_SUPPRESS; /* two-wire: modem mode (000 Table 5-2) */
     p.commloss_ms = 30000;
     p.job_limit = 1024;
     p.scan_count = 16;
@@ -185,6 +188,89 @@ static void test_data_bits(void **state)
     expect_one(&p, MODCP_PF_DATA_BITS, 0, MODCP_EV_DATA_BITS, true, 9);
 }
 
+/* 003 §3.1 (CP 341 MODBUS ASCII slave, transmission parameters): "With Modbus ASCII 7
+ * data bits are mandatory." "With even or odd parity 1 stop bit is pre-defined. None
+ * parity effects two stop bits." The ASCII frame is 7E1, 7O1 or 7N2; 7N1, 7E2, 7O2 are
+ * refused on the stop bits ((0E)2EH: the manual gives the rule no event of its own).
+ * The 8-bit extension of SPEC §2 follows the same rule (8E1, 8O1, 8N2). */
+static void test_003_s3_1_ascii_frame_7e1_7o1_7n2(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    params_004_9(&p);
+    p.framing = MODCP_FRAMING_ASCII;
+    static const struct {
+        uint8_t data, parity, stop;
+        bool ok;
+    } frames[] = {
+        {7, MODCP_PARITY_EVEN, 1, true},  {7, MODCP_PARITY_ODD, 1, true},
+        {7, MODCP_PARITY_NONE, 2, true},  {7, MODCP_PARITY_NONE, 1, false},
+        {7, MODCP_PARITY_EVEN, 2, false}, {7, MODCP_PARITY_ODD, 2, false},
+        {8, MODCP_PARITY_EVEN, 1, true},  {8, MODCP_PARITY_ODD, 1, true},
+        {8, MODCP_PARITY_NONE, 2, true},  {8, MODCP_PARITY_NONE, 1, false},
+        {8, MODCP_PARITY_EVEN, 2, false}, {8, MODCP_PARITY_ODD, 2, false},
+    };
+    for (size_t i = 0; i < sizeof frames / sizeof frames[0]; i++) {
+        p.data_bits = frames[i].data;
+        p.parity = frames[i].parity;
+        p.stop_bits = frames[i].stop;
+        if (frames[i].ok) {
+            assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+        } else {
+            expect_one(&p, MODCP_PF_STOP_BITS, 0, MODCP_EV_PARAM_RECORD, true, frames[i].stop);
+        }
+    }
+    /* an out-of-range value is one issue, as before */
+    p.stop_bits = 3;
+    expect_one(&p, MODCP_PF_STOP_BITS, 0, MODCP_EV_PARAM_RECORD, true, 3);
+    /* 6 data bits: the data-bits event alone (the stop bits fit the parity) */
+    p.data_bits = 6;
+    p.parity = MODCP_PARITY_EVEN;
+    p.stop_bits = 1;
+    expect_one(&p, MODCP_PF_DATA_BITS, 0, MODCP_EV_DATA_BITS, true, 6);
+}
+
+/* 004 §2.1 Table 5-1: RTU keeps the manual's free choice of 1 or 2 stop bits with any
+ * parity (8N1, 8E2 ...): the ASCII rule is for ASCII only. */
+static void test_004_s2_1_rtu_stop_bits_free(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    params_004_9(&p);
+    for (uint8_t par = 0; par <= MODCP_PARITY_EVEN; par++) {
+        for (uint8_t stop = 1; stop <= 2; stop++) {
+            p.parity = par;
+            p.stop_bits = stop;
+            assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+        }
+    }
+}
+
+/* 003 §3.1: the CP refuses a 7N1 ASCII record at start-up (driver not ready; FB:
+ * CP_START_ERROR, ERROR_INFO (0E)2EH); the same record as 7N2 starts. */
+static void test_003_s3_1_ascii_7n1_refused_by_cp(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    params_004_9(&p);
+    p.framing = MODCP_FRAMING_ASCII;
+    p.data_bits = 7;
+    p.parity = MODCP_PARITY_NONE;
+    p.stop_bits = 1;
+    p.start_time_ms = 500;
+    world_t *w = world_new(&p);
+    assert_false(world_start(w, 2000));
+    assert_true(w->fb_out.cp_start_error);
+    assert_int_equal(w->fb_out.error_info, MODCP_EV_PARAM_RECORD);
+    assert_false(w->cp.configured);
+    world_free(w);
+    p.stop_bits = 2;
+    w = world_new(&p);
+    assert_true(world_start(w, 2000));
+    assert_true(w->cp.configured);
+    world_free(w);
+}
+
 static void test_slave_addr(void **state)
 {
     (void)state;
@@ -207,6 +293,77 @@ static void test_opmode(void **state)
     expect_one(&p, MODCP_PF_OPMODE, 0, MODCP_EV_OPMODE, true, 2);
     p.opmode = MODCP_OPMODE_SUPPRESS;
     assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+}
+
+/* 000 §5.6.1 Table 5-2 "Activer la sélection du mode de fonctionnement pour RS485"
+ * (default "Non") and "Mode de fonctionnement" (default: full duplex RS422 4-wire
+ * normal, half duplex RS485 2-wire modem): without the selection, two-wire RS485 runs in
+ * modem (interference suppression) mode only; "normal" there is refused with (0E)22H
+ * "selected operating mode not allowed", the driver is not ready. */
+static void test_000_table5_2_rs485_normal_needs_mode_select(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    params_004_9(&p);
+    p.iface = MODCP_IFACE_RS485;
+    p.opmode = MODCP_OPMODE_NORMAL;
+    expect_one(&p, MODCP_PF_OPMODE, 0, MODCP_EV_OPMODE, true, MODCP_OPMODE_NORMAL);
+    p.rs485_sel = 1; /* selection enabled: normal allowed */
+    assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+    p.opmode = MODCP_OPMODE_SUPPRESS;
+    assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+    p.rs485_sel = 0; /* modem on two-wire: always legal */
+    assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+    p.rs485_sel = 2;
+    expect_one(&p, MODCP_PF_RS485_SEL, 0, MODCP_EV_PARAM_RECORD, true, 2);
+}
+
+/* 000 Table 5-2 / Table 5-8: full duplex RS422 4-wire (and RS232) default to normal and
+ * may choose either mode without the RS485 selection. */
+static void test_000_table5_2_four_wire_normal_or_modem(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    params_004_9(&p);
+    static const uint8_t ifaces[] = {MODCP_IFACE_RS232, MODCP_IFACE_RS422};
+    for (size_t i = 0; i < sizeof ifaces; i++) {
+        p.iface = ifaces[i];
+        p.rs485_sel = 0;
+        p.opmode = MODCP_OPMODE_NORMAL;
+        assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+        p.opmode = MODCP_OPMODE_SUPPRESS;
+        assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+    }
+    modcp_params_defaults(&p);
+    assert_int_equal(p.iface, MODCP_IFACE_RS232);
+    assert_int_equal(p.opmode, MODCP_OPMODE_NORMAL);
+}
+
+/* 000 §10 event (0E)22H, driver not ready: the CP refuses such a record at start-up
+ * (FB: CP_START_ERROR, ERROR_INFO 0E22H) and answers nothing; with the selection the
+ * same record starts and answers. */
+static void test_000_table5_2_rs485_normal_refused_by_cp(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    params_004_9(&p);
+    p.iface = MODCP_IFACE_RS485;
+    p.opmode = MODCP_OPMODE_NORMAL;
+    p.start_time_ms = 500;
+    world_t *w = world_new(&p);
+    assert_false(world_start(w, 2000));
+    assert_true(w->fb_out.cp_start_error);
+    assert_int_equal(w->fb_out.error_info, MODCP_EV_OPMODE);
+    assert_false(w->cp.configured);
+    assert_int_equal(w->cp.param_event, MODCP_EV_OPMODE);
+    assert_int_equal(world_request(w, "05 08 00 00 A5 C3 DA 8E", 50), 0);
+    world_free(w);
+
+    p.rs485_sel = 1;
+    w = world_new(&p);
+    assert_true(world_start(w, 2000));
+    assert_int_equal(world_request(w, "05 08 00 00 A5 C3 DA 8E", 50), 8);
+    world_free(w);
 }
 
 static void test_fmul_corrected(void **state)
@@ -409,6 +566,7 @@ static void test_record_field_errors(void **state)
     expect_one(&p, MODCP_PF_RS232_AUTO, 0, rec, true, 2);
     p.rs232_auto = 1; /* 004 §2.4: RS232 only */
     p.iface = MODCP_IFACE_RS485;
+    p.opmode = MODCP_OPMODE_SUPPRESS; /* two-wire: modem mode (000 Table 5-2) */
     expect_one(&p, MODCP_PF_RS232_AUTO, 0, rec, true, 1);
     p.iface = MODCP_IFACE_RS232;
     assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
@@ -418,6 +576,9 @@ static void test_record_field_errors(void **state)
     params_004_9(&p);
     p.fset = 2;
     expect_one(&p, MODCP_PF_FSET, 0, rec, true, 2);
+    params_004_9(&p);
+    p.qty_limits = 2;
+    expect_one(&p, MODCP_PF_QTY_LIMITS, 0, rec, true, 2);
     params_004_9(&p);
     p.cpu_model = 2;
     expect_one(&p, MODCP_PF_CPU_MODEL, 0, rec, true, 2);
@@ -587,6 +748,8 @@ static void params_all_fields(modcp_params_t *p)
     p->lim_m = (modcp_limit_t){0x1A1B, 0x1C1D};
     p->lim_q = (modcp_limit_t){0x2A2B, 0x2C2D};
     p->fset = MODCP_FSET_CP341;
+    p->rs485_sel = 1;
+    p->qty_limits = MODCP_QLIMITS_SPEC;
     p->cpu_model = MODCP_CPU_CP441;
     p->job_limit = 0x01C2;
     p->cpu_timeout_ms = 0xEEEE;
@@ -654,6 +817,8 @@ static void assert_params_equal(const modcp_params_t *a, const modcp_params_t *b
     assert_int_equal(a->lim_q.min, b->lim_q.min);
     assert_int_equal(a->lim_q.max, b->lim_q.max);
     assert_int_equal(a->fset, b->fset);
+    assert_int_equal(a->rs485_sel, b->rs485_sel);
+    assert_int_equal(a->qty_limits, b->qty_limits);
     assert_int_equal(a->cpu_model, b->cpu_model);
     assert_int_equal(a->job_limit, b->job_limit);
     assert_int_equal(a->cpu_timeout_ms, b->cpu_timeout_ms);
@@ -866,8 +1031,14 @@ int main(void)
         cmocka_unit_test(test_defaults),
         cmocka_unit_test(test_manual_sets_are_valid),
         cmocka_unit_test(test_data_bits),
+        cmocka_unit_test(test_003_s3_1_ascii_frame_7e1_7o1_7n2),
+        cmocka_unit_test(test_004_s2_1_rtu_stop_bits_free),
+        cmocka_unit_test(test_003_s3_1_ascii_7n1_refused_by_cp),
         cmocka_unit_test(test_slave_addr),
         cmocka_unit_test(test_opmode),
+        cmocka_unit_test(test_000_table5_2_rs485_normal_needs_mode_select),
+        cmocka_unit_test(test_000_table5_2_four_wire_normal_or_modem),
+        cmocka_unit_test(test_000_table5_2_rs485_normal_refused_by_cp),
         cmocka_unit_test(test_fmul_corrected),
         cmocka_unit_test(test_ascii_timeout_corrected),
         cmocka_unit_test(test_write_limits),

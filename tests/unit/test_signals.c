@@ -103,6 +103,7 @@ static void test_outputs_power_on_and_configure(void **state)
     /* automatic use is refused on RS485 / RS422 (half duplex via DE there) */
     p.rs232_auto = 1;
     p.iface = MODCP_IFACE_RS485;
+    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 (000 Table 5-2) */
     modcp_param_issue_t is[4];
     assert_int_equal(modcp_params_validate(&p, is, 4), 1);
     assert_int_equal(is[0].field, MODCP_PF_RS232_AUTO);

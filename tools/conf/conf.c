@@ -219,6 +219,7 @@ static const enum_name_t names_framing[] = {
 static const enum_name_t names_mode[] = {{"normal", MODCP_OPMODE_NORMAL},
                                          {"suppress", MODCP_OPMODE_SUPPRESS},
                                          {"interference_suppression", MODCP_OPMODE_SUPPRESS},
+                                         {"modem", MODCP_OPMODE_SUPPRESS},
                                          {NULL, 0}};
 static const enum_name_t names_eof[] = {
     {"manual", MODCP_EOF_MANUAL}, {"modbus", MODCP_EOF_MODBUS}, {NULL, 0}};
@@ -228,6 +229,8 @@ static const enum_name_t names_iface[] = {{"rs232", MODCP_IFACE_RS232},
                                           {NULL, 0}};
 static const enum_name_t names_fset[] = {
     {"cp341", MODCP_FSET_CP341}, {"extended", MODCP_FSET_EXTENDED}, {NULL, 0}};
+static const enum_name_t names_qlimits[] = {
+    {"manual", MODCP_QLIMITS_MANUAL}, {"spec", MODCP_QLIMITS_SPEC}, {NULL, 0}};
 static const enum_name_t names_model[] = {
     {"cp341", MODCP_CPU_CP341}, {"cp441", MODCP_CPU_CP441}, {"cp441-2", MODCP_CPU_CP441}, {NULL, 0}};
 #define names_none NULL
@@ -1359,6 +1362,30 @@ static void report_issue(modcp_conf_t *c, const modcp_param_issue_t *is)
                            (unsigned)is->index + 1u);
         }
         break;
+    case MODCP_PF_STOP_BITS:
+        if (is->value == 1u || is->value == 2u) { /* legal value, not for this ASCII frame */
+            const modcp_params_t *p = &c->params;
+            bool none = p->parity == MODCP_PARITY_NONE;
+            char par = none ? 'N' : (p->parity == MODCP_PARITY_ODD ? 'O' : 'E');
+            (void)snprintf(rule, sizeof rule,
+                           "the ASCII character frame %u%c%lu is not allowed: with parity even or "
+                           "odd 1 stop bit, with parity none 2 (003 §3.1: 7E1, 7O1 or 7N2); "
+                           "stop_bits = %u",
+                           (unsigned)p->data_bits, par, (unsigned long)is->value, none ? 2u : 1u);
+        } else {
+            copy_str(rule, sizeof rule, field_rule(is->field));
+        }
+        break;
+    case MODCP_PF_OPMODE:
+        if (is->value == MODCP_OPMODE_NORMAL) { /* legal value, not on two-wire RS485 */
+            (void)snprintf(rule, sizeof rule,
+                           "normal is not allowed with interface.type = rs485 (two-wire runs in "
+                           "interference suppression = modem mode) unless "
+                           "protocol.rs485_mode_select = on (000 Table 5-2)");
+        } else {
+            copy_str(rule, sizeof rule, field_rule(is->field));
+        }
+        break;
     default: copy_str(rule, sizeof rule, field_rule(is->field)); break;
     }
     add_key_problem_at(c, is->fatal, loc, section, key, value, rule, is->event);
@@ -1675,9 +1702,27 @@ static void parse_text(parse_ctx_t *px, const char *text, size_t len)
     }
 }
 
+/* Defaults that follow another key, as the manuals' parameter dialogs set them: two-wire
+ * RS485 runs in interference suppression (modem) mode unless `mode` says otherwise
+ * (000 Table 5-2, default "half duplex (RS485) 2-wire: modem"); the ASCII stop bits follow
+ * the parity (003 §3.1). */
+static void derived_defaults(modcp_conf_t *c)
+{
+    modcp_params_t *p = &c->params;
+    if (!c->src[MODCP_PF_OPMODE][0].set && p->iface == MODCP_IFACE_RS485) {
+        p->opmode = MODCP_OPMODE_SUPPRESS;
+    }
+    /* 003 §3.1: "With even or odd parity 1 stop bit is pre-defined. None parity effects
+     * two stop bits." */
+    if (!c->src[MODCP_PF_STOP_BITS][0].set && p->framing == MODCP_FRAMING_ASCII) {
+        p->stop_bits = p->parity == MODCP_PARITY_NONE ? 2u : 1u;
+    }
+}
+
 static size_t finish(modcp_conf_t *c, parse_ctx_t *px)
 {
     apply_unused_overrides(px);
+    derived_defaults(c);
     bool oom = px->oom;
     ctx_free(px);
     if (oom) {

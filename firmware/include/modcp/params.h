@@ -18,8 +18,8 @@
 #include "modcp/events.h"
 #include "modcp/features.h"
 
-#define MODCP_PARAMS_VERSION 1u
-#define MODCP_PARAMS_RECORD_MAX 320u /* upper bound of the serialised record (316 bytes in version 1; checked at compile time) */
+#define MODCP_PARAMS_VERSION 2u /* 2: rs485_mode_select (000 Table 5-2), quantity_limits */
+#define MODCP_PARAMS_RECORD_MAX 320u /* upper bound of the serialised record (checked at compile time) */
 
 typedef enum { MODCP_PARITY_NONE = 0, MODCP_PARITY_ODD = 1, MODCP_PARITY_EVEN = 2 } modcp_parity_t;
 typedef enum { MODCP_FRAMING_RTU = 0, MODCP_FRAMING_ASCII = 1 } modcp_framing_t;
@@ -28,6 +28,10 @@ typedef enum { MODCP_EOF_MANUAL = 0, MODCP_EOF_MODBUS = 1 } modcp_eof_timing_t;
 typedef enum { MODCP_IFACE_RS232 = 0, MODCP_IFACE_RS422 = 1, MODCP_IFACE_RS485 = 2 } modcp_iface_t;
 typedef enum { MODCP_FSET_CP341 = 0, MODCP_FSET_EXTENDED = 1 } modcp_fset_t;
 typedef enum { MODCP_CPU_CP341 = 0, MODCP_CPU_CP441 = 1 } modcp_cpu_model_t; /* job limit 1024 / 450 */
+/* Quantity limits (modcp/quantity.h): the manuals' (2040 bits, 127 registers in RTU) or
+ * the Modbus application protocol's (2000 / 1968 bits, 125 / 123 registers), whose
+ * replies always fit the 256-byte RTU ADU. */
+typedef enum { MODCP_QLIMITS_MANUAL = 0, MODCP_QLIMITS_SPEC = 1 } modcp_qty_limits_t;
 
 /* Controller memory areas. */
 typedef enum {
@@ -112,6 +116,11 @@ typedef struct {
     modcp_limit_t lim_q;  /* output bytes */
     /* function set and CPU link */
     uint8_t fset;           /* modcp_fset_t */
+    uint8_t rs485_sel;      /* 000 Table 5-2 "enable operating-mode selection for RS485":
+                               0 (default): RS485 two-wire runs in interference suppression
+                               (modem) mode only, opmode normal is refused with (0E)22H;
+                               1: opmode normal is allowed on RS485 too */
+    uint8_t qty_limits;     /* modcp_qty_limits_t */
     uint8_t cpu_model;      /* modcp_cpu_model_t */
     uint16_t job_limit;     /* bytes per CPU job; 0 = the model's limit (1024 / 450) */
     uint16_t cpu_timeout_ms; /* CPU job timeout */
@@ -167,6 +176,8 @@ typedef enum {
     MODCP_PF_SCANNER, /* index = entry, 0xFF = start/count */
     MODCP_PF_ID_STRING,
     MODCP_PF_DIAG_IRQ,
+    MODCP_PF_RS485_SEL,
+    MODCP_PF_QTY_LIMITS,
     MODCP_PF_COUNT
 } modcp_param_field_t;
 

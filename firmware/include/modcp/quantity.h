@@ -15,7 +15,15 @@
  * the 16-bit limits. The RTU 32-bit limit (the manual has none: the 32-bit extension
  * exists only in the ASCII driver) is a decision of modcp: the largest count whose
  * byte count 4 x n fits the one-byte byte count and the 127-word budget of RTU
- * (4 x 63 = 252 bytes = 126 words). */
+ * (4 x 63 = 252 bytes = 126 words).
+ *
+ * quantity_limits = spec (p->qty_limits, both framings): the Modbus application
+ * protocol's limits (V1.1b3 §6.1-6.4, 6.11, 6.12, 6.17), so that no RTU reply (and no
+ * request) exceeds the 256-byte ADU / 253-byte PDU:
+ *   FC01 / FC02 1 ... 2000 bits, FC15 1 ... 1968, FC03 / FC04 1 ... 125 registers,
+ *   FC16 1 ... 123, FC23 read / write 1 ... 125 / 121 (as above);
+ *   32-bit: FC03 1 ... 62 (248 bytes), FC16 1 ... 61 (244 bytes), FC23 62 / 60.
+ * These are also at or below every ASCII limit above. */
 #ifndef MODCP_QUANTITY_H
 #define MODCP_QUANTITY_H
 
@@ -44,23 +52,29 @@ enum {
     MODCP_QLIM_COUNT
 };
 
-/* The limits: [class][column], columns RTU, ASCII, RTU 32-bit, ASCII 32-bit. */
-extern const uint16_t modcp_qty_limits[MODCP_QLIM_COUNT][4];
+/* The limits: [class][column], columns RTU, ASCII, spec (either framing), then the
+ * same three for 32-bit registers. */
+enum { MODCP_QCOL_RTU = 0, MODCP_QCOL_ASCII = 1, MODCP_QCOL_SPEC = 2, MODCP_QCOL_R32 = 3 };
+extern const uint16_t modcp_qty_limits[MODCP_QLIM_COUNT][6];
 
 /* Largest quantity of limit class lim (MODCP_QLIM_*, < MODCP_QLIM_COUNT) for the
- * framing of p and the register kind (0 for bits and 16-bit registers); 0 for
- * MODCP_QLIM_NONE. */
+ * quantity_limits set and framing of p and the register kind (0 for bits and 16-bit
+ * registers); 0 for MODCP_QLIM_NONE. */
 static inline uint16_t modcp_qty_limit(const modcp_params_t *p, uint8_t lim, uint8_t r32_kind)
 {
-    unsigned col = p->framing == (uint8_t)MODCP_FRAMING_ASCII ? 1u : 0u;
+    unsigned col = p->qty_limits == (uint8_t)MODCP_QLIMITS_SPEC
+                       ? MODCP_QCOL_SPEC
+                       : (p->framing == (uint8_t)MODCP_FRAMING_ASCII ? MODCP_QCOL_ASCII
+                                                                     : MODCP_QCOL_RTU);
     if (r32_kind == (uint8_t)(MODCP_R32_INT32 + 1u) || r32_kind == (uint8_t)(MODCP_R32_FLOAT + 1u)) {
-        col += 2u; /* 4 bytes per register */
+        col += MODCP_QCOL_R32; /* 4 bytes per register */
     }
     return modcp_qty_limits[lim][col];
 }
 
-/* Largest quantity of fc (01, 02, 03, 04, 15, 16) for the framing of p and the
- * register kind (0 for bits and 16-bit registers). 0 for other function codes. */
+/* Largest quantity of fc (01, 02, 03, 04, 15, 16) for the quantity_limits set and the
+ * framing of p and the register kind (0 for bits and 16-bit registers). 0 for other
+ * function codes. */
 uint16_t modcp_qty_max(const modcp_params_t *p, uint8_t fc, uint8_t r32_kind);
 
 #endif
