@@ -94,12 +94,15 @@ typedef struct { /* members by size: no padding */
     uint32_t turnaround_us;
     uint32_t ascii_timeout_us; /* ASCII character delay time */
     /* receive and transmit state shared by the framings */
-    uint32_t last_us;  /* time of the last received byte */
+    uint32_t last_us;  /* time of the last received character (every state but the
+                          echo of our own RS485 reply; never reset: the RXD LED reads
+                          it at poll time, leds.h) */
     uint32_t tx_at_us; /* when the reply was handed over (start of the turnaround) */
     uint16_t cap;     /* receive / RTU capacity: the buffer, at most MODCP_ADU_MAX */
     uint16_t size;    /* the whole buffer (ASCII replies are hex-encoded in place) */
     uint16_t len;     /* bytes stored */
     uint16_t tx_len;
+    uint16_t tx_starts; /* transmissions started (the TXD LED reads it, leds.h) */
     union {           /* the framing's own receive state */
         modcp_rtu_t rtu;
 #if MODCP_WITH_ASCII
@@ -117,6 +120,8 @@ typedef struct { /* members by size: no padding */
     bool busy_rx;     /* a frame is being followed while BUSY/TURNAROUND/TX */
     bool tx_hold;     /* RS232 automatic signals: a reply waits in TURNAROUND until
                          modcp_link_tx_release() (signals.c decides RTS / CTS) */
+    bool tx_on;       /* a transmission is on the line: from its start to transmission
+                         complete (or its abort) */
 } modcp_link_t;
 
 void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag, uint8_t *buf,
@@ -135,7 +140,12 @@ bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f);
 void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us);
 /* Request finished without a reply (broadcast, error). */
 void modcp_link_done(modcp_link_t *l);
+/* Transmission complete: the driver is released and the link receives again. */
 void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us);
+/* Transmission complete of the last stop bit, recorded for the TXD LED; with RS232
+ * automatic signals the link receives again only later (modcp_link_on_tx_done at RTS
+ * OFF). */
+void modcp_link_tx_complete(modcp_link_t *l);
 /* RS232 automatic signals (signals.c): a reply held in TURNAROUND is sent now (send)
  * or dropped (!send, back to receiving). */
 void modcp_link_tx_release(modcp_link_t *l, bool send, uint32_t now_us);
