@@ -39,9 +39,8 @@
 #include "modcp/link.h"
 #include "link_internal.h"
 
-#define RTU_MIN_FRAME 4u /* address, function, CRC */
 
-static void count_char(modcp_rtu_t *r)
+void rtu_count_char(modcp_rtu_t *r)
 {
     if (r->count < UINT16_MAX) {
         r->count++;
@@ -89,7 +88,7 @@ static void skip_end(modcp_link_t *l)
 
 /* Default branch of the receive automaton (a state RTU never uses, i.e. corrupted):
  * (0E)11H, back to idle; the character that found it starts a new frame. */
-static void internal_error(modcp_link_t *l)
+void rtu_internal_error(modcp_link_t *l)
 {
     link_event(l, MODCP_EV_INTERNAL_RECEIVE);
     l->state = MODCP_LINK_IDLE;
@@ -99,7 +98,7 @@ static void internal_error(modcp_link_t *l)
 
 /* A character (or line error) while a request is processed or its reply is pending:
  * not stored; only frame starts are followed, for (08)37H and for the return to idle. */
-static void busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
+void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
 {
     if (l->rs485 && l->state == MODCP_LINK_TX) {
         return; /* echo of our own transmission */
@@ -132,17 +131,18 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
             frame_start(l, b, false, now_us);
             break;
         }
-        count_char(r);
+        rtu_count_char(r);
         r->crc = modcp_crc16_byte(r->crc, b);
         l->last_us = now_us;
         break;
+    case MODCP_LINK_EOF:
     case MODCP_LINK_BUSY:
     case MODCP_LINK_TURNAROUND:
     case MODCP_LINK_TX:
-        busy_track(l, b, false, now_us);
+        rtu_busy_track(l, b, false, now_us);
         break;
     default:
-        internal_error(l);
+        rtu_internal_error(l);
         frame_start(l, b, false, now_us);
         break;
     }
@@ -214,21 +214,41 @@ static void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
             break;
         }
         link_mark_bad(l);
-        count_char(r);
+        rtu_count_char(r);
         l->last_us = now_us;
         break;
+    case MODCP_LINK_EOF:
     case MODCP_LINK_BUSY:
     case MODCP_LINK_TURNAROUND:
     case MODCP_LINK_TX:
         if (l->suppress && (!l->busy_rx || now_us - l->last_us >= l->t35_us)) {
             break; /* not inside a frame: ignored, as between messages */
         }
-        busy_track(l, 0, true, now_us);
+        rtu_busy_track(l, 0, true, now_us);
         break;
     default:
-        internal_error(l);
+        rtu_internal_error(l);
         break;
     }
+}
+
+/* A formally correct frame for us (or broadcast) in buf[0 .. len): counted and handed
+ * to the CP (state BUSY), or dropped without a frame to fill (f NULL). */
+bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f)
+{
+    link_count(l, MODCP_CNT_BUS_MSG);
+    link_count(l, MODCP_CNT_SLAVE_MSG);
+    if (f == NULL) {
+        l->state = MODCP_LINK_IDLE;
+        return false;
+    }
+    f->addr = l->buf[0];
+    f->pdu = &l->buf[1];
+    f->pdu_len = (uint16_t)(l->len - 3u);
+    f->pdu_cap = (uint16_t)(l->cap - 3u);
+    l->state = MODCP_LINK_BUSY;
+    l->busy_rx = false;
+    return true;
 }
 
 /* t3.5 has passed since the last character of the frame (link.c checked it). */
@@ -255,21 +275,10 @@ static bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         link_count(l, MODCP_CNT_BUS_CRC);
         return false;
     }
-    link_count(l, MODCP_CNT_BUS_MSG);
-    link_count(l, MODCP_CNT_SLAVE_MSG);
-    if (f == NULL) {
-        return false;
-    }
-    f->addr = l->buf[0];
-    f->pdu = &l->buf[1];
-    f->pdu_len = (uint16_t)(l->len - 3u);
-    f->pdu_cap = (uint16_t)(l->cap - 3u);
-    l->state = MODCP_LINK_BUSY;
-    l->busy_rx = false;
-    return true;
+    return rtu_deliver(l, f);
 }
 
-static uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
+uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
 {
     uint32_t n = 1u + (uint32_t)pdu_len; /* address + PDU */
     if (l->buf == NULL || n + 2u > (uint32_t)l->cap) {
@@ -283,12 +292,16 @@ static uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
 
 static const modcp_framing_ops_t rtu_t15_ops;
 
-static const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
+/* The variant: normal operation or interference suppression (modem mode, the operating
+ * mode parameter), each with and without the t1.5 check. */
+const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
 {
-    (void)p;
     l->silence_us = l->t35_us;
     if (l->cap < RTU_MIN_FRAME) {
         return NULL;
+    }
+    if (p->opmode == (uint8_t)MODCP_OPMODE_SUPPRESS) {
+        return l->t15_us != 0u ? &modcp_rtu_modem_t15_ops : &modcp_rtu_modem_ops;
     }
     return l->t15_us != 0u ? &rtu_t15_ops : &modcp_rtu_ops;
 }

@@ -49,8 +49,9 @@ typedef enum {
     MODCP_LINK_BUSY,      /* a request is being processed; buffer owned by the PDU */
     MODCP_LINK_TURNAROUND,/* reply ready, waiting for the turnaround delay */
     MODCP_LINK_TX,        /* transmitting */
-    MODCP_LINK_EOF,       /* ASCII: CR LF of a good frame received, handed over on the
-                             next timer expiry (armed with 1 us) */
+    MODCP_LINK_EOF,       /* ASCII: CR LF of a good frame received; RTU modem mode: a
+                             formally correct frame with a valid CRC; handed over on
+                             the next timer expiry (armed with 1 us) */
 } modcp_link_state_t;
 
 typedef struct {
@@ -62,8 +63,16 @@ typedef struct {
 
 /* RTU receive state (rtu.c). */
 typedef struct {
-    uint16_t crc;   /* running CRC over the current frame */
-    uint16_t count; /* characters of a skipped frame (bus counters) */
+    uint16_t crc;   /* running CRC over the current frame (modem mode: the candidate) */
+    uint16_t count; /* characters of a skipped frame (bus counters); modem mode: of the
+                       stretch being followed */
+    /* interference suppression (modem mode) only: */
+    uint16_t stop;  /* buffer index of the next character that needs a look (function
+                       code, byte count, last character); the hot path runs below it */
+    uint16_t total; /* the candidate's length by its function code, 0: by t3.5 */
+    uint16_t skip_crc; /* CRC over the stretch (stray characters, other frames) */
+    uint8_t bc;     /* index of the byte count, 0: none */
+    uint8_t flags;  /* RTU_M_* (rtu.c) */
 } modcp_rtu_t;
 
 /* ASCII receive state (ascii.c). */
