@@ -1,5 +1,6 @@
 /* modcp — RTU framing (004 §5, SPEC §3.1): frame boundaries by the t3.5 gap, address
- * filter, running CRC, t1.5 check, frames that arrive while a request is in progress.
+ * filter, running CRC, t1.5 check, frames that arrive while a request is in progress;
+ * normal operation (interference suppression: rtu_modem.c).
  *
  * The backend behind modcp_rtu_ops (link_internal.h), its state in l->fr.rtu. A
  * character of our frame costs a store and one table-CRC step (plus one comparison with
@@ -25,12 +26,13 @@
  *    "not checked".
  *  - RS485 while transmitting: received characters are the echo of our own reply on
  *    the two-wire line and are ignored (no (08)37H for our own address).
- *  - Interference suppression and RS485 (004 §2.2, §2.3): "the start of a message is
- *    recognised by a correctly received slave address". A line error or BREAK that is
- *    not inside a frame (idle line, after a frame's t3.5, while a request is processed
- *    and no frame is being followed) does not start a frame: it is ignored, so a BREAK
- *    level or a glitch in the pause can never swallow the next request. In normal
- *    mode it starts an (erroneous) frame that is skipped to its t3.5. */
+ *  - RS485 two-wire in normal mode (004 §2.3): a line error or BREAK that is not inside
+ *    a frame (idle line, after a frame's t3.5, while a request is processed and no
+ *    frame is being followed) does not start a frame: it is ignored, so a BREAK level
+ *    or a glitch in the pause can never swallow the next request. In normal mode on
+ *    RS232 / RS422 it starts an (erroneous) frame that is skipped to its t3.5.
+ *  - Interference suppression (mode = suppress, modem mode) is the variant in
+ *    rtu_modem.c: frames start at our own address and end at their valid CRC. */
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>

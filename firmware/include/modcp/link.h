@@ -5,7 +5,10 @@
  * and the end-of-frame silence are shared.
  *
  * Receive: per byte the framing stores it and updates its check (CRC / LRC) and the
- * time of the last character. The end-of-frame timer is armed once, at a frame's first
+ * time of the last character. (RTU in interference suppression = modem mode,
+ * rtu_modem.c: a frame starts at our own address and ends at its valid CRC, its length
+ * from the function code, handed over at once; the silence below ends only frames of
+ * unknown length and everything that is not ours.) The end-of-frame timer is armed once, at a frame's first
  * character, with the silence that ends a frame (RTU t3.5, ASCII the character delay
  * time); when it expires the link compares now - last character with the silence and
  * re-arms for the remainder while characters kept coming, so the frame ends exactly one
