@@ -11,12 +11,10 @@
  * which the CPU side's user program reads with modcp_bp_read_status(). The next valid
  * request for our address clears the flag; the supervision stays armed.
  * Like the Altivar (002 §7 pitfall), any request keeps it alive, also reads.
- * The comm-loss state is x->cl_lost; cp.c publishes MODCP_CPST_COMMLOSS from it (and
- * ignores the flags modcp_ext_poll returns); d->comm.commloss is a copy for the
- * console. */
+ * The comm-loss state is x->cl_lost and nowhere else: cp.c publishes
+ * MODCP_CPST_COMMLOSS from it, the console reads that flag of the status area. */
 #include <stddef.h>
 
-#include "modcp/backplane.h"
 #include "modcp/ext.h"
 
 void modcp_ext_init(modcp_ext_t *x)
@@ -68,19 +66,4 @@ void modcp_commloss_poll(modcp_ext_t *x, const modcp_params_t *p, modcp_diag_t *
         x->cl_lost = true;
         modcp_diag_event(d, MODCP_EV_COMMLOSS);
     }
-}
-
-uint32_t modcp_ext_poll(modcp_ext_t *x, const modcp_params_t *p, modcp_diag_t *d,
-                        uint32_t status_flags, uint32_t now_us)
-{
-    modcp_commloss_poll(x, p, d, now_us);
-    d->comm.commloss = x->cl_lost;
-    uint32_t f = status_flags & ~(uint32_t)(MODCP_CPST_COMMLOSS | MODCP_CPST_LISTEN_ONLY);
-    if (x->cl_lost) {
-        f |= MODCP_CPST_COMMLOSS;
-    }
-    if (d->comm.listen_only) {
-        f |= MODCP_CPST_LISTEN_ONLY;
-    }
-    return f;
 }

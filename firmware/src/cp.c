@@ -23,7 +23,17 @@ static modcp_pdu_env_t env_of(modcp_cp_t *cp)
 
 /* ---- RS232 automatic secondary signals (signals.c), or none in this build ------ */
 
+#if defined(__GNUC__)
+#define MODCP_CP_NOINLINE __attribute__((noinline))
+#else
+#define MODCP_CP_NOINLINE
+#endif
+
 #if MODCP_WITH_RS232_SIGNALS
+static bool sig_enabled(const modcp_cp_t *cp)
+{
+    return cp->sig.enabled;
+}
 static bool sig_rx_allowed(const modcp_cp_t *cp)
 {
     return modcp_sig_rx_allowed(&cp->sig);
@@ -43,6 +53,11 @@ static bool sig_on_tx_done(modcp_cp_t *cp, uint32_t now_us)
 #else
 /* Built without RS232 signals: reception always allowed, no timer or transmit
  * complete of their own, RTS / DTR never driven (rs232_auto is refused, params.c). */
+static bool sig_enabled(const modcp_cp_t *cp)
+{
+    (void)cp;
+    return false;
+}
 static bool sig_rx_allowed(const modcp_cp_t *cp)
 {
     (void)cp;
@@ -75,34 +90,13 @@ static bool sf_on(const modcp_cp_t *cp)
     return !modcp_cp_ready(cp) || cp->cpdiag.wire_break;
 }
 
-/* TXD LED: a call into the link / signals started a transmission. */
-static void tx_watch(modcp_cp_t *cp, bool was_tx)
-{
-    bool is_tx = cp->link.state == MODCP_LINK_TX;
-    if (!was_tx && is_tx) {
-        modcp_leds_tx_start(&cp->leds);
-    } else if (was_tx && !is_tx) {
-        modcp_leds_tx_end(&cp->leds); /* aborted (CTS / DSR OFF) */
-    }
-}
-
-/* A character or line error arrived (only while DSR allows reception). */
-static void line_rx(modcp_cp_t *cp, uint32_t now_us)
-{
-    if (cp->link.enabled && !(cp->link.rs485 && cp->link.state == MODCP_LINK_TX)) {
-        modcp_leds_rx(&cp->leds, now_us); /* not the echo of our own RS485 reply */
-    }
-}
-
 /* Hand a reply to the link; with RS232 automatic signals it waits for RTS / CTS. */
 static void line_reply(modcp_cp_t *cp, uint16_t out_len, uint32_t now_us)
 {
-    bool was_tx = cp->link.state == MODCP_LINK_TX;
     modcp_link_reply(&cp->link, out_len, now_us);
 #if MODCP_WITH_RS232_SIGNALS
     modcp_sig_on_reply(&cp->sig, &cp->link, now_us);
 #endif
-    tx_watch(cp, was_tx);
 }
 
 /* A PARAMS record was taken (ok: applied); irq: its diag_irq, -1 if undecodable. */
@@ -137,7 +131,8 @@ static void line_status(const modcp_cp_t *cp, modcp_cp_status_t *st)
     memcpy(st->systat, cp->cpdiag.systat, sizeof st->systat);
 }
 
-/* CP task: SYSTAT requests of the CPU side, LEDs. */
+/* CP task: SYSTAT requests of the CPU side, LEDs (from the link's receive / transmit
+ * record: no hook per byte or per transmission). */
 static void line_poll(modcp_cp_t *cp, uint32_t now_us)
 {
     if (cp->bp != NULL) {
@@ -145,15 +140,16 @@ static void line_poll(modcp_cp_t *cp, uint32_t now_us)
         modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, modcp_cp_ready(cp));
     }
     modcp_cpdiag_backplane(&cp->cpdiag, &cp->diag, cp->job.proto_errors, cp->job.illegal_msgs);
-    modcp_leds_poll(&cp->leds, sf_on(cp), now_us);
+    if (cp->cpdiag.wire_break && cp->link.last_us != cp->err_mark_us) {
+        modcp_cpdiag_good_char(&cp->cpdiag); /* a character arrived after the BREAK */
+    }
+    modcp_leds_poll(&cp->leds, sf_on(cp), &cp->link, now_us);
 }
 
 void modcp_cp_on_signals(modcp_cp_t *cp, bool cts, bool dsr, uint32_t now_us)
 {
 #if MODCP_WITH_RS232_SIGNALS
-    bool was_tx = cp->link.state == MODCP_LINK_TX;
     modcp_sig_on_inputs(&cp->sig, &cp->link, cts, dsr, now_us);
-    tx_watch(cp, was_tx);
     cp->published = false;
 #else
     (void)cp; /* no RS232 automatic signals in this build: inputs not used */
@@ -242,16 +238,30 @@ static void process_request(modcp_cp_t *cp, uint32_t now_us)
     }
 }
 
-void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
+/* Cold part of modcp_cp_on_rx: RS232 automatic signals configured (DSR gates the
+ * reception, a character ends the time to RTS off). */
+static MODCP_CP_NOINLINE void rx_signals(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
 {
     if (!sig_rx_allowed(cp)) {
         return; /* RS232 automatic signals: no reception while DSR is OFF */
     }
     sig_on_rx(cp, now_us);
-    line_rx(cp, now_us);
-    modcp_cpdiag_good_char(&cp->cpdiag);
+    cp->published = false;
     modcp_link_on_byte(&cp->link, byte, now_us);
+}
+
+/* The receive interrupt's entry. Without RS232 automatic signals it only notes that
+ * the status area may change and tail-calls the link (the framing's store and CRC
+ * step). The LEDs and the end of a wire break read the link's record of the last
+ * received character (link.last_us) at poll time: nothing else runs per byte. */
+void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
+{
+    if (sig_enabled(cp)) {
+        rx_signals(cp, byte, now_us);
+        return;
+    }
     cp->published = false; /* see publish() */
+    modcp_link_on_byte(&cp->link, byte, now_us);
 }
 
 void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us)
@@ -260,30 +270,26 @@ void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us
         return;
     }
     sig_on_rx(cp, now_us);
-    line_rx(cp, now_us);
     modcp_cpdiag_line_error(&cp->cpdiag, line_errors, cp->link.enabled && !cp->link.suppress);
     modcp_link_on_error(&cp->link, line_errors, now_us);
+    cp->err_mark_us = cp->link.last_us; /* a character after this one ends a wire break */
     cp->published = false;
 }
 
 void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
 {
-    bool was_tx = cp->link.state == MODCP_LINK_TX;
+    cp->published = false;
     if (sig_on_timer(cp, now_us)) {
-        tx_watch(cp, was_tx); /* data output waiting time over: the reply may start */
-        cp->published = false;
-        return;
+        return; /* data output waiting time / time to RTS off */
     }
     if (modcp_link_on_timer(&cp->link, now_us, &cp->frame)) {
         process_request(cp, now_us);
     }
-    tx_watch(cp, was_tx); /* RS485 turnaround over: the reply starts */
-    cp->published = false;
 }
 
 void modcp_cp_on_tx_done(modcp_cp_t *cp, uint32_t now_us)
 {
-    modcp_leds_tx_end(&cp->leds);
+    modcp_link_tx_complete(&cp->link); /* TXD: the last stop bit is out */
     cp->published = false;
     if (sig_on_tx_done(cp, now_us)) {
         return; /* RS232 automatic signals: RTS OFF after its delay, then receive */
@@ -460,7 +466,7 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
     line_poll(cp, now_us);
 #if MODCP_WITH_EXTENDED
     /* comm-loss time; the flags are published from ext / diag (ext_flags) */
-    (void)modcp_ext_poll(&cp->ext, &cp->params, &cp->diag, 0u, now_us);
+    modcp_commloss_poll(&cp->ext, &cp->params, &cp->diag, now_us);
 #endif
     publish(cp);
 }

@@ -33,44 +33,27 @@ void modcp_leds_configure(modcp_leds_t *x, uint32_t quiet_us)
     x->quiet_us = quiet_us;
 }
 
-void modcp_leds_rx(modcp_leds_t *x, uint32_t now_us)
-{
-    x->rx_last_us = now_us;
-    x->rx_seen = true;
-}
-
-void modcp_leds_tx_start(modcp_leds_t *x)
-{
-    x->tx_seen = true;
-    x->tx_active = true;
-}
-
-void modcp_leds_tx_end(modcp_leds_t *x)
-{
-    x->tx_active = false;
-}
-
 static bool min_on_elapsed(const modcp_leds_t *x, modcp_led_t led, uint32_t now_us)
 {
     return now_us - x->on_us[led] >= MODCP_LED_MIN_ON_US;
 }
 
-void modcp_leds_poll(modcp_leds_t *x, bool sf, uint32_t now_us)
+void modcp_leds_poll(modcp_leds_t *x, bool sf, const modcp_link_t *l, uint32_t now_us)
 {
     set(x, MODCP_LED_SF, sf, now_us);
 
-    if (x->tx_seen || x->tx_active) {
-        x->tx_seen = false;
+    if (l->tx_starts != x->tx_seen || l->tx_on) { /* started since the last poll, or on */
+        x->tx_seen = l->tx_starts;
         set(x, MODCP_LED_TXD, true, now_us);
     } else if (x->on[MODCP_LED_TXD] && min_on_elapsed(x, MODCP_LED_TXD, now_us)) {
         set(x, MODCP_LED_TXD, false, now_us);
     }
 
-    if (x->rx_seen) {
-        x->rx_seen = false;
+    if (l->last_us != x->rx_seen_us) { /* a character since the last poll */
+        x->rx_seen_us = l->last_us;
         set(x, MODCP_LED_RXD, true, now_us);
     } else if (x->on[MODCP_LED_RXD] && min_on_elapsed(x, MODCP_LED_RXD, now_us) &&
-               now_us - x->rx_last_us >= x->quiet_us) {
+               now_us - l->last_us >= x->quiet_us) {
         set(x, MODCP_LED_RXD, false, now_us);
     }
 }

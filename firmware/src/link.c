@@ -24,6 +24,8 @@ static void set_de(const modcp_link_t *l, bool on)
 static void start_tx(modcp_link_t *l)
 {
     l->state = MODCP_LINK_TX;
+    l->tx_starts++;
+    l->tx_on = true;
     if (l->hal != NULL && l->hal->uart_tx != NULL) {
         l->hal->uart_tx(l->hal->ctx, l->buf, l->tx_len);
     }
@@ -35,7 +37,6 @@ static void reset_rx(modcp_link_t *l)
     l->len = 0;
     l->rx_bad = false;
     l->rx_overflow = false;
-    l->last_us = 0;
     l->busy_rx = false;
     memset(&l->fr, 0, sizeof l->fr);
     l->tx_len = 0;
@@ -114,6 +115,7 @@ static void stop(modcp_link_t *l)
     link_arm(l, 0);
     set_de(l, false);
     reset_rx(l);
+    l->tx_on = false;
     l->ops = &off_ops;
     l->enabled = false;
 }
@@ -242,8 +244,14 @@ void modcp_link_done(modcp_link_t *l)
     resume_rx(l, 0, false);
 }
 
+void modcp_link_tx_complete(modcp_link_t *l)
+{
+    l->tx_on = false;
+}
+
 void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us)
 {
+    l->tx_on = false;
     if (l->state != MODCP_LINK_TX) {
         return;
     }

@@ -39,6 +39,9 @@ typedef struct modcp_framing_ops {
 } modcp_framing_ops_t;
 
 extern const modcp_framing_ops_t modcp_rtu_ops;   /* rtu.c */
+/* RTU in interference suppression = modem mode, without / with the t1.5 check */
+extern const modcp_framing_ops_t modcp_rtu_modem_ops;     /* rtu_modem.c */
+extern const modcp_framing_ops_t modcp_rtu_modem_t15_ops; /* rtu_modem.c */
 #if MODCP_WITH_ASCII
 extern const modcp_framing_ops_t modcp_ascii_ops; /* ascii.c */
 #endif
@@ -79,5 +82,17 @@ static inline void link_mark_bad(modcp_link_t *l)
 
 /* A frame for us was too long for the buffer: (08)16H. */
 void link_frame_too_long(modcp_link_t *l);
+
+/* ---- shared by the RTU variants (rtu.c, rtu_modem.c) ---- */
+#define RTU_MIN_FRAME 4u /* address, function, CRC */
+void rtu_count_char(modcp_rtu_t *r);
+/* A character (or line error) while a request is processed or its reply pending. */
+void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us);
+/* A state RTU never uses: (0E)11H, back to idle. */
+void rtu_internal_error(modcp_link_t *l);
+/* A formally correct frame in the buffer: counted, handed over (BUSY). */
+bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f);
+const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p);
+uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len);
 
 #endif

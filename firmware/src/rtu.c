@@ -1,5 +1,6 @@
 /* modcp — RTU framing (004 §5, SPEC §3.1): frame boundaries by the t3.5 gap, address
- * filter, running CRC, t1.5 check, frames that arrive while a request is in progress.
+ * filter, running CRC, t1.5 check, frames that arrive while a request is in progress;
+ * normal operation (interference suppression: rtu_modem.c).
  *
  * The backend behind modcp_rtu_ops (link_internal.h), its state in l->fr.rtu. A
  * character of our frame costs a store and one table-CRC step (plus one comparison with
@@ -25,12 +26,13 @@
  *    "not checked".
  *  - RS485 while transmitting: received characters are the echo of our own reply on
  *    the two-wire line and are ignored (no (08)37H for our own address).
- *  - Interference suppression and RS485 (004 §2.2, §2.3): "the start of a message is
- *    recognised by a correctly received slave address". A line error or BREAK that is
- *    not inside a frame (idle line, after a frame's t3.5, while a request is processed
- *    and no frame is being followed) does not start a frame: it is ignored, so a BREAK
- *    level or a glitch in the pause can never swallow the next request. In normal
- *    mode it starts an (erroneous) frame that is skipped to its t3.5. */
+ *  - RS485 two-wire in normal mode (004 §2.3): a line error or BREAK that is not inside
+ *    a frame (idle line, after a frame's t3.5, while a request is processed and no
+ *    frame is being followed) does not start a frame: it is ignored, so a BREAK level
+ *    or a glitch in the pause can never swallow the next request. In normal mode on
+ *    RS232 / RS422 it starts an (erroneous) frame that is skipped to its t3.5.
+ *  - Interference suppression (mode = suppress, modem mode) is the variant in
+ *    rtu_modem.c: frames start at our own address and end at their valid CRC. */
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -39,9 +41,8 @@
 #include "modcp/link.h"
 #include "link_internal.h"
 
-#define RTU_MIN_FRAME 4u /* address, function, CRC */
 
-static void count_char(modcp_rtu_t *r)
+void rtu_count_char(modcp_rtu_t *r)
 {
     if (r->count < UINT16_MAX) {
         r->count++;
@@ -89,7 +90,7 @@ static void skip_end(modcp_link_t *l)
 
 /* Default branch of the receive automaton (a state RTU never uses, i.e. corrupted):
  * (0E)11H, back to idle; the character that found it starts a new frame. */
-static void internal_error(modcp_link_t *l)
+void rtu_internal_error(modcp_link_t *l)
 {
     link_event(l, MODCP_EV_INTERNAL_RECEIVE);
     l->state = MODCP_LINK_IDLE;
@@ -99,7 +100,7 @@ static void internal_error(modcp_link_t *l)
 
 /* A character (or line error) while a request is processed or its reply is pending:
  * not stored; only frame starts are followed, for (08)37H and for the return to idle. */
-static void busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
+void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
 {
     if (l->rs485 && l->state == MODCP_LINK_TX) {
         return; /* echo of our own transmission */
@@ -132,17 +133,18 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
             frame_start(l, b, false, now_us);
             break;
         }
-        count_char(r);
+        rtu_count_char(r);
         r->crc = modcp_crc16_byte(r->crc, b);
         l->last_us = now_us;
         break;
+    case MODCP_LINK_EOF:
     case MODCP_LINK_BUSY:
     case MODCP_LINK_TURNAROUND:
     case MODCP_LINK_TX:
-        busy_track(l, b, false, now_us);
+        rtu_busy_track(l, b, false, now_us);
         break;
     default:
-        internal_error(l);
+        rtu_internal_error(l);
         frame_start(l, b, false, now_us);
         break;
     }
@@ -214,21 +216,41 @@ static void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
             break;
         }
         link_mark_bad(l);
-        count_char(r);
+        rtu_count_char(r);
         l->last_us = now_us;
         break;
+    case MODCP_LINK_EOF:
     case MODCP_LINK_BUSY:
     case MODCP_LINK_TURNAROUND:
     case MODCP_LINK_TX:
         if (l->suppress && (!l->busy_rx || now_us - l->last_us >= l->t35_us)) {
             break; /* not inside a frame: ignored, as between messages */
         }
-        busy_track(l, 0, true, now_us);
+        rtu_busy_track(l, 0, true, now_us);
         break;
     default:
-        internal_error(l);
+        rtu_internal_error(l);
         break;
     }
+}
+
+/* A formally correct frame for us (or broadcast) in buf[0 .. len): counted and handed
+ * to the CP (state BUSY), or dropped without a frame to fill (f NULL). */
+bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f)
+{
+    link_count(l, MODCP_CNT_BUS_MSG);
+    link_count(l, MODCP_CNT_SLAVE_MSG);
+    if (f == NULL) {
+        l->state = MODCP_LINK_IDLE;
+        return false;
+    }
+    f->addr = l->buf[0];
+    f->pdu = &l->buf[1];
+    f->pdu_len = (uint16_t)(l->len - 3u);
+    f->pdu_cap = (uint16_t)(l->cap - 3u);
+    l->state = MODCP_LINK_BUSY;
+    l->busy_rx = false;
+    return true;
 }
 
 /* t3.5 has passed since the last character of the frame (link.c checked it). */
@@ -255,21 +277,10 @@ static bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         link_count(l, MODCP_CNT_BUS_CRC);
         return false;
     }
-    link_count(l, MODCP_CNT_BUS_MSG);
-    link_count(l, MODCP_CNT_SLAVE_MSG);
-    if (f == NULL) {
-        return false;
-    }
-    f->addr = l->buf[0];
-    f->pdu = &l->buf[1];
-    f->pdu_len = (uint16_t)(l->len - 3u);
-    f->pdu_cap = (uint16_t)(l->cap - 3u);
-    l->state = MODCP_LINK_BUSY;
-    l->busy_rx = false;
-    return true;
+    return rtu_deliver(l, f);
 }
 
-static uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
+uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
 {
     uint32_t n = 1u + (uint32_t)pdu_len; /* address + PDU */
     if (l->buf == NULL || n + 2u > (uint32_t)l->cap) {
@@ -283,12 +294,16 @@ static uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
 
 static const modcp_framing_ops_t rtu_t15_ops;
 
-static const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
+/* The variant: normal operation or interference suppression (modem mode, the operating
+ * mode parameter), each with and without the t1.5 check. */
+const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
 {
-    (void)p;
     l->silence_us = l->t35_us;
     if (l->cap < RTU_MIN_FRAME) {
         return NULL;
+    }
+    if (p->opmode == (uint8_t)MODCP_OPMODE_SUPPRESS) {
+        return l->t15_us != 0u ? &modcp_rtu_modem_t15_ops : &modcp_rtu_modem_ops;
     }
     return l->t15_us != 0u ? &rtu_t15_ops : &modcp_rtu_ops;
 }

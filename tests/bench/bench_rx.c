@@ -7,6 +7,14 @@
  *   bench_rx link FRAMES   bytes into modcp_link_on_byte() (the link and its framing)
  *   bench_rx link-t15 FRAMES  the same with the t1.5 check on
  *   bench_rx cp FRAMES     bytes into modcp_cp_on_rx() (the port's entry: CP hooks too)
+ *   bench_rx link-modem FRAMES  link mode in interference suppression (modem mode)
+ *   bench_rx slave-time N  the slave time (end of the request's last character to the
+ *                          end of the reply's first) of N FC03 x10 requests at every
+ *                          phase of the CPU cycle, normal and modem mode, 9600 baud /
+ *                          10 ms cycle and 115200 / 1 ms: p50 and the model value, as
+ *                          key=value lines (injected clock, no callgrind)
+ *   bench_rx --summary     runs tests/bench/bench_rx.sh (from the source root) for
+ *                          tools/bench --summary
  *
  * Instructions per byte, under callgrind (nothing else is counted):
  *   valgrind --tool=callgrind --callgrind-out-file=/dev/null \
@@ -37,12 +45,15 @@ static int timer_on, tx_done;
 static uint16_t tx_len;
 static uint8_t frame[FRAME_LEN];
 
+static uint32_t tx_at;
+
 static void f_tx(void *ctx, const uint8_t *b, uint16_t n)
 {
     (void)ctx;
     (void)b;
     tx_len = n;
     tx_done = 1;
+    tx_at = now_us;
 }
 
 static void f_arm(void *ctx, uint32_t us)
@@ -79,12 +90,13 @@ static uint8_t buf[MODCP_LINK_BUF_MAX];
 static modcp_frame_t fr;
 static uint32_t char_us;
 
-static void link_setup(int t15)
+static void link_setup(int t15, int modem)
 {
     modcp_params_t p;
     modcp_params_defaults(&p);
     p.slave_addr = 5;
     p.t15_check = t15 ? 1u : 0u;
+    p.opmode = modem ? (uint8_t)MODCP_OPMODE_SUPPRESS : (uint8_t)MODCP_OPMODE_NORMAL;
     modcp_diag_init(&diag);
     modcp_link_init(&link_, &hal, &diag, buf, (uint16_t)sizeof buf);
     modcp_link_configure(&link_, &p);
@@ -186,18 +198,157 @@ static int cp_frame(void)
     return tx_done;
 }
 
+/* ---- slave time ----------------------------------------------------------------- */
+
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* p50 of the slave time of n FC03 x10 requests; the FB runs every cycle_us (followed by
+ * a CP poll), the request starts at every phase of it. */
+static uint32_t slave_time_p50(uint32_t baud, uint32_t cycle_us, int modem, unsigned n,
+                               uint32_t *char_out, uint32_t *t35_out)
+{
+    static const uint8_t req[8] = {0x05, 0x03, 0x00, 0x00, 0x00, 0x0A, 0xC4, 0x49};
+    static uint32_t st[1000];
+    modcp_params_t p;
+    modcp_params_defaults(&p);
+    p.slave_addr = 5;
+    p.baud = baud;
+    p.opmode = modem ? (uint8_t)MODCP_OPMODE_SUPPRESS : (uint8_t)MODCP_OPMODE_NORMAL;
+    p.hr_base_db = 800;
+    p.lim_db = (modcp_limit_t){800, 899};
+    dbs[0] = (modcp_db_t){800, sizeof db800, db800};
+    mem = (modcp_plcmem_t){.dbs = dbs, .db_count = 1};
+    uint16_t len = (uint16_t)modcp_params_encode(&p, record, sizeof record);
+    modcp_bp_init(&bp);
+    modcp_fb_init(&fb, &bp, &mem, record, len, 0, 5000);
+    modcp_cp_init(&cp, &hal, &bp);
+    modcp_fb_in_t in = {true};
+    modcp_fb_out_t out;
+    timer_on = 0;
+    uint32_t next_cycle = now_us;
+    for (int k = 0; k < 50 && !modcp_cp_ready(&cp); k++) {
+        modcp_fb_call(&fb, &in, &out, now_us / 1000u);
+        modcp_cp_poll(&cp, now_us);
+        now_us += cycle_us;
+        next_cycle = now_us;
+    }
+    if (!modcp_cp_ready(&cp) || n > sizeof st / sizeof st[0]) {
+        fprintf(stderr, "bench_rx: slave-time setup failed\n");
+        exit(1);
+    }
+    const uint32_t ch = modcp_params_char_us(&p);
+    *char_out = ch;
+    *t35_out = cp.link.t35_us;
+    for (unsigned k = 0; k < n; k++) {
+        /* the first byte somewhere in the cycle: k / n of it after a cycle start */
+        uint32_t t0 = next_cycle + 3u * cycle_us + (uint32_t)((uint64_t)cycle_us * k / n);
+        unsigned sent = 0;
+        uint32_t last = 0;
+        int tx_on = 0;
+        tx_done = 0;
+        for (;;) {
+            /* the next event: a request byte, the timer, transmission complete, a cycle */
+            uint32_t t_byte = t0 + sent * ch, t = next_cycle;
+            int ev = 0;
+            if (sent < sizeof req && (int32_t)(t_byte - t) < 0) {
+                t = t_byte;
+                ev = 1;
+            }
+            if (timer_on && (int32_t)(timer_at - t) < 0) {
+                t = timer_at;
+                ev = 2;
+            }
+            if (tx_on && (int32_t)(tx_at + tx_len * ch - t) < 0) {
+                t = tx_at + tx_len * ch;
+                ev = 3;
+            }
+            now_us = t;
+            if (ev == 1) {
+                modcp_cp_on_rx(&cp, req[sent++], now_us);
+                last = now_us;
+            } else if (ev == 2) {
+                timer_on = 0;
+                modcp_cp_on_timer(&cp, now_us);
+            } else if (ev == 3) {
+                modcp_cp_on_tx_done(&cp, now_us);
+                break;
+            } else {
+                modcp_fb_call(&fb, &in, &out, now_us / 1000u);
+                modcp_cp_poll(&cp, now_us);
+                next_cycle += cycle_us;
+            }
+            if (tx_done && !tx_on) {
+                tx_on = 1;
+                st[k] = tx_at + ch - last;
+            }
+        }
+    }
+    qsort(st, n, sizeof st[0], cmp_u32);
+    return st[n / 2u];
+}
+
+static void slave_time(unsigned n)
+{
+    static const struct {
+        uint32_t baud, cycle_us;
+    } cases[] = {{9600u, 10000u}, {115200u, 1000u}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        for (int modem = 0; modem < 2; modem++) {
+            uint32_t ch, t35;
+            uint32_t p50 = slave_time_p50(cases[c].baud, cases[c].cycle_us, modem, n, &ch, &t35);
+            /* model: t3.5 (normal) or the 1 us timer (modem) + 1/2 cycle + 1 character */
+            uint32_t model = (modem ? 1u : t35) + cases[c].cycle_us / 2u + ch;
+            printf("slave_time_us_p50_%s_%lu_cycle%lums=%lu\n", modem ? "modem" : "normal",
+                   (unsigned long)cases[c].baud, (unsigned long)(cases[c].cycle_us / 1000u),
+                   (unsigned long)p50);
+            printf("slave_time_us_model_%s_%lu_cycle%lums=%lu\n", modem ? "modem" : "normal",
+                   (unsigned long)cases[c].baud, (unsigned long)(cases[c].cycle_us / 1000u),
+                   (unsigned long)model);
+        }
+    }
+}
+
+/* tools/bench --summary: the callgrind numbers of bench_rx.sh, run from the source root
+ * (tools/bench's working directory) with this binary's build directory. */
+static int summary(const char *argv0)
+{
+    static const char tail[] = "/tests/bench/bench_rx";
+    char cmd[1024];
+    size_t n = strlen(argv0);
+    if (n < sizeof tail || strcmp(argv0 + n - (sizeof tail - 1u), tail) != 0 ||
+        n + 64u > sizeof cmd) {
+        fprintf(stderr, "bench_rx --summary: run as <build>/tests/bench/bench_rx\n");
+        return 2;
+    }
+    snprintf(cmd, sizeof cmd, "tests/bench/bench_rx.sh '%.*s'", (int)(n - (sizeof tail - 1u)),
+             argv0);
+    return system(cmd) == 0 ? 0 : 1;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc == 2 && strcmp(argv[1], "--summary") == 0) {
+        return summary(argv[0]);
+    }
+    if (argc == 3 && strcmp(argv[1], "slave-time") == 0) {
+        slave_time((unsigned)strtoul(argv[2], NULL, 0));
+        return 0;
+    }
     if (argc < 3 || (strcmp(argv[1], "link") != 0 && strcmp(argv[1], "link-t15") != 0 &&
-                     strcmp(argv[1], "cp") != 0)) {
-        fprintf(stderr, "usage: bench_rx link|link-t15|cp FRAMES\n");
+                     strcmp(argv[1], "link-modem") != 0 && strcmp(argv[1], "cp") != 0)) {
+        fprintf(stderr, "usage: bench_rx link|link-t15|link-modem|cp FRAMES | slave-time N | "
+                        "--summary\n");
         return 2;
     }
     const int link_mode = strcmp(argv[1], "cp") != 0;
     unsigned n = (unsigned)strtoul(argv[2], NULL, 0);
     make_frame();
     if (link_mode) {
-        link_setup(strcmp(argv[1], "link-t15") == 0);
+        link_setup(strcmp(argv[1], "link-t15") == 0, strcmp(argv[1], "link-modem") == 0);
     } else {
         cp_setup();
     }

@@ -208,7 +208,10 @@ static void test_glitch_while_busy_suppression(void **state)
 }
 
 /* 004 §2.2: errors after the CRC are ignored in suppression mode (the request is
- * answered, no event); normal mode reports them but still answers. */
+ * answered, no event); normal mode reports them but still answers. In normal mode the
+ * error does not restart t3.5. In suppression (modem) mode the valid CRC itself ended
+ * the frame (000 §8): the FC08 reply was already on the line when the error came
+ * (the timing there is test_modem.c's). */
 static void test_error_after_crc(void **state)
 {
     (void)state;
@@ -219,11 +222,13 @@ static void test_error_after_crc(void **state)
         uint32_t last = lw_send(x, FC08_REQ);
         lw_advance(x, last + 500);
         lw_error(x, MODCP_LINE_FRAMING | MODCP_LINE_BREAK);
-        lw_advance(x, last + T35_US - 1);
-        assert_int_equal(x->tx_calls, 0);
+        if (!mode) {
+            lw_advance(x, last + T35_US - 1);
+            assert_int_equal(x->tx_calls, 0);
+        }
         lw_advance(x, last + T35_US); /* the error did not restart t3.5 */
         assert_int_equal(x->tx_calls, 1);
-        assert_int_equal(lw_last(x, LW_TX)->at, last + T35_US);
+        assert_int_equal(lw_last(x, LW_TX)->at, last + (mode ? 1u : T35_US));
         assert_string_equal(lw_tx_hex(x), FC08_REQ);
         assert_int_equal(x->w->cp.diag.buffer_len, mode ? 0 : 1);
         if (!mode) {

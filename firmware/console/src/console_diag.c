@@ -116,7 +116,8 @@ int con_cmd_status(modcp_console_env_t *env, out_t *o)
 #if MODCP_WITH_EXTENDED
         /* extended set: FC08 sub 04 listen-only, comm-loss supervision (MODCP_CPST_*) */
         con_printf(o, " listen_only=%u commloss=%u comm_events=%u",
-                   d->comm.listen_only ? 1u : 0u, d->comm.commloss ? 1u : 0u,
+                   d->comm.listen_only ? 1u : 0u,
+                   (env->cp_status != NULL && (env->cp_status->flags & MODCP_CPST_COMMLOSS)) ? 1u : 0u,
                    (unsigned)d->comm.event_count);
 #endif
     }

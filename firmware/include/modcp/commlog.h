@@ -61,7 +61,6 @@ typedef struct {
     uint16_t diag_reg;                 /* latched MODCP_DREG_* bits */
     bool listen_only;                  /* FC08 sub 04 until sub 01 */
     bool overrun_pending;              /* overrun not yet reported in an event byte */
-    bool commloss;                     /* mirror of the comm-loss state (for consoles) */
 } modcp_comm_t;
 
 /* Add an event byte (newest first; the oldest falls out beyond 64). */

@@ -51,8 +51,9 @@ typedef struct modcp_cp {
     modcp_frame_t frame; /* request being processed */
     bool request_pending; /* a request waits for its job */
     bool ack_pending;     /* an INIT_ACK could not be sent yet */
-    uint32_t status_flags; /* extra MODCP_CPST_* flags (comm loss, listen only) */
     bool published;
+    uint32_t err_mark_us; /* link.last_us after the last line error: when it moves on, a
+                             character was received (the end of a wire break) */
     modcp_event_t ack_event;
 #if MODCP_SHARED_PARAMS_BUFFER
     uint8_t buf[MODCP_CP_BUF_SIZE];            /* frame buffer (first MODCP_LINK_BUF_MAX

@@ -8,7 +8,7 @@
  * The PDU engine's function-code table (pdu.c) hands these requests to their
  * handlers; the CP (cp.c) keeps the persistent state below, reports every finished
  * request (modcp_pdu_finished) and polls the supervision with the time
- * (modcp_ext_poll).
+ * (modcp_commloss_poll).
  * docs/extended-functions.md has every frame and every decision. */
 #ifndef MODCP_EXT_H
 #define MODCP_EXT_H
@@ -81,10 +81,6 @@ enum {
 void modcp_ext_init(modcp_ext_t *x);
 /* New parameters: supervision disarmed, delimiter LF, listen-only left. */
 void modcp_ext_reset(modcp_ext_t *x, modcp_diag_t *d);
-/* Time for the supervision; returns status_flags with MODCP_CPST_COMMLOSS and
- * MODCP_CPST_LISTEN_ONLY updated. */
-uint32_t modcp_ext_poll(modcp_ext_t *x, const modcp_params_t *p, modcp_diag_t *d,
-                        uint32_t status_flags, uint32_t now_us);
 /* FC08 sub 01 / 0A effects (also used by tests). */
 void modcp_ext_restart(modcp_ext_t *x, modcp_diag_t *d, bool clear_log);
 void modcp_ext_clear_counters(modcp_diag_t *d);
@@ -98,7 +94,8 @@ uint16_t modcp_ext_diag_register(const modcp_ext_t *x, const modcp_diag_t *d);
 void modcp_commloss_request(modcp_ext_t *x, uint32_t now_us);
 /* An accepted (executed, no exception) write for our address: arms the supervision. */
 void modcp_commloss_write(modcp_ext_t *x, const modcp_params_t *p, uint32_t now_us);
-/* Expiry check: reports MODCP_EV_COMMLOSS once per loss. */
+/* Expiry check (the CP's poll): reports MODCP_EV_COMMLOSS once per loss. The state
+ * is x->cl_lost alone; the CP publishes MODCP_CPST_COMMLOSS from it. */
 void modcp_commloss_poll(modcp_ext_t *x, const modcp_params_t *p, modcp_diag_t *d,
                          uint32_t now_us);
 

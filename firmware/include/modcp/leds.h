@@ -7,10 +7,13 @@
  *  RXD: on while characters are received (any address: the line is alive); a received
  *      frame keeps it on until it has ended (no character for `quiet_us`, t3.5) and
  *      at least MODCP_LED_MIN_ON_US have passed since it went on.
- * The LEDs are switched only in modcp_leds_poll(), i.e. from modcp_cp_poll(); the
- * receive / transmit events only note times. The minimum on-time counts from the
- * moment the LED was switched on, so every frame is visible for at least 200 ms
- * however late the poll comes. set_led is called only when a level changes. */
+ * The LEDs have one source, the link (modcp/link.h): it records the time of the last
+ * received character (last_us; not the echo of our own RS485 reply), the transmissions
+ * started (tx_starts) and whether one is on the line (tx_on, until transmission
+ * complete). modcp_leds_poll(), i.e. modcp_cp_poll(), reads them and switches the LEDs:
+ * nothing is called per byte. The minimum on-time counts from the moment the LED was
+ * switched on, so every frame is visible for at least 200 ms however late the poll
+ * comes. set_led is called only when a level changes. */
 #ifndef MODCP_LEDS_H
 #define MODCP_LEDS_H
 
@@ -18,6 +21,7 @@
 #include <stdint.h>
 
 #include "modcp/hal.h"
+#include "modcp/link.h"
 
 #define MODCP_LED_MIN_ON_US 200000u
 #define MODCP_LED_COUNT 3u
@@ -27,23 +31,17 @@ typedef struct {
     bool on[MODCP_LED_COUNT];       /* levels as last set, indexed by modcp_led_t */
     uint32_t on_us[MODCP_LED_COUNT]; /* when TXD / RXD went on */
     uint32_t quiet_us;  /* silence that ends a received frame */
-    bool rx_seen;       /* a character arrived since the last poll */
-    uint32_t rx_last_us; /* time of the last character */
-    bool tx_seen;       /* a transmission started since the last poll */
-    bool tx_active;     /* a transmission is on the line */
+    uint32_t rx_seen_us; /* the link's last_us at the last poll */
+    uint16_t tx_seen;    /* the link's tx_starts at the last poll */
 } modcp_leds_t;
 
 /* Power-on: SF on, TXD and RXD off. */
 void modcp_leds_init(modcp_leds_t *x, const modcp_hal_t *hal);
 /* Silence that ends a received frame (t3.5 of the link). */
 void modcp_leds_configure(modcp_leds_t *x, uint32_t quiet_us);
-/* A character (or line error) was received at now_us. */
-void modcp_leds_rx(modcp_leds_t *x, uint32_t now_us);
-/* A transmission started / ended (transmission complete or aborted). */
-void modcp_leds_tx_start(modcp_leds_t *x);
-void modcp_leds_tx_end(modcp_leds_t *x);
-/* Drive the LEDs at now_us; sf: the group error is present. */
-void modcp_leds_poll(modcp_leds_t *x, bool sf, uint32_t now_us);
+/* Drive the LEDs at now_us from the link's receive / transmit record; sf: the group
+ * error is present. */
+void modcp_leds_poll(modcp_leds_t *x, bool sf, const modcp_link_t *l, uint32_t now_us);
 /* Levels as bits (1 << modcp_led_t) for the status area. */
 uint8_t modcp_leds_bits(const modcp_leds_t *x);
 

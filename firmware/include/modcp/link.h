@@ -5,7 +5,10 @@
  * and the end-of-frame silence are shared.
  *
  * Receive: per byte the framing stores it and updates its check (CRC / LRC) and the
- * time of the last character. The end-of-frame timer is armed once, at a frame's first
+ * time of the last character. (RTU in interference suppression = modem mode,
+ * rtu_modem.c: a frame starts at our own address and ends at its valid CRC, its length
+ * from the function code, handed over at once; the silence below ends only frames of
+ * unknown length and everything that is not ours.) The end-of-frame timer is armed once, at a frame's first
  * character, with the silence that ends a frame (RTU t3.5, ASCII the character delay
  * time); when it expires the link compares now - last character with the silence and
  * re-arms for the remainder while characters kept coming, so the frame ends exactly one
@@ -49,8 +52,9 @@ typedef enum {
     MODCP_LINK_BUSY,      /* a request is being processed; buffer owned by the PDU */
     MODCP_LINK_TURNAROUND,/* reply ready, waiting for the turnaround delay */
     MODCP_LINK_TX,        /* transmitting */
-    MODCP_LINK_EOF,       /* ASCII: CR LF of a good frame received, handed over on the
-                             next timer expiry (armed with 1 us) */
+    MODCP_LINK_EOF,       /* ASCII: CR LF of a good frame received; RTU modem mode: a
+                             formally correct frame with a valid CRC; handed over on
+                             the next timer expiry (armed with 1 us) */
 } modcp_link_state_t;
 
 typedef struct {
@@ -62,8 +66,16 @@ typedef struct {
 
 /* RTU receive state (rtu.c). */
 typedef struct {
-    uint16_t crc;   /* running CRC over the current frame */
-    uint16_t count; /* characters of a skipped frame (bus counters) */
+    uint16_t crc;   /* running CRC over the current frame (modem mode: the candidate) */
+    uint16_t count; /* characters of a skipped frame (bus counters); modem mode: of the
+                       stretch being followed */
+    /* interference suppression (modem mode) only: */
+    uint16_t stop;  /* buffer index of the next character that needs a look (function
+                       code, byte count, last character); the hot path runs below it */
+    uint16_t total; /* the candidate's length by its function code, 0: by t3.5 */
+    uint16_t skip_crc; /* CRC over the stretch (stray characters, other frames) */
+    uint8_t bc;     /* index of the byte count, 0: none */
+    uint8_t flags;  /* RTU_M_* (rtu.c) */
 } modcp_rtu_t;
 
 /* ASCII receive state (ascii.c). */
@@ -94,12 +106,15 @@ typedef struct { /* members by size: no padding */
     uint32_t turnaround_us;
     uint32_t ascii_timeout_us; /* ASCII character delay time */
     /* receive and transmit state shared by the framings */
-    uint32_t last_us;  /* time of the last received byte */
+    uint32_t last_us;  /* time of the last received character (every state but the
+                          echo of our own RS485 reply; never reset: the RXD LED reads
+                          it at poll time, leds.h) */
     uint32_t tx_at_us; /* when the reply was handed over (start of the turnaround) */
     uint16_t cap;     /* receive / RTU capacity: the buffer, at most MODCP_ADU_MAX */
     uint16_t size;    /* the whole buffer (ASCII replies are hex-encoded in place) */
     uint16_t len;     /* bytes stored */
     uint16_t tx_len;
+    uint16_t tx_starts; /* transmissions started (the TXD LED reads it, leds.h) */
     union {           /* the framing's own receive state */
         modcp_rtu_t rtu;
 #if MODCP_WITH_ASCII
@@ -117,6 +132,8 @@ typedef struct { /* members by size: no padding */
     bool busy_rx;     /* a frame is being followed while BUSY/TURNAROUND/TX */
     bool tx_hold;     /* RS232 automatic signals: a reply waits in TURNAROUND until
                          modcp_link_tx_release() (signals.c decides RTS / CTS) */
+    bool tx_on;       /* a transmission is on the line: from its start to transmission
+                         complete (or its abort) */
 } modcp_link_t;
 
 void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag, uint8_t *buf,
@@ -135,7 +152,12 @@ bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f);
 void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us);
 /* Request finished without a reply (broadcast, error). */
 void modcp_link_done(modcp_link_t *l);
+/* Transmission complete: the driver is released and the link receives again. */
 void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us);
+/* Transmission complete of the last stop bit, recorded for the TXD LED; with RS232
+ * automatic signals the link receives again only later (modcp_link_on_tx_done at RTS
+ * OFF). */
+void modcp_link_tx_complete(modcp_link_t *l);
 /* RS232 automatic signals (signals.c): a reply held in TURNAROUND is sent now (send)
  * or dropped (!send, back to receiving). */
 void modcp_link_tx_release(modcp_link_t *l, bool send, uint32_t now_us);

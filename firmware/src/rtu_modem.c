@@ -1,0 +1,398 @@
+/* modcp — RTU framing in interference suppression = modem mode (000 §5.6.1, §8;
+ * 004 §2.2): the variant of the RTU backend (rtu.c) that modcp_link_configure selects
+ * for the operating mode `suppression`; normal operation's hot path does not pay for it.
+ *
+ * "The start of a message is recognised by a correctly received slave address"; "the
+ * end of the message by a formally correct message with a correct CRC". The line is
+ * followed in stretches (characters without a silence of t3.5 between them):
+ *   IDLE  the line has been quiet for t3.5. A character starts a stretch (SKIP) and
+ *         arms the timer once; a line error is ignored.
+ *   SKIP  following a stretch: stray characters, another slave's frame, the tail of a
+ *         damaged one. Nothing is stored, only the stretch's CRC for the bus counters;
+ *         our address (or 0) starts a candidate frame.
+ *   RX    a candidate: stored with a CRC step per character (the hot path, up to
+ *         r->stop). Its function code gives its length (req_len below): fixed, or by
+ *         its byte count; at that length a valid CRC ends the frame at once (EOF, handed
+ *         over on a 1 us timer: no t3.5 wait), a wrong one drops the candidate's first
+ *         character and looks for our address again in the rest (resync), so a stray
+ *         00 or a stray copy of our address before a request does not lose it. An
+ *         unknown function code (or FC08 / FC43 longer than their usual form) ends by
+ *         t3.5 as in normal operation; 00 and 80H...FFH are no request's function
+ *         code and fail at once.
+ * A line error inside a candidate drops it (counted once in BUS_CRC when it has its
+ * function code, no event); elsewhere (before the frame, after the CRC, among stray
+ * characters) it is ignored. A stretch that began with our address and never became a
+ * frame reports (08)36H at its t3.5, as normal operation does; other stretches count
+ * in BUS_MSG when they end in a valid CRC (another slave's frame), else not at all.
+ * Address 0 starts a candidate anywhere only with a function code broadcast may use
+ * (05, 06, 15, 16); as a stretch's first character with any (the PDU engine reports
+ * (08)30H). */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "modcp/crc.h"
+#include "modcp/link.h"
+#include "link_internal.h"
+
+#define RTU_M_LEAD 0x01u  /* the stretch began with our address or 0 */
+#define RTU_M_FIRST 0x02u /* the candidate is the stretch's first character */
+#define RTU_M_OPEN 0x04u  /* a wrong CRC at the length: continue to t3.5 (FC08, FC43) */
+#define RTU_M_SBAD 0x08u  /* the stretch around the candidate had a line error */
+
+enum { M_CONT, M_FAIL, M_DONE };
+
+#define RQ_BC 0x80u   /* length by the byte count at index (code & 0x1F) */
+#define RQ_OPEN 0x40u /* the usual length; longer requests end by t3.5 */
+
+/* Request lengths (address and CRC included) by function code. */
+static const uint8_t req_len_tab[][2] = {
+    {0x03u, 8u}, {0x10u, RQ_BC | 6u}, {0x06u, 8u}, {0x01u, 8u}, {0x02u, 8u},
+    {0x04u, 8u}, {0x05u, 8u}, {0x0Fu, RQ_BC | 6u}, {0x08u, RQ_OPEN | 8u},
+    {0x17u, RQ_BC | 10u}, {0x16u, 10u}, {0x0Bu, 4u}, {0x0Cu, 4u}, {0x11u, 4u},
+    {0x2Bu, RQ_OPEN | 7u},
+};
+
+static uint8_t req_len(uint8_t fc)
+{
+    for (size_t i = 0; i < sizeof req_len_tab / sizeof req_len_tab[0]; i++) {
+        if (req_len_tab[i][0] == fc) {
+            return req_len_tab[i][1];
+        }
+    }
+    return 0u; /* unknown: t3.5 */
+}
+
+static bool m_addr(const modcp_link_t *l, uint8_t b)
+{
+    return b == l->own_addr || b == 0u;
+}
+
+/* A character of the stretch that is not (or no longer) part of a candidate. */
+static void m_fold(modcp_link_t *l, uint8_t b)
+{
+    modcp_rtu_t *r = &l->fr.rtu;
+    r->skip_crc = modcp_crc16_byte(r->skip_crc, b);
+    rtu_count_char(r);
+}
+
+static void m_cand_start(modcp_link_t *l, uint8_t b)
+{
+    modcp_rtu_t *r = &l->fr.rtu;
+    r->flags = (uint8_t)((r->flags & ~RTU_M_SBAD) | (l->rx_bad ? RTU_M_SBAD : 0u));
+    l->rx_bad = false;
+    l->rx_overflow = false;
+    l->buf[0] = b; /* configured: cap >= RTU_MIN_FRAME */
+    l->len = 1;
+    r->crc = modcp_crc16_byte(MODCP_CRC_INIT, b);
+    r->stop = 1; /* the function code is looked at */
+    r->total = 0;
+    r->bc = 0;
+    l->state = MODCP_LINK_RX;
+}
+
+/* The candidate is no frame: its characters belong to the stretch again. */
+static void m_drop(modcp_link_t *l)
+{
+    modcp_rtu_t *r = &l->fr.rtu;
+    for (uint16_t i = 0; i < l->len; i++) {
+        m_fold(l, l->buf[i]);
+    }
+    l->rx_bad = l->rx_bad || (r->flags & RTU_M_SBAD) != 0u;
+    r->flags = (uint8_t)(r->flags & ~(RTU_M_FIRST | RTU_M_OPEN));
+    l->len = 0;
+    l->state = MODCP_LINK_SKIP;
+}
+
+/* The character at index r->stop was stored: function code, byte count or the last. */
+static int m_check(modcp_link_t *l)
+{
+    modcp_rtu_t *r = &l->fr.rtu;
+    const uint16_t n = l->len;
+    if (n == 2u) {
+        uint8_t fc = l->buf[1];
+        uint8_t code = req_len(fc);
+        if (l->buf[0] == 0u && (r->flags & RTU_M_FIRST) == 0u && fc != 0x05u && fc != 0x06u &&
+            fc != 0x0Fu && fc != 0x10u) {
+            return M_FAIL; /* no broadcast request */
+        }
+        if (fc == 0u || fc >= 0x80u) {
+            return M_FAIL; /* no request has this function code */
+        }
+        if (code == 0u) {
+            r->stop = l->cap; /* unknown function code: t3.5 */
+            return M_CONT;
+        }
+        if ((code & RQ_BC) != 0u) {
+            r->bc = (uint8_t)(code & 0x1Fu);
+            r->stop = r->bc;
+            return M_CONT;
+        }
+        r->total = (uint16_t)(code & 0x3Fu);
+        if ((code & RQ_OPEN) != 0u) {
+            r->flags |= RTU_M_OPEN;
+        }
+    } else if (r->total == 0u) { /* the byte count */
+        r->total = (uint16_t)(n + l->buf[n - 1u] + 2u);
+    }
+    if (r->total > l->cap) {
+        r->total = 0;
+        r->stop = l->cap; /* too long for the buffer: t3.5 ends it */
+        return M_CONT;
+    }
+    if (n < r->total) {
+        r->stop = (uint16_t)(r->total - 1u);
+        return M_CONT;
+    }
+    if (l->rx_bad) { /* dropped by the link (DSR OFF) */
+        m_drop(l);
+        return M_CONT;
+    }
+    if (r->crc == 0u) {
+        l->state = MODCP_LINK_EOF; /* formally correct, valid CRC: the end */
+        link_arm(l, 1u);
+        return M_DONE;
+    }
+    if ((r->flags & RTU_M_OPEN) != 0u) {
+        r->total = 0;
+        r->stop = l->cap; /* FC08 / FC43 longer than usual: t3.5 */
+        return M_CONT;
+    }
+    return M_FAIL;
+}
+
+/* One character through the automaton, SKIP or RX (no time: the callers keep it). */
+static int m_feed(modcp_link_t *l, uint8_t b)
+{
+    modcp_rtu_t *r = &l->fr.rtu;
+    if (l->state == MODCP_LINK_SKIP) {
+        if (m_addr(l, b)) {
+            r->flags = (uint8_t)(r->flags & ~RTU_M_FIRST);
+            m_cand_start(l, b);
+        } else {
+            m_fold(l, b);
+        }
+        return M_CONT;
+    }
+    if (l->len >= l->cap) {
+        l->rx_overflow = true;
+        return M_CONT;
+    }
+    r->crc = modcp_crc16_byte(r->crc, b);
+    l->buf[l->len++] = b;
+    return l->len - 1u == r->stop ? m_check(l) : M_CONT;
+}
+
+/* The candidate in buf[0 .. len) failed its length and CRC: drop its first character
+ * and run the rest through the automaton again, looking for our address. Each round
+ * drops at least one character; the new candidate is written behind the read position
+ * (in place). */
+static MODCP_NOINLINE void m_resync(modcp_link_t *l)
+{
+    uint16_t n = l->len;
+    for (;;) {
+        m_fold(l, l->buf[0]);
+        l->rx_bad = l->rx_bad || (l->fr.rtu.flags & RTU_M_SBAD) != 0u;
+        l->fr.rtu.flags = (uint8_t)(l->fr.rtu.flags & ~(RTU_M_FIRST | RTU_M_OPEN));
+        l->len = 0;
+        l->state = MODCP_LINK_SKIP;
+        int res = M_CONT;
+        uint16_t k = 1;
+        while (k < n && res == M_CONT) {
+            res = m_feed(l, l->buf[k]);
+            k++;
+        }
+        if (res != M_FAIL) {
+            return; /* following, in a candidate, or a frame (what followed it: after the CRC) */
+        }
+        memmove(&l->buf[l->len], &l->buf[k], (size_t)(n - k));
+        n = (uint16_t)(l->len + (n - k));
+        l->len = n;
+    }
+}
+
+static void m_push(modcp_link_t *l, uint8_t b)
+{
+    if (m_feed(l, b) == M_FAIL) {
+        m_resync(l);
+    }
+}
+
+/* A stretch begins after t3.5 of silence; the timer is armed here, once. */
+static void m_stretch_begin(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    modcp_rtu_t *r = &l->fr.rtu;
+    r->skip_crc = MODCP_CRC_INIT;
+    r->count = 0;
+    r->flags = 0;
+    l->rx_bad = false;
+    l->rx_overflow = false;
+    l->len = 0;
+    l->last_us = now_us;
+    link_arm(l, l->t35_us);
+    if (m_addr(l, b)) {
+        m_cand_start(l, b);
+        r->flags |= RTU_M_LEAD | RTU_M_FIRST;
+    } else {
+        l->state = MODCP_LINK_SKIP;
+        m_fold(l, b);
+    }
+}
+
+/* t3.5 after a stretch without a frame. */
+static void m_stretch_end(modcp_link_t *l)
+{
+    const modcp_rtu_t *r = &l->fr.rtu;
+    l->state = MODCP_LINK_IDLE;
+    if (l->rx_bad) {
+        return; /* damaged: counted once if a candidate was, else ignored */
+    }
+    bool ok = r->count >= RTU_MIN_FRAME && r->skip_crc == 0u;
+    if ((r->flags & RTU_M_LEAD) != 0u && !ok) {
+        link_event(l, MODCP_EV_CRC); /* began with our address: (08)36H as in normal mode */
+        link_count(l, MODCP_CNT_BUS_CRC);
+    } else if (ok) {
+        link_count(l, MODCP_CNT_BUS_MSG);
+    }
+}
+
+static MODCP_NOINLINE void m_byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    switch (l->state) {
+    case MODCP_LINK_IDLE:
+        m_stretch_begin(l, b, now_us);
+        break;
+    case MODCP_LINK_SKIP:
+        if (now_us - l->last_us >= l->t35_us) {
+            m_stretch_end(l);
+            m_stretch_begin(l, b, now_us);
+            break;
+        }
+        l->last_us = now_us;
+        m_push(l, b);
+        break;
+    case MODCP_LINK_RX: /* function code, byte count, last character, or a full buffer */
+        l->last_us = now_us;
+        m_push(l, b);
+        break;
+    case MODCP_LINK_EOF:
+    case MODCP_LINK_BUSY:
+    case MODCP_LINK_TURNAROUND:
+    case MODCP_LINK_TX:
+        rtu_busy_track(l, b, false, now_us);
+        break;
+    default:
+        rtu_internal_error(l);
+        m_stretch_begin(l, b, now_us);
+        break;
+    }
+}
+
+/* The hot path of modem mode: a character of the candidate below r->stop is stored and
+ * goes through one CRC step. */
+static void rtu_m_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    if (l->state != MODCP_LINK_RX || l->len >= l->fr.rtu.stop) {
+        m_byte_other(l, b, now_us);
+        return;
+    }
+    l->last_us = now_us;
+    l->fr.rtu.crc = modcp_crc16_byte(l->fr.rtu.crc, b);
+    l->buf[l->len++] = b;
+}
+
+/* A damaged candidate: counted once when it has its function code, dropped. */
+static void m_cand_bad(modcp_link_t *l)
+{
+    if (l->len >= 2u) {
+        link_mark_bad(l);
+    } else {
+        l->rx_bad = true; /* a lone address character: before the frame, not counted */
+    }
+    m_drop(l);
+}
+
+static MODCP_NOINLINE void m_t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    if (!l->rx_bad && l->diag != NULL) {
+        l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
+    }
+    m_cand_bad(l);
+    rtu_m_on_byte(l, b, now_us); /* it may start the next candidate */
+}
+
+static void rtu_m_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    if (l->state == MODCP_LINK_RX && now_us - l->last_us > l->t15_us + l->char_us) {
+        m_t15_violated(l, b, now_us);
+        return;
+    }
+    rtu_m_on_byte(l, b, now_us);
+}
+
+static void rtu_m_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
+{
+    (void)line_errors;
+    switch (l->state) {
+    case MODCP_LINK_IDLE:
+        break; /* before the frame: ignored */
+    case MODCP_LINK_SKIP:
+        if (now_us - l->last_us >= l->t35_us) {
+            m_stretch_end(l); /* a new stretch would begin: ignored as on an idle line */
+            break;
+        }
+        l->rx_bad = true; /* among stray characters / another frame: not counted */
+        l->last_us = now_us;
+        break;
+    case MODCP_LINK_RX:
+        m_cand_bad(l);
+        l->last_us = now_us;
+        break;
+    case MODCP_LINK_EOF:
+    case MODCP_LINK_BUSY:
+    case MODCP_LINK_TURNAROUND:
+    case MODCP_LINK_TX:
+        if (!l->busy_rx || now_us - l->last_us >= l->t35_us) {
+            break; /* after the CRC, not inside a frame: ignored */
+        }
+        rtu_busy_track(l, 0, true, now_us);
+        break;
+    default:
+        rtu_internal_error(l);
+        break;
+    }
+}
+
+/* EOF: hand the frame over. RX / SKIP: t3.5 has passed since the last character. */
+static bool rtu_m_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
+{
+    (void)now_us;
+    modcp_rtu_t *r = &l->fr.rtu;
+    if (l->state == MODCP_LINK_EOF) {
+        return rtu_deliver(l, f);
+    }
+    if (l->state == MODCP_LINK_RX) {
+        if (!l->rx_bad && !l->rx_overflow && r->total == 0u && l->len >= RTU_MIN_FRAME &&
+            r->crc == 0u) {
+            return rtu_deliver(l, f); /* length by t3.5 (unknown function code) */
+        }
+        if (l->rx_overflow) {
+            if (!l->rx_bad && (r->flags & RTU_M_FIRST) != 0u) {
+                link_frame_too_long(l);
+            }
+            l->rx_bad = true; /* the stretch is not complete in the buffer */
+        }
+        m_drop(l);
+    }
+    if (l->state == MODCP_LINK_SKIP) {
+        m_stretch_end(l);
+    }
+    return false;
+}
+
+const modcp_framing_ops_t modcp_rtu_modem_ops = {rtu_configure, rtu_m_on_byte, rtu_m_on_error,
+                                                 rtu_m_on_timer, rtu_encode};
+const modcp_framing_ops_t modcp_rtu_modem_t15_ops = {rtu_configure, rtu_m_on_byte_t15,
+                                                     rtu_m_on_error, rtu_m_on_timer,
+                                                     rtu_encode};
