@@ -1,7 +1,8 @@
 /* modcp — the CPU side's communication FB (FB 80 / FB 180 model, 004 §4, §7.6).
  *
  * One call per CPU cycle does, in this order:
- *   1. CP_START edge: clear the outputs and start the initialisation (PARAMS + INIT);
+ *   1. CP_START edge: clear the outputs (ERROR_NR / ERROR_INFO included) and start the
+ *      initialisation (PARAMS + INIT); a failed initialisation resets CP_START (in/out);
  *   2. continue pushing a pending REPLY (as many blocks as there are free slots);
  *   3. read CP blocks in place: INIT_ACK while waiting for it; a JOB header is checked
  *      completely (operation, amount, area, range) before any data: a READ is answered
@@ -437,13 +438,14 @@ static void send_init(modcp_fb_t *fb)
     }
 }
 
-static void run_init(modcp_fb_t *fb, uint32_t now_ms)
+/* Initialisation step; false when it failed in this call (START_TIME over). */
+static bool run_init(modcp_fb_t *fb, uint32_t now_ms)
 {
     if (fb->state != MODCP_FBST_INIT_SEND && fb->state != MODCP_FBST_INIT_WAIT) {
         if (fb->params_pending) {
             (void)push_params(fb); /* PARAMS of the first call */
         }
-        return;
+        return true;
     }
     if ((uint32_t)(now_ms - fb->init_t0_ms) >= fb->start_time_ms) {
         fb->state = MODCP_FBST_FAILED;
@@ -452,7 +454,7 @@ static void run_init(modcp_fb_t *fb, uint32_t now_ms)
         fb->out.cp_start_error = true;
         fb->out.error_nr = MODCP_FB_ERR_INIT;
         fb->out.error_info = fb->init_event;
-        return;
+        return false;
     }
     if (fb->state == MODCP_FBST_INIT_WAIT &&
         (uint32_t)(now_ms - fb->retry_t0_ms) >= MODCP_FB_RETRY_MS) {
@@ -461,10 +463,10 @@ static void run_init(modcp_fb_t *fb, uint32_t now_ms)
     if (fb->state == MODCP_FBST_INIT_SEND && push_params(fb) && !fb->init_sent) {
         send_init(fb);
     }
+    return true;
 }
 
-void modcp_fb_call(modcp_fb_t *fb, const modcp_fb_in_t *in, modcp_fb_out_t *out,
-                   uint32_t now_ms)
+void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint32_t now_ms)
 {
     bool start = in != NULL && in->cp_start;
     fb->out.cp_start_ndr = false;
@@ -478,7 +480,9 @@ void modcp_fb_call(modcp_fb_t *fb, const modcp_fb_in_t *in, modcp_fb_out_t *out,
 
     pump_reply(fb);
     rx_blocks(fb);
-    run_init(fb, now_ms);
+    if (!run_init(fb, now_ms) && in != NULL) {
+        in->cp_start = false; /* 004 §5.5: CP_START is reset, CP_START_ERROR = 1 */
+    }
 
     if (out != NULL) {
         *out = fb->out;
