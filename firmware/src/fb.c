@@ -389,7 +389,9 @@ static void rx_blocks(modcp_fb_t *fb)
         }
         /* PARAMS / INIT / REPLY travel the other way: ignored */
         modcp_ring_release(r);
-        pump_reply(fb);
+        if (fb->reply_pending) {
+            pump_reply(fb);
+        }
     }
 }
 
@@ -478,7 +480,9 @@ void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint3
     }
     fb->last_start = start;
 
-    pump_reply(fb);
+    if (fb->reply_pending) {
+        pump_reply(fb); /* the rest of a reply the ring had no room for */
+    }
     rx_blocks(fb);
     if (!run_init(fb, now_ms) && in != NULL) {
         in->cp_start = false; /* 004 §5.5: CP_START is reset, CP_START_ERROR = 1 */
