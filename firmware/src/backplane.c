@@ -44,30 +44,6 @@ void modcp_bp_init(modcp_backplane_t *bp)
     atomic_store_explicit(&bp->abort_tag, BP_NO_ABORT, memory_order_release);
 }
 
-modcp_block_t *modcp_ring_slot(modcp_ring_t *r)
-{
-    uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
-    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_acquire);
-    if ((uint32_t)(head - tail) >= MODCP_BP_DEPTH) {
-        return NULL;
-    }
-    return &r->slot[head & (MODCP_BP_DEPTH - 1u)];
-}
-
-void modcp_ring_publish(modcp_ring_t *r, uint8_t *seq)
-{
-    uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
-    r->slot[head & (MODCP_BP_DEPTH - 1u)].seq = *seq;
-    *seq = (uint8_t)(*seq + 1u);
-    atomic_store_explicit(&r->head, head + 1u, memory_order_release);
-}
-
-void modcp_ring_release(modcp_ring_t *r)
-{
-    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_relaxed);
-    atomic_store_explicit(&r->tail, tail + 1u, memory_order_release);
-}
-
 bool modcp_ring_put(modcp_ring_t *r, const modcp_block_t *b, uint8_t *seq)
 {
     modcp_block_t *slot = modcp_ring_slot(r);
@@ -88,24 +64,6 @@ bool modcp_ring_get(modcp_ring_t *r, modcp_block_t *b)
     *b = *slot;
     modcp_ring_release(r);
     return true;
-}
-
-const modcp_block_t *modcp_ring_peek(const modcp_ring_t *r)
-{
-    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_relaxed);
-    uint32_t head = atomic_load_explicit(&r->head, memory_order_acquire);
-    if (head == tail) {
-        return NULL;
-    }
-    return &r->slot[tail & (MODCP_BP_DEPTH - 1u)];
-}
-
-uint32_t modcp_ring_space(const modcp_ring_t *r)
-{
-    uint32_t head = atomic_load_explicit(&r->head, memory_order_acquire);
-    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_acquire);
-    uint32_t used = head - tail;
-    return used >= MODCP_BP_DEPTH ? 0u : MODCP_BP_DEPTH - used;
 }
 
 static void put16(uint8_t *d, uint16_t v)

@@ -161,9 +161,27 @@ bool modcp_bp_systat_result(const modcp_backplane_t *bp, uint32_t req, uint8_t o
  * data / len / kind / flags / tag, then modcp_ring_publish() stamps the sequence number
  * and hands the slot over. Consumer: modcp_ring_peek() gives the oldest block,
  * modcp_ring_release() hands its slot back when the consumer is done with it. */
-modcp_block_t *modcp_ring_slot(modcp_ring_t *r);
-void modcp_ring_publish(modcp_ring_t *r, uint8_t *seq);
-void modcp_ring_release(modcp_ring_t *r);
+static inline modcp_block_t *modcp_ring_slot(modcp_ring_t *r)
+{
+    uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
+    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_acquire);
+    if ((uint32_t)(head - tail) >= MODCP_BP_DEPTH) {
+        return (modcp_block_t *)0;
+    }
+    return &r->slot[head & (MODCP_BP_DEPTH - 1u)];
+}
+static inline void modcp_ring_publish(modcp_ring_t *r, uint8_t *seq)
+{
+    uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
+    r->slot[head & (MODCP_BP_DEPTH - 1u)].seq = *seq;
+    *seq = (uint8_t)(*seq + 1u);
+    atomic_store_explicit(&r->head, head + 1u, memory_order_release);
+}
+static inline void modcp_ring_release(modcp_ring_t *r)
+{
+    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_relaxed);
+    atomic_store_explicit(&r->tail, tail + 1u, memory_order_release);
+}
 
 /* Copying forms (tests, and messages built elsewhere). Producer side: publish one
  * block (seq is filled in from *seq, which is then incremented). Returns false (nothing
@@ -177,9 +195,23 @@ bool modcp_ring_put_data(modcp_ring_t *r, uint8_t *seq, uint8_t kind, uint8_t fl
 bool modcp_ring_get(modcp_ring_t *r, modcp_block_t *b);
 /* Consumer side: the oldest block without taking it (NULL when empty). It stays valid
  * until the consumer takes it. */
-const modcp_block_t *modcp_ring_peek(const modcp_ring_t *r);
+static inline const modcp_block_t *modcp_ring_peek(const modcp_ring_t *r)
+{
+    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_relaxed);
+    uint32_t head = atomic_load_explicit(&r->head, memory_order_acquire);
+    if (head == tail) {
+        return (const modcp_block_t *)0;
+    }
+    return &r->slot[tail & (MODCP_BP_DEPTH - 1u)];
+}
 /* Blocks free for the producer. */
-uint32_t modcp_ring_space(const modcp_ring_t *r);
+static inline uint32_t modcp_ring_space(const modcp_ring_t *r)
+{
+    uint32_t head = atomic_load_explicit(&r->head, memory_order_acquire);
+    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_acquire);
+    uint32_t used = head - tail;
+    return used >= MODCP_BP_DEPTH ? 0u : MODCP_BP_DEPTH - used;
+}
 
 /* Header (de)serialisation into block data; return bytes used / false if short. */
 uint8_t modcp_bp_job_encode(const modcp_bp_job_t *j, uint8_t *d);
