@@ -26,8 +26,6 @@
 
 #include <string.h>
 
-#define BP_JOB_HDR_LEN 11u
-#define BP_REPLY_HDR_LEN 6u
 #define BP_INIT_LEN 14u
 #define BP_NO_ABORT 0x100u
 
@@ -66,62 +64,8 @@ bool modcp_ring_get(modcp_ring_t *r, modcp_block_t *b)
     return true;
 }
 
-static void put16(uint8_t *d, uint16_t v)
-{
-    d[0] = (uint8_t)(v & 0xFFu);
-    d[1] = (uint8_t)(v >> 8);
-}
-
-static uint16_t get16(const uint8_t *d)
-{
-    return (uint16_t)((unsigned)d[0] | ((unsigned)d[1] << 8));
-}
-
-uint8_t modcp_bp_job_encode(const modcp_bp_job_t *j, uint8_t *d)
-{
-    d[0] = j->op;
-    d[1] = j->opnd.area;
-    d[2] = j->opnd.bit;
-    put16(d + 3, j->opnd.db);
-    put16(d + 5, j->opnd.offset);
-    put16(d + 7, j->opnd.count);
-    put16(d + 9, j->len);
-    return (uint8_t)BP_JOB_HDR_LEN;
-}
-
-bool modcp_bp_job_decode(const uint8_t *d, uint8_t len, modcp_bp_job_t *j)
-{
-    if (len < BP_JOB_HDR_LEN) {
-        return false;
-    }
-    j->op = d[0];
-    j->opnd.area = d[1];
-    j->opnd.bit = d[2];
-    j->opnd.db = get16(d + 3);
-    j->opnd.offset = get16(d + 5);
-    j->opnd.count = get16(d + 7);
-    j->len = get16(d + 9);
-    return true;
-}
-
-uint8_t modcp_bp_reply_encode(const modcp_bp_reply_t *r, uint8_t *d)
-{
-    put16(d, r->event);
-    put16(d + 2, r->error_nr);
-    put16(d + 4, r->len);
-    return (uint8_t)BP_REPLY_HDR_LEN;
-}
-
-bool modcp_bp_reply_decode(const uint8_t *d, uint8_t len, modcp_bp_reply_t *r)
-{
-    if (len < BP_REPLY_HDR_LEN) {
-        return false;
-    }
-    r->event = get16(d);
-    r->error_nr = get16(d + 2);
-    r->len = get16(d + 4);
-    return true;
-}
+#define put16 modcp_bp_put16
+#define get16 modcp_bp_get16
 
 uint8_t modcp_bp_init_encode(const modcp_bp_init_t *i, uint8_t *d)
 {

@@ -213,11 +213,61 @@ static inline uint32_t modcp_ring_space(const modcp_ring_t *r)
     return used >= MODCP_BP_DEPTH ? 0u : MODCP_BP_DEPTH - used;
 }
 
-/* Header (de)serialisation into block data; return bytes used / false if short. */
-uint8_t modcp_bp_job_encode(const modcp_bp_job_t *j, uint8_t *d);
-bool modcp_bp_job_decode(const uint8_t *d, uint8_t len, modcp_bp_job_t *j);
-uint8_t modcp_bp_reply_encode(const modcp_bp_reply_t *r, uint8_t *d);
-bool modcp_bp_reply_decode(const uint8_t *d, uint8_t len, modcp_bp_reply_t *r);
+/* Header (de)serialisation into block data; return bytes used / false if short.
+ * Layouts: backplane.c. The JOB and REPLY codecs run once per request each (inline). */
+#define MODCP_BP_JOB_HDR_LEN 11u
+#define MODCP_BP_REPLY_HDR_LEN 6u
+static inline void modcp_bp_put16(uint8_t *d, uint16_t v)
+{
+    d[0] = (uint8_t)(v & 0xFFu);
+    d[1] = (uint8_t)(v >> 8);
+}
+static inline uint16_t modcp_bp_get16(const uint8_t *d)
+{
+    return (uint16_t)((unsigned)d[0] | ((unsigned)d[1] << 8));
+}
+static inline uint8_t modcp_bp_job_encode(const modcp_bp_job_t *j, uint8_t *d)
+{
+    d[0] = j->op;
+    d[1] = j->opnd.area;
+    d[2] = j->opnd.bit;
+    modcp_bp_put16(d + 3, j->opnd.db);
+    modcp_bp_put16(d + 5, j->opnd.offset);
+    modcp_bp_put16(d + 7, j->opnd.count);
+    modcp_bp_put16(d + 9, j->len);
+    return (uint8_t)MODCP_BP_JOB_HDR_LEN;
+}
+static inline bool modcp_bp_job_decode(const uint8_t *d, uint8_t len, modcp_bp_job_t *j)
+{
+    if (len < MODCP_BP_JOB_HDR_LEN) {
+        return false;
+    }
+    j->op = d[0];
+    j->opnd.area = d[1];
+    j->opnd.bit = d[2];
+    j->opnd.db = modcp_bp_get16(d + 3);
+    j->opnd.offset = modcp_bp_get16(d + 5);
+    j->opnd.count = modcp_bp_get16(d + 7);
+    j->len = modcp_bp_get16(d + 9);
+    return true;
+}
+static inline uint8_t modcp_bp_reply_encode(const modcp_bp_reply_t *r, uint8_t *d)
+{
+    modcp_bp_put16(d, r->event);
+    modcp_bp_put16(d + 2, r->error_nr);
+    modcp_bp_put16(d + 4, r->len);
+    return (uint8_t)MODCP_BP_REPLY_HDR_LEN;
+}
+static inline bool modcp_bp_reply_decode(const uint8_t *d, uint8_t len, modcp_bp_reply_t *r)
+{
+    if (len < MODCP_BP_REPLY_HDR_LEN) {
+        return false;
+    }
+    r->event = modcp_bp_get16(d);
+    r->error_nr = modcp_bp_get16(d + 2);
+    r->len = modcp_bp_get16(d + 4);
+    return true;
+}
 uint8_t modcp_bp_init_encode(const modcp_bp_init_t *i, uint8_t *d);
 bool modcp_bp_init_decode(const uint8_t *d, uint8_t len, modcp_bp_init_t *i);
 
