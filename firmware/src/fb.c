@@ -97,7 +97,7 @@ static void pump_reply(modcp_fb_t *fb)
             uint32_t rest = (uint32_t)fb->reply.len - fb->reply_pos;
             uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
             if (fb->job_mem != NULL) {
-                memcpy(b->data, fb->job_mem + fb->reply_pos, n);
+                modcp_block_copy(b->data, fb->job_mem + fb->reply_pos, n);
             } else { /* T / C elements; the range was checked on the header */
                 modcp_operand_t o = opnd_at(&fb->job.opnd, fb->reply_pos);
                 (void)modcp_plcmem_read(fb->mem, &o, b->data, n);
@@ -292,7 +292,7 @@ static void rx_data(modcp_fb_t *fb, const modcp_block_t *b)
     modcp_event_t ev = MODCP_EV_NONE;
     switch (jb->op) {
     case MODCP_JOB_WRITE:
-        memcpy(dst, b->data, n);
+        modcp_block_copy(dst, b->data, n);
         break;
     case MODCP_JOB_MASKWRITE:
         ev = exec_maskwrite(fb, b->data);

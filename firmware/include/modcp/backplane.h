@@ -24,6 +24,7 @@
 #include <stdatomic.h>
 #include <stdbool.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "modcp/events.h"
 #include "modcp/map.h"
@@ -181,6 +182,17 @@ static inline void modcp_ring_release(modcp_ring_t *r)
 {
     uint32_t tail = atomic_load_explicit(&r->tail, memory_order_relaxed);
     atomic_store_explicit(&r->tail, tail + 1u, memory_order_release);
+}
+
+/* Copy the n (<= 32) data bytes of a block: a whole block as one fixed-size copy (a few
+ * word moves instead of a byte-count loop), a shorter one as it is. */
+static inline void modcp_block_copy(uint8_t *dst, const uint8_t *src, uint32_t n)
+{
+    if (n == MODCP_BLOCK_SIZE) {
+        memcpy(dst, src, MODCP_BLOCK_SIZE);
+    } else {
+        memcpy(dst, src, n);
+    }
 }
 
 /* Copying forms (tests, and messages built elsewhere). Producer side: publish one
