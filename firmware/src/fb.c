@@ -301,8 +301,12 @@ static void rx_data(modcp_fb_t *fb, const modcp_block_t *b)
         uint32_t done = (uint32_t)fb->job_pos * 8u;
         if (done < jb->opnd.count) {
             uint32_t k = jb->opnd.count - done;
-            modcp_bits_put(dst, jb->opnd.bit, k > (uint32_t)n * 8u ? (uint32_t)n * 8u : k,
-                           b->data);
+            if (jb->opnd.bit == 0u && k >= (uint32_t)n * 8u) {
+                modcp_block_copy(dst, b->data, n); /* whole bytes of the area */
+            } else {
+                modcp_bits_put(dst, jb->opnd.bit, k > (uint32_t)n * 8u ? (uint32_t)n * 8u : k,
+                               b->data);
+            }
         }
         break;
     }
