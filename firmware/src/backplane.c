@@ -26,8 +26,6 @@
 
 #include <string.h>
 
-#define BP_JOB_HDR_LEN 11u
-#define BP_REPLY_HDR_LEN 6u
 #define BP_INIT_LEN 14u
 #define BP_NO_ABORT 0x100u
 
@@ -42,30 +40,6 @@ void modcp_bp_init(modcp_backplane_t *bp)
     atomic_store_explicit(&bp->to_cp.head, 0u, memory_order_relaxed);
     atomic_store_explicit(&bp->to_cp.tail, 0u, memory_order_relaxed);
     atomic_store_explicit(&bp->abort_tag, BP_NO_ABORT, memory_order_release);
-}
-
-modcp_block_t *modcp_ring_slot(modcp_ring_t *r)
-{
-    uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
-    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_acquire);
-    if ((uint32_t)(head - tail) >= MODCP_BP_DEPTH) {
-        return NULL;
-    }
-    return &r->slot[head & (MODCP_BP_DEPTH - 1u)];
-}
-
-void modcp_ring_publish(modcp_ring_t *r, uint8_t *seq)
-{
-    uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
-    r->slot[head & (MODCP_BP_DEPTH - 1u)].seq = *seq;
-    *seq = (uint8_t)(*seq + 1u);
-    atomic_store_explicit(&r->head, head + 1u, memory_order_release);
-}
-
-void modcp_ring_release(modcp_ring_t *r)
-{
-    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_relaxed);
-    atomic_store_explicit(&r->tail, tail + 1u, memory_order_release);
 }
 
 bool modcp_ring_put(modcp_ring_t *r, const modcp_block_t *b, uint8_t *seq)
@@ -90,80 +64,8 @@ bool modcp_ring_get(modcp_ring_t *r, modcp_block_t *b)
     return true;
 }
 
-const modcp_block_t *modcp_ring_peek(const modcp_ring_t *r)
-{
-    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_relaxed);
-    uint32_t head = atomic_load_explicit(&r->head, memory_order_acquire);
-    if (head == tail) {
-        return NULL;
-    }
-    return &r->slot[tail & (MODCP_BP_DEPTH - 1u)];
-}
-
-uint32_t modcp_ring_space(const modcp_ring_t *r)
-{
-    uint32_t head = atomic_load_explicit(&r->head, memory_order_acquire);
-    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_acquire);
-    uint32_t used = head - tail;
-    return used >= MODCP_BP_DEPTH ? 0u : MODCP_BP_DEPTH - used;
-}
-
-static void put16(uint8_t *d, uint16_t v)
-{
-    d[0] = (uint8_t)(v & 0xFFu);
-    d[1] = (uint8_t)(v >> 8);
-}
-
-static uint16_t get16(const uint8_t *d)
-{
-    return (uint16_t)((unsigned)d[0] | ((unsigned)d[1] << 8));
-}
-
-uint8_t modcp_bp_job_encode(const modcp_bp_job_t *j, uint8_t *d)
-{
-    d[0] = j->op;
-    d[1] = j->opnd.area;
-    d[2] = j->opnd.bit;
-    put16(d + 3, j->opnd.db);
-    put16(d + 5, j->opnd.offset);
-    put16(d + 7, j->opnd.count);
-    put16(d + 9, j->len);
-    return (uint8_t)BP_JOB_HDR_LEN;
-}
-
-bool modcp_bp_job_decode(const uint8_t *d, uint8_t len, modcp_bp_job_t *j)
-{
-    if (len < BP_JOB_HDR_LEN) {
-        return false;
-    }
-    j->op = d[0];
-    j->opnd.area = d[1];
-    j->opnd.bit = d[2];
-    j->opnd.db = get16(d + 3);
-    j->opnd.offset = get16(d + 5);
-    j->opnd.count = get16(d + 7);
-    j->len = get16(d + 9);
-    return true;
-}
-
-uint8_t modcp_bp_reply_encode(const modcp_bp_reply_t *r, uint8_t *d)
-{
-    put16(d, r->event);
-    put16(d + 2, r->error_nr);
-    put16(d + 4, r->len);
-    return (uint8_t)BP_REPLY_HDR_LEN;
-}
-
-bool modcp_bp_reply_decode(const uint8_t *d, uint8_t len, modcp_bp_reply_t *r)
-{
-    if (len < BP_REPLY_HDR_LEN) {
-        return false;
-    }
-    r->event = get16(d);
-    r->error_nr = get16(d + 2);
-    r->len = get16(d + 4);
-    return true;
-}
+#define put16 modcp_bp_put16
+#define get16 modcp_bp_get16
 
 uint8_t modcp_bp_init_encode(const modcp_bp_init_t *i, uint8_t *d)
 {

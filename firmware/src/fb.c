@@ -1,7 +1,8 @@
 /* modcp — the CPU side's communication FB (FB 80 / FB 180 model, 004 §4, §7.6).
  *
  * One call per CPU cycle does, in this order:
- *   1. CP_START edge: clear the outputs and start the initialisation (PARAMS + INIT);
+ *   1. CP_START edge: clear the outputs (ERROR_NR / ERROR_INFO included) and start the
+ *      initialisation (PARAMS + INIT); a failed initialisation resets CP_START (in/out);
  *   2. continue pushing a pending REPLY (as many blocks as there are free slots);
  *   3. read CP blocks in place: INIT_ACK while waiting for it; a JOB header is checked
  *      completely (operation, amount, area, range) before any data: a READ is answered
@@ -96,7 +97,7 @@ static void pump_reply(modcp_fb_t *fb)
             uint32_t rest = (uint32_t)fb->reply.len - fb->reply_pos;
             uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
             if (fb->job_mem != NULL) {
-                memcpy(b->data, fb->job_mem + fb->reply_pos, n);
+                modcp_block_copy(b->data, fb->job_mem + fb->reply_pos, n);
             } else { /* T / C elements; the range was checked on the header */
                 modcp_operand_t o = opnd_at(&fb->job.opnd, fb->reply_pos);
                 (void)modcp_plcmem_read(fb->mem, &o, b->data, n);
@@ -291,7 +292,7 @@ static void rx_data(modcp_fb_t *fb, const modcp_block_t *b)
     modcp_event_t ev = MODCP_EV_NONE;
     switch (jb->op) {
     case MODCP_JOB_WRITE:
-        memcpy(dst, b->data, n);
+        modcp_block_copy(dst, b->data, n);
         break;
     case MODCP_JOB_MASKWRITE:
         ev = exec_maskwrite(fb, b->data);
@@ -300,8 +301,12 @@ static void rx_data(modcp_fb_t *fb, const modcp_block_t *b)
         uint32_t done = (uint32_t)fb->job_pos * 8u;
         if (done < jb->opnd.count) {
             uint32_t k = jb->opnd.count - done;
-            modcp_bits_put(dst, jb->opnd.bit, k > (uint32_t)n * 8u ? (uint32_t)n * 8u : k,
-                           b->data);
+            if (jb->opnd.bit == 0u && k >= (uint32_t)n * 8u) {
+                modcp_block_copy(dst, b->data, n); /* whole bytes of the area */
+            } else {
+                modcp_bits_put(dst, jb->opnd.bit, k > (uint32_t)n * 8u ? (uint32_t)n * 8u : k,
+                               b->data);
+            }
         }
         break;
     }
@@ -388,7 +393,9 @@ static void rx_blocks(modcp_fb_t *fb)
         }
         /* PARAMS / INIT / REPLY travel the other way: ignored */
         modcp_ring_release(r);
-        pump_reply(fb);
+        if (fb->reply_pending) {
+            pump_reply(fb);
+        }
     }
 }
 
@@ -437,13 +444,14 @@ static void send_init(modcp_fb_t *fb)
     }
 }
 
-static void run_init(modcp_fb_t *fb, uint32_t now_ms)
+/* Initialisation step; false when it failed in this call (START_TIME over). */
+static bool run_init(modcp_fb_t *fb, uint32_t now_ms)
 {
     if (fb->state != MODCP_FBST_INIT_SEND && fb->state != MODCP_FBST_INIT_WAIT) {
         if (fb->params_pending) {
             (void)push_params(fb); /* PARAMS of the first call */
         }
-        return;
+        return true;
     }
     if ((uint32_t)(now_ms - fb->init_t0_ms) >= fb->start_time_ms) {
         fb->state = MODCP_FBST_FAILED;
@@ -452,7 +460,7 @@ static void run_init(modcp_fb_t *fb, uint32_t now_ms)
         fb->out.cp_start_error = true;
         fb->out.error_nr = MODCP_FB_ERR_INIT;
         fb->out.error_info = fb->init_event;
-        return;
+        return false;
     }
     if (fb->state == MODCP_FBST_INIT_WAIT &&
         (uint32_t)(now_ms - fb->retry_t0_ms) >= MODCP_FB_RETRY_MS) {
@@ -461,10 +469,10 @@ static void run_init(modcp_fb_t *fb, uint32_t now_ms)
     if (fb->state == MODCP_FBST_INIT_SEND && push_params(fb) && !fb->init_sent) {
         send_init(fb);
     }
+    return true;
 }
 
-void modcp_fb_call(modcp_fb_t *fb, const modcp_fb_in_t *in, modcp_fb_out_t *out,
-                   uint32_t now_ms)
+void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint32_t now_ms)
 {
     bool start = in != NULL && in->cp_start;
     fb->out.cp_start_ndr = false;
@@ -476,9 +484,13 @@ void modcp_fb_call(modcp_fb_t *fb, const modcp_fb_in_t *in, modcp_fb_out_t *out,
     }
     fb->last_start = start;
 
-    pump_reply(fb);
+    if (fb->reply_pending) {
+        pump_reply(fb); /* the rest of a reply the ring had no room for */
+    }
     rx_blocks(fb);
-    run_init(fb, now_ms);
+    if (!run_init(fb, now_ms) && in != NULL) {
+        in->cp_start = false; /* 004 §5.5: CP_START is reset, CP_START_ERROR = 1 */
+    }
 
     if (out != NULL) {
         *out = fb->out;

@@ -140,7 +140,7 @@ static void push_blocks(modcp_job_t *j)
         } else {
             uint32_t rest = (uint32_t)j->hdr.len - j->wpos;
             n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
-            memcpy(b->data, j->wdata + j->wpos, n);
+            modcp_block_copy(b->data, j->wdata + j->wpos, n);
             j->wpos = (uint16_t)(j->wpos + n);
         }
         if (j->hdr.op == MODCP_JOB_READ || j->wpos >= j->hdr.len) {
@@ -197,7 +197,7 @@ static modcp_jobp_t rx_reply(modcp_job_t *j, const modcp_block_t *b)
     uint32_t room = j->rlen < j->rcap ? (uint32_t)j->rcap - j->rlen : 0u;
     uint32_t n = b->len < room ? b->len : room;
     if (n > 0u) {
-        memcpy(j->rbuf + j->rlen, b->data, n);
+        modcp_block_copy(j->rbuf + j->rlen, b->data, n);
     }
     /* count everything that arrived (saturating), store only what fits */
     uint32_t total = (uint32_t)j->rlen + b->len;

@@ -47,16 +47,12 @@ static bool is_tc(uint8_t area)
     return area == MODCP_AREA_T || area == MODCP_AREA_C;
 }
 
-static bool coil_area(uint8_t area)
-{
-    return area == MODCP_AREA_M || area == MODCP_AREA_Q || is_tc(area) ||
-           area == MODCP_AREA_DB;
-}
-
-static bool input_area(uint8_t area)
-{
-    return area == MODCP_AREA_M || area == MODCP_AREA_I || area == MODCP_AREA_DB;
-}
+#define AREA_BIT(a) (1u << (a))
+/* The areas a coil window (FC01/05/15) or an input window (FC02) may map onto. */
+#define COIL_AREAS                                                                         \
+    (AREA_BIT(MODCP_AREA_M) | AREA_BIT(MODCP_AREA_Q) | AREA_BIT(MODCP_AREA_T) |            \
+     AREA_BIT(MODCP_AREA_C) | AREA_BIT(MODCP_AREA_DB))
+#define INPUT_AREAS (AREA_BIT(MODCP_AREA_M) | AREA_BIT(MODCP_AREA_I) | AREA_BIT(MODCP_AREA_DB))
 
 uint32_t modcp_map_area_size(const modcp_areas_t *a, uint8_t area)
 {
@@ -97,16 +93,16 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
 {
     const modcp_bitwin_t *wins;
     size_t nwin;
-    bool coils;
+    unsigned usable; /* AREA_BIT set */
 
     if (fc == 1u || fc == 5u || fc == 15u) {
         wins = p->coils;
         nwin = MODCP_COIL_WINDOWS;
-        coils = true;
+        usable = COIL_AREAS;
     } else if (fc == 2u) {
         wins = p->inputs;
         nwin = MODCP_INPUT_WINDOWS;
-        coils = false;
+        usable = INPUT_AREAS;
     } else {
         return MODCP_EV_ILLEGAL_FC;
     }
@@ -117,8 +113,8 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
     const modcp_bitwin_t *w = NULL;
     for (size_t i = 0; i < nwin; i++) {
         const modcp_bitwin_t *c = &wins[i];
-        bool usable = coils ? coil_area(c->area) : input_area(c->area);
-        if (usable && c->from <= addr && addr <= c->to) {
+        if (c->area < 8u && (usable & AREA_BIT(c->area)) != 0u && c->from <= addr &&
+            addr <= c->to) {
             w = c;
             break;
         }

@@ -21,6 +21,34 @@ static modcp_pdu_action_t read_job(modcp_pdu_t *s, const modcp_operand_t *o, uin
                          (uint16_t)(cap > 2u ? cap - 2u : 0u));
 }
 
+/* The registers s->addr .. + qty mapped to their DB bytes (*o, width noted in
+ * s->r32_kind); false with the request refused (s->err) when they do not map. */
+static bool map_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty,
+                     modcp_operand_t *o)
+{
+    modcp_event_t ev = modcp_map_regs(env->p, env->areas, s->fc, s->addr, qty, o);
+    if (ev != MODCP_EV_NONE) {
+        (void)modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+        return false;
+    }
+    s->r32_kind = o->bit;
+    o->bit = 0;
+    return true;
+}
+
+/* The bits s->addr .. + qty mapped to their operand (*o); false with the request
+ * refused (s->err) when they do not map. */
+static bool map_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty,
+                     modcp_operand_t *o)
+{
+    modcp_event_t ev = modcp_map_bits(env->p, env->areas, s->fc, s->addr, qty, o);
+    if (ev != MODCP_EV_NONE) {
+        (void)modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+        return false;
+    }
+    return true;
+}
+
 void modcp_pdu_align_bits(uint8_t *d, uint8_t shift, uint16_t qty)
 {
     uint16_t n = (uint16_t)((qty + 7u) / 8u);
@@ -41,9 +69,8 @@ modcp_pdu_action_t modcp_pdu_read_bits(modcp_pdu_t *s, const modcp_pdu_env_t *en
     (void)len;
     (void)out_len;
     modcp_operand_t o;
-    modcp_event_t ev = modcp_map_bits(env->p, env->areas, s->fc, s->addr, s->qty, &o);
-    if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+    if (!map_bits(s, env, s->qty, &o)) {
+        return MODCP_PDU_FAIL;
     }
     uint16_t bytes;
     if (o.area == MODCP_AREA_T || o.area == MODCP_AREA_C) {
@@ -67,12 +94,9 @@ modcp_pdu_action_t modcp_pdu_read_regs(modcp_pdu_t *s, const modcp_pdu_env_t *en
     (void)len;
     (void)out_len;
     modcp_operand_t o;
-    modcp_event_t ev = modcp_map_regs(env->p, env->areas, s->fc, s->addr, s->qty, &o);
-    if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+    if (!map_regs(s, env, s->qty, &o)) {
+        return MODCP_PDU_FAIL;
     }
-    s->r32_kind = o.bit;
-    o.bit = 0;
     s->x.rbytes = o.count;
     return read_job(s, &o, o.count, pdu, cap);
 }
@@ -91,9 +115,8 @@ modcp_pdu_action_t modcp_pdu_write_coil(modcp_pdu_t *s, const modcp_pdu_env_t *e
         return modcp_pdu_err(s, MODCP_EV_COIL_VALUE, MODCP_EXC_ILLEGAL_VALUE);
     }
     modcp_operand_t o;
-    modcp_event_t ev = modcp_map_bits(env->p, env->areas, s->fc, s->addr, 1, &o);
-    if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+    if (!map_bits(s, env, 1, &o)) {
+        return MODCP_PDU_FAIL;
     }
     s->bitval = value == 0xFF00u ? 1u : 0u;
     s->x.echo = 5;
@@ -112,12 +135,9 @@ modcp_pdu_action_t modcp_pdu_write_reg(modcp_pdu_t *s, const modcp_pdu_env_t *en
         return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
     modcp_operand_t o;
-    modcp_event_t ev = modcp_map_regs(env->p, env->areas, s->fc, s->addr, 1, &o);
-    if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+    if (!map_regs(s, env, 1, &o)) {
+        return MODCP_PDU_FAIL;
     }
-    s->r32_kind = o.bit;
-    o.bit = 0;
     s->x.echo = len;
     return modcp_pdu_job(s, MODCP_JOB_WRITE, &o, o.count, pdu + 3, NULL, 0);
 }
@@ -134,9 +154,8 @@ modcp_pdu_action_t modcp_pdu_write_coils(modcp_pdu_t *s, const modcp_pdu_env_t *
         return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
     modcp_operand_t o;
-    modcp_event_t ev = modcp_map_bits(env->p, env->areas, s->fc, s->addr, s->qty, &o);
-    if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+    if (!map_bits(s, env, s->qty, &o)) {
+        return MODCP_PDU_FAIL;
     }
     s->x.echo = 5;
     return modcp_pdu_job(s, MODCP_JOB_BITWRITE, &o, bc, pdu + 6, NULL, 0);
@@ -154,12 +173,9 @@ modcp_pdu_action_t modcp_pdu_write_regs(modcp_pdu_t *s, const modcp_pdu_env_t *e
         return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
     modcp_operand_t o;
-    modcp_event_t ev = modcp_map_regs(env->p, env->areas, s->fc, s->addr, s->qty, &o);
-    if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+    if (!map_regs(s, env, s->qty, &o)) {
+        return MODCP_PDU_FAIL;
     }
-    s->r32_kind = o.bit;
-    o.bit = 0;
     if (o.count != bc) {
         return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }

@@ -26,7 +26,7 @@ static uint16_t t_[240], c_[240];
 static uint8_t record[MODCP_PARAMS_RECORD_MAX];
 static uint32_t now_us = 1000000, timer_at;
 static uint16_t tx_len;
-static int tx_done;
+static int tx_done, timer_on;
 
 static void f_tx(void *ctx, const uint8_t *b, uint16_t n)
 {
@@ -38,7 +38,26 @@ static void f_tx(void *ctx, const uint8_t *b, uint16_t n)
 static void f_arm(void *ctx, uint32_t us)
 {
     (void)ctx;
-    timer_at = us ? now_us + us : 0;
+    timer_on = us != 0u;
+    timer_at = now_us + us;
+}
+
+/* The one-shot timer the core arms, fired when due (as a port's timer interrupt would):
+ * every expiry due at now_us is delivered, re-arms included. */
+static int due(void)
+{
+    return timer_on && (int32_t)(now_us - timer_at) >= 0;
+}
+
+static void fire_due(void)
+{
+    while (due()) {
+        timer_on = 0;
+        uint32_t t = now_us;
+        now_us = timer_at;
+        modcp_cp_on_timer(&cp, now_us);
+        now_us = t;
+    }
 }
 
 static const modcp_hal_t hal = {.ctx = NULL, .uart_tx = f_tx, .timer_arm = f_arm};
@@ -76,18 +95,25 @@ static void setup(void)
     }
 }
 
-/* One request: bytes in, end of frame, FB cycles until the reply is out. */
+/* One request: bytes in (every timer expiry due between two bytes delivered before the
+ * next byte), the timer's expiries up to the end of the frame, then FB cycles until the
+ * reply is out. */
 static void one(const uint8_t *req, size_t len)
 {
     modcp_fb_in_t in = {true};
     modcp_fb_out_t out;
     tx_done = 0;
     for (size_t k = 0; k < len; k++) {
+        fire_due();
         modcp_cp_on_rx(&cp, req[k], now_us);
         now_us += 1146;
     }
-    now_us = timer_at;
-    modcp_cp_on_timer(&cp, now_us);
+    while (timer_on) { /* the end-of-frame silence: each expiry at its time (nothing is
+                          armed again once the frame is handed over) */
+        timer_on = 0;
+        now_us = timer_at;
+        modcp_cp_on_timer(&cp, now_us);
+    }
     while (!tx_done) {
         modcp_fb_call(&fb, &in, &out, now_us / 1000);
         modcp_cp_poll(&cp, now_us);

@@ -722,6 +722,133 @@ static void test_fb_errors(void **state)
     assert_int_equal(f->fb.state, MODCP_FBST_RUN);
 }
 
+/* ---- FB outputs (004 FB table and §5.5, 001 FB table) ---------------------------------- */
+
+/* 004 §5.5 step 5: "If the SEND fails -> CP_START is reset and CP_START_ERROR = 1".
+ * CP_START is in/out (001: IN_OUT): the FB writes it false in the call that fails, the
+ * error outputs stay until the caller's next rising edge, which retries. */
+static void test_fb_outputs_5_5_init_failure_resets_cp_start(void **state)
+{
+    fx_t *f = *state;
+    modcp_fb_in_t in = {.cp_start = true}; /* kept from call to call, like M180.0 */
+    for (f->now_ms = 0; f->now_ms < START_TIME_MS; f->now_ms += 10u) {
+        modcp_fb_call(&f->fb, &in, &f->out, f->now_ms); /* the CP stays silent */
+        assert_true(in.cp_start);
+        assert_false(f->out.cp_start_error);
+    }
+    modcp_fb_call(&f->fb, &in, &f->out, f->now_ms); /* START_TIME */
+    assert_false(in.cp_start); /* reset by the FB */
+    assert_true(f->out.cp_start_error);
+    assert_false(f->out.cp_start_ok);
+    assert_int_equal(f->out.error_nr, MODCP_FB_ERR_INIT);
+    assert_int_equal(f->fb.state, MODCP_FBST_FAILED);
+
+    /* the outputs keep the error while CP_START stays reset */
+    for (int k = 0; k < 50; k++) {
+        f->now_ms += 100u;
+        modcp_fb_call(&f->fb, &in, &f->out, f->now_ms);
+        assert_false(in.cp_start);
+        assert_true(f->out.cp_start_error);
+        assert_int_equal(f->out.error_nr, MODCP_FB_ERR_INIT);
+        assert_int_equal(f->fb.state, MODCP_FBST_FAILED);
+    }
+
+    /* the user program sets CP_START again: a rising edge, the errors are cleared and
+     * the initialisation runs again, this time with the CP answering */
+    while (poll(f) != MODCP_JOBP_NOTHING) {
+    }
+    in.cp_start = true;
+    f->now_ms += 100u;
+    modcp_fb_call(&f->fb, &in, &f->out, f->now_ms);
+    assert_false(f->out.cp_start_error);
+    assert_int_equal(f->out.error_nr, 0);
+    assert_int_equal(f->out.error_info, 0);
+    modcp_jobp_t r;
+    int guard = 0;
+    while ((r = poll(f)) != MODCP_JOBP_INIT) {
+        if (r == MODCP_JOBP_NOTHING) {
+            modcp_fb_call(&f->fb, &in, &f->out, f->now_ms);
+        }
+        assert_true(++guard < 20);
+    }
+    assert_true(modcp_job_send_ack(&f->job, MODCP_EV_NONE));
+    modcp_fb_call(&f->fb, &in, &f->out, f->now_ms);
+    assert_true(f->out.cp_start_ok);
+    assert_false(f->out.cp_start_error);
+    assert_true(in.cp_start); /* a successful initialisation leaves CP_START alone */
+    assert_int_equal(f->fb.state, MODCP_FBST_RUN);
+}
+
+/* 004 §5.5: a failure with the CP answering "not ready" keeps ERROR_INFO = the CP's
+ * last event after CP_START was reset, until the next rising edge. */
+static void test_fb_outputs_5_5_error_info_kept_until_edge(void **state)
+{
+    fx_t *f = *state;
+    modcp_fb_in_t in = {.cp_start = true};
+    for (f->now_ms = 0; in.cp_start && f->now_ms < 2u * START_TIME_MS; f->now_ms++) {
+        modcp_fb_call(&f->fb, &in, &f->out, f->now_ms);
+        modcp_jobp_t r;
+        while ((r = poll(f)) != MODCP_JOBP_NOTHING) {
+            if (r == MODCP_JOBP_INIT) {
+                assert_true(modcp_job_send_ack(&f->job, MODCP_EV_SLAVE_ADDR));
+            }
+        }
+    }
+    assert_false(in.cp_start);
+    assert_int_equal(f->now_ms, START_TIME_MS + 1u); /* reset in the call at START_TIME */
+    for (int k = 0; k < 20; k++) {
+        f->now_ms += 1000u;
+        modcp_fb_call(&f->fb, &in, &f->out, f->now_ms);
+        assert_true(f->out.cp_start_error);
+        assert_int_equal(f->out.error_nr, MODCP_FB_ERR_INIT);
+        assert_int_equal(f->out.error_info, MODCP_EV_SLAVE_ADDR);
+    }
+    in.cp_start = true; /* rising edge: errors cleared */
+    modcp_fb_call(&f->fb, &in, &f->out, f->now_ms);
+    assert_false(f->out.cp_start_error);
+    assert_int_equal(f->out.error_nr, 0);
+    assert_int_equal(f->out.error_info, 0);
+}
+
+/* 001 FB table: "a rising edge [of CP_START] also clears the errors"; 004 §7.6: a job
+ * error (10..19) does not stop the FB. ERROR_NR / ERROR_INFO show the last error: kept
+ * through later successful jobs and while CP_START stays set, replaced by a newer error,
+ * cleared only by a rising edge of CP_START. */
+static void test_fb_outputs_001_rising_edge_clears_errors(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    f->ndr_calls = 0;
+    assert_int_equal(start(f, 9, MODCP_AREA_M, 0, 0, 0, 1, 1, 1024), MODCP_EV_NONE);
+    expect_fb_error(f, MODCP_FB_ERR_PROC_CODE, 9);
+    /* a successful write and many calls later: still shown */
+    memset(f->wbuf, 0x5A, 4);
+    assert_int_equal(start(f, MODCP_JOB_WRITE, MODCP_AREA_DB, 800, 0, 0, 4, 4, 1024),
+                     MODCP_EV_NONE);
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+    assert_int_equal(f->db800[3], 0x5A);
+    for (int k = 0; k < 20; k++) {
+        fb(f, true);
+    }
+    assert_int_equal(f->out.error_nr, MODCP_FB_ERR_PROC_CODE);
+    assert_int_equal(f->out.error_info, 9);
+    /* a newer error replaces it */
+    f->ndr_calls = 0;
+    assert_int_equal(start(f, MODCP_JOB_BITWRITE, MODCP_AREA_M, 0, 0, 0, 0, 1, 1024),
+                     MODCP_EV_NONE);
+    expect_fb_error(f, MODCP_FB_ERR_AMOUNT0, 0);
+    /* CP_START falls: nothing cleared yet */
+    fb(f, false);
+    assert_int_equal(f->out.error_nr, MODCP_FB_ERR_AMOUNT0);
+    assert_true(f->out.cp_start_ok);
+    /* rising edge: ERROR_NR / ERROR_INFO cleared (and the FB initialises again) */
+    init_ok(f);
+    assert_int_equal(f->out.error_nr, 0);
+    assert_int_equal(f->out.error_info, 0);
+    assert_false(f->out.cp_start_error);
+}
+
 /* (0E)38H / (0E)39H come from the memory model and are not FB error numbers. */
 static void test_access_errors(void **state)
 {
@@ -1149,6 +1276,9 @@ int main(void)
         T(test_tags_cycle_and_reuse),
         T(test_job_abort),
         T(test_fb_errors),
+        T(test_fb_outputs_5_5_init_failure_resets_cp_start),
+        T(test_fb_outputs_5_5_error_info_kept_until_edge),
+        T(test_fb_outputs_001_rising_edge_clears_errors),
         T(test_access_errors),
         T(test_work_db_missing),
         T(test_reply_checks),

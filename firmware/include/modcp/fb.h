@@ -3,10 +3,15 @@
  * The user program calls modcp_fb_call() once per cycle. The FB
  *  - sends the parameter record (PARAMS) at its first call, like the CPU re-sending
  *    the CP parameters at every start;
- *  - on a rising edge of CP_START: clears its outputs, records the real area sizes,
- *    sends PARAMS + INIT and waits for INIT_ACK; retries every retry interval while the
- *    CP answers "not ready" or does not answer, until START_TIME; then CP_START_OK, or
- *    CP_START_ERROR with ERROR_NR 2 / ERROR_INFO = the CP's event;
+ *  - on a rising edge of CP_START: clears its outputs (ERROR_NR / ERROR_INFO included:
+ *    "a rising edge also clears the errors", 001 FB table), records the real area
+ *    sizes, sends PARAMS + INIT and waits for INIT_ACK; retries every retry interval
+ *    while the CP answers "not ready" or does not answer, until START_TIME; then
+ *    CP_START_OK, or CP_START_ERROR with ERROR_NR 2 / ERROR_INFO = the CP's event, and
+ *    CP_START reset (004 §5.5: "CP_START is reset and CP_START_ERROR = 1"), so that the
+ *    caller's next rising edge retries;
+ *  - ERROR_NR / ERROR_INFO keep the last error (initialisation or job, 004 §7.6) until
+ *    the next rising edge of CP_START;
  *  - executes jobs: reads and register writes against plcmem, FC05/15 bit writes by
  *    read-modify-write; sets CP_START_NDR for one call when a write job was executed.
  *
@@ -45,8 +50,12 @@ enum {
     MODCP_FB_ERR_AREA = 18, /* illegal memory area */
 };
 
+/* The FB's in/out parameters (CP_START is IN_OUT in the manual, 001 FB table): the
+ * caller keeps this struct from call to call, like the memory bit CP_START is kept in
+ * (M180.0 in 004 §5.4's example). */
 typedef struct {
-    bool cp_start; /* IN: rising edge starts the initialisation */
+    bool cp_start; /* IN_OUT: a rising edge starts the initialisation; the FB resets it
+                      (writes false) when the initialisation fails */
 } modcp_fb_in_t;
 
 typedef struct {
@@ -102,8 +111,8 @@ void modcp_fb_init(modcp_fb_t *fb, modcp_backplane_t *bp, modcp_plcmem_t *mem,
                    const uint8_t *record, uint16_t record_len, uint16_t work_db,
                    uint32_t start_time_ms);
 
-/* One call per CPU cycle. */
-void modcp_fb_call(modcp_fb_t *fb, const modcp_fb_in_t *in, modcp_fb_out_t *out,
-                   uint32_t now_ms);
+/* One call per CPU cycle. in may be NULL (CP_START false); in->cp_start is written
+ * false in the call in which the initialisation fails. */
+void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint32_t now_ms);
 
 #endif
