@@ -212,6 +212,7 @@ int main(void)
             modcp_fb_in_t in = {.cp_start = cp_start};
             last_cycle_ms = now_ms;
             modcp_fb_call(&fb, &in, &fb_out, now_ms);
+            cp_start = in.cp_start; /* CP_START is in/out: a failed init resets it */
             cycles++;
             ran = true;
             seen = bp_signature();   /* the rings as the FB left them */
