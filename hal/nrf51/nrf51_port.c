@@ -135,6 +135,7 @@ void modcp_nrf51_port_start(modcp_nrf51_port_t *port, modcp_cp_t *cp, const modc
     uintptr_t u = port->cfg->uart;
     port->cp = cp;
     port->tx_active = false;
+    port->rs485 = p->iface == (uint8_t)MODCP_IFACE_RS485;
     UART_ENABLE(u) = 0u;
     UART_PSELTXD(u) = port->cfg->txd_pin;
     UART_PSELRXD(u) = port->cfg->rxd_pin;
@@ -177,15 +178,19 @@ void modcp_nrf51_port_uart_isr(modcp_nrf51_port_t *port)
     if (port->tx_active && port->tx_len == 0u) {
         tx_done(port);
     }
-    if (UART_EVENTS_TXDRDY(u) != 0u) {
+    /* Silicon: TXDRDY comes one character after the write, so this loop sends one byte
+     * per interrupt. QEMU: the write is complete at once and sets TXDRDY again, so the
+     * loop sends the whole frame and reports its end before looking at received bytes. */
+    while (UART_EVENTS_TXDRDY(u) != 0u) {
         UART_EVENTS_TXDRDY(u) = 0u;
-        if (port->tx_active) {
-            if (port->tx_pos < port->tx_len) {
-                port->tx_bytes++;
-                UART_TXD(u) = port->tx_buf[port->tx_pos++];
-            } else {
-                tx_done(port); /* the last byte's stop bit has left */
-            }
+        if (!port->tx_active) {
+            break;
+        }
+        if (port->tx_pos < port->tx_len) {
+            port->tx_bytes++;
+            UART_TXD(u) = port->tx_buf[port->tx_pos++];
+        } else {
+            tx_done(port); /* the last byte's stop bit has left */
         }
     }
     uint8_t err = 0u;

@@ -12,7 +12,10 @@
  * transmitted" (nRF51 RM v3.0, 29.5) and has no transmit buffer beyond TXD, so the
  * TXDRDY after the last byte is the moment its stop bit has left: the port reports
  * modcp_cp_on_tx_done() there (a frame of 0 bytes: from the interrupt, pended by
- * software, never from inside uart_tx).
+ * software, never from inside uart_tx). With RS232 / RS422 a character received after
+ * the last byte was written also completes the transmission (the master answers only
+ * after our last stop bit): under QEMU the master may have the reply, and its next
+ * request may be in, before the guest has taken the last TXDRDY interrupt.
  *
  * Line format: the nRF51 UART has 8 data bits, 1 stop bit, and parity none or even
  * only. Odd parity, 7 data bits and 2 stop bits cannot be produced: such a record runs
@@ -97,6 +100,7 @@ typedef struct {
     const uint8_t *tx_buf;
     uint16_t tx_len;
     uint16_t tx_pos;
+    bool rs485;
     bool tx_active;   /* a frame is being sent: on_tx_done still to come */
     uint32_t os_left; /* one-shot: microseconds still to wait after the running compare */
     uint32_t rx_bytes;
