@@ -8,8 +8,9 @@
  *   LED matrix: row 1 (P0.13) driven high; SF = column 1 (P0.4), TXD = column 2
  *          (P0.5), RXD = column 3 (P0.6), active low
  * Timers:
- *   TIMER0  32-bit microsecond time base (free running) and the 1 ms tick   IRQ 8
+ *   TIMER0  32-bit microsecond time base (free running, no interrupt)
  *   TIMER1  end-of-frame one-shot                                           IRQ 9
+ *   TIMER2  1 ms tick (CP task, wakes the main loop)                        IRQ 10
  * No SysTick (the nRF51's Cortex-M0 has none; QEMU models one anyway, unused here).
  * No console: the nRF51 has a single UART and the Modbus line uses it; the console
  * functions of board.h read nothing and write nowhere (see docs/porting.md). */
@@ -81,8 +82,9 @@ void board_init(void)
 
     /* the CP task runs at the CP's priority */
     SCB_SHPR3 = (SCB_SHPR3 & ~(0xFFu << 16)) | ((uint32_t)PRIO_CP << 16);
-    modcp_nrf51_clock_init(MODCP_NRF51_TIMER0, TICK_US);
-    irq_enable(MODCP_NRF51_IRQ_TIMER0, PRIO_CP);
+    modcp_nrf51_clock_init(MODCP_NRF51_TIMER0);
+    modcp_nrf51_tick_init(MODCP_NRF51_TIMER2, TICK_US);
+    irq_enable(MODCP_NRF51_IRQ_TIMER2, PRIO_CP);
     modcp_nrf51_port_init(&port, &port_cfg);
 }
 
@@ -132,9 +134,9 @@ static void uart0_handler(void)
     modcp_nrf51_port_uart_isr(&port);
 }
 
-static void timer0_handler(void)
+static void timer2_handler(void)
 {
-    if (modcp_nrf51_clock_tick_isr()) {
+    if (modcp_nrf51_tick_isr()) {
         modcp_nrf51_port_uart_isr(&port); /* safety net: a TXDRDY without its interrupt */
         board_cp_task_request();
     }
@@ -159,10 +161,11 @@ __attribute__((section(".isr_vector"), used)) static const CM_VECTORS_T(MODCP_NR
         /* 0 POWER_CLOCK, 1 RADIO */ D, D,
         /* 2 UART0 */ uart0_handler,
         /* 3 .. 7 */ D, D, D, D, D,
-        /* 8 TIMER0 */ timer0_handler,
+        /* 8 TIMER0 */ D,
         /* 9 TIMER1 */ timer1_handler,
-        /* 10 .. 31 */
-        D, D, D, D, D, D, D, D, D, D, D, D, D, D, D, D, D, D, D, D, D, D,
+        /* 10 TIMER2 */ timer2_handler,
+        /* 11 .. 31 */
+        D, D, D, D, D, D, D, D, D, D, D, D, D, D, D, D, D, D, D, D, D,
     },
 };
 #undef D

@@ -1,5 +1,5 @@
-/* modcp HAL (nRF51) — the crystal, TIMER0 as the microsecond time base and the tick,
- * and GPIO outputs. */
+/* modcp HAL (nRF51) — the crystal, the microsecond time base (TIMER0), the periodic
+ * tick (TIMER2) and GPIO outputs. */
 #include <stdbool.h>
 #include <stdint.h>
 
@@ -7,8 +7,7 @@
 #include "nrf51_regs.h"
 
 #define HFCLK_SPINS 100000u
-#define CC_NOW 0u  /* CAPTURE target: the current count */
-#define CC_TICK 1u /* compare: the next tick */
+#define CC_NOW 0u /* CAPTURE target: the current count */
 
 bool modcp_nrf51_hfclk_start(void)
 {
@@ -23,27 +22,29 @@ bool modcp_nrf51_hfclk_start(void)
 }
 
 static uintptr_t clk_timer;
-static uint32_t tick_us;
-static uint32_t tick_next;
+static uintptr_t tick_timer;
 static uint32_t ms_last_us;
 static uint32_t ms_rem_us;
 static uint32_t ms_count;
 
-void modcp_nrf51_clock_init(uintptr_t timer, uint32_t tick)
+static void timer_setup(uintptr_t t, uint32_t bitmode)
+{
+    TIMER_TASKS_STOP(t) = 1u;
+    TIMER_MODE(t) = TIMER_MODE_TIMER;
+    TIMER_BITMODE(t) = bitmode;
+    TIMER_PRESCALER(t) = TIMER_PRESCALER_1MHZ;
+    TIMER_SHORTS(t) = 0u;
+    TIMER_INTENCLR(t) = 0xFFFFFFFFu;
+    TIMER_TASKS_CLEAR(t) = 1u;
+    for (uint32_t n = 0; n < 4u; n++) {
+        TIMER_EVENTS_COMPARE(t, n) = 0u;
+    }
+}
+
+void modcp_nrf51_clock_init(uintptr_t timer)
 {
     clk_timer = timer;
-    tick_us = tick != 0u ? tick : 1000u;
-    TIMER_TASKS_STOP(timer) = 1u;
-    TIMER_MODE(timer) = TIMER_MODE_TIMER;
-    TIMER_BITMODE(timer) = TIMER_BITMODE_32;
-    TIMER_PRESCALER(timer) = TIMER_PRESCALER_1MHZ;
-    TIMER_SHORTS(timer) = 0u;
-    TIMER_INTENCLR(timer) = 0xFFFFFFFFu;
-    TIMER_TASKS_CLEAR(timer) = 1u;
-    TIMER_EVENTS_COMPARE(timer, CC_TICK) = 0u;
-    tick_next = tick_us;
-    TIMER_CC(timer, CC_TICK) = tick_next;
-    TIMER_INTENSET(timer) = TIMER_INT_COMPARE(CC_TICK);
+    timer_setup(timer, TIMER_BITMODE_32); /* free running, no interrupt */
     ms_last_us = 0u;
     ms_rem_us = 0u;
     ms_count = 0u;
@@ -75,21 +76,25 @@ uint32_t modcp_nrf51_clock_ms(void)
     return ms;
 }
 
-bool modcp_nrf51_clock_tick_isr(void)
+void modcp_nrf51_tick_init(uintptr_t timer, uint32_t tick_us)
 {
-    if (TIMER_EVENTS_COMPARE(clk_timer, CC_TICK) == 0u) {
+    tick_timer = timer;
+    timer_setup(timer, TIMER_BITMODE_16);
+    /* COMPARE[0] clears the counter: periodic, like SysTick, in hardware. (A compare
+     * value moved along on the free-running counter instead could be set behind the
+     * counter when the interrupt comes late, and then match only after a wrap.) */
+    TIMER_CC(timer, 0) = tick_us != 0u && tick_us <= 0xFFFFu ? tick_us : 1000u;
+    TIMER_SHORTS(timer) = TIMER_SHORTS_COMPARE_CLEAR(0);
+    TIMER_INTENSET(timer) = TIMER_INT_COMPARE(0);
+    TIMER_TASKS_START(timer) = 1u;
+}
+
+bool modcp_nrf51_tick_isr(void)
+{
+    if (TIMER_EVENTS_COMPARE(tick_timer, 0) == 0u) {
         return false;
     }
-    TIMER_EVENTS_COMPARE(clk_timer, CC_TICK) = 0u;
-    uint32_t now = modcp_nrf51_clock_us();
-    tick_next += tick_us;
-    /* Late by more than a tick (a long critical section, or a busy host under QEMU):
-     * skip the missed ticks. A compare value already passed would only match again
-     * after the 32-bit counter wrapped (71 minutes). */
-    if ((int32_t)(tick_next - now) < 16) {
-        tick_next = now + tick_us;
-    }
-    TIMER_CC(clk_timer, CC_TICK) = tick_next;
+    TIMER_EVENTS_COMPARE(tick_timer, 0) = 0u;
     (void)modcp_nrf51_clock_ms(); /* keeps the millisecond count extended */
     return true;
 }

@@ -1,8 +1,9 @@
 /* modcp HAL for the Nordic nRF51 series (nRF51822: BBC micro:bit), Cortex-M0.
  *
  *   Time base     TIMER0, 32 bit at 1 MHz, free running: its counter is the microsecond
- *                 time (read by a CAPTURE task into CC[0]); CC[1] compares give the
- *                 board's periodic tick (the nRF51 has no SysTick).
+ *                 time (read by a CAPTURE task into CC[0]).
+ *   Tick          TIMER2, a COMPARE[0] that clears the counter: the board's periodic
+ *                 1 ms interrupt (the nRF51's Cortex-M0 has no SysTick).
  *   Modbus port   UART0 (RXDRDY, TXDRDY, ERROR events, one interrupt)
  *                 TIMER1 at 1 MHz: the end-of-frame one-shot (modcp_hal_t.timer_arm). On
  *                 silicon TIMER1 has 16 bits: a longer wait is run as several compares.
@@ -59,16 +60,17 @@ enum {
 /* Start the 16 MHz crystal oscillator (UART baud accuracy); false when it did not
  * report started within a bounded wait (the SoC then stays on its RC oscillator). */
 bool modcp_nrf51_hfclk_start(void);
-/* Start `timer` (TIMER0: 32 bit) free running at 1 MHz, with a compare interrupt every
- * tick_us (the board enables the timer's interrupt). */
-void modcp_nrf51_clock_init(uintptr_t timer, uint32_t tick_us);
+/* Start `timer` (TIMER0: 32 bit) free running at 1 MHz. */
+void modcp_nrf51_clock_init(uintptr_t timer);
 /* Microseconds since modcp_nrf51_clock_init (wraps at 2^32) and milliseconds (needs a
  * call at least every 71 minutes: the tick does it). Safe from thread mode and
  * interrupts. */
 uint32_t modcp_nrf51_clock_us(void);
 uint32_t modcp_nrf51_clock_ms(void);
-/* The time base timer's interrupt: true when a tick is due (the next one is set up). */
-bool modcp_nrf51_clock_tick_isr(void);
+/* Start `timer` (TIMER2) as a periodic interrupt every tick_us (<= 65535); the board
+ * enables its interrupt. Its handler calls modcp_nrf51_tick_isr(): true on a tick. */
+void modcp_nrf51_tick_init(uintptr_t timer, uint32_t tick_us);
+bool modcp_nrf51_tick_isr(void);
 
 /* ---- GPIO -------------------------------------------------------------------------- */
 
