@@ -2,15 +2,18 @@
 #
 #   cmake -DCMAKE_TOOLCHAIN_FILE=cmake/arm-none-eabi.cmake -DMODCP_ARM_CPU=cortex-m3 ...
 #
-# MODCP_ARM_CPU selects the core: cortex-m3 (soft float) or cortex-m4 (FPv4-SP, hard
-# float ABI). Everything (core library, HAL, boards) is compiled -Os with function and
+# MODCP_ARM_CPU selects the core (cmake/cortex-m-profiles.cmake): cortex-m0, cortex-m0plus,
+# cortex-m3 (soft float), cortex-m4 (FPv4-SP), cortex-m7 (FPv5 double precision),
+# cortex-m33 (FPv5-SP, ARMv8-M mainline without TrustZone code); hard float ABI where
+# there is an FPU. Everything (core library, HAL, boards) is compiled -Os with function and
 # data sections; executables are linked with --gc-sections against newlib-nano and no
 # host start files (each board brings its own startup code and linker script).
 set(CMAKE_SYSTEM_NAME Generic)
 set(CMAKE_SYSTEM_PROCESSOR arm)
 
-set(MODCP_ARM_CPU "cortex-m3" CACHE STRING "Cortex-M core: cortex-m3 or cortex-m4")
-set_property(CACHE MODCP_ARM_CPU PROPERTY STRINGS cortex-m3 cortex-m4)
+include(${CMAKE_CURRENT_LIST_DIR}/cortex-m-profiles.cmake)
+set(MODCP_ARM_CPU "cortex-m3" CACHE STRING "Cortex-M core: ${MODCP_ARM_CPUS}")
+set_property(CACHE MODCP_ARM_CPU PROPERTY STRINGS ${MODCP_ARM_CPUS})
 # try_compile() projects see the same core.
 list(APPEND CMAKE_TRY_COMPILE_PLATFORM_VARIABLES MODCP_ARM_CPU)
 
@@ -26,13 +29,7 @@ set(CMAKE_RANLIB ${_prefix}ranlib CACHE FILEPATH "ranlib")
 # No host executables can run: test the compiler with a static library.
 set(CMAKE_TRY_COMPILE_TARGET_TYPE STATIC_LIBRARY)
 
-if(MODCP_ARM_CPU STREQUAL "cortex-m4")
-  set(_cpu "-mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16")
-elseif(MODCP_ARM_CPU STREQUAL "cortex-m3")
-  set(_cpu "-mcpu=cortex-m3 -mthumb -mfloat-abi=soft")
-else()
-  message(FATAL_ERROR "MODCP_ARM_CPU must be cortex-m3 or cortex-m4, not '${MODCP_ARM_CPU}'")
-endif()
+modcp_cortex_m_flags(${MODCP_ARM_CPU} _cpu)
 
 set(CMAKE_C_FLAGS_INIT "${_cpu} -ffunction-sections -fdata-sections -fno-common")
 set(CMAKE_ASM_FLAGS_INIT "${_cpu}")

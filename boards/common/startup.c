@@ -32,8 +32,11 @@ void Reset_Handler(void)
     for (uint32_t *dst = _sbss; dst < _ebss;) {
         *dst++ = 0u;
     }
+#if !defined(__ARM_ARCH_6M__) && !defined(__ARM_ARCH_8M_BASE__)
+    /* (ARMv6-M: CCR is read-only, SHCSR / CFSR do not exist, every fault is HardFault) */
     SCB_CCR |= CCR_DIV_0_TRP;
     SCB_SHCSR |= SHCSR_FAULTS_ENA;
+#endif
     (void)main();
     for (;;) {
         cm_wfi();
@@ -50,7 +53,9 @@ void Default_Handler(void)
     uint32_t ipsr;
     __asm__ volatile("mrs %0, ipsr" : "=r"(ipsr));
     startup_fault_ipsr = ipsr;
+#if !defined(__ARM_ARCH_6M__) && !defined(__ARM_ARCH_8M_BASE__)
     startup_fault_cfsr = SCB_CFSR;
+#endif
     cm_disable_irqs();
     for (;;) {
     }

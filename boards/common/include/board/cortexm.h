@@ -94,10 +94,21 @@ static inline void cm_irq_restore(uint32_t primask)
     __asm__ volatile("msr primask, %0" ::"r"(primask) : "memory");
 }
 
-/* BASEPRI: mask every interrupt at prio or lower urgency (numerically >= prio). */
+/* BASEPRI: mask every interrupt at prio or lower urgency (numerically >= prio).
+ * ARMv6-M (Cortex-M0/M0+) and ARMv8-M baseline have no BASEPRI: there any prio != 0
+ * masks every interrupt (PRIMASK) and 0 unmasks them, which is what the callers (thread
+ * mode with interrupts enabled, a short copy in between) need. */
 static inline void cm_set_basepri(uint32_t prio)
 {
+#if defined(__ARM_ARCH_6M__) || defined(__ARM_ARCH_8M_BASE__)
+    if (prio != 0u) {
+        __asm__ volatile("cpsid i" ::: "memory");
+    } else {
+        __asm__ volatile("cpsie i" ::: "memory");
+    }
+#else
     __asm__ volatile("msr basepri, %0\n\tisb" ::"r"(prio) : "memory");
+#endif
 }
 
 static inline void cm_wfi(void)
