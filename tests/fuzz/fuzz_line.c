@@ -17,7 +17,10 @@
  * In the fuzz targets the first input byte selects the CP's parameter set (cfg_params):
  * 0 the manual's example, 1 + 32-bit registers, scanner, comm loss, 2 RS485 with
  * reply suppression, t1.5 check, Modbus end-of-frame timing, DB bit windows,
- * CP 441 job limit, 3 the CP 341 function set 8N2 f_MUL 3.
+ * CP 441 job limit, 3 the CP 341 function set 8N2 f_MUL 3, 4 RS232 automatic secondary
+ * signals: DSR is ON and CTS follows RTS unless the input says otherwise -- in this
+ * set 0xF8 toggles "CTS stuck OFF" and 0xF9 toggles DSR instead of parity / framing
+ * errors (both are ON again before the closing good request).
  * Both framings: built with MODCP_FUZZ_FRAMING = 0 (RTU: fuzz_rtu) or 1 (ASCII:
  * fuzz_ascii) the whole input is one framing -- as libFuzzer targets with clang
  * (-DMODCP_FUZZ=ON) and as replays of tests/fuzz/corpus/<target> (replay_main.c).
@@ -57,12 +60,13 @@ typedef struct {
     uint8_t tx[600];
     uint16_t tx_len;
     int tx_pending;
+    int rts, cts_stuck_off, dsr_off, signals_changed; /* cfg 4 */
 } fworld_t;
 
 static fworld_t W;
 static fworld_t SNAP; /* memory image before the input */
 static int ascii_mode; /* Modbus ASCII framing instead of RTU (test code) */
-#define NCFG 4
+#define NCFG 5
 static unsigned cfg; /* parameter set 0 .. NCFG-1 (cfg_params) */
 
 static int hexval(uint8_t c)
@@ -189,6 +193,12 @@ static void cfg_params(modcp_params_t *p)
         p->coils[4] = (modcp_bitwin_t){MODCP_AREA_DB, 8192, 8991, 0, 800};
         p->inputs[2] = (modcp_bitwin_t){MODCP_AREA_DB, 8192, 8991, 0, 900};
         break;
+    case 4:
+        p->rs232_auto = 1;
+        p->rts_on_delay_ms = 1;
+        p->rts_off_delay_ms = 1;
+        p->baud = 38400;
+        break;
     case 3:
         p->fset = MODCP_FSET_CP341;
         p->parity = MODCP_PARITY_NONE;
@@ -198,6 +208,24 @@ static void cfg_params(modcp_params_t *p)
         break;
     default:
         break;
+    }
+}
+
+static void f_signal(void *ctx, modcp_signal_t sig, bool on)
+{
+    fworld_t *w = ctx;
+    if (sig == MODCP_SIG_RTS) {
+        w->rts = on;
+        w->signals_changed = 1;
+    }
+}
+
+/* cfg 4: the modem's CTS follows RTS (one step later), DSR as the input sets it. */
+static void signals(void)
+{
+    if (W.signals_changed) {
+        W.signals_changed = 0;
+        modcp_cp_on_signals(&W.cp, W.rts && !W.cts_stuck_off, !W.dsr_off, W.now_us);
     }
 }
 
@@ -231,12 +259,13 @@ static void setup_world(void)
     W.mem = (modcp_plcmem_t){.i = W.i, .q = W.q, .m = W.m, .t = W.t, .c = W.c,
                              .i_size = sizeof W.i, .q_size = sizeof W.q, .m_size = sizeof W.m,
                              .t_count = 240, .c_count = 240, .dbs = W.dbs, .db_count = NDB};
-    W.hal = (modcp_hal_t){.ctx = &W, .uart_tx = f_tx, .timer_arm = f_arm};
+    W.hal = (modcp_hal_t){.ctx = &W, .uart_tx = f_tx, .timer_arm = f_arm, .set_signal = f_signal};
     W.record_len = (uint16_t)modcp_params_encode(&p, W.record, sizeof W.record);
     modcp_bp_init(&W.bp);
     modcp_fb_init(&W.fb, &W.bp, &W.mem, W.record, W.record_len, 80, 5000);
     modcp_cp_init(&W.cp, &W.hal, &W.bp);
     W.now_us = 5000000;
+    modcp_cp_on_signals(&W.cp, false, true, W.now_us); /* CTS OFF (RTS is), DSR ON */
     /* recognisable memory contents */
     for (unsigned k = 0; k < sizeof W.m; k++) W.m[k] = (uint8_t)(k * 7u);
     for (unsigned k = 0; k < sizeof W.i; k++) W.i[k] = (uint8_t)(k * 3u);
@@ -275,6 +304,7 @@ static void advance(uint32_t us)
 {
     uint32_t end = W.now_us + us;
     while ((int32_t)(end - W.now_us) > 0) {
+        signals();
         if (W.timer_at != 0 && (int32_t)(W.timer_at - end) <= 0) {
             W.now_us = W.timer_at;
             W.timer_at = 0;
@@ -335,23 +365,26 @@ static size_t send_fc08(uint16_t sub, uint16_t data, uint8_t *req)
         memcpy(req, bin, 8);
     }
     advance(40000); /* silence: whatever was going on is over */
-    settle();
+    fb_cycle();
     for (size_t k = 0; k < n; k++) {
         modcp_cp_on_rx(&W.cp, req[k], W.now_us);
         advance(100);
     }
-    advance(60000);
-    settle();
+    advance(60000); /* t3.5 x f_MUL at 2400 baud, turnaround, RTS delays: the reply is out */
+    fb_cycle();
     return n;
 }
 
-/* The CP answers an echo (FC08/0000) after the input. With the extended function set
+/* The CP answers an echo (FC08/0000) after the input (and its jobs: settle()). With the extended function set
  * the input may have forced listen-only mode (FC08/0004) or changed the ASCII input
  * delimiter (FC08/0003): a restart (FC08/0001, processed without a reply in listen-only
  * mode; ended by the delimiter in force) comes first, then the echo ends with CR LF. */
 static void good_request_answered(void)
 {
     uint8_t req[32];
+    W.cts_stuck_off = 0;
+    W.dsr_off = 0;
+    W.signals_changed = 1;
     if (cfg != 3) {
         (void)send_fc08(0x0001, 0x0000, req);
     }
@@ -435,6 +468,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         } else if (b <= 0xF7) {
             fr_len = 0;
             advance(b == 0xF0 ? 5000u : (uint32_t)(b & 7u) * 1000u);
+        } else if (cfg == 4 && (b == 0xF8 || b == 0xF9)) {
+            if (b == 0xF8) {
+                W.cts_stuck_off = !W.cts_stuck_off;
+            } else {
+                W.dsr_off = !W.dsr_off;
+            }
+            W.signals_changed = 1;
+            advance(100);
         } else if (b <= 0xFB) {
             static const uint8_t errs[4] = {MODCP_LINE_PARITY, MODCP_LINE_FRAMING,
                                             MODCP_LINE_OVERRUN, MODCP_LINE_BREAK};

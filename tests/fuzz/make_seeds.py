@@ -64,7 +64,7 @@ def main():
     os.makedirs(rtu_dir, exist_ok=True)
     os.makedirs(ascii_dir, exist_ok=True)
     n = 0
-    for cfg in range(4):
+    for cfg in range(5):
         for k, pdu in enumerate(pdus()):
             for addr in ([A, 0] if pdu[0] in (5, 6, 15, 16) and k % 3 == 0 else [A]):
                 frame = [addr] + pdu
