@@ -2,8 +2,9 @@
 """Hand-written seed inputs for the line targets (fuzz_rtu, fuzz_ascii), in the harness
 encoding of fuzz_line.c: byte 0 = parameter set, 0xFE = the frame's CRC / LRC, 0xF0 =
 end of frame, 0xFC = one FB cycle, 0xFD escapes a literal byte >= 0xF0.
-    tests/fuzz/make_seeds.py OUTDIR_RTU OUTDIR_ASCII
-tools/fuzz merges them with the fuzzer's findings into tests/fuzz/corpus/ (-merge=1)."""
+    tests/fuzz/make_seeds.py build/fuzz/corpus/fuzz_rtu build/fuzz/corpus/fuzz_ascii
+then `tools/fuzz --merge rtu ascii` keeps those that reach new coverage (with what the
+fuzzer found) in tests/fuzz/corpus/."""
 import os
 import sys
 
