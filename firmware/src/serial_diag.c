@@ -10,8 +10,8 @@
  *      logged. In listen-only mode it is processed without a reply.
  *   02 return diagnostic register: reply data = the register (commlog.h)
  *   03 change ASCII input delimiter: data = CHAR 00; CHAR must not be a hex digit or
- *      ':' (exception 03); takes effect for ASCII framing, stored but without effect
- *      in RTU
+ *      ':', nor above 7FH in ASCII with 7 data bits (exception 03); takes effect for
+ *      ASCII framing, stored but without effect in RTU
  *   04 force listen-only mode: no reply; from now on nothing is answered or executed
  *   0A clear counters and diagnostic register (after the echo: a following 0B..12
  *      reads only what came after the 0A)
@@ -75,10 +75,14 @@ static bool sub_supported(uint16_t sub)
     return sub <= 0x0004u || (sub >= 0x000Au && sub <= 0x0012u) || sub == 0x0014u;
 }
 
-static bool delimiter_ok(uint8_t ch)
+static bool delimiter_ok(uint8_t ch, const modcp_params_t *p)
 {
     bool hex = (ch >= '0' && ch <= '9') || (ch >= 'A' && ch <= 'F') || (ch >= 'a' && ch <= 'f');
-    return !hex && ch != ':';
+    /* ASCII with 7 data bits masks the eighth bit of every received character: a
+     * delimiter above 7FH could never be received and would lock the master out */
+    bool unreceivable = ch > 0x7Fu && p != NULL && p->framing == (uint8_t)MODCP_FRAMING_ASCII &&
+                        p->data_bits == 7u;
+    return !hex && ch != ':' && !unreceivable;
 }
 
 modcp_pdu_action_t modcp_pdu_fc08(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
@@ -104,7 +108,7 @@ modcp_pdu_action_t modcp_pdu_fc08(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         ok = data == 0x0000u || data == 0xFF00u;
         break;
     case 0x0003:
-        ok = (data & 0xFFu) == 0u && delimiter_ok((uint8_t)(data >> 8));
+        ok = (data & 0xFFu) == 0u && delimiter_ok((uint8_t)(data >> 8), env->p);
         break;
     default:
         ok = data == 0x0000u;

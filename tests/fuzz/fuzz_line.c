@@ -9,11 +9,23 @@
  *   0xF0..0xF7  gap of (b & 7) * 1 ms (0xF0 = end of frame: a full t3.5)
  *   0xF8        parity error, 0xF9 framing error, 0xFA overrun, 0xFB BREAK
  *   0xFC        run one FB cycle (1 ms), 0xFD next byte is a literal
+ *   0xFE        the frame's check: RTU: the CRC of the bytes received since the last
+ *               gap or line error; ASCII: the LRC of the hex pairs since the last ':'
+ *               as two hex digits, then CR LF (so mutations reach the PDU, not only
+ *               the CRC / LRC check)
  *   anything else: a received byte, 100 us after the previous one.
- * Both framings: the replay runs every kind of input in RTU and in ASCII; for libFuzzer
- * the first input byte selects the framing (bit 0: 1 = ASCII).
- * Built as a libFuzzer target with clang (-DMODCP_FUZZ=ON), and as a deterministic
- * replay driver (fuzz_replay) that ctest runs on every build. */
+ * In the fuzz targets the first input byte selects the CP's parameter set (cfg_params):
+ * 0 the manual's example, 1 + 32-bit registers, scanner, comm loss, 2 RS485 with
+ * reply suppression, t1.5 check, Modbus end-of-frame timing, DB bit windows,
+ * CP 441 job limit, 3 the CP 341 function set 8N2 f_MUL 3, 4 RS232 automatic secondary
+ * signals: DSR is ON and CTS follows RTS unless the input says otherwise -- in this
+ * set 0xF8 toggles "CTS stuck OFF" and 0xF9 toggles DSR instead of parity / framing
+ * errors (both are ON again before the closing good request).
+ * Both framings: built with MODCP_FUZZ_FRAMING = 0 (RTU: fuzz_rtu) or 1 (ASCII:
+ * fuzz_ascii) the whole input is one framing -- as libFuzzer targets with clang
+ * (-DMODCP_FUZZ=ON) and as replays of tests/fuzz/corpus/<target> (replay_main.c).
+ * Without MODCP_FUZZ_FRAMING it is the deterministic generator fuzz_replay, which runs
+ * every kind of input in RTU and in ASCII; ctest runs it on every build. */
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -48,11 +60,14 @@ typedef struct {
     uint8_t tx[600];
     uint16_t tx_len;
     int tx_pending;
+    int rts, cts_stuck_off, dsr_off, signals_changed; /* cfg 4 */
 } fworld_t;
 
 static fworld_t W;
 static fworld_t SNAP; /* memory image before the input */
 static int ascii_mode; /* Modbus ASCII framing instead of RTU (test code) */
+#define NCFG 5
+static unsigned cfg; /* parameter set 0 .. NCFG-1 (cfg_params) */
 
 static int hexval(uint8_t c)
 {
@@ -148,7 +163,73 @@ static void f_arm(void *ctx, uint32_t us)
     }
 }
 
-static void setup(void)
+/* The variations of the example parameter set (same address, windows and limits). */
+static void cfg_params(modcp_params_t *p)
+{
+    switch (cfg) {
+    case 1:
+        p->regs32 = 1;
+        p->r32[MODCP_R32_INT16] = (modcp_r32range_t){3000, 3199, 800};
+        p->r32[MODCP_R32_INT32] = (modcp_r32range_t){5000, 5099, 801};
+        p->r32[MODCP_R32_FLOAT] = (modcp_r32range_t){7000, 7199, 900};
+        p->scan_start = 40000;
+        p->scan_count = 5;
+        p->scan[0] = (modcp_operand_ref_t){MODCP_AREA_M, 0, 1000};
+        p->scan[1] = (modcp_operand_ref_t){MODCP_AREA_I, 0, 4};
+        p->scan[2] = (modcp_operand_ref_t){MODCP_AREA_DB, 800, 10};
+        p->scan[3] = (modcp_operand_ref_t){MODCP_AREA_T, 0, 7};
+        p->scan[4] = (modcp_operand_ref_t){MODCP_AREA_Q, 0, 256};
+        p->commloss_ms = 100;
+        p->diag_irq = 1;
+        break;
+    case 2:
+        p->iface = MODCP_IFACE_RS485;
+        p->turnaround_ms = 2;
+        p->opmode = MODCP_OPMODE_SUPPRESS;
+        p->t15_check = 1;
+        p->eof_timing = MODCP_EOF_MODBUS;
+        p->baud = 19200;
+        p->cpu_model = MODCP_CPU_CP441;
+        p->coils[4] = (modcp_bitwin_t){MODCP_AREA_DB, 8192, 8991, 0, 800};
+        p->inputs[2] = (modcp_bitwin_t){MODCP_AREA_DB, 8192, 8991, 0, 900};
+        break;
+    case 4:
+        p->rs232_auto = 1;
+        p->rts_on_delay_ms = 1;
+        p->rts_off_delay_ms = 1;
+        p->baud = 38400;
+        break;
+    case 3:
+        p->fset = MODCP_FSET_CP341;
+        p->parity = MODCP_PARITY_NONE;
+        p->stop_bits = 2;
+        p->f_mul = 3;
+        p->baud = 2400;
+        break;
+    default:
+        break;
+    }
+}
+
+static void f_signal(void *ctx, modcp_signal_t sig, bool on)
+{
+    fworld_t *w = ctx;
+    if (sig == MODCP_SIG_RTS) {
+        w->rts = on;
+        w->signals_changed = 1;
+    }
+}
+
+/* cfg 4: the modem's CTS follows RTS (one step later), DSR as the input sets it. */
+static void signals(void)
+{
+    if (W.signals_changed) {
+        W.signals_changed = 0;
+        modcp_cp_on_signals(&W.cp, W.rts && !W.cts_stuck_off, !W.dsr_off, W.now_us);
+    }
+}
+
+static void setup_world(void)
 {
     memset(&W, 0, sizeof W);
     modcp_params_t p;
@@ -166,6 +247,7 @@ static void setup(void)
     p.lim_m = (modcp_limit_t){1000, 1255};
     p.lim_q = (modcp_limit_t){256, 319};
     p.cpu_timeout_ms = 50;
+    cfg_params(&p);
     if (ascii_mode) {
         p.framing = MODCP_FRAMING_ASCII;
         p.data_bits = 7;
@@ -177,12 +259,13 @@ static void setup(void)
     W.mem = (modcp_plcmem_t){.i = W.i, .q = W.q, .m = W.m, .t = W.t, .c = W.c,
                              .i_size = sizeof W.i, .q_size = sizeof W.q, .m_size = sizeof W.m,
                              .t_count = 240, .c_count = 240, .dbs = W.dbs, .db_count = NDB};
-    W.hal = (modcp_hal_t){.ctx = &W, .uart_tx = f_tx, .timer_arm = f_arm};
+    W.hal = (modcp_hal_t){.ctx = &W, .uart_tx = f_tx, .timer_arm = f_arm, .set_signal = f_signal};
     W.record_len = (uint16_t)modcp_params_encode(&p, W.record, sizeof W.record);
     modcp_bp_init(&W.bp);
     modcp_fb_init(&W.fb, &W.bp, &W.mem, W.record, W.record_len, 80, 5000);
     modcp_cp_init(&W.cp, &W.hal, &W.bp);
     W.now_us = 5000000;
+    modcp_cp_on_signals(&W.cp, false, true, W.now_us); /* CTS OFF (RTS is), DSR ON */
     /* recognisable memory contents */
     for (unsigned k = 0; k < sizeof W.m; k++) W.m[k] = (uint8_t)(k * 7u);
     for (unsigned k = 0; k < sizeof W.i; k++) W.i[k] = (uint8_t)(k * 3u);
@@ -202,10 +285,26 @@ static void setup(void)
     }
 }
 
+/* The started world, once per framing, then copied: every pointer in W points into W
+ * itself (HAL context, memory areas, record), so a copy back is the same world. */
+static void setup(void)
+{
+    static fworld_t started[2 * NCFG];
+    static int have[2 * NCFG];
+    unsigned k = (ascii_mode != 0) * NCFG + cfg;
+    if (!have[k]) {
+        setup_world();
+        started[k] = W;
+        have[k] = 1;
+    }
+    W = started[k];
+}
+
 static void advance(uint32_t us)
 {
     uint32_t end = W.now_us + us;
     while ((int32_t)(end - W.now_us) > 0) {
+        signals();
         if (W.timer_at != 0 && (int32_t)(W.timer_at - end) <= 0) {
             W.now_us = W.timer_at;
             W.timer_at = 0;
@@ -251,70 +350,140 @@ static void check_memory(void)
             die("DB outside limits changed");
 }
 
-static void good_request_answered(void)
+/* Send a diagnostic request FC08 with sub-function sub and data. */
+static size_t send_fc08(uint16_t sub, uint16_t data, uint8_t *req)
 {
-    uint8_t req[32] = {5, 0x08, 0x00, 0x00, 0x12, 0x34};
+    uint8_t bin[8] = {5, 0x08, (uint8_t)(sub >> 8), (uint8_t)sub, (uint8_t)(data >> 8), (uint8_t)data};
     size_t n = 8;
     if (ascii_mode) {
-        uint8_t bin[6];
-        memcpy(bin, req, 6);
         n = ascii_encode(bin, 6, req);
+        req[n - 1] = W.cp.link.ascii_delim; /* LF, or what FC08/0003 made it */
     } else {
-        uint16_t crc = modcp_crc16(req, 6);
-        req[6] = (uint8_t)crc;
-        req[7] = (uint8_t)(crc >> 8);
+        uint16_t crc = modcp_crc16(bin, 6);
+        bin[6] = (uint8_t)crc;
+        bin[7] = (uint8_t)(crc >> 8);
+        memcpy(req, bin, 8);
     }
     advance(40000); /* silence: whatever was going on is over */
-    settle();
-    unsigned before = W.replies;
+    fb_cycle();
     for (size_t k = 0; k < n; k++) {
         modcp_cp_on_rx(&W.cp, req[k], W.now_us);
         advance(100);
     }
-    advance(10000);
-    settle();
+    advance(60000); /* t3.5 x f_MUL at 2400 baud, turnaround, RTS delays: the reply is out */
+    fb_cycle();
+    return n;
+}
+
+/* The CP answers an echo (FC08/0000) after the input (and its jobs: settle()). With the extended function set
+ * the input may have forced listen-only mode (FC08/0004) or changed the ASCII input
+ * delimiter (FC08/0003): a restart (FC08/0001, processed without a reply in listen-only
+ * mode; ended by the delimiter in force) comes first, then the echo ends with CR LF. */
+static void good_request_answered(void)
+{
+    uint8_t req[32];
+    W.cts_stuck_off = 0;
+    W.dsr_off = 0;
+    W.signals_changed = 1;
+    if (cfg != 3) {
+        (void)send_fc08(0x0001, 0x0000, req);
+    }
+    unsigned before = W.replies;
+    size_t n = send_fc08(0x0000, 0x1234, req);
     if (W.replies != before + 1 || W.tx_len != n || memcmp(W.tx, req, n) != 0) {
         die("good request not answered after the input");
+    }
+}
+
+/* 0xFE: the CRC (RTU) or LRC + CR LF (ASCII) of the frame so far, received. */
+static void send_check(uint8_t *fr, size_t *fr_len, size_t cap)
+{
+    uint8_t chk[4];
+    size_t n;
+    if (ascii_mode) {
+        static const char hx[] = "0123456789ABCDEF";
+        uint8_t sum = 0;
+        size_t j = *fr_len > 0 && fr[0] == ':' ? 1u : 0u;
+        for (; j + 1 < *fr_len; j += 2) {
+            int hi = hexval(fr[j]), lo = hexval(fr[j + 1]);
+            sum = (uint8_t)(sum + (uint8_t)((hi < 0 ? 0 : hi) * 16 + (lo < 0 ? 0 : lo)));
+        }
+        sum = (uint8_t)(0u - sum);
+        chk[0] = (uint8_t)hx[sum >> 4];
+        chk[1] = (uint8_t)hx[sum & 15u];
+        chk[2] = '\r';
+        chk[3] = '\n';
+        n = 4;
+    } else {
+        uint16_t crc = modcp_crc16(fr, *fr_len);
+        chk[0] = (uint8_t)crc;
+        chk[1] = (uint8_t)(crc >> 8);
+        n = 2;
+    }
+    for (size_t j = 0; j < n; j++) {
+        modcp_cp_on_rx(&W.cp, chk[j], W.now_us);
+        advance(100);
+        if (*fr_len < cap) {
+            fr[(*fr_len)++] = chk[j];
+        }
     }
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-#ifdef MODCP_LIBFUZZER
+#ifdef MODCP_FUZZ_FRAMING
+    ascii_mode = MODCP_FUZZ_FRAMING;
     if (size == 0) {
         return 0;
     }
-    ascii_mode = data[0] & 1u; /* the first byte selects RTU or ASCII framing */
+    cfg = data[0] % NCFG;
     data++;
     size--;
 #endif
     setup();
     SNAP = W;
+    uint8_t fr[600]; /* the frame so far, for 0xFE */
+    size_t fr_len = 0;
     for (size_t k = 0; k < size; k++) {
         uint8_t b = data[k];
-        if (b >= 0xF0 && b <= 0xF7) {
-            advance(b == 0xF0 ? 5000u : (uint32_t)(b & 7u) * 1000u);
-        } else if (b == 0xF8) {
-            modcp_cp_on_line_error(&W.cp, MODCP_LINE_PARITY, W.now_us);
-            advance(100);
-        } else if (b == 0xF9) {
-            modcp_cp_on_line_error(&W.cp, MODCP_LINE_FRAMING, W.now_us);
-            advance(100);
-        } else if (b == 0xFA) {
-            modcp_cp_on_line_error(&W.cp, MODCP_LINE_OVERRUN, W.now_us);
-            advance(100);
-        } else if (b == 0xFB) {
-            modcp_cp_on_line_error(&W.cp, MODCP_LINE_BREAK, W.now_us);
-            advance(100);
-        } else if (b == 0xFC) {
-            fb_cycle();
-        } else {
-            if (b == 0xFD && k + 1 < size) {
+        int literal = b < 0xF0;
+        if (b == 0xFD) {
+            literal = 1;
+            if (k + 1 < size) {
                 b = data[++k];
+            }
+        }
+        if (literal) { /* a received byte */
+            if (ascii_mode && b == ':') {
+                fr_len = 0;
+            }
+            if (fr_len < sizeof fr) {
+                fr[fr_len++] = b;
             }
             modcp_cp_on_rx(&W.cp, b, W.now_us);
             advance(100);
+        } else if (b == 0xFE) {
+            send_check(fr, &fr_len, sizeof fr);
+        } else if (b <= 0xF7) {
+            fr_len = 0;
+            advance(b == 0xF0 ? 5000u : (uint32_t)(b & 7u) * 1000u);
+        } else if (cfg == 4 && (b == 0xF8 || b == 0xF9)) {
+            if (b == 0xF8) {
+                W.cts_stuck_off = !W.cts_stuck_off;
+            } else {
+                W.dsr_off = !W.dsr_off;
+            }
+            W.signals_changed = 1;
+            advance(100);
+        } else if (b <= 0xFB) {
+            static const uint8_t errs[4] = {MODCP_LINE_PARITY, MODCP_LINE_FRAMING,
+                                            MODCP_LINE_OVERRUN, MODCP_LINE_BREAK};
+            fr_len = 0;
+            modcp_cp_on_line_error(&W.cp, errs[b - 0xF8], W.now_us);
+            advance(100);
+        } else { /* 0xFC */
+            fb_cycle();
         }
     }
     advance(10000);
@@ -324,7 +493,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     return 0;
 }
 
-#ifndef MODCP_LIBFUZZER
+#ifndef MODCP_FUZZ_FRAMING
 /* Deterministic replay: the manual's frames, mutations of them, and random noise. */
 static uint32_t rng = 0x12345678u;
 static uint32_t next(void)

@@ -225,6 +225,32 @@ static void test_fc08_ascii_delimiter_end_to_end(void **state)
     ascii_world_free(w);
 }
 
+/* Sub 03 in ASCII with 7 data bits: a delimiter above 7FH could never be received (the
+ * eighth bit is masked), so it is refused like a hex digit and LF stays in force
+ * (found by fuzz_ascii: the CP answered nothing after ":050800038D00..."). */
+static void test_fc08_ascii_delimiter_7bit(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    ascii_example_params(&p);
+    assert_int_equal(p.data_bits, 7);
+    world_t *w = ascii_world_started(&p);
+    const uint8_t set[] = {S, 0x08, 0x00, 0x03, 0x8D, 0x00};
+    const uint8_t exc[] = {S, 0x88, 0x03};
+    char expect[32];
+    strcpy(expect, ascii_frame(exc, sizeof exc));
+    assert_true(ascii_request(w, ascii_frame(set, sizeof set), 200) > 0);
+    assert_string_equal(ascii_reply(w), expect);
+    assert_int_equal(world_last_event(w), MODCP_EV_DIAG_SUBFC);
+    assert_int_equal(w->cp.link.ascii_delim, '\n');
+    const uint8_t echo[] = {S, 0x08, 0x00, 0x00, 0x12, 0x34};
+    char lf[64];
+    strcpy(lf, ascii_frame(echo, sizeof echo));
+    assert_true(ascii_request(w, lf, 200) > 0);
+    assert_string_equal(ascii_reply(w), lf);
+    ascii_world_free(w);
+}
+
 /* Sub 04 listen-only: nothing answered or executed, counting goes on, the CPU side
  * sees MODCP_CPST_LISTEN_ONLY; only sub 01 is processed (no reply) and leaves it. */
 static void test_fc08_listen_only(void **state)
@@ -632,6 +658,7 @@ int main(void)
         cmocka_unit_test(test_fc08_exceptions),
         cmocka_unit_test(test_fc08_ascii_delimiter),
         cmocka_unit_test(test_fc08_ascii_delimiter_end_to_end),
+        cmocka_unit_test(test_fc08_ascii_delimiter_7bit),
         cmocka_unit_test(test_fc08_listen_only),
         cmocka_unit_test(test_fc08_restart_clear_log),
         cmocka_unit_test(test_fc12_event_log),
