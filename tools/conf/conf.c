@@ -804,7 +804,7 @@ static void handle_limit(modcp_conf_t *c, const char *section, const char *name,
     }
     uint32_t lo = 0, hi = 0;
     if (!parse_range(value, &lo, &hi) || lo > 0xFFFFu || hi > 0xFFFFu) {
-        add_key_problem(c, true, section, name, value, field_rule(f), MODCP_EV_WRITE_LIMITS);
+        add_key_problem(c, true, section, name, value, field_rule((uint8_t)f), MODCP_EV_WRITE_LIMITS);
         return;
     }
     l->min = (uint16_t)lo;
