@@ -89,7 +89,9 @@ typedef struct {
 
 /* End-of-frame expiries in a row without a received character before the core hears of
  * it (see modcp_cmsdk_port_timer_isr). */
-#define MODCP_CMSDK_EOF_QUIET_ROUNDS 3u
+#ifndef MODCP_CMSDK_EOF_QUIET_ROUNDS
+#define MODCP_CMSDK_EOF_QUIET_ROUNDS 3u /* 1: report the first quiet expiry (no confirmation; experiments) */
+#endif
 
 /* Fill port->hal; no hardware is touched. */
 void modcp_cmsdk_port_init(modcp_cmsdk_port_t *port, const modcp_cmsdk_cfg_t *cfg);

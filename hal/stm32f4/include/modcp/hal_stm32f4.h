@@ -156,7 +156,9 @@ typedef struct {
 
 /* End-of-frame expiries in a row without a received character before the core hears of
  * it (see oneshot_fired in stm32f4_port.c). */
-#define MODCP_STM32_EOF_QUIET_ROUNDS 3u
+#ifndef MODCP_STM32_EOF_QUIET_ROUNDS
+#define MODCP_STM32_EOF_QUIET_ROUNDS 3u /* 1: report the first quiet expiry (no confirmation; experiments) */
+#endif
 
 /* Fill port->hal and set up the pins and the one-shot timer (interrupts not enabled). */
 void modcp_stm32_port_init(modcp_stm32_port_t *port, const modcp_stm32_cfg_t *cfg);
