@@ -180,6 +180,7 @@ void modcp_stm32_port_start(modcp_stm32_port_t *port, modcp_cp_t *cp, const modc
         cr1 |= USART_CR1_M;
     }
     port->data_mask = (p->data_bits == 7u && parity) ? 0x7Fu : 0xFFu;
+    port->rs485 = p->iface == (uint8_t)MODCP_IFACE_RS485;
     uint32_t baud = p->baud != 0u ? p->baud : 9600u;
     USART_CR1(u) = 0u;
     USART_BRR(u) = (port->cfg->usart_clk_hz + baud / 2u) / baud; /* oversampling by 16 */
@@ -192,13 +193,36 @@ void modcp_stm32_port_start(modcp_stm32_port_t *port, modcp_cp_t *cp, const modc
 
 /* ---- interrupt ---- */
 
+/* Transmission complete (TC with TCIE on): report it once. */
+static void tx_check_complete(modcp_stm32_port_t *port)
+{
+    uintptr_t u = port->cfg->usart;
+    uint32_t cr1 = USART_CR1(u);
+    if ((cr1 & USART_CR1_TCIE) != 0u && (USART_SR(u) & USART_SR_TC) != 0u) {
+        /* transmission complete: the last stop bit has left the line */
+        USART_CR1(u) = cr1 & ~USART_CR1_TCIE;
+        if (port->cp != NULL) {
+            modcp_cp_on_tx_done(port->cp, port->cfg->now_us());
+        }
+    }
+}
+
 /* Take every received character (or line error) out of the USART and hand it to the
- * core. */
+ * core. RS232 / RS422: a transmission that is complete (TC) when a character is taken
+ * is reported first — the master answers only after our last stop bit. Without that,
+ * a CPU that took the interrupt late (in QEMU: the vCPU thread descheduled between the
+ * reply and its TC interrupt, while the master already sent the next request) would
+ * hand the request's first byte to the core while it still transmits, which drops it
+ * and cuts the request. RS485 keeps the order: there the echo of our own last byte
+ * arrives with TC. */
 static void rx_drain(modcp_stm32_port_t *port)
 {
     uintptr_t u = port->cfg->usart;
     uint32_t sr = USART_SR(u);
     while ((sr & (USART_SR_RXNE | USART_SR_ORE)) != 0u) {
+        if (!port->rs485) {
+            tx_check_complete(port);
+        }
         uint8_t b = (uint8_t)(USART_DR(u) & port->data_mask); /* clears RXNE, PE, FE, ORE */
         uint32_t now = port->cfg->now_us();
         uint8_t err = 0u;
@@ -246,11 +270,5 @@ void modcp_stm32_port_usart_isr(modcp_stm32_port_t *port)
             USART_CR1(u) = cr1;
         }
     }
-    if ((cr1 & USART_CR1_TCIE) != 0u && (USART_SR(u) & USART_SR_TC) != 0u) {
-        /* transmission complete: the last stop bit has left the line */
-        USART_CR1(u) = cr1 & ~USART_CR1_TCIE;
-        if (port->cp != NULL) {
-            modcp_cp_on_tx_done(port->cp, port->cfg->now_us());
-        }
-    }
+    tx_check_complete(port);
 }

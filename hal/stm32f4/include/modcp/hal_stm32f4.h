@@ -145,6 +145,7 @@ typedef struct {
     uint16_t tx_len;
     uint16_t tx_pos;
     uint8_t data_mask; /* 0x7F with 7 data bits */
+    bool rs485;
     uint32_t rx_bytes;
     uint32_t tx_bytes;
     uint32_t line_errors;
