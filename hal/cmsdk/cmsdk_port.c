@@ -74,12 +74,13 @@ static void hal_uart_tx(void *ctx, const uint8_t *buf, uint16_t len)
     UART_DATA(u) = buf[0];
 }
 
-static void hal_timer_arm(void *ctx, uint32_t us)
+/* Start the end-of-frame timer for `us` (0: stop it). A stale expiry is dropped by the
+ * ISR (INTSTATUS clear). */
+static void eof_start(modcp_cmsdk_port_t *p, uint32_t us)
 {
-    modcp_cmsdk_port_t *p = ctx;
     uintptr_t t = p->cfg->timer;
     TIMER_CTRL(t) = 0u;
-    TIMER_INT(t) = 1u; /* a stale expiry is dropped by the ISR (INTSTATUS clear) */
+    TIMER_INT(t) = 1u;
     if (us == 0u) {
         return;
     }
@@ -87,6 +88,15 @@ static void hal_timer_arm(void *ctx, uint32_t us)
     TIMER_RELOAD(t) = c;
     TIMER_VALUE(t) = c;
     TIMER_CTRL(t) = TIMER_CTRL_EN | TIMER_CTRL_IRQEN;
+}
+
+static void hal_timer_arm(void *ctx, uint32_t us)
+{
+    modcp_cmsdk_port_t *p = ctx;
+    p->eof_gen++;
+    p->eof_quiet = 0u;
+    p->eof_rx_mark = p->rx_bytes + p->overruns;
+    eof_start(p, us);
 }
 
 static void hal_uart_tx_abort(void *ctx)
@@ -155,10 +165,10 @@ void modcp_cmsdk_port_start(modcp_cmsdk_port_t *port, modcp_cp_t *cp, const modc
 
 /* ---- interrupts ---- */
 
-void modcp_cmsdk_port_rx_isr(modcp_cmsdk_port_t *port)
+/* Take every received character out of the UART and hand it to the core. */
+static void rx_drain(modcp_cmsdk_port_t *port)
 {
     uintptr_t u = port->cfg->uart;
-    UART_INT(u) = UART_INT_RX;
     while ((UART_STATE(u) & UART_STATE_RXFULL) != 0u) {
         uint8_t b = (uint8_t)UART_DATA(u);
         uint32_t now = port->cfg->now_us();
@@ -174,6 +184,12 @@ void modcp_cmsdk_port_rx_isr(modcp_cmsdk_port_t *port)
             modcp_cp_on_rx(port->cp, b, now);
         }
     }
+}
+
+void modcp_cmsdk_port_rx_isr(modcp_cmsdk_port_t *port)
+{
+    UART_INT(port->cfg->uart) = UART_INT_RX;
+    rx_drain(port);
 }
 
 void modcp_cmsdk_port_tx_isr(modcp_cmsdk_port_t *port)
@@ -209,6 +225,17 @@ void modcp_cmsdk_port_overflow_isr(modcp_cmsdk_port_t *port)
     }
 }
 
+/* End-of-frame expiry, reported to the core only after MODCP_CMSDK_EOF_QUIET_ROUNDS
+ * expiries in a row (the first one and 1 us confirmation one-shots) found no character
+ * in the UART or arriving meanwhile. On silicon that delays the report by a few
+ * microseconds. In QEMU it makes the end of frame independent of host load: QEMU moves
+ * the next byte of the pty into the UART and raises the timer interrupts in the same
+ * main-loop thread, one byte per loop iteration and in each iteration the byte first;
+ * a late expiry (the thread was descheduled) would otherwise be taken before a byte
+ * the master wrote long before. A confirmation one-shot expires in a later iteration,
+ * and two quiet rounds prove that an iteration polled the pty with the UART empty and
+ * found nothing (the third is margin). The core gets on_timer only then and decides
+ * from its own timestamps. See docs/porting.md. */
 void modcp_cmsdk_port_timer_isr(modcp_cmsdk_port_t *port)
 {
     uintptr_t t = port->cfg->timer;
@@ -217,6 +244,23 @@ void modcp_cmsdk_port_timer_isr(modcp_cmsdk_port_t *port)
     }
     TIMER_CTRL(t) = 0u;
     TIMER_INT(t) = 1u;
+    uint32_t gen = port->eof_gen;
+    rx_drain(port); /* a character already received is older than this expiry */
+    if (port->eof_gen != gen) {
+        return; /* the core re-armed for a character: that timer stands */
+    }
+    uint32_t mark = port->rx_bytes + port->overruns;
+    if (mark != port->eof_rx_mark) {
+        port->eof_rx_mark = mark;
+        port->eof_quiet = 0u;
+    } else {
+        port->eof_quiet++;
+    }
+    if (port->eof_quiet < MODCP_CMSDK_EOF_QUIET_ROUNDS) {
+        port->eof_confirms++;
+        eof_start(port, 1u);
+        return;
+    }
     if (port->cp != NULL) {
         modcp_cp_on_timer(port->cp, port->cfg->now_us());
     }

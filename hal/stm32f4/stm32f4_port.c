@@ -12,13 +12,8 @@
 
 /* ---- end-of-frame one-shot ---- */
 
-static void oneshot_fired(void *ctx, uint32_t now_us)
-{
-    modcp_stm32_port_t *p = ctx;
-    if (p->cp != NULL) {
-        modcp_cp_on_timer(p->cp, now_us);
-    }
-}
+static void rx_drain(modcp_stm32_port_t *port);
+static void oneshot_fired(void *ctx, uint32_t now_us);
 
 static void tim_setup(const modcp_stm32_cfg_t *cfg)
 {
@@ -33,9 +28,9 @@ static void tim_setup(const modcp_stm32_cfg_t *cfg)
     TIM_DIER(t) = TIM_DIER_UIE;
 }
 
-static void hal_timer_arm(void *ctx, uint32_t us)
+/* Start the one-shot for `us` (0: stop it). */
+static void oneshot_start(modcp_stm32_port_t *p, uint32_t us)
 {
-    modcp_stm32_port_t *p = ctx;
     if (p->cfg->oneshot == (uint8_t)MODCP_STM32_ONESHOT_SYSTICK) {
         stm32_systick_oneshot(us, oneshot_fired, p);
         return;
@@ -49,6 +44,53 @@ static void hal_timer_arm(void *ctx, uint32_t us)
     TIM_CNT(t) = 0u;
     TIM_ARR(t) = us > 1u ? us - 1u : 1u; /* update after ARR + 1 counts; ARR 0 would stop it */
     TIM_CR1(t) = TIM_CR1_OPM | TIM_CR1_URS | TIM_CR1_CEN;
+}
+
+static void hal_timer_arm(void *ctx, uint32_t us)
+{
+    modcp_stm32_port_t *p = ctx;
+    p->eof_gen++;
+    p->eof_quiet = 0u;
+    p->eof_rx_mark = p->rx_bytes + p->line_errors;
+    oneshot_start(p, us);
+}
+
+/* End-of-frame expiry, reported to the core only after MODCP_STM32_EOF_QUIET_ROUNDS
+ * expiries in a row (the first one and 1 us confirmation one-shots) found no character
+ * in the USART or arriving meanwhile. On silicon that delays the report by a few
+ * microseconds. In QEMU it makes the end of frame independent of host load: QEMU moves
+ * the next byte of the pty into the USART and raises the timer interrupts in the same
+ * main-loop thread, one byte per loop iteration and in each iteration the byte first;
+ * a late expiry (the thread was descheduled) would otherwise be taken before a byte
+ * the master wrote long before (SysTick even wins a tie against the USART interrupt).
+ * A confirmation one-shot expires in a later iteration, and two quiet rounds prove that
+ * an iteration polled the pty with the USART empty and found nothing (the third is
+ * margin). The core gets on_timer only then and decides from its own timestamps. See
+ * docs/porting.md. */
+static void oneshot_fired(void *ctx, uint32_t now_us)
+{
+    modcp_stm32_port_t *p = ctx;
+    (void)now_us;
+    uint32_t gen = p->eof_gen;
+    rx_drain(p); /* a character already received is older than this expiry */
+    if (p->eof_gen != gen) {
+        return; /* the core re-armed for a character: that timer stands */
+    }
+    uint32_t mark = p->rx_bytes + p->line_errors;
+    if (mark != p->eof_rx_mark) {
+        p->eof_rx_mark = mark;
+        p->eof_quiet = 0u;
+    } else {
+        p->eof_quiet++;
+    }
+    if (p->eof_quiet < MODCP_STM32_EOF_QUIET_ROUNDS) {
+        p->eof_confirms++;
+        oneshot_start(p, 1u);
+        return;
+    }
+    if (p->cp != NULL) {
+        modcp_cp_on_timer(p->cp, p->cfg->now_us());
+    }
 }
 
 void modcp_stm32_port_tim_isr(modcp_stm32_port_t *port)
@@ -138,6 +180,7 @@ void modcp_stm32_port_start(modcp_stm32_port_t *port, modcp_cp_t *cp, const modc
         cr1 |= USART_CR1_M;
     }
     port->data_mask = (p->data_bits == 7u && parity) ? 0x7Fu : 0xFFu;
+    port->rs485 = p->iface == (uint8_t)MODCP_IFACE_RS485;
     uint32_t baud = p->baud != 0u ? p->baud : 9600u;
     USART_CR1(u) = 0u;
     USART_BRR(u) = (port->cfg->usart_clk_hz + baud / 2u) / baud; /* oversampling by 16 */
@@ -150,11 +193,36 @@ void modcp_stm32_port_start(modcp_stm32_port_t *port, modcp_cp_t *cp, const modc
 
 /* ---- interrupt ---- */
 
-void modcp_stm32_port_usart_isr(modcp_stm32_port_t *port)
+/* Transmission complete (TC with TCIE on): report it once. */
+static void tx_check_complete(modcp_stm32_port_t *port)
+{
+    uintptr_t u = port->cfg->usart;
+    uint32_t cr1 = USART_CR1(u);
+    if ((cr1 & USART_CR1_TCIE) != 0u && (USART_SR(u) & USART_SR_TC) != 0u) {
+        /* transmission complete: the last stop bit has left the line */
+        USART_CR1(u) = cr1 & ~USART_CR1_TCIE;
+        if (port->cp != NULL) {
+            modcp_cp_on_tx_done(port->cp, port->cfg->now_us());
+        }
+    }
+}
+
+/* Take every received character (or line error) out of the USART and hand it to the
+ * core. RS232 / RS422: a transmission that is complete (TC) when a character is taken
+ * is reported first — the master answers only after our last stop bit. Without that,
+ * a CPU that took the interrupt late (in QEMU: the vCPU thread descheduled between the
+ * reply and its TC interrupt, while the master already sent the next request) would
+ * hand the request's first byte to the core while it still transmits, which drops it
+ * and cuts the request. RS485 keeps the order: there the echo of our own last byte
+ * arrives with TC. */
+static void rx_drain(modcp_stm32_port_t *port)
 {
     uintptr_t u = port->cfg->usart;
     uint32_t sr = USART_SR(u);
     while ((sr & (USART_SR_RXNE | USART_SR_ORE)) != 0u) {
+        if (!port->rs485) {
+            tx_check_complete(port);
+        }
         uint8_t b = (uint8_t)(USART_DR(u) & port->data_mask); /* clears RXNE, PE, FE, ORE */
         uint32_t now = port->cfg->now_us();
         uint8_t err = 0u;
@@ -182,6 +250,12 @@ void modcp_stm32_port_usart_isr(modcp_stm32_port_t *port)
         }
         sr = USART_SR(u);
     }
+}
+
+void modcp_stm32_port_usart_isr(modcp_stm32_port_t *port)
+{
+    uintptr_t u = port->cfg->usart;
+    rx_drain(port);
     uint32_t cr1 = USART_CR1(u);
     if ((cr1 & USART_CR1_TXEIE) != 0u) {
         /* Silicon: TXE comes back one character after the previous write, so this loop
@@ -196,11 +270,5 @@ void modcp_stm32_port_usart_isr(modcp_stm32_port_t *port)
             USART_CR1(u) = cr1;
         }
     }
-    if ((cr1 & USART_CR1_TCIE) != 0u && (USART_SR(u) & USART_SR_TC) != 0u) {
-        /* transmission complete: the last stop bit has left the line */
-        USART_CR1(u) = cr1 & ~USART_CR1_TCIE;
-        if (port->cp != NULL) {
-            modcp_cp_on_tx_done(port->cp, port->cfg->now_us());
-        }
-    }
+    tx_check_complete(port);
 }

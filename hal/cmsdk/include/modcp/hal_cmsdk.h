@@ -81,7 +81,17 @@ typedef struct {
     uint32_t rx_bytes;
     uint32_t tx_bytes;
     uint32_t overruns;
+    uint32_t eof_gen;      /* end-of-frame arms by the core */
+    uint32_t eof_rx_mark;  /* rx_bytes + overruns at the last arm / expiry */
+    uint32_t eof_quiet;    /* expiries in a row with nothing received */
+    uint32_t eof_confirms; /* confirmation one-shots started (statistics) */
 } modcp_cmsdk_port_t;
+
+/* End-of-frame expiries in a row without a received character before the core hears of
+ * it (see modcp_cmsdk_port_timer_isr). */
+#ifndef MODCP_CMSDK_EOF_QUIET_ROUNDS
+#define MODCP_CMSDK_EOF_QUIET_ROUNDS 3u /* 1: report the first quiet expiry (no confirmation; experiments) */
+#endif
 
 /* Fill port->hal; no hardware is touched. */
 void modcp_cmsdk_port_init(modcp_cmsdk_port_t *port, const modcp_cmsdk_cfg_t *cfg);

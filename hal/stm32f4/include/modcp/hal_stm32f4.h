@@ -145,10 +145,21 @@ typedef struct {
     uint16_t tx_len;
     uint16_t tx_pos;
     uint8_t data_mask; /* 0x7F with 7 data bits */
+    bool rs485;
     uint32_t rx_bytes;
     uint32_t tx_bytes;
     uint32_t line_errors;
+    uint32_t eof_gen;      /* end-of-frame arms by the core */
+    uint32_t eof_rx_mark;  /* rx_bytes + line_errors at the last arm / expiry */
+    uint32_t eof_quiet;    /* expiries in a row with nothing received */
+    uint32_t eof_confirms; /* confirmation one-shots started (statistics) */
 } modcp_stm32_port_t;
+
+/* End-of-frame expiries in a row without a received character before the core hears of
+ * it (see oneshot_fired in stm32f4_port.c). */
+#ifndef MODCP_STM32_EOF_QUIET_ROUNDS
+#define MODCP_STM32_EOF_QUIET_ROUNDS 3u /* 1: report the first quiet expiry (no confirmation; experiments) */
+#endif
 
 /* Fill port->hal and set up the pins and the one-shot timer (interrupts not enabled). */
 void modcp_stm32_port_init(modcp_stm32_port_t *port, const modcp_stm32_cfg_t *cfg);
