@@ -19,6 +19,7 @@
  * sends it); the main thread reads the console (stdin, --script, --control FIFO). The
  * tool keeps a mutex-protected snapshot of the CP's diagnostics for the console. */
 #define _GNU_SOURCE
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <poll.h>
@@ -560,12 +561,36 @@ static int usage(void)
     return 1;
 }
 
+/* What the value of an option is, for "needs a value" (NULL: the option takes none). */
+static const char *option_value(const char *a)
+{
+    static const char *const opts[][2] = {
+        {"--pty-link", "a path for the symlink to the pty"},
+        {"--device", "a serial device, e.g. /dev/ttyUSB0"},
+        {"--script", "a file of console commands"},
+        {"--control", "a path for the console FIFO"},
+        {"--cycle-ms", "the user program's cycle in ms, 1..60000"},
+        {"--set", "section.key=value"},
+    };
+    for (size_t i = 0; i < sizeof opts / sizeof opts[0]; i++) {
+        if (strcmp(a, opts[i][0]) == 0) {
+            return opts[i][1];
+        }
+    }
+    return NULL;
+}
+
 static int parse_args(sim_t *s, int argc, char **argv)
 {
     s->cycle_override = -1;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         bool has = i + 1 < argc;
+        const char *needs = option_value(a);
+        if (needs != NULL && (!has || (argv[i + 1][0] == '-' && argv[i + 1][1] == '-'))) {
+            fprintf(stderr, "modcp-sim: %s needs a value (%s)\n", a, needs);
+            return 1;
+        }
         if (strcmp(a, "--pty-link") == 0 && has) {
             s->pty_link = argv[++i];
         } else if (strcmp(a, "--device") == 0 && has) {
@@ -602,6 +627,134 @@ static int parse_args(sim_t *s, int argc, char **argv)
     return s->config == NULL ? usage() : 0;
 }
 
+/* A process holding dev open (not us): its PID and name; 0 if none. */
+static long holder_of(const char *dev, char *comm, size_t cap)
+{
+    DIR *proc = opendir("/proc");
+    if (proc == NULL) {
+        return 0;
+    }
+    long found = 0;
+    long self = (long)getpid();
+    struct dirent *de;
+    while (found == 0 && (de = readdir(proc)) != NULL) {
+        char *end = NULL;
+        long pid = strtol(de->d_name, &end, 10);
+        if (*end != '\0' || pid <= 0 || pid == self) {
+            continue;
+        }
+        char fdpath[64];
+        snprintf(fdpath, sizeof fdpath, "/proc/%ld/fd", pid);
+        DIR *fds = opendir(fdpath);
+        if (fds == NULL) {
+            continue;
+        }
+        struct dirent *fe;
+        while ((fe = readdir(fds)) != NULL) {
+            char lp[320], target[256];
+            snprintf(lp, sizeof lp, "%s/%s", fdpath, fe->d_name);
+            ssize_t n = readlink(lp, target, sizeof target - 1u);
+            if (n > 0) {
+                target[n] = '\0';
+                if (strcmp(target, dev) == 0) {
+                    found = pid;
+                    break;
+                }
+            }
+        }
+        closedir(fds);
+    }
+    closedir(proc);
+    if (found != 0) {
+        char cp[64];
+        snprintf(cp, sizeof cp, "/proc/%ld/comm", found);
+        FILE *f = fopen(cp, "r");
+        comm[0] = '\0';
+        if (f != NULL) {
+            if (fgets(comm, (int)cap, f) != NULL) {
+                comm[strcspn(comm, "\n")] = '\0';
+            }
+            fclose(f);
+        }
+    }
+    return found;
+}
+
+/* Why the line could not be opened, in words. */
+static void open_failed(const char *device, const char *link, int orc)
+{
+    if (device != NULL) {
+        struct stat st;
+        if (orc == -ENOTTY || (stat(device, &st) == 0 && !S_ISCHR(st.st_mode))) {
+            fprintf(stderr, "modcp-sim: --device %s: not a serial device\n", device);
+        } else {
+            fprintf(stderr, "modcp-sim: --device %s: %s\n", device, strerror(-orc));
+        }
+        return;
+    }
+    if (link != NULL && orc == -EBUSY) {
+        char target[256] = "?", comm[64] = "";
+        ssize_t n = readlink(link, target, sizeof target - 1u);
+        if (n > 0) {
+            target[n] = '\0';
+        }
+        long pid = holder_of(target, comm, sizeof comm);
+        if (pid != 0) {
+            fprintf(stderr,
+                    "modcp-sim: --pty-link %s is in use: it points at %s, held by PID %ld (%s); "
+                    "not replaced (stop that instance or choose another path)\n",
+                    link, target, pid, comm);
+        } else {
+            fprintf(stderr,
+                    "modcp-sim: --pty-link %s exists and points at %s, which no process holds; "
+                    "not replaced (remove it or choose another path)\n",
+                    link, target);
+        }
+        return;
+    }
+    if (link != NULL && orc == -EEXIST) {
+        fprintf(stderr, "modcp-sim: --pty-link %s exists and is not a symbolic link; not replaced\n",
+                link);
+        return;
+    }
+    fprintf(stderr, "modcp-sim: cannot open %s: %s\n", link != NULL ? link : "a pty",
+            strerror(-orc));
+}
+
+/* Problems of the configuration; one from --set N is blamed on that option:
+ * "--set serial.baud=7: must be one of ...". Returns the fatal ones from --set. */
+static size_t print_problems(const modcp_conf_t *c, const char *const *sets, size_t nsets)
+{
+    size_t shown = c->problem_count < MODCP_CONF_MAX_PROBLEMS ? c->problem_count
+                                                              : MODCP_CONF_MAX_PROBLEMS;
+    size_t from_set = 0;
+    for (size_t i = 0; i < shown; i++) {
+        const char *txt = c->problems[i].text;
+        unsigned long k = 0;
+        int used = 0;
+        if (sscanf(txt, "--set:%lu: %n", &k, &used) == 1 && used > 0 && k >= 1u && k <= nsets) {
+            const char *rest = txt + used;
+            const char *arg = sets[k - 1u];
+            const char *eq = strchr(arg, '=');
+            size_t keylen = eq != NULL ? (size_t)(eq - arg) : strlen(arg);
+            /* drop the "section.key = value: " the rule is prefixed with */
+            if (strncmp(rest, arg, keylen) == 0 && strncmp(rest + keylen, " = ", 3) == 0) {
+                const char *colon = strstr(rest + keylen + 3u, ": ");
+                if (colon != NULL) {
+                    rest = colon + 2;
+                }
+            }
+            fprintf(stderr, "--set %s: %s\n", arg, rest);
+            if (c->problems[i].fatal) {
+                from_set++;
+            }
+        } else {
+            fprintf(stderr, "%s\n", txt);
+        }
+    }
+    return from_set;
+}
+
 int main(int argc, char **argv)
 {
     sim_t *s = calloc(1, sizeof *s);
@@ -624,14 +777,15 @@ int main(int argc, char **argv)
         return 1;
     }
     size_t fatal = modcp_conf_load_ex(s->conf, s->config, s->sets, s->set_count);
-    size_t shown = s->conf->problem_count < MODCP_CONF_MAX_PROBLEMS ? s->conf->problem_count
-                                                                    : MODCP_CONF_MAX_PROBLEMS;
-    for (size_t i = 0; i < shown; i++) {
-        fprintf(stderr, "%s\n", s->conf->problems[i].text);
-    }
+    size_t from_set = print_problems(s->conf, s->sets, s->set_count);
     if (fatal > 0u) {
-        fprintf(stderr, "modcp-sim: %s: %zu problem%s, not started\n", s->config, fatal,
-                fatal == 1u ? "" : "s");
+        if (from_set == fatal) {
+            fprintf(stderr, "modcp-sim: --set: %zu problem%s, not started\n", fatal,
+                    fatal == 1u ? "" : "s");
+        } else {
+            fprintf(stderr, "modcp-sim: %s%s: %zu problem%s, not started\n", s->config,
+                    from_set > 0u ? " and --set" : "", fatal, fatal == 1u ? "" : "s");
+        }
         free(s->conf);
         free(s);
         return 2;
@@ -654,9 +808,7 @@ int main(int argc, char **argv)
                                             p->stop_bits, char_us)
                   : modcp_posix_open_pty(&s->port, s->pty_link, char_us);
     if (orc != 0) {
-        fprintf(stderr, "modcp-sim: cannot open %s: %s\n",
-                s->device != NULL ? s->device : (s->pty_link != NULL ? s->pty_link : "a pty"),
-                strerror(-orc));
+        open_failed(s->device, s->pty_link, orc);
         modcp_conf_memory_free(&s->memory);
         free(s->conf);
         free(s);
