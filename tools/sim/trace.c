@@ -251,7 +251,7 @@ static void describe_adu(const sim_trace_t *t, const uint8_t *raw, size_t rlen, 
         snprintf(out, cap, "%sshort frame (%zu bytes)", errors ? "line error, " : "", n);
         return;
     }
-    if (!reply && a[0] != t->own_addr && a[0] != 0u) {
+    if (!reply && !t->any_addr && a[0] != t->own_addr && a[0] != 0u) {
         snprintf(out, cap, "%snot for us (slave %u)", errors ? "line error, " : "", (unsigned)a[0]);
         return;
     }
@@ -262,12 +262,12 @@ static void describe_adu(const sim_trace_t *t, const uint8_t *raw, size_t rlen, 
     }
     char what[200];
     sim_describe_pdu(a + 1, n - 1u - check, reply, what, sizeof what);
-    if (reply) {
-        snprintf(out, cap, "%s", what);
-        return;
-    }
     const char *pre_err = errors ? "line error, " : "";
     const char *pre_chk = ok ? "" : (t->ascii ? "LRC error, " : "CRC error, ");
+    if (reply) {
+        snprintf(out, cap, "%s%s%s", pre_err, pre_chk, what);
+        return;
+    }
     if (a[0] == 0u) {
         snprintf(out, cap, "%s%sbroadcast %s", pre_err, pre_chk, what);
     } else {
@@ -276,7 +276,7 @@ static void describe_adu(const sim_trace_t *t, const uint8_t *raw, size_t rlen, 
 }
 
 static void print_frame(sim_trace_t *t, const char *dir, const uint8_t *b, size_t n, bool reply,
-                        bool errors, uint64_t t_us)
+                        bool errors, uint64_t t_us, const char *note)
 {
     char line[4096];
     size_t pos = 0;
@@ -304,7 +304,8 @@ static void print_frame(sim_trace_t *t, const char *dir, const uint8_t *b, size_
     }
     char what[400];
     describe_adu(t, b, n, reply, errors, what, sizeof what);
-    snprintf(line + pos, sizeof line - pos, " | %s", what);
+    snprintf(line + pos, sizeof line - pos, " | %s%s%s", what, note != NULL ? " " : "",
+             note != NULL ? note : "");
     if (t->print != NULL) {
         t->print(t->user, line);
     }
@@ -315,7 +316,7 @@ static void print_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us);
 static void rx_flush(sim_trace_t *t)
 {
     if (t->rx_len > 0u) {
-        print_frame(t, t->rx_label, t->rx, t->rx_len, false, t->rx_errors, t->rx_t0);
+        print_frame(t, t->rx_label, t->rx, t->rx_len, false, t->rx_errors, t->rx_t0, NULL);
     }
     t->rx_len = 0;
     t->rx_errors = false;
@@ -358,7 +359,14 @@ void sim_trace_poll(sim_trace_t *t, uint64_t t_us)
 void sim_trace_tx(sim_trace_t *t, const uint8_t *buf, size_t len, uint64_t t_us)
 {
     rx_flush(t);
-    print_frame(t, t->tx_label, buf, len, true, false, t_us);
+    print_frame(t, t->tx_label, buf, len, true, false, t_us, NULL);
+}
+
+void sim_trace_frame(sim_trace_t *t, const char *label, const uint8_t *buf, size_t len, bool reply,
+                     uint64_t t_us, const char *note)
+{
+    rx_flush(t);
+    print_frame(t, label, buf, len, reply, false, t_us, note);
 }
 
 void sim_trace_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us)

@@ -34,6 +34,7 @@ typedef struct {
     char rx_label[24]; /* sender of received frames ("master") */
     char tx_label[24]; /* sender of sent frames ("slave 5", "@b slave 5") */
     char ev_label[24]; /* prefix of event lines ("" or "@b ") */
+    bool any_addr;     /* a bus's trace: no request is "not for us" */
     /* events raised while a frame is being received: printed after it */
     modcp_event_t ev_q[16];
     uint64_t ev_t[16];
@@ -50,6 +51,9 @@ void sim_trace_rx(sim_trace_t *t, uint8_t byte, uint8_t errors, uint64_t t_us);
 void sim_trace_poll(sim_trace_t *t, uint64_t t_us);
 /* A frame sent (the whole reply, as handed to the UART). */
 void sim_trace_tx(sim_trace_t *t, const uint8_t *buf, size_t len, uint64_t t_us);
+/* A frame with its sender's label and an optional note ("fault: CRC corrupted"). */
+void sim_trace_frame(sim_trace_t *t, const char *label, const uint8_t *buf, size_t len, bool reply,
+                     uint64_t t_us, const char *note);
 /* A diagnostic event. */
 void sim_trace_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us);
 
