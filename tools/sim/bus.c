@@ -57,6 +57,12 @@ struct sim_bus {
     double heard_t0, heard_end;
     bool heard_collided;
     uint32_t heard_mask; /* members that sent during the frame */
+    /* the characters for the members, handed over when the line pauses: a member's
+     * core cuts frames by t1.5 / t3.5 of its own clock, so a late wake-up of the bus
+     * thread must not open a gap inside a frame it hears (a UART never does) */
+    uint8_t mbuf[SIM_TRACE_MAX];
+    uint32_t mdeaf[SIM_TRACE_MAX]; /* members sending while the character was on the line */
+    size_t mlen;
     sim_trace_t tr;      /* bus thread only (after init) */
 };
 
@@ -644,6 +650,21 @@ static void write_all(int fd, const uint8_t *p, size_t n)
     }
 }
 
+static void members_flush(sim_bus_t *b)
+{
+    for (size_t m = 0; m < b->n && b->mlen > 0u; m++) {
+        uint8_t out[SIM_TRACE_MAX];
+        size_t k = 0;
+        for (size_t i = 0; i < b->mlen; i++) {
+            if ((b->mdeaf[i] & (1u << m)) == 0u) {
+                out[k++] = b->mbuf[i];
+            }
+        }
+        write_all(b->member_fd[m], out, k);
+    }
+    b->mlen = 0;
+}
+
 /* Is member m sending at any time in [a, z)? (then its transceiver does not hear) */
 static bool member_sending(const sim_bus_t *b, size_t m, double a, double z)
 {
@@ -656,7 +677,8 @@ static bool member_sending(const sim_bus_t *b, size_t m, double a, double z)
     return false;
 }
 
-/* Emit the characters due by now; returns the time of the next one (or -1). */
+/* Emit the characters due by now; returns the time of the next one (negative when it
+ * continues a frame), or -1 for none. */
 static double emit_due(sim_bus_t *b, double now)
 {
     for (;;) {
@@ -665,15 +687,27 @@ static double emit_due(sim_bus_t *b, double now)
             break;
         }
         double at = ch.start + b->c_us;
+        if (b->mlen > 0u && ch.start > b->heard_end + 0.5 * b->c_us) {
+            members_flush(b); /* the line paused: the members get what it carried */
+        }
         if (at > now + 1.0) {
-            return at;
+            /* negative: a later character of a frame (no need to watch the clock) */
+            bool first = b->heard_len == 0u || ch.start - b->heard_end >= (double)b->line.t35_us;
+            return first ? at : -at;
         }
         write_all(b->master_fd, &ch.byte, 1u);
+        if (b->mlen == sizeof b->mbuf) {
+            members_flush(b);
+        }
+        uint32_t deaf = 0;
         for (size_t m = 0; m < b->n; m++) {
-            if (!member_sending(b, m, ch.start, at)) {
-                write_all(b->member_fd[m], &ch.byte, 1u);
+            if (member_sending(b, m, ch.start, at)) {
+                deaf |= 1u << m;
             }
         }
+        b->mbuf[b->mlen] = ch.byte;
+        b->mdeaf[b->mlen] = deaf;
+        b->mlen++;
         if (b->heard_len > 0u && ch.start - b->heard_end >= (double)b->line.t35_us) {
             heard_flush(b);
         }
@@ -690,19 +724,13 @@ static double emit_due(sim_bus_t *b, double now)
         }
         b->from = ch.start + ((double)b->nbits - 0.5) * b->bit_us;
     }
+    members_flush(b); /* nothing follows back to back */
     /* senders the receiver is done with */
     for (size_t i = 0; i < MAX_SENDERS; i++) {
         if (b->s[i].used && end_of(b, &b->s[i]) <= b->from + 0.5 * b->bit_us &&
             end_of(b, &b->s[i]) <= now) {
             b->s[i].used = false;
         }
-    }
-    bool any = false;
-    for (size_t i = 0; i < MAX_SENDERS; i++) {
-        any = any || b->s[i].used;
-    }
-    if (!any && b->from < now - b->c_us) {
-        b->from = now - b->c_us; /* nothing pending: never look far back */
     }
     if (b->heard_len > 0u && now - b->heard_end >= (double)b->line.t35_us) {
         heard_flush(b);
@@ -732,7 +760,10 @@ void *sim_bus_thread(void *arg)
         /* sleep until SPIN_US before the next character, then watch the clock */
         double wait_us = 5000.0;
         bool spin = false;
-        if (next >= 0.0) {
+        if (next < -0.5) { /* a later character of a frame: just sleep until it */
+            double d = -next - now;
+            wait_us = d < wait_us ? (d > 0.0 ? d : 0.0) : wait_us;
+        } else if (next >= 0.0) {
             double d = next - now;
             if (d < wait_us) {
                 wait_us = d > SPIN_US ? d - SPIN_US : 0.0;

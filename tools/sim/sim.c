@@ -222,7 +222,14 @@ static void *cp_thread(void *arg)
     member_t *m = arg;
     sim_t *s = m->sim;
     modcp_posix_rx_t rx[RX_CHUNK];
-    bool line_trace = s->bus == NULL; /* on a bus, the bus traces the line */
+    /* on a bus, the bus traces the line; MODCP_SIM_MEMBER_RX=1 adds what each member
+     * heard (a debugging aid: "@b heard ...") */
+    bool line_trace = s->bus == NULL || getenv("MODCP_SIM_MEMBER_RX") != NULL;
+    if (s->bus != NULL) {
+        char l[32];
+        snprintf(l, sizeof l, "@%s heard", m->name);
+        sim_trace_labels(&m->tr, l, NULL, NULL);
+    }
     while (!atomic_load(&s->stop)) {
         bool idle = modcp_cp_ready(&m->cp) && !modcp_job_busy(&m->cp.job) && !m->cp.request_pending;
         bool tx_done = false, timer = false;
