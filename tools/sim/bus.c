@@ -38,6 +38,14 @@ struct sim_bus {
     char names[SIM_BUS_MAX_MEMBERS][24];
     uint8_t addr[SIM_BUS_MAX_MEMBERS];
     int member_fd[SIM_BUS_MAX_MEMBERS];
+    int wake_fd[SIM_BUS_MAX_MEMBERS];
+    /* what each member heard: byte + the member's clock at the end of its stop bit */
+    pthread_mutex_t rx_mu;
+    struct {
+        uint8_t b[8192];
+        uint32_t t[8192];
+        size_t head, tail;
+    } rxq[SIM_BUS_MAX_MEMBERS];
     int master_fd;
     int wake_rd, wake_wr;
     uint64_t t0_us64;
@@ -62,6 +70,7 @@ struct sim_bus {
      * thread must not open a gap inside a frame it hears (a UART never does) */
     uint8_t mbuf[SIM_TRACE_MAX];
     uint32_t mdeaf[SIM_TRACE_MAX]; /* members sending while the character was on the line */
+    double mt[SIM_TRACE_MAX];      /* end of its stop bit */
     size_t mlen;
     sim_trace_t tr;      /* bus thread only (after init) */
 };
@@ -414,8 +423,8 @@ static void trace_print(void *user, const char *line)
 
 sim_bus_t *sim_bus_new(const sim_line_t *line, size_t n, const char *const names[],
                        const uint8_t addr[], int master_fd, const int member_fd[],
-                       uint64_t t0_us64, void (*print)(void *user, const char *line),
-                       void *user, uint32_t seed)
+                       const int wake_fd[], uint64_t t0_us64,
+                       void (*print)(void *user, const char *line), void *user, uint32_t seed)
 {
     if (n == 0u || n > SIM_BUS_MAX_MEMBERS) {
         return NULL;
@@ -433,7 +442,9 @@ sim_bus_t *sim_bus_new(const sim_line_t *line, size_t n, const char *const names
         snprintf(b->names[i], sizeof b->names[i], "%s", names[i]);
         b->addr[i] = addr[i];
         b->member_fd[i] = member_fd[i];
+        b->wake_fd[i] = wake_fd[i];
     }
+    pthread_mutex_init(&b->rx_mu, NULL);
     b->master_fd = master_fd;
     int fds[2];
     if (pipe(fds) != 0) {
@@ -464,6 +475,7 @@ void sim_bus_free(sim_bus_t *b)
         close(b->wake_rd);
         close(b->wake_wr);
         pthread_mutex_destroy(&b->mu);
+        pthread_mutex_destroy(&b->rx_mu);
         free(b);
     }
 }
@@ -650,17 +662,55 @@ static void write_all(int fd, const uint8_t *p, size_t n)
     }
 }
 
+/* Characters for member m, each ending on the line at t (us since the bus's t0). */
+static void deliver(sim_bus_t *b, size_t m, const uint8_t *bytes, const double *t, size_t n)
+{
+    if (n == 0u) {
+        return;
+    }
+    pthread_mutex_lock(&b->rx_mu);
+    for (size_t i = 0; i < n; i++) {
+        size_t next = (b->rxq[m].head + 1u) % 8192u;
+        if (next == b->rxq[m].tail) {
+            break; /* the member does not read: drop, like an overrun */
+        }
+        b->rxq[m].b[b->rxq[m].head] = bytes[i];
+        b->rxq[m].t[b->rxq[m].head] = (uint32_t)(b->t0_us64 + (uint64_t)(t[i] < 0.0 ? 0.0 : t[i]));
+        b->rxq[m].head = next;
+    }
+    pthread_mutex_unlock(&b->rx_mu);
+    char c = 1;
+    ssize_t r = write(b->wake_fd[m], &c, 1);
+    (void)r;
+}
+
+size_t sim_bus_take(sim_bus_t *b, size_t m, uint8_t *bytes, uint32_t *t_us, size_t cap)
+{
+    size_t k = 0;
+    pthread_mutex_lock(&b->rx_mu);
+    while (k < cap && b->rxq[m].tail != b->rxq[m].head) {
+        bytes[k] = b->rxq[m].b[b->rxq[m].tail];
+        t_us[k] = b->rxq[m].t[b->rxq[m].tail];
+        k++;
+        b->rxq[m].tail = (b->rxq[m].tail + 1u) % 8192u;
+    }
+    pthread_mutex_unlock(&b->rx_mu);
+    return k;
+}
+
 static void members_flush(sim_bus_t *b)
 {
     for (size_t m = 0; m < b->n && b->mlen > 0u; m++) {
         uint8_t out[SIM_TRACE_MAX];
+        double t[SIM_TRACE_MAX];
         size_t k = 0;
         for (size_t i = 0; i < b->mlen; i++) {
             if ((b->mdeaf[i] & (1u << m)) == 0u) {
+                t[k] = b->mt[i];
                 out[k++] = b->mbuf[i];
             }
         }
-        write_all(b->member_fd[m], out, k);
+        deliver(b, m, out, t, k);
     }
     b->mlen = 0;
 }
@@ -707,6 +757,7 @@ static double emit_due(sim_bus_t *b, double now)
         }
         b->mbuf[b->mlen] = ch.byte;
         b->mdeaf[b->mlen] = deaf;
+        b->mt[b->mlen] = at;
         b->mlen++;
         if (b->heard_len > 0u && ch.start - b->heard_end >= (double)b->line.t35_us) {
             heard_flush(b);
@@ -795,8 +846,12 @@ void *sim_bus_thread(void *arg)
             uint8_t buf[512];
             ssize_t n = read(b->master_fd, buf, sizeof buf);
             if (n > 0) {
+                double at_[512];
+                for (ssize_t i = 0; i < n; i++) {
+                    at_[i] = t; /* a pty delivers a request at once, as to one slave */
+                }
                 for (size_t m = 0; m < b->n; m++) {
-                    write_all(b->member_fd[m], buf, (size_t)n);
+                    deliver(b, m, buf, at_, (size_t)n);
                 }
                 if (atomic_load(&b->trace_on)) {
                     pthread_mutex_lock(&b->mu);

@@ -11,7 +11,9 @@
  *     it decodes goes to the master and to every member that is not sending then
  *     (a half-duplex transceiver does not hear itself). One sender gives back its
  *     bytes exactly; two overlapping senders give what a receiver on a real line
- *     would read from the mixed levels: a garbled frame, never two clean replies;
+ *     would read from the mixed levels: a garbled frame, never two clean replies.
+ *     Members take their characters with the line time of each (sim_bus_take), so a
+ *     member thread that runs late still sees the gaps (t1.5, t3.5) of the line;
  *   - applies the per-member faults (drop, delay, CRC, exception 06 / 04, silence,
  *     noise) to the replies before they reach the line, and counts them;
  *   - traces the line: the master's frames, each member's reply with its name,
@@ -52,13 +54,19 @@ typedef struct {
 typedef struct sim_bus sim_bus_t;
 
 /* master_fd: the pty master the master's side opens; member_fd[i]: the far end of
- * member i's pty (bytes written reach its UART, what it sends is read and dropped:
- * the bus puts its replies on the line). names[i]: "a" (printed as "@a"), addr[i]:
- * its slave address (for the trace). print: one trace line (thread-safe). */
+ * member i's pty (what it sends is read and dropped: the bus puts its replies on the
+ * line); wake_fd[i]: written when member i has characters to take (sim_bus_take).
+ * names[i]: "a" (printed as "@a"), addr[i]: its slave address (for the trace).
+ * print: one trace line (thread-safe). */
 sim_bus_t *sim_bus_new(const sim_line_t *line, size_t n, const char *const names[],
                        const uint8_t addr[], int master_fd, const int member_fd[],
-                       uint64_t t0_us64, void (*print)(void *user, const char *line),
-                       void *user, uint32_t seed);
+                       const int wake_fd[], uint64_t t0_us64,
+                       void (*print)(void *user, const char *line), void *user, uint32_t seed);
+
+/* The characters member m heard, each with the time (the member's 32-bit us clock)
+ * its stop bit ended on the line: a member fed with these times frames them by the
+ * line's timing, however late its thread runs. Returns how many (at most cap). */
+size_t sim_bus_take(sim_bus_t *b, size_t m, uint8_t *bytes, uint32_t *t_us, size_t cap);
 void sim_bus_free(sim_bus_t *b);
 
 /* The bus thread's body: runs until sim_bus_stop. */

@@ -100,6 +100,7 @@ typedef struct {
     bool cmd_pending;
     bool cmd_done;
     modcp_posix_thread_t t_cp, t_cpu;
+    uint32_t core_t; /* on a bus: the last time passed to the core */
 } member_t;
 
 struct sim {
@@ -247,6 +248,48 @@ static void *cp_thread(void *arg)
          * events its end raises */
         uint64_t n64 = modcp_posix_now_us64();
         uint64_t t = n64 - (uint32_t)((uint32_t)n64 - now) - s->t0_us64;
+        if (s->bus != NULL) {
+            /* on a bus: the characters heard, each at its time on the line, and the
+             * timer between them when it fell due first */
+            if (timer) {
+                m->port.timer_armed = true; /* ordered with the characters below */
+                timer = false;
+            }
+            uint8_t bb[RX_CHUNK];
+            uint32_t bt[RX_CHUNK];
+            size_t k = sim_bus_take(s->bus, m->index, bb, bt, RX_CHUNK);
+            for (size_t i = 0; i < k; i++) {
+                uint32_t ti = bt[i];
+                if ((int32_t)(ti - m->core_t) < 0) {
+                    ti = m->core_t; /* never back in time for the core */
+                }
+                if ((int32_t)(now - ti) < 0) {
+                    ti = now;
+                }
+                while (m->port.timer_armed && (int32_t)(ti - m->port.timer_deadline_us) >= 0) {
+                    uint32_t d = m->port.timer_deadline_us;
+                    if ((int32_t)(d - m->core_t) < 0) {
+                        d = m->core_t;
+                    }
+                    m->port.timer_armed = false;
+                    m->port.now_us = d;
+                    modcp_cp_on_timer(&m->cp, d);
+                    m->core_t = d;
+                }
+                m->port.now_us = ti;
+                if (tr) {
+                    uint64_t tb = n64 - (uint32_t)((uint32_t)n64 - ti) - s->t0_us64;
+                    sim_trace_rx(&m->tr, bb[i], 0, tb);
+                }
+                modcp_cp_on_rx(&m->cp, bb[i], ti);
+                m->core_t = ti;
+            }
+            if (m->port.timer_armed && (int32_t)(now - m->port.timer_deadline_us) >= 0) {
+                m->port.timer_armed = false;
+                timer = true;
+            }
+            m->core_t = now;
+        }
         m->port.now_us = now;
         bool cts = true, dsr = true;
         if (modcp_posix_modem_inputs(&m->port, &cts, &dsr)) {
@@ -1251,13 +1294,14 @@ int main(int argc, char **argv)
                                                               : modcp_params_t35_us(p0)};
         const char *names[MAX_MEMBERS];
         uint8_t addr[MAX_MEMBERS];
-        int fds[MAX_MEMBERS];
+        int fds[MAX_MEMBERS], wakes[MAX_MEMBERS];
         for (size_t i = 0; i < s->n; i++) {
             names[i] = s->m[i].name;
             addr[i] = s->m[i].conf->params.slave_addr;
             fds[i] = s->m[i].port.slave_fd;
+            wakes[i] = s->m[i].port.wake_wr;
         }
-        s->bus = sim_bus_new(&line, s->n, names, addr, s->line_port.fd, fds, s->t0_us64,
+        s->bus = sim_bus_new(&line, s->n, names, addr, s->line_port.fd, fds, wakes, s->t0_us64,
                              bus_print, s, s->seed);
         if (s->bus == NULL || !apply_cli_faults(s)) {
             if (s->bus == NULL) {
@@ -1285,6 +1329,7 @@ int main(int argc, char **argv)
         m->port.on_tx = on_tx;
         m->port.on_tx_user = m;
         m->port.now_us = modcp_posix_now_us();
+        m->core_t = m->port.now_us;
         modcp_posix_hal(&m->port, &m->hal);
         pthread_mutex_init(&m->snap_mu, NULL);
         pthread_mutex_init(&m->cmd_mu, NULL);
