@@ -255,6 +255,21 @@ static void *cp_thread(void *arg)
                 m->port.timer_armed = true; /* ordered with the characters below */
                 timer = false;
             }
+            if (tx_done) {
+                /* our reply ended before anything heard after it (we were deaf while
+                 * sending): its end first, at its time on the line */
+                uint32_t end = m->port.tx_t0_us + (uint32_t)m->port.tx_len * m->port.char_us;
+                if ((int32_t)(end - m->core_t) < 0) {
+                    end = m->core_t;
+                }
+                if ((int32_t)(now - end) < 0) {
+                    end = now;
+                }
+                m->port.now_us = end;
+                modcp_cp_on_tx_done(&m->cp, end);
+                m->core_t = end;
+                tx_done = false;
+            }
             uint8_t bb[RX_CHUNK];
             uint32_t bt[RX_CHUNK];
             size_t k = sim_bus_take(s->bus, m->index, bb, bt, RX_CHUNK);
