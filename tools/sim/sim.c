@@ -834,8 +834,8 @@ static int usage(void)
             "  --trace           print every frame received and sent, and every event\n"
             "  --script FILE     run console commands from FILE once the FB is initialised\n"
             "  --cycle-ms N      cycle time of the user program (default: [cpu] cycle_ms)\n"
-            "  --set S.K=V       override a key of the configuration (e.g. serial.baud=115200);\n"
-            "                    on a bus, of every member\n"
+            "  --set [@M:]S.K=V  override a key of the configuration (e.g. serial.baud=115200);\n"
+            "                    on a bus, of every member, or of member M (@2:, @name:)\n"
             "  --control FIFO    also read console commands from a named pipe (made if missing)\n"
             "  --bus             run even one config as a bus member (for --fault / fault)\n"
             "  --fault [@M:]K=V  a fault of member M's replies (default: every member); K: drop,\n"
@@ -1043,12 +1043,13 @@ static void open_failed(const char *device, const char *link, int orc)
 
 /* Problems of the configuration; one from --set N is blamed on that option:
  * "--set serial.baud=7: must be one of ...". Returns the fatal ones from --set. */
-static size_t print_problems(const modcp_conf_t *c, const char *const *sets, size_t nsets)
+static size_t print_problems(const modcp_conf_t *c, const char *const *sets,
+                             const char *const *shown, size_t nsets)
 {
-    size_t shown = c->problem_count < MODCP_CONF_MAX_PROBLEMS ? c->problem_count
+    size_t count = c->problem_count < MODCP_CONF_MAX_PROBLEMS ? c->problem_count
                                                               : MODCP_CONF_MAX_PROBLEMS;
     size_t from_set = 0;
-    for (size_t i = 0; i < shown; i++) {
+    for (size_t i = 0; i < count; i++) {
         const char *txt = c->problems[i].text;
         unsigned long k = 0;
         int used = 0;
@@ -1064,7 +1065,7 @@ static size_t print_problems(const modcp_conf_t *c, const char *const *sets, siz
                     rest = colon + 2;
                 }
             }
-            fprintf(stderr, "--set %s: %s\n", arg, rest);
+            fprintf(stderr, "--set %s: %s\n", shown[k - 1u], rest);
             if (c->problems[i].fatal) {
                 from_set++;
             }
@@ -1123,8 +1124,41 @@ static int load_member(sim_t *s, member_t *m)
         return 1;
     }
     memset(&m->memory, 0, sizeof m->memory);
-    size_t fatal = modcp_conf_load_ex(m->conf, m->config, s->sets, s->set_count);
-    size_t from_set = print_problems(m->conf, s->sets, s->set_count);
+    /* --set S.K=V for every member, --set @M:S.K=V for member M (name or index) only */
+    const char *mine[MAX_SETS], *shown[MAX_SETS];
+    size_t nmine = 0;
+    for (size_t k = 0; k < s->set_count; k++) {
+        const char *a = s->sets[k];
+        if (a[0] == '@') {
+            const char *colon = strchr(a, ':');
+            char name[32];
+            size_t len = colon != NULL ? (size_t)(colon - a - 1) : 0u;
+            if (colon == NULL || len == 0u || len >= sizeof name) {
+                fprintf(stderr, "modcp-sim: --set %s: expected @MEMBER:section.key=value\n", a);
+                free(m->conf);
+                m->conf = NULL;
+                return 1;
+            }
+            memcpy(name, a + 1, len);
+            name[len] = '\0';
+            int target = find_member(s, name);
+            if (target < 0 || target == MAX_MEMBERS) {
+                fprintf(stderr, "modcp-sim: --set %s: no member @%s\n", a, name);
+                free(m->conf);
+                m->conf = NULL;
+                return 1;
+            }
+            if ((size_t)target != m->index) {
+                continue;
+            }
+            mine[nmine] = colon + 1;
+        } else {
+            mine[nmine] = a;
+        }
+        shown[nmine++] = a;
+    }
+    size_t fatal = modcp_conf_load_ex(m->conf, m->config, mine, nmine);
+    size_t from_set = print_problems(m->conf, mine, shown, nmine);
     if (fatal > 0u) {
         if (from_set == fatal) {
             fprintf(stderr, "modcp-sim: --set: %zu problem%s, not started\n", fatal,
@@ -1258,6 +1292,9 @@ int main(int argc, char **argv)
         m->config = s->configs[i];
         atomic_init(&m->fb_state, MODCP_FBST_STOPPED);
         member_name(s, i);
+    }
+    for (size_t i = 0; i < s->n; i++) {
+        member_t *m = &s->m[i];
         rc = load_member(s, m);
         if (rc != 0) {
             free_members(s);
