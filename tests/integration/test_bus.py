@@ -2,6 +2,7 @@
 """Several modcp slaves on one line (issue 15): modcp-sim a.ini b.ini c.ini.
 
  - a member whose line settings differ is refused, member and field named;
+ - ASCII framing: two members (--set @2:...) answer by address;
  - the console names members: @s2 get, @s2 status (+ its faults line), status of all;
  - libmodbus (master_bus) polls three slaves: a broadcast FC16 lands in all three, then
    mixed requests with zero mismatches (each slave's memory holds its own writes only);
@@ -279,18 +280,39 @@ def faults(t, a, tmp):
          "--fault for an unknown member refused (%r)" % p.stderr)
 
 
+def ascii_bus(t, a, tmp):
+    """ASCII framing (7E1, LRC) on a bus: two members answer by address."""
+    ascii_cfg = os.path.join(os.path.dirname(a.config), "ascii.ini")
+    sim = Sim(a.sim, ascii_cfg, sets=["@2:protocol.slave_address=6"], extra=[ascii_cfg]).start()
+    line = RawLine(sim.device)
+    try:
+        for addr in (5, 6):
+            body = bytes([addr, 3, 0, 0x50, 0, 2])
+            lrc = (-sum(body)) & 0xFF
+            req = b":" + (body + bytes([lrc])).hex().upper().encode() + b"\r\n"
+            rb = bytes([addr, 3, 4, 0x87, 0x65, 0x43, 0x21])
+            want = b":" + (rb + bytes([(-sum(rb)) & 0xFF])).hex().upper().encode() + b"\r\n"
+            time.sleep(0.05)
+            got = line.xfer(req, len(want), timeout=1.0)
+            t.ok(got == want, "ASCII bus: slave %d answers %r" % (addr, got))
+    finally:
+        line.close()
+        sim.stop()
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--sim", required=True)
     ap.add_argument("--master-bus", required=True)
     ap.add_argument("--config", required=True)
     ap.add_argument("--ops", type=int, default=10000)
-    ap.add_argument("--only", default="refused,three,duplicate,faults")
+    ap.add_argument("--only", default="refused,ascii,three,duplicate,faults")
     a = ap.parse_args()
     t = Checks()
     tmp = tempfile.mkdtemp(prefix="modcp-bus-")
     for name in a.only.split(","):
-        {"refused": refused, "three": three, "duplicate": duplicate, "faults": faults}[name](t, a, tmp)
+        {"refused": refused, "ascii": ascii_bus, "three": three, "duplicate": duplicate,
+         "faults": faults}[name](t, a, tmp)
     return t.done()
 
 
