@@ -619,10 +619,49 @@ void sim_bus_tx(sim_bus_t *b, size_t m, const uint8_t *buf, uint16_t len, uint32
     wake(b);
 }
 
+/* An external member (a QEMU board) sent bytes: they arrive as its UART emulation
+ * writes them, not paced; the bus paces them on the line from their arrival, as one
+ * reply while they follow each other within a character time of its end. */
+static void external_tx(sim_bus_t *b, size_t m, const uint8_t *buf, size_t n, double now)
+{
+    pthread_mutex_lock(&b->mu);
+    sender_t *s = NULL;
+    for (size_t i = 0; i < MAX_SENDERS; i++) {
+        if (b->s[i].used && b->s[i].who == (int)m && end_of(b, &b->s[i]) + b->c_us >= now) {
+            s = &b->s[i];
+        }
+    }
+    if (s == NULL || (size_t)s->len + n > MODCP_POSIX_TX_MAX) {
+        s = new_sender(b);
+        if (s == NULL) {
+            pthread_mutex_unlock(&b->mu);
+            return;
+        }
+        s->who = (int)m;
+        s->len = 0;
+        s->t0 = now;
+        s->used = true;
+        b->fault[m].replies++;
+    }
+    memcpy(s->b + s->len, buf, n);
+    s->len = (uint16_t)(s->len + n);
+    pthread_mutex_unlock(&b->mu);
+}
+
 /* ---- the bus thread ----------------------------------------------------------------- */
 
 static void heard_flush(sim_bus_t *b)
 {
+    if (b->heard_len > 0u && !b->heard_collided && atomic_load(&b->trace_on)) {
+        for (size_t m = 0; m < b->n; m++) { /* an external member's reply, as heard */
+            if (b->wake_fd[m] < 0 && b->heard_mask == (1u << m)) {
+                char label[48];
+                snprintf(label, sizeof label, "@%s (external)", b->names[m]);
+                sim_trace_frame(&b->tr, label, b->heard, b->heard_len, true,
+                                (uint64_t)b->heard_t0, NULL);
+            }
+        }
+    }
     if (b->heard_len > 0u && b->heard_collided) {
         for (size_t m = 0; m < b->n; m++) {
             if ((b->heard_mask & (1u << m)) != 0u) {
@@ -662,10 +701,16 @@ static void write_all(int fd, const uint8_t *p, size_t n)
     }
 }
 
+static void write_all(int fd, const uint8_t *p, size_t n);
+
 /* Characters for member m, each ending on the line at t (us since the bus's t0). */
 static void deliver(sim_bus_t *b, size_t m, const uint8_t *bytes, const double *t, size_t n)
 {
     if (n == 0u) {
+        return;
+    }
+    if (b->wake_fd[m] < 0) { /* an external member (a QEMU board's UART): its tty */
+        write_all(b->member_fd[m], bytes, n);
         return;
     }
     pthread_mutex_lock(&b->rx_mu);
@@ -867,8 +912,13 @@ void *sim_bus_thread(void *arg)
         }
         for (size_t m = 0; m < b->n; m++) {
             if ((pf[2 + m].revents & POLLIN) != 0) {
-                uint8_t drop[512]; /* the member's paced copy of its reply: the bus has it */
-                while (read(b->member_fd[m], drop, sizeof drop) > 0) {
+                uint8_t got[512];
+                ssize_t k;
+                while ((k = read(b->member_fd[m], got, sizeof got)) > 0) {
+                    if (b->wake_fd[m] < 0) {
+                        external_tx(b, m, got, (size_t)k, now_rel(b));
+                    }
+                    /* else: the member's paced copy of its reply: the bus has it */
                 }
             }
         }

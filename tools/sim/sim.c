@@ -37,6 +37,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <termios.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -115,6 +116,10 @@ struct sim {
     size_t set_count;
     const char *faults[MAX_FAULTS];
     size_t fault_count;
+    const char *ext_tty[MAX_MEMBERS]; /* --qemu-member PTY: external members */
+    size_t n_ext;
+    int ext_fd[MAX_MEMBERS];
+    char ext_name[MAX_MEMBERS][24];
     long cycle_override;
     bool bus_mode;
     uint32_t seed;
@@ -829,6 +834,7 @@ static int usage(void)
             "usage: modcp-sim CONFIG.ini [CONFIG2.ini ...] [--pty-link PATH] [--device /dev/ttyX]\n"
             "                 [--trace] [--script FILE] [--cycle-ms N] [--set section.key=value]...\n"
             "                 [--control FIFO] [--bus] [--fault [@M:]KIND=VALUE]... [--seed N]\n"
+            "                 [--qemu-member PTY]...\n"
             "  --pty-link PATH   also make PATH a symlink to the pseudo-terminal\n"
             "  --device PATH     use a real serial device (termios from the parameters)\n"
             "  --trace           print every frame received and sent, and every event\n"
@@ -842,6 +848,8 @@ static int usage(void)
             "                    crc, exc06, exc04 (V in %%), delay (MS or MIN-MAX), silent (N\n"
             "                    requests), noise (N bytes after each reply); implies --bus\n"
             "  --seed N          seed of the faults' random choices (default 1)\n"
+            "  --qemu-member PTY a QEMU board's Modbus pty (tools/run-qemu) as a member of the\n"
+            "                    bus (@qemu; its console is its own); implies --bus\n"
             "Several configs: one line (bus), one pty for the master, every member on it.\n"
             "The console reads stdin; type help. Ctrl-C or SIGTERM stops.\n");
     return 1;
@@ -859,6 +867,7 @@ static const char *option_value(const char *a)
         {"--set", "section.key=value"},
         {"--fault", "[@MEMBER:]KIND=VALUE, e.g. drop=30 or @b:delay=5-20"},
         {"--seed", "a number"},
+        {"--qemu-member", "the Modbus pty of a QEMU board (tools/run-qemu's MODBUS_TTY)"},
     };
     for (size_t i = 0; i < sizeof opts / sizeof opts[0]; i++) {
         if (strcmp(a, opts[i][0]) == 0) {
@@ -920,6 +929,13 @@ static int parse_args(sim_t *s, int argc, char **argv)
             }
             s->faults[s->fault_count++] = argv[++i];
             s->bus_mode = true;
+        } else if (strcmp(a, "--qemu-member") == 0) {
+            if (s->n_ext >= MAX_MEMBERS) {
+                fprintf(stderr, "modcp-sim: too many --qemu-member\n");
+                return 1;
+            }
+            s->ext_tty[s->n_ext++] = argv[++i];
+            s->bus_mode = true;
         } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             return usage();
         } else if (a[0] == '-') {
@@ -936,6 +952,10 @@ static int parse_args(sim_t *s, int argc, char **argv)
     }
     if (s->n == 0u) {
         return usage();
+    }
+    if (s->n + s->n_ext > MAX_MEMBERS) {
+        fprintf(stderr, "modcp-sim: at most %d members on one bus\n", MAX_MEMBERS);
+        return 1;
     }
     if (s->n > 1u) {
         s->bus_mode = true;
@@ -1323,6 +1343,19 @@ int main(int argc, char **argv)
         for (size_t i = 0; orc == 0 && i < s->n; i++) {
             orc = modcp_posix_open_pty(&s->m[i].port, NULL, char_us);
         }
+        for (size_t i = 0; orc == 0 && i < s->n_ext; i++) {
+            s->ext_fd[i] = open(s->ext_tty[i], O_RDWR | O_NOCTTY | O_NONBLOCK);
+            struct termios tio;
+            if (s->ext_fd[i] < 0 || tcgetattr(s->ext_fd[i], &tio) != 0) {
+                fprintf(stderr, "modcp-sim: --qemu-member %s: %s\n", s->ext_tty[i],
+                        s->ext_fd[i] < 0 ? strerror(errno) : "not a serial device");
+                return 1;
+            }
+            cfmakeraw(&tio);
+            (void)tcsetattr(s->ext_fd[i], TCSANOW, &tio);
+            snprintf(s->ext_name[i], sizeof s->ext_name[i], i == 0u ? "qemu" : "qemu-%u",
+                     (unsigned)(i + 1u) % 100u);
+        }
     }
     if (orc != 0) {
         open_failed(s->device, s->pty_link, orc);
@@ -1353,8 +1386,14 @@ int main(int argc, char **argv)
             fds[i] = s->m[i].port.slave_fd;
             wakes[i] = s->m[i].port.wake_wr;
         }
-        s->bus = sim_bus_new(&line, s->n, names, addr, s->line_port.fd, fds, wakes, s->t0_us64,
-                             bus_print, s, s->seed);
+        for (size_t i = 0; i < s->n_ext; i++) {
+            names[s->n + i] = s->ext_name[i];
+            addr[s->n + i] = 0;
+            fds[s->n + i] = s->ext_fd[i];
+            wakes[s->n + i] = -1;
+        }
+        s->bus = sim_bus_new(&line, s->n + s->n_ext, names, addr, s->line_port.fd, fds, wakes,
+                             s->t0_us64, bus_print, s, s->seed);
         if (s->bus == NULL || !apply_cli_faults(s)) {
             if (s->bus == NULL) {
                 fprintf(stderr, "modcp-sim: cannot set up the bus\n");
@@ -1453,6 +1492,10 @@ int main(int argc, char **argv)
                         (unsigned)s->m[i].conf->params.slave_addr, line_path, settings,
                         s->m[i].name, s->m[i].config);
         }
+    }
+    for (size_t i = 0; i < s->n_ext; i++) {
+        printf_line(s, "modcp-sim: member @%s on %s (external: a QEMU board's UART)",
+                    s->ext_name[i], s->ext_tty[i]);
     }
     if (line_link[0] != '\0') {
         printf_line(s, "modcp-sim: link %s -> %s", line_link, line_path);
