@@ -895,6 +895,9 @@ void *sim_bus_thread(void *arg)
                 for (ssize_t i = 0; i < n; i++) {
                     at_[i] = t; /* a pty delivers a request at once, as to one slave */
                 }
+                pthread_mutex_lock(&b->mu);
+                members_flush(b); /* what the line carried before comes first */
+                pthread_mutex_unlock(&b->mu);
                 for (size_t m = 0; m < b->n; m++) {
                     deliver(b, m, buf, at_, (size_t)n);
                 }
