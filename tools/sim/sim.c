@@ -3,11 +3,12 @@
  *
  *   modcp-sim CONFIG.ini [CONFIG2.ini ...] [--pty-link PATH] [--device /dev/ttyX] [--trace]
  *             [--script FILE] [--cycle-ms N] [--set section.key=value]... [--control FIFO]
- *             [--bus] [--fault [@M:]KIND=VALUE]... [--seed N]
+ *             [--bus] [--fault [@M:]KIND=VALUE]... [--seed N] [--qemu-member PTY]...
  *
  * Every slave (member) is one modcp_cp_t + modcp_fb_t with its own threads below; with
  * one config and no --bus / --fault it owns the pty itself, else each member gets a pty
- * of its own and a bus thread joins them and the master's pty into one line.
+ * of its own and a bus thread joins them, any --qemu-member board's UART pty and the
+ * master's pty into one line.
  *
  * Two threads joined only by the backplane (modcp_backplane_t):
  *   CP thread   the CP side: waits on the UART, the one-shot timer and the paced
