@@ -1,7 +1,14 @@
-/* modcp-sim — the modcp slave on a pseudo-terminal (or a real serial device).
+/* modcp-sim — the modcp slave on a pseudo-terminal (or a real serial device), or
+ * several slaves on one line (a bus, see bus.h).
  *
- *   modcp-sim CONFIG.ini [--pty-link PATH] [--device /dev/ttyX] [--trace]
+ *   modcp-sim CONFIG.ini [CONFIG2.ini ...] [--pty-link PATH] [--device /dev/ttyX] [--trace]
  *             [--script FILE] [--cycle-ms N] [--set section.key=value]... [--control FIFO]
+ *             [--bus] [--fault [@M:]KIND=VALUE]... [--seed N] [--qemu-member PTY]...
+ *
+ * Every slave (member) is one modcp_cp_t + modcp_fb_t with its own threads below; with
+ * one config and no --bus / --fault it owns the pty itself, else each member gets a pty
+ * of its own and a bus thread joins them, any --qemu-member board's UART pty and the
+ * master's pty into one line.
  *
  * Two threads joined only by the backplane (modcp_backplane_t):
  *   CP thread   the CP side: waits on the UART, the one-shot timer and the paced
@@ -19,6 +26,7 @@
  * sends it); the main thread reads the console (stdin, --script, --control FIFO). The
  * tool keeps a mutex-protected snapshot of the CP's diagnostics for the console. */
 #define _GNU_SOURCE
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <poll.h>
@@ -30,6 +38,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <termios.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -39,6 +48,7 @@
 #include "modcp/fb.h"
 #include "modcp/hal_posix.h"
 #include "modcp_conf.h"
+#include "bus.h"
 #include "trace.h"
 
 #define MAX_SETS 32
@@ -48,16 +58,17 @@
 #define IDLE_TICK_US 5000u
 #define BUSY_TICK_US 1000u
 
+#define MAX_MEMBERS SIM_BUS_MAX_MEMBERS
+#define MAX_FAULTS 64
+
+typedef struct sim sim_t;
+
+/* One slave: its configuration, CP, FB and the threads that run them. */
 typedef struct {
-    /* options */
+    sim_t *sim;
+    size_t index;
+    char name[24];      /* "a" for a.ini; addressed as @a or @1 on the console */
     const char *config;
-    const char *pty_link;
-    const char *device;
-    const char *script;
-    const char *control;
-    const char *sets[MAX_SETS];
-    size_t set_count;
-    long cycle_override;
     /* configuration */
     modcp_conf_t *conf;
     modcp_conf_memory_t memory;
@@ -66,9 +77,6 @@ typedef struct {
     uint32_t cycle_ms;
     /* the only thing both sides share */
     modcp_backplane_t bp;
-    atomic_bool stop;
-    atomic_bool trace_on;
-    uint64_t t0_us64;
     /* CP side (CP thread) */
     modcp_cp_t cp;
     modcp_posix_port_t port;
@@ -93,9 +101,41 @@ typedef struct {
     char cmd_out[CMD_OUT_MAX];
     bool cmd_pending;
     bool cmd_done;
+    modcp_posix_thread_t t_cp, t_cpu;
+    uint32_t core_t; /* on a bus: the last time passed to the core */
+} member_t;
+
+struct sim {
+    /* options */
+    const char *configs[MAX_MEMBERS];
+    size_t n;
+    const char *pty_link;
+    const char *device;
+    const char *script;
+    const char *control;
+    const char *sets[MAX_SETS];
+    size_t set_count;
+    const char *faults[MAX_FAULTS];
+    size_t fault_count;
+    const char *ext_tty[MAX_MEMBERS]; /* --qemu-member PTY: external members */
+    size_t n_ext;
+    int ext_fd[MAX_MEMBERS];
+    char ext_name[MAX_MEMBERS][24];
+    long cycle_override;
+    bool bus_mode;
+    uint32_t seed;
+    atomic_bool stop;
+    atomic_bool trace_on;
+    uint64_t t0_us64;
+    uint64_t cpu_t0_us64; /* all CPU threads cycle in phase from here */
+    atomic_int ready_count;
+    member_t m[MAX_MEMBERS];
+    /* the bus (bus_mode): the master's pty and the line */
+    modcp_posix_port_t line_port;
+    sim_bus_t *bus;
     /* output */
     pthread_mutex_t print_mu;
-} sim_t;
+};
 
 static volatile sig_atomic_t g_signal;
 static int g_sigpipe[2] = {-1, -1};
@@ -132,7 +172,8 @@ static void printf_line(sim_t *s, const char *fmt, ...)
 
 static void trace_print(void *user, const char *line)
 {
-    print_line(user, line);
+    member_t *m = user;
+    print_line(m->sim, line);
 }
 
 static uint64_t since_start(const sim_t *s)
@@ -142,125 +183,193 @@ static uint64_t since_start(const sim_t *s)
 
 static void on_tx(void *user, const uint8_t *buf, uint16_t len, uint32_t now_us)
 {
-    sim_t *s = user;
-    (void)now_us;
-    if (atomic_load(&s->trace_on)) {
-        sim_trace_tx(&s->tr, buf, len, since_start(s));
+    member_t *m = user;
+    sim_t *s = m->sim;
+    if (s->bus != NULL) {
+        sim_bus_tx(s->bus, m->index, buf, len, now_us); /* the bus traces the line */
+    } else if (atomic_load(&s->trace_on)) {
+        sim_trace_tx(&m->tr, buf, len, since_start(s));
     }
 }
 
 /* ---- CP thread ----------------------------------------------------------------- */
 
-static void cp_snapshot(sim_t *s)
+static void cp_snapshot(member_t *m)
 {
-    pthread_mutex_lock(&s->snap_mu);
-    s->snap_diag = s->cp.diag;
-    s->snap_configured = s->cp.configured;
-    s->snap_ready = modcp_cp_ready(&s->cp);
-    s->snap_param_event = s->cp.param_event;
-    pthread_mutex_unlock(&s->snap_mu);
+    pthread_mutex_lock(&m->snap_mu);
+    m->snap_diag = m->cp.diag;
+    m->snap_configured = m->cp.configured;
+    m->snap_ready = modcp_cp_ready(&m->cp);
+    m->snap_param_event = m->cp.param_event;
+    pthread_mutex_unlock(&m->snap_mu);
 }
 
-static void trace_events(sim_t *s)
+static void trace_events(member_t *m)
 {
-    uint32_t total = s->cp.diag.events_total;
-    if (total == s->events_seen) {
+    uint32_t total = m->cp.diag.events_total;
+    if (total == m->events_seen) {
         return;
     }
-    uint32_t n = total - s->events_seen;
-    s->events_seen = total;
-    if (!atomic_load(&s->trace_on)) {
+    uint32_t n = total - m->events_seen;
+    m->events_seen = total;
+    if (!atomic_load(&m->sim->trace_on)) {
         return;
     }
-    if (n > s->cp.diag.buffer_len) {
-        n = s->cp.diag.buffer_len;
+    if (n > m->cp.diag.buffer_len) {
+        n = m->cp.diag.buffer_len;
     }
-    uint64_t t = since_start(s);
+    uint64_t t = since_start(m->sim);
     for (uint32_t i = n; i > 0u; i--) {
-        sim_trace_event(&s->tr, s->cp.diag.buffer[i - 1u], t);
+        sim_trace_event(&m->tr, m->cp.diag.buffer[i - 1u], t);
     }
 }
 
 static void *cp_thread(void *arg)
 {
-    sim_t *s = arg;
-    static modcp_posix_rx_t rx[RX_CHUNK];
+    member_t *m = arg;
+    sim_t *s = m->sim;
+    modcp_posix_rx_t rx[RX_CHUNK];
+    /* on a bus, the bus traces the line; MODCP_SIM_MEMBER_RX=1 adds what each member
+     * heard (a debugging aid: "@b heard ...") */
+    bool line_trace = s->bus == NULL || getenv("MODCP_SIM_MEMBER_RX") != NULL;
+    if (s->bus != NULL) {
+        char l[32];
+        snprintf(l, sizeof l, "@%s heard", m->name);
+        sim_trace_labels(&m->tr, l, NULL, NULL);
+    }
     while (!atomic_load(&s->stop)) {
-        bool idle = modcp_cp_ready(&s->cp) && !modcp_job_busy(&s->cp.job) && !s->cp.request_pending;
+        bool idle = modcp_cp_ready(&m->cp) && !modcp_job_busy(&m->cp.job) && !m->cp.request_pending;
         bool tx_done = false, timer = false;
         uint32_t now = 0;
-        int n = modcp_posix_wait(&s->port, idle ? IDLE_TICK_US : BUSY_TICK_US, rx, RX_CHUNK,
+        int n = modcp_posix_wait(&m->port, idle ? IDLE_TICK_US : BUSY_TICK_US, rx, RX_CHUNK,
                                  &tx_done, &timer, &now);
         if (n < 0) {
-            printf_line(s, "modcp-sim: read error on %s: %s", s->port.path, strerror(-n));
+            printf_line(s, "modcp-sim: read error on %s: %s", m->port.path, strerror(-n));
             atomic_store(&s->stop, true);
             break;
         }
-        bool tr = atomic_load(&s->trace_on);
+        bool tr = line_trace && atomic_load(&s->trace_on);
         /* the trace's time is exactly the core's `now` (widened to 64 bits), so its
          * t3.5 frame cut agrees with the core's timer: a frame is printed before the
          * events its end raises */
         uint64_t n64 = modcp_posix_now_us64();
         uint64_t t = n64 - (uint32_t)((uint32_t)n64 - now) - s->t0_us64;
-        s->port.now_us = now;
+        if (s->bus != NULL) {
+            /* on a bus: the characters heard, each at its time on the line, and the
+             * timer between them when it fell due first */
+            if (timer) {
+                m->port.timer_armed = true; /* ordered with the characters below */
+                timer = false;
+            }
+            if (tx_done) {
+                /* our reply ended before anything heard after it (we were deaf while
+                 * sending): its end first, at its time on the line */
+                uint32_t end = m->port.tx_t0_us + (uint32_t)m->port.tx_len * m->port.char_us;
+                if ((int32_t)(end - m->core_t) < 0) {
+                    end = m->core_t;
+                }
+                if ((int32_t)(now - end) < 0) {
+                    end = now;
+                }
+                m->port.now_us = end;
+                modcp_cp_on_tx_done(&m->cp, end);
+                m->core_t = end;
+                tx_done = false;
+            }
+            uint8_t bb[RX_CHUNK];
+            uint32_t bt[RX_CHUNK];
+            size_t k = sim_bus_take(s->bus, m->index, bb, bt, RX_CHUNK);
+            for (size_t i = 0; i < k; i++) {
+                uint32_t ti = bt[i];
+                if ((int32_t)(ti - m->core_t) < 0) {
+                    ti = m->core_t; /* never back in time for the core */
+                }
+                if ((int32_t)(now - ti) < 0) {
+                    ti = now;
+                }
+                while (m->port.timer_armed && (int32_t)(ti - m->port.timer_deadline_us) >= 0) {
+                    uint32_t d = m->port.timer_deadline_us;
+                    if ((int32_t)(d - m->core_t) < 0) {
+                        d = m->core_t;
+                    }
+                    m->port.timer_armed = false;
+                    m->port.now_us = d;
+                    modcp_cp_on_timer(&m->cp, d);
+                    m->core_t = d;
+                }
+                m->port.now_us = ti;
+                if (tr) {
+                    uint64_t tb = n64 - (uint32_t)((uint32_t)n64 - ti) - s->t0_us64;
+                    sim_trace_rx(&m->tr, bb[i], 0, tb);
+                }
+                modcp_cp_on_rx(&m->cp, bb[i], ti);
+                m->core_t = ti;
+            }
+            if (m->port.timer_armed && (int32_t)(now - m->port.timer_deadline_us) >= 0) {
+                m->port.timer_armed = false;
+                timer = true;
+            }
+            m->core_t = now;
+        }
+        m->port.now_us = now;
         bool cts = true, dsr = true;
-        if (modcp_posix_modem_inputs(&s->port, &cts, &dsr)) {
-            modcp_cp_on_signals(&s->cp, cts, dsr, now);
+        if (modcp_posix_modem_inputs(&m->port, &cts, &dsr)) {
+            modcp_cp_on_signals(&m->cp, cts, dsr, now);
         }
         if (tx_done) {
-            modcp_cp_on_tx_done(&s->cp, now);
+            modcp_cp_on_tx_done(&m->cp, now);
         }
         if (timer) {
-            modcp_cp_on_timer(&s->cp, now);
+            modcp_cp_on_timer(&m->cp, now);
         }
         for (int i = 0; i < n; i++) {
             if (tr) {
-                sim_trace_rx(&s->tr, rx[i].byte, rx[i].errors, t);
+                sim_trace_rx(&m->tr, rx[i].byte, rx[i].errors, t);
             }
             if (rx[i].errors != 0u) {
-                modcp_cp_on_line_error(&s->cp, rx[i].errors, now);
+                modcp_cp_on_line_error(&m->cp, rx[i].errors, now);
             } else {
-                modcp_cp_on_rx(&s->cp, rx[i].byte, now);
+                modcp_cp_on_rx(&m->cp, rx[i].byte, now);
             }
         }
-        modcp_cp_poll(&s->cp, now);
+        modcp_cp_poll(&m->cp, now);
         if (tr) {
-            sim_trace_poll(&s->tr, t);
+            sim_trace_poll(&m->tr, t);
         }
-        trace_events(s);
-        cp_snapshot(s);
+        trace_events(m);
+        cp_snapshot(m);
     }
     return NULL;
 }
 
 /* ---- CPU thread ------------------------------------------------------------------- */
 
-static void exec_console(sim_t *s)
+static void exec_console(member_t *m)
 {
     modcp_console_env_t env;
     modcp_diag_t diag;
     memset(&env, 0, sizeof env);
-    pthread_mutex_lock(&s->snap_mu);
-    diag = s->snap_diag;
-    env.cp_configured = s->snap_configured;
-    env.cp_ready = s->snap_ready;
-    env.cp_param_event = s->snap_param_event;
-    pthread_mutex_unlock(&s->snap_mu);
-    env.mem = &s->memory.mem;
+    pthread_mutex_lock(&m->snap_mu);
+    diag = m->snap_diag;
+    env.cp_configured = m->snap_configured;
+    env.cp_ready = m->snap_ready;
+    env.cp_param_event = m->snap_param_event;
+    pthread_mutex_unlock(&m->snap_mu);
+    env.mem = &m->memory.mem;
     env.diag = &diag;
-    env.fb = &s->fb;
-    env.paused = &s->paused;
-    env.cp_start = &s->fb_in.cp_start;
-    env.cycles = s->cycles;
+    env.fb = &m->fb;
+    env.paused = &m->paused;
+    env.cp_start = &m->fb_in.cp_start;
+    env.cycles = m->cycles;
     /* the CP's status area, read from the backplane like any user program would */
     modcp_cp_status_t cst;
     for (int k = 0; k < 100; k++) {
-        if (modcp_bp_read_status(&s->bp, &cst)) {
+        if (modcp_bp_read_status(&m->bp, &cst)) {
             env.cp_status = &cst;
             break;
         }
     }
-    (void)modcp_console_exec(&env, s->cmd_line, s->cmd_out, sizeof s->cmd_out);
+    (void)modcp_console_exec(&env, m->cmd_line, m->cmd_out, sizeof m->cmd_out);
 }
 
 /* Blocks the CPU side has put (to the CP) plus blocks it has taken (from the CP): it
@@ -278,24 +387,38 @@ static void timespec_of(uint64_t us, struct timespec *ts)
     ts->tv_nsec = (long)((us % 1000000u) * 1000u);
 }
 
+/* "modcp-sim: " or "modcp-sim: @b " */
+static const char *who(const member_t *m, char *buf, size_t cap)
+{
+    if (m->sim->bus != NULL) {
+        snprintf(buf, cap, "@%s ", m->name);
+    } else {
+        buf[0] = '\0';
+    }
+    return buf;
+}
+
 static void *cpu_thread(void *arg)
 {
-    sim_t *s = arg;
-    uint64_t next = modcp_posix_now_us64();
+    member_t *m = arg;
+    sim_t *s = m->sim;
+    uint64_t next = s->cpu_t0_us64; /* every member's cycle in phase (two at one address
+                                       answer at once, as two PLCs polled alike would) */
     uint8_t last_state = 0xFF;
-    bool ready_printed = false;
-    s->fb_in.cp_start = true; /* OB100: CP_START set at start-up */
+    bool ready_printed = false, counted = false;
+    char wb[32];
+    m->fb_in.cp_start = true; /* OB100: CP_START set at start-up */
     while (!atomic_load(&s->stop)) {
-        pthread_mutex_lock(&s->cmd_mu);
+        pthread_mutex_lock(&m->cmd_mu);
         for (;;) {
             if (atomic_load(&s->stop)) {
                 break;
             }
-            if (s->cmd_pending) {
-                exec_console(s);
-                s->cmd_pending = false;
-                s->cmd_done = true;
-                pthread_cond_broadcast(&s->cmd_cv);
+            if (m->cmd_pending) {
+                exec_console(m);
+                m->cmd_pending = false;
+                m->cmd_done = true;
+                pthread_cond_broadcast(&m->cmd_cv);
                 continue;
             }
             if (modcp_posix_now_us64() >= next) {
@@ -303,32 +426,43 @@ static void *cpu_thread(void *arg)
             }
             struct timespec ts;
             timespec_of(next, &ts);
-            (void)pthread_cond_timedwait(&s->cmd_cv, &s->cmd_mu, &ts);
+            (void)pthread_cond_timedwait(&m->cmd_cv, &m->cmd_mu, &ts);
         }
-        pthread_mutex_unlock(&s->cmd_mu);
+        pthread_mutex_unlock(&m->cmd_mu);
         if (atomic_load(&s->stop)) {
             break;
         }
-        if (!s->paused) {
+        if (!m->paused) {
             modcp_fb_out_t out;
-            uint32_t moved0 = bp_moves(&s->bp);
-            modcp_fb_call(&s->fb, &s->fb_in, &out, modcp_posix_now_ms());
-            if (bp_moves(&s->bp) != moved0) {
-                modcp_posix_wake(&s->port); /* the CP has blocks to take or room to put */
+            uint32_t moved0 = bp_moves(&m->bp);
+            modcp_fb_call(&m->fb, &m->fb_in, &out, modcp_posix_now_ms());
+            if (bp_moves(&m->bp) != moved0) {
+                modcp_posix_wake(&m->port); /* the CP has blocks to take or room to put */
             }
-            s->cycles++;
-            if (s->fb.state != last_state) {
-                last_state = s->fb.state;
-                atomic_store(&s->fb_state, last_state);
+            m->cycles++;
+            if (m->fb.state != last_state) {
+                last_state = m->fb.state;
+                atomic_store(&m->fb_state, last_state);
                 if (last_state == MODCP_FBST_RUN && out.cp_start_ok && !ready_printed) {
                     ready_printed = true;
-                    printf_line(s, "modcp-sim: ready");
+                    if (s->bus == NULL) {
+                        printf_line(s, "modcp-sim: ready");
+                    } else {
+                        printf_line(s, "modcp-sim: @%s ready", m->name);
+                        if (!counted) {
+                            counted = true;
+                            if (atomic_fetch_add(&s->ready_count, 1) + 1 == (int)s->n) {
+                                printf_line(s, "modcp-sim: ready");
+                            }
+                        }
+                    }
                 } else if (last_state == MODCP_FBST_FAILED) {
                     char en[16];
                     modcp_console_event_name((modcp_event_t)out.error_info, en, sizeof en);
                     printf_line(s,
-                                "modcp-sim: CP_START_ERROR, ERROR_NR %u ERROR_INFO 0x%04X %s (%s)",
-                                (unsigned)out.error_nr, (unsigned)out.error_info, en,
+                                "modcp-sim: %sCP_START_ERROR, ERROR_NR %u ERROR_INFO 0x%04X %s (%s)",
+                                who(m, wb, sizeof wb), (unsigned)out.error_nr,
+                                (unsigned)out.error_info, en,
                                 modcp_event_text((modcp_event_t)out.error_info));
                     ready_printed = false;
                 } else if (last_state != MODCP_FBST_RUN) {
@@ -336,11 +470,12 @@ static void *cpu_thread(void *arg)
                 }
             }
         }
-        uint64_t period = (uint64_t)s->cycle_ms * 1000u;
+        uint64_t period = (uint64_t)m->cycle_ms * 1000u;
         next += period;
         uint64_t now = modcp_posix_now_us64();
         if (next + period < now) {
-            next = now + period; /* overrun: do not catch up with a burst of cycles */
+            /* overrun: do not catch up with a burst of cycles; stay in phase */
+            next += ((now - next) / period + 1u) * period;
         }
     }
     return NULL;
@@ -348,20 +483,21 @@ static void *cpu_thread(void *arg)
 
 /* ---- console input (main thread) ----------------------------------------------------- */
 
-static void submit(sim_t *s, const char *line, char *out, size_t cap)
+static void submit(member_t *m, const char *line, char *out, size_t cap)
 {
-    pthread_mutex_lock(&s->cmd_mu);
-    snprintf(s->cmd_line, sizeof s->cmd_line, "%s", line);
-    s->cmd_pending = true;
-    s->cmd_done = false;
-    pthread_cond_broadcast(&s->cmd_cv);
-    while (!s->cmd_done && !atomic_load(&s->stop)) {
+    sim_t *s = m->sim;
+    pthread_mutex_lock(&m->cmd_mu);
+    snprintf(m->cmd_line, sizeof m->cmd_line, "%s", line);
+    m->cmd_pending = true;
+    m->cmd_done = false;
+    pthread_cond_broadcast(&m->cmd_cv);
+    while (!m->cmd_done && !atomic_load(&s->stop)) {
         struct timespec ts;
         timespec_of(modcp_posix_now_us64() + 100000u, &ts);
-        (void)pthread_cond_timedwait(&s->cmd_cv, &s->cmd_mu, &ts);
+        (void)pthread_cond_timedwait(&m->cmd_cv, &m->cmd_mu, &ts);
     }
-    snprintf(out, cap, "%s", s->cmd_done ? s->cmd_out : "error: stopped");
-    pthread_mutex_unlock(&s->cmd_mu);
+    snprintf(out, cap, "%s", m->cmd_done ? m->cmd_out : "error: stopped");
+    pthread_mutex_unlock(&m->cmd_mu);
 }
 
 static bool sleep_ms(sim_t *s, long ms)
@@ -378,13 +514,121 @@ static bool sleep_ms(sim_t *s, long ms)
     return false;
 }
 
+/* "@b" / "@2" -> member index; -1 = none such; MAX_MEMBERS = all ("@*"). */
+static int find_member(const sim_t *s, const char *name)
+{
+    if (strcmp(name, "*") == 0) {
+        return MAX_MEMBERS;
+    }
+    for (size_t i = 0; i < s->n; i++) {
+        if (strcmp(s->m[i].name, name) == 0) {
+            return (int)i;
+        }
+    }
+    char *end = NULL;
+    long k = strtol(name, &end, 10);
+    if (*name != '\0' && *end == '\0' && k >= 1 && (size_t)k <= s->n) {
+        return (int)(k - 1);
+    }
+    return -1;
+}
+
+/* `fault [KIND=VALUE|off]...` for member m. */
+static void fault_cmd(member_t *m, const char *args, bool prefix)
+{
+    sim_t *s = m->sim;
+    char out[512];
+    char pre[32] = "";
+    if (prefix) {
+        snprintf(pre, sizeof pre, "@%s ", m->name);
+    }
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", args);
+    char *save = NULL;
+    for (char *tok = strtok_r(buf, " \t", &save); tok != NULL; tok = strtok_r(NULL, " \t", &save)) {
+        char err[160];
+        if (!sim_bus_fault_set(s->bus, m->index, tok, err, sizeof err)) {
+            printf_line(s, "%serror: fault %s", pre, err);
+            return;
+        }
+    }
+    sim_bus_fault_describe(s->bus, m->index, out, sizeof out);
+    printf_line(s, "%s%s", pre, out);
+}
+
+/* One console command for member m (prefix: name it in each output line). */
+static void member_cmd(member_t *m, const char *line, const char *cmd, bool prefix)
+{
+    sim_t *s = m->sim;
+    if (strcasecmp(cmd, "fault") == 0 || strcasecmp(cmd, "faults") == 0) {
+        const char *args = line;
+        while (*args == ' ' || *args == '\t') {
+            args++;
+        }
+        args += strlen(cmd);
+        if (s->bus == NULL) {
+            print_line(s, "error: faults are injected by the bus: start modcp-sim with --bus "
+                          "(or --fault)");
+            return;
+        }
+        fault_cmd(m, args, prefix);
+        return;
+    }
+    char out[CMD_OUT_MAX];
+    submit(m, line, out, sizeof out);
+    if (out[0] == '\0') {
+        return;
+    }
+    if (!prefix) {
+        print_line(s, out);
+    } else {
+        /* every line of the answer named by its member */
+        char *save = NULL;
+        for (char *l = strtok_r(out, "\n", &save); l != NULL; l = strtok_r(NULL, "\n", &save)) {
+            printf_line(s, "@%s %s", m->name, l);
+        }
+    }
+    if (s->bus != NULL && strcasecmp(cmd, "status") == 0) {
+        char f[512];
+        sim_bus_fault_describe(s->bus, m->index, f, sizeof f);
+        if (prefix) {
+            printf_line(s, "@%s %s", m->name, f);
+        } else {
+            print_line(s, f);
+        }
+    }
+}
+
 /* One console line; returns false when the simulator should stop. */
 static bool handle_line(sim_t *s, const char *line)
 {
     char cmd[32] = "";
     char arg[64] = "";
-    int k = sscanf(line, " %31s %63s", cmd, arg);
-    if (k >= 1) {
+    const char *rest = line;
+    int target = -2; /* -2: no prefix */
+    while (*rest == ' ' || *rest == '\t') {
+        rest++;
+    }
+    if (*rest == '@') {
+        char name[32];
+        size_t k = 0;
+        rest++;
+        while (*rest != '\0' && *rest != ' ' && *rest != '\t' && k + 1u < sizeof name) {
+            name[k++] = *rest++;
+        }
+        name[k] = '\0';
+        target = find_member(s, name);
+        if (target < 0) {
+            printf_line(s, "error: no member @%s; members:", name);
+            for (size_t i = 0; i < s->n; i++) {
+                printf_line(s, "  @%s = @%zu  slave %u  %s", s->m[i].name, i + 1u,
+                            (unsigned)s->m[i].conf->params.slave_addr, s->m[i].config);
+            }
+            return true;
+        }
+    }
+    int k = sscanf(rest, " %31s %63s", cmd, arg);
+    if (k >= 1 && target == -2) {
         if (strcasecmp(cmd, "quit") == 0 || strcasecmp(cmd, "exit") == 0) {
             return false;
         }
@@ -401,22 +645,55 @@ static bool handle_line(sim_t *s, const char *line)
         if (strcasecmp(cmd, "trace") == 0) {
             if (k == 2 && (strcasecmp(arg, "on") == 0 || strcasecmp(arg, "off") == 0)) {
                 atomic_store(&s->trace_on, strcasecmp(arg, "on") == 0);
+                if (s->bus != NULL) {
+                    sim_bus_trace(s->bus, strcasecmp(arg, "on") == 0);
+                }
                 printf_line(s, "trace %s", arg);
             } else {
                 print_line(s, "error: usage: trace on|off");
             }
             return true;
         }
+        if (strcasecmp(cmd, "members") == 0) {
+            for (size_t i = 0; i < s->n; i++) {
+                printf_line(s, "@%s = @%zu  slave %u  %s", s->m[i].name, i + 1u,
+                            (unsigned)s->m[i].conf->params.slave_addr, s->m[i].config);
+            }
+            return true;
+        }
     }
-    char out[CMD_OUT_MAX];
-    submit(s, line, out, sizeof out);
-    if (out[0] != '\0') {
-        print_line(s, out);
+    if (k < 1 && target != -2) {
+        print_line(s, "error: @MEMBER needs a command (e.g. @b status)");
+        return true;
+    }
+    /* which members: a prefix names one (or @* all); without one, status / diag /
+     * fault go to every member, everything else to the first */
+    bool all = target == MAX_MEMBERS;
+    if (target == -2) {
+        all = s->n > 1u && k >= 1 &&
+              (strcasecmp(cmd, "status") == 0 || strcasecmp(cmd, "diag") == 0 ||
+               ((strcasecmp(cmd, "fault") == 0 || strcasecmp(cmd, "faults") == 0) && k == 1));
+        target = 0;
+    }
+    if (all) {
+        for (size_t i = 0; i < s->n; i++) {
+            member_cmd(&s->m[i], rest, cmd, true);
+        }
+    } else {
+        member_cmd(&s->m[target], rest, cmd, false);
     }
     if (k >= 1 && (strcasecmp(cmd, "help") == 0 || strcmp(cmd, "?") == 0)) {
         print_line(s, "  trace on|off        frame trace (simulator)");
         print_line(s, "  sleep MS            wait (simulator, for scripts)");
         print_line(s, "  quit                stop the simulator");
+        if (s->bus != NULL) {
+            print_line(s, "  members             the bus's members (@name = @index, address, config)");
+            print_line(s, "  @M COMMAND          run COMMAND on member M (@b, @2; @* = all); without");
+            print_line(s, "                      @M: status, diag and fault on all, the rest on the first");
+            print_line(s, "  fault [SPEC]...     faults of a member's replies: drop=P crc=P exc06=P");
+            print_line(s, "                      exc04=P (P in %), delay=MS|MIN-MAX, silent=N, noise=N,");
+            print_line(s, "                      off; without SPEC: settings and counters");
+        }
     }
     return true;
 }
@@ -475,11 +752,20 @@ static bool pump(sim_t *s, line_reader_t *r)
 static bool run_script(sim_t *s)
 {
     /* after the FB's init has finished (ready or CP_START_ERROR) */
-    uint64_t limit = modcp_posix_now_us64() +
-                     ((uint64_t)s->conf->params.start_time_ms + 2000u) * 1000u;
+    uint32_t start_ms = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        if (s->m[i].conf->params.start_time_ms > start_ms) {
+            start_ms = s->m[i].conf->params.start_time_ms;
+        }
+    }
+    uint64_t limit = modcp_posix_now_us64() + ((uint64_t)start_ms + 2000u) * 1000u;
     while (!atomic_load(&s->stop) && g_signal == 0 && modcp_posix_now_us64() < limit) {
-        int st = atomic_load(&s->fb_state);
-        if (st == MODCP_FBST_RUN || st == MODCP_FBST_FAILED) {
+        size_t done = 0;
+        for (size_t i = 0; i < s->n; i++) {
+            int st = atomic_load(&s->m[i].fb_state);
+            done += (st == MODCP_FBST_RUN || st == MODCP_FBST_FAILED) ? 1u : 0u;
+        }
+        if (done == s->n) {
             break;
         }
         (void)sleep_ms(s, 10);
@@ -546,60 +832,461 @@ static void console_loop(sim_t *s, int control_fd)
 static int usage(void)
 {
     fprintf(stderr,
-            "usage: modcp-sim CONFIG.ini [--pty-link PATH] [--device /dev/ttyX] [--trace]\n"
-            "                 [--script FILE] [--cycle-ms N] [--set section.key=value]...\n"
-            "                 [--control FIFO]\n"
+            "usage: modcp-sim CONFIG.ini [CONFIG2.ini ...] [--pty-link PATH] [--device /dev/ttyX]\n"
+            "                 [--trace] [--script FILE] [--cycle-ms N] [--set section.key=value]...\n"
+            "                 [--control FIFO] [--bus] [--fault [@M:]KIND=VALUE]... [--seed N]\n"
+            "                 [--qemu-member PTY]...\n"
             "  --pty-link PATH   also make PATH a symlink to the pseudo-terminal\n"
             "  --device PATH     use a real serial device (termios from the parameters)\n"
             "  --trace           print every frame received and sent, and every event\n"
             "  --script FILE     run console commands from FILE once the FB is initialised\n"
             "  --cycle-ms N      cycle time of the user program (default: [cpu] cycle_ms)\n"
-            "  --set S.K=V       override a key of the configuration (e.g. serial.baud=115200)\n"
+            "  --set [@M:]S.K=V  override a key of the configuration (e.g. serial.baud=115200);\n"
+            "                    on a bus, of every member, or of member M (@2:, @name:)\n"
             "  --control FIFO    also read console commands from a named pipe (made if missing)\n"
+            "  --bus             run even one config as a bus member (for --fault / fault)\n"
+            "  --fault [@M:]K=V  a fault of member M's replies (default: every member); K: drop,\n"
+            "                    crc, exc06, exc04 (V in %%), delay (MS or MIN-MAX), silent (N\n"
+            "                    requests), noise (N bytes after each reply); implies --bus\n"
+            "  --seed N          seed of the faults' random choices (default 1)\n"
+            "  --qemu-member PTY a QEMU board's Modbus pty (tools/run-qemu) as a member of the\n"
+            "                    bus (@qemu; its console is its own); implies --bus\n"
+            "Several configs: one line (bus), one pty for the master, every member on it.\n"
             "The console reads stdin; type help. Ctrl-C or SIGTERM stops.\n");
     return 1;
+}
+
+/* What the value of an option is, for "needs a value" (NULL: the option takes none). */
+static const char *option_value(const char *a)
+{
+    static const char *const opts[][2] = {
+        {"--pty-link", "a path for the symlink to the pty"},
+        {"--device", "a serial device, e.g. /dev/ttyUSB0"},
+        {"--script", "a file of console commands"},
+        {"--control", "a path for the console FIFO"},
+        {"--cycle-ms", "the user program's cycle in ms, 1..60000"},
+        {"--set", "section.key=value"},
+        {"--fault", "[@MEMBER:]KIND=VALUE, e.g. drop=30 or @b:delay=5-20"},
+        {"--seed", "a number"},
+        {"--qemu-member", "the Modbus pty of a QEMU board (tools/run-qemu's MODBUS_TTY)"},
+    };
+    for (size_t i = 0; i < sizeof opts / sizeof opts[0]; i++) {
+        if (strcmp(a, opts[i][0]) == 0) {
+            return opts[i][1];
+        }
+    }
+    return NULL;
 }
 
 static int parse_args(sim_t *s, int argc, char **argv)
 {
     s->cycle_override = -1;
+    s->seed = 1;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
-        bool has = i + 1 < argc;
-        if (strcmp(a, "--pty-link") == 0 && has) {
+        const char *needs = option_value(a);
+        if (needs != NULL && (i + 1 >= argc || (argv[i + 1][0] == '-' && argv[i + 1][1] == '-'))) {
+            fprintf(stderr, "modcp-sim: %s needs a value (%s)\n", a, needs);
+            return 1;
+        }
+        if (strcmp(a, "--pty-link") == 0) {
             s->pty_link = argv[++i];
-        } else if (strcmp(a, "--device") == 0 && has) {
+        } else if (strcmp(a, "--device") == 0) {
             s->device = argv[++i];
         } else if (strcmp(a, "--trace") == 0) {
             atomic_store(&s->trace_on, true);
-        } else if (strcmp(a, "--script") == 0 && has) {
+        } else if (strcmp(a, "--bus") == 0) {
+            s->bus_mode = true;
+        } else if (strcmp(a, "--script") == 0) {
             s->script = argv[++i];
-        } else if (strcmp(a, "--control") == 0 && has) {
+        } else if (strcmp(a, "--control") == 0) {
             s->control = argv[++i];
-        } else if (strcmp(a, "--cycle-ms") == 0 && has) {
+        } else if (strcmp(a, "--cycle-ms") == 0) {
             char *end = NULL;
             long v = strtol(argv[++i], &end, 10);
             if (*end != '\0' || v < 1 || v > 60000) {
-                fprintf(stderr, "modcp-sim: --cycle-ms must be 1..60000\n");
+                fprintf(stderr, "modcp-sim: --cycle-ms %s: must be 1..60000\n", argv[i]);
                 return 1;
             }
             s->cycle_override = v;
-        } else if (strcmp(a, "--set") == 0 && has) {
+        } else if (strcmp(a, "--seed") == 0) {
+            char *end = NULL;
+            unsigned long v = strtoul(argv[++i], &end, 10);
+            if (*end != '\0' || v > 0xFFFFFFFFul) {
+                fprintf(stderr, "modcp-sim: --seed %s: must be a number\n", argv[i]);
+                return 1;
+            }
+            s->seed = (uint32_t)v;
+        } else if (strcmp(a, "--set") == 0) {
             if (s->set_count >= MAX_SETS) {
                 fprintf(stderr, "modcp-sim: too many --set\n");
                 return 1;
             }
             s->sets[s->set_count++] = argv[++i];
+        } else if (strcmp(a, "--fault") == 0) {
+            if (s->fault_count >= MAX_FAULTS) {
+                fprintf(stderr, "modcp-sim: too many --fault\n");
+                return 1;
+            }
+            s->faults[s->fault_count++] = argv[++i];
+            s->bus_mode = true;
+        } else if (strcmp(a, "--qemu-member") == 0) {
+            if (s->n_ext >= MAX_MEMBERS) {
+                fprintf(stderr, "modcp-sim: too many --qemu-member\n");
+                return 1;
+            }
+            s->ext_tty[s->n_ext++] = argv[++i];
+            s->bus_mode = true;
         } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             return usage();
-        } else if (a[0] == '-' || s->config != NULL) {
+        } else if (a[0] == '-') {
             fprintf(stderr, "modcp-sim: unexpected argument '%s'\n", a);
             return usage();
         } else {
-            s->config = a;
+            if (s->n >= MAX_MEMBERS) {
+                fprintf(stderr, "modcp-sim: at most %d configs (members of one bus)\n",
+                        MAX_MEMBERS);
+                return 1;
+            }
+            s->configs[s->n++] = a;
         }
     }
-    return s->config == NULL ? usage() : 0;
+    if (s->n == 0u) {
+        return usage();
+    }
+    if (s->n + s->n_ext > MAX_MEMBERS) {
+        fprintf(stderr, "modcp-sim: at most %d members on one bus\n", MAX_MEMBERS);
+        return 1;
+    }
+    if (s->n > 1u) {
+        s->bus_mode = true;
+    }
+    if (s->bus_mode && s->device != NULL) {
+        fprintf(stderr, "modcp-sim: --device works with one slave; a bus runs on a pty\n");
+        return 1;
+    }
+    return 0;
+}
+
+/* A process holding dev open (not us): its PID and name; 0 if none. */
+static long holder_of(const char *dev, char *comm, size_t cap)
+{
+    DIR *proc = opendir("/proc");
+    if (proc == NULL) {
+        return 0;
+    }
+    long found = 0;
+    long self = (long)getpid();
+    struct dirent *de;
+    while (found == 0 && (de = readdir(proc)) != NULL) {
+        char *end = NULL;
+        long pid = strtol(de->d_name, &end, 10);
+        if (*end != '\0' || pid <= 0 || pid == self) {
+            continue;
+        }
+        char fdpath[64];
+        snprintf(fdpath, sizeof fdpath, "/proc/%ld/fd", pid);
+        DIR *fds = opendir(fdpath);
+        if (fds == NULL) {
+            continue;
+        }
+        struct dirent *fe;
+        while ((fe = readdir(fds)) != NULL) {
+            char lp[320], target[256];
+            snprintf(lp, sizeof lp, "%s/%s", fdpath, fe->d_name);
+            ssize_t n = readlink(lp, target, sizeof target - 1u);
+            if (n > 0) {
+                target[n] = '\0';
+                if (strcmp(target, dev) == 0) {
+                    found = pid;
+                    break;
+                }
+            }
+        }
+        closedir(fds);
+    }
+    closedir(proc);
+    if (found != 0) {
+        char cp[64];
+        snprintf(cp, sizeof cp, "/proc/%ld/comm", found);
+        FILE *f = fopen(cp, "r");
+        comm[0] = '\0';
+        if (f != NULL) {
+            if (fgets(comm, (int)cap, f) != NULL) {
+                comm[strcspn(comm, "\n")] = '\0';
+            }
+            fclose(f);
+        }
+    }
+    return found;
+}
+
+/* Why the line could not be opened, in words. */
+static void open_failed(const char *device, const char *link, int orc)
+{
+    if (device != NULL) {
+        struct stat st;
+        if (orc == -ENOTTY || (stat(device, &st) == 0 && !S_ISCHR(st.st_mode))) {
+            fprintf(stderr, "modcp-sim: --device %s: not a serial device\n", device);
+        } else {
+            fprintf(stderr, "modcp-sim: --device %s: %s\n", device, strerror(-orc));
+        }
+        return;
+    }
+    if (link != NULL && orc == -EBUSY) {
+        char target[256] = "?", comm[64] = "";
+        ssize_t n = readlink(link, target, sizeof target - 1u);
+        if (n > 0) {
+            target[n] = '\0';
+        }
+        long pid = holder_of(target, comm, sizeof comm);
+        if (pid != 0) {
+            fprintf(stderr,
+                    "modcp-sim: --pty-link %s is in use: it points at %s, held by PID %ld (%s); "
+                    "not replaced (stop that instance or choose another path)\n",
+                    link, target, pid, comm);
+        } else {
+            fprintf(stderr,
+                    "modcp-sim: --pty-link %s exists and points at %s, which no process holds; "
+                    "not replaced (remove it or choose another path)\n",
+                    link, target);
+        }
+        return;
+    }
+    if (link != NULL && orc == -EEXIST) {
+        fprintf(stderr, "modcp-sim: --pty-link %s exists and is not a symbolic link; not replaced\n",
+                link);
+        return;
+    }
+    fprintf(stderr, "modcp-sim: cannot open %s: %s\n", link != NULL ? link : "a pty",
+            strerror(-orc));
+}
+
+/* Problems of the configuration; one from --set N is blamed on that option:
+ * "--set serial.baud=7: must be one of ...". Returns the fatal ones from --set. */
+static size_t print_problems(const modcp_conf_t *c, const char *const *sets,
+                             const char *const *shown, size_t nsets)
+{
+    size_t count = c->problem_count < MODCP_CONF_MAX_PROBLEMS ? c->problem_count
+                                                              : MODCP_CONF_MAX_PROBLEMS;
+    size_t from_set = 0;
+    for (size_t i = 0; i < count; i++) {
+        const char *txt = c->problems[i].text;
+        unsigned long k = 0;
+        int used = 0;
+        if (sscanf(txt, "--set:%lu: %n", &k, &used) == 1 && used > 0 && k >= 1u && k <= nsets) {
+            const char *rest = txt + used;
+            const char *arg = sets[k - 1u];
+            const char *eq = strchr(arg, '=');
+            size_t keylen = eq != NULL ? (size_t)(eq - arg) : strlen(arg);
+            /* drop the "section.key = value: " the rule is prefixed with */
+            if (strncmp(rest, arg, keylen) == 0 && strncmp(rest + keylen, " = ", 3) == 0) {
+                const char *colon = strstr(rest + keylen + 3u, ": ");
+                if (colon != NULL) {
+                    rest = colon + 2;
+                }
+            }
+            fprintf(stderr, "--set %s: %s\n", shown[k - 1u], rest);
+            if (c->problems[i].fatal) {
+                from_set++;
+            }
+        } else {
+            fprintf(stderr, "%s\n", txt);
+        }
+    }
+    return from_set;
+}
+
+/* "a" for "configs/a.ini"; "a-2" when an earlier member has the name already. */
+static void member_name(sim_t *s, size_t i)
+{
+    member_t *m = &s->m[i];
+    const char *base = strrchr(m->config, '/');
+    base = base != NULL ? base + 1 : m->config;
+    size_t len = strcspn(base, ".");
+    if (len == 0u) {
+        len = strlen(base);
+    }
+    if (len > 16u) {
+        len = 16u;
+    }
+    char name[17];
+    memcpy(name, base, len);
+    name[len] = '\0';
+    bool dup = false;
+    for (size_t k = 0; k < i; k++) {
+        dup = dup || strcmp(s->m[k].name, name) == 0;
+    }
+    if (dup) {
+        snprintf(m->name, sizeof m->name, "%s-%u", name, (unsigned)(i + 1u) % 100u);
+    } else {
+        snprintf(m->name, sizeof m->name, "%s", name);
+    }
+}
+
+static void free_members(sim_t *s)
+{
+    for (size_t i = 0; i < s->n; i++) {
+        member_t *m = &s->m[i];
+        if (m->conf != NULL) {
+            modcp_conf_memory_free(&m->memory);
+            free(m->conf);
+            m->conf = NULL;
+        }
+    }
+}
+
+/* Configuration of member m: the same code and messages as modcp-conf check.
+ * 0, or the exit code. */
+static int load_member(sim_t *s, member_t *m)
+{
+    m->conf = malloc(sizeof *m->conf);
+    if (m->conf == NULL) {
+        return 1;
+    }
+    memset(&m->memory, 0, sizeof m->memory);
+    /* --set S.K=V for every member, --set @M:S.K=V for member M (name or index) only */
+    const char *mine[MAX_SETS], *shown[MAX_SETS];
+    size_t nmine = 0;
+    for (size_t k = 0; k < s->set_count; k++) {
+        const char *a = s->sets[k];
+        if (a[0] == '@') {
+            const char *colon = strchr(a, ':');
+            char name[32];
+            size_t len = colon != NULL ? (size_t)(colon - a - 1) : 0u;
+            if (colon == NULL || len == 0u || len >= sizeof name) {
+                fprintf(stderr, "modcp-sim: --set %s: expected @MEMBER:section.key=value\n", a);
+                free(m->conf);
+                m->conf = NULL;
+                return 1;
+            }
+            memcpy(name, a + 1, len);
+            name[len] = '\0';
+            int target = find_member(s, name);
+            if (target < 0 || target == MAX_MEMBERS) {
+                fprintf(stderr, "modcp-sim: --set %s: no member @%s\n", a, name);
+                free(m->conf);
+                m->conf = NULL;
+                return 1;
+            }
+            if ((size_t)target != m->index) {
+                continue;
+            }
+            mine[nmine] = colon + 1;
+        } else {
+            mine[nmine] = a;
+        }
+        shown[nmine++] = a;
+    }
+    size_t fatal = modcp_conf_load_ex(m->conf, m->config, mine, nmine);
+    size_t from_set = print_problems(m->conf, mine, shown, nmine);
+    if (fatal > 0u) {
+        if (from_set == fatal) {
+            fprintf(stderr, "modcp-sim: --set: %zu problem%s, not started\n", fatal,
+                    fatal == 1u ? "" : "s");
+        } else {
+            fprintf(stderr, "modcp-sim: %s%s: %zu problem%s, not started\n", m->config,
+                    from_set > 0u ? " and --set" : "", fatal, fatal == 1u ? "" : "s");
+        }
+        free(m->conf);
+        m->conf = NULL;
+        return 2;
+    }
+    size_t rlen = modcp_conf_record(m->conf, m->record, sizeof m->record);
+    if (rlen == 0u || !modcp_conf_memory_alloc(m->conf, &m->memory)) {
+        fprintf(stderr, "modcp-sim: cannot build the parameter record / memory\n");
+        free(m->conf);
+        m->conf = NULL;
+        return 1;
+    }
+    m->record_len = (uint16_t)rlen;
+    m->cycle_ms = s->cycle_override > 0 ? (uint32_t)s->cycle_override : m->conf->cycle_ms;
+    return 0;
+}
+
+/* Every member of one line needs the first one's line settings. */
+static bool same_line(const sim_t *s)
+{
+    const modcp_params_t *p0 = &s->m[0].conf->params;
+    static const char *const par[] = {"none", "odd", "even"};
+    for (size_t i = 1; i < s->n; i++) {
+        const modcp_params_t *p = &s->m[i].conf->params;
+        char mine[32] = "", bus[32] = "";
+        const char *field = NULL;
+        if (p->baud != p0->baud) {
+            field = "serial.baud";
+            snprintf(mine, sizeof mine, "%u", (unsigned)p->baud);
+            snprintf(bus, sizeof bus, "%u", (unsigned)p0->baud);
+        } else if (p->parity != p0->parity) {
+            field = "serial.parity";
+            snprintf(mine, sizeof mine, "%s", par[p->parity % 3u]);
+            snprintf(bus, sizeof bus, "%s", par[p0->parity % 3u]);
+        } else if (p->data_bits != p0->data_bits) {
+            field = "serial.data_bits";
+            snprintf(mine, sizeof mine, "%u", (unsigned)p->data_bits);
+            snprintf(bus, sizeof bus, "%u", (unsigned)p0->data_bits);
+        } else if (p->stop_bits != p0->stop_bits) {
+            field = "serial.stop_bits";
+            snprintf(mine, sizeof mine, "%u", (unsigned)p->stop_bits);
+            snprintf(bus, sizeof bus, "%u", (unsigned)p0->stop_bits);
+        } else if (p->framing != p0->framing) {
+            field = "protocol.framing";
+            snprintf(mine, sizeof mine, "%s", p->framing == MODCP_FRAMING_ASCII ? "ascii" : "rtu");
+            snprintf(bus, sizeof bus, "%s", p0->framing == MODCP_FRAMING_ASCII ? "ascii" : "rtu");
+        }
+        if (field != NULL) {
+            fprintf(stderr,
+                    "modcp-sim: member @%s (%s): %s = %s, but the bus runs %s = %s (@%s, %s); "
+                    "all members of one line need the same baud, parity, data bits, stop bits "
+                    "and framing, not started\n",
+                    s->m[i].name, s->m[i].config, field, mine, field, bus, s->m[0].name,
+                    s->m[0].config);
+            return false;
+        }
+    }
+    return true;
+}
+
+/* --fault [@M:]KIND=VALUE from the command line. */
+static bool apply_cli_faults(sim_t *s)
+{
+    for (size_t k = 0; k < s->fault_count; k++) {
+        const char *spec = s->faults[k];
+        int target = MAX_MEMBERS;
+        if (spec[0] == '@') {
+            const char *colon = strchr(spec, ':');
+            char name[32];
+            size_t len = colon != NULL ? (size_t)(colon - spec - 1) : 0u;
+            if (colon == NULL || len == 0u || len >= sizeof name) {
+                fprintf(stderr, "modcp-sim: --fault %s: expected @MEMBER:KIND=VALUE\n", spec);
+                return false;
+            }
+            memcpy(name, spec + 1, len);
+            name[len] = '\0';
+            target = find_member(s, name);
+            if (target < 0) {
+                fprintf(stderr, "modcp-sim: --fault %s: no member @%s\n", spec, name);
+                return false;
+            }
+            spec = colon + 1;
+        }
+        for (size_t i = 0; i < s->n; i++) {
+            if (target != MAX_MEMBERS && (size_t)target != i) {
+                continue;
+            }
+            char err[160];
+            if (!sim_bus_fault_set(s->bus, i, spec, err, sizeof err)) {
+                fprintf(stderr, "modcp-sim: --fault %s: %s\n", s->faults[k], err);
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+static void bus_print(void *user, const char *line)
+{
+    print_line(user, line);
 }
 
 int main(int argc, char **argv)
@@ -610,81 +1297,150 @@ int main(int argc, char **argv)
     }
     atomic_init(&s->stop, false);
     atomic_init(&s->trace_on, false);
-    atomic_init(&s->fb_state, MODCP_FBST_STOPPED);
+    atomic_init(&s->ready_count, 0);
     int rc = parse_args(s, argc, argv);
     if (rc != 0) {
         free(s);
         return rc;
     }
+    pthread_mutex_init(&s->print_mu, NULL);
 
-    /* configuration: the same code and messages as modcp-conf check */
-    s->conf = malloc(sizeof *s->conf);
-    if (s->conf == NULL) {
-        free(s);
-        return 1;
+    /* configurations */
+    for (size_t i = 0; i < s->n; i++) {
+        member_t *m = &s->m[i];
+        m->sim = s;
+        m->index = i;
+        m->config = s->configs[i];
+        atomic_init(&m->fb_state, MODCP_FBST_STOPPED);
+        member_name(s, i);
     }
-    size_t fatal = modcp_conf_load_ex(s->conf, s->config, s->sets, s->set_count);
-    size_t shown = s->conf->problem_count < MODCP_CONF_MAX_PROBLEMS ? s->conf->problem_count
-                                                                    : MODCP_CONF_MAX_PROBLEMS;
-    for (size_t i = 0; i < shown; i++) {
-        fprintf(stderr, "%s\n", s->conf->problems[i].text);
+    for (size_t i = 0; i < s->n; i++) {
+        member_t *m = &s->m[i];
+        rc = load_member(s, m);
+        if (rc != 0) {
+            free_members(s);
+            free(s);
+            return rc;
+        }
     }
-    if (fatal > 0u) {
-        fprintf(stderr, "modcp-sim: %s: %zu problem%s, not started\n", s->config, fatal,
-                fatal == 1u ? "" : "s");
-        free(s->conf);
+    if (s->bus_mode && !same_line(s)) {
+        free_members(s);
         free(s);
         return 2;
     }
-    size_t rlen = modcp_conf_record(s->conf, s->record, sizeof s->record);
-    if (rlen == 0u || !modcp_conf_memory_alloc(s->conf, &s->memory)) {
-        fprintf(stderr, "modcp-sim: cannot build the parameter record / memory\n");
-        free(s->conf);
-        free(s);
-        return 1;
-    }
-    s->record_len = (uint16_t)rlen;
-    s->cycle_ms = s->cycle_override > 0 ? (uint32_t)s->cycle_override : s->conf->cycle_ms;
-    const modcp_params_t *p = &s->conf->params;
-    uint32_t char_us = modcp_params_char_us(p);
+    const modcp_params_t *p0 = &s->m[0].conf->params;
+    uint32_t char_us = modcp_params_char_us(p0);
 
-    /* the line */
-    int orc = s->device != NULL
-                  ? modcp_posix_open_device(&s->port, s->device, p->baud, p->data_bits, p->parity,
-                                            p->stop_bits, char_us)
-                  : modcp_posix_open_pty(&s->port, s->pty_link, char_us);
+    /* the line: the first member's port (one slave), or the master's pty of the bus and
+     * one pty per member */
+    int orc;
+    if (!s->bus_mode) {
+        orc = s->device != NULL
+                  ? modcp_posix_open_device(&s->m[0].port, s->device, p0->baud, p0->data_bits,
+                                            p0->parity, p0->stop_bits, char_us)
+                  : modcp_posix_open_pty(&s->m[0].port, s->pty_link, char_us);
+    } else {
+        orc = modcp_posix_open_pty(&s->line_port, s->pty_link, char_us);
+        for (size_t i = 0; orc == 0 && i < s->n; i++) {
+            orc = modcp_posix_open_pty(&s->m[i].port, NULL, char_us);
+        }
+        for (size_t i = 0; orc == 0 && i < s->n_ext; i++) {
+            s->ext_fd[i] = open(s->ext_tty[i], O_RDWR | O_NOCTTY | O_NONBLOCK);
+            struct termios tio;
+            if (s->ext_fd[i] < 0 || tcgetattr(s->ext_fd[i], &tio) != 0) {
+                fprintf(stderr, "modcp-sim: --qemu-member %s: %s\n", s->ext_tty[i],
+                        s->ext_fd[i] < 0 ? strerror(errno) : "not a serial device");
+                return 1;
+            }
+            cfmakeraw(&tio);
+            (void)tcsetattr(s->ext_fd[i], TCSANOW, &tio);
+            snprintf(s->ext_name[i], sizeof s->ext_name[i], i == 0u ? "qemu" : "qemu-%u",
+                     (unsigned)(i + 1u) % 100u);
+        }
+    }
     if (orc != 0) {
-        fprintf(stderr, "modcp-sim: cannot open %s: %s\n",
-                s->device != NULL ? s->device : (s->pty_link != NULL ? s->pty_link : "a pty"),
-                strerror(-orc));
-        modcp_conf_memory_free(&s->memory);
-        free(s->conf);
+        open_failed(s->device, s->pty_link, orc);
+        if (s->bus_mode) {
+            modcp_posix_close(&s->line_port);
+            for (size_t i = 0; i < s->n; i++) {
+                modcp_posix_close(&s->m[i].port);
+            }
+        }
+        free_members(s);
         free(s);
         return 1;
     }
-    s->port.on_tx = on_tx;
-    s->port.on_tx_user = s;
-    s->port.now_us = modcp_posix_now_us();
-    modcp_posix_hal(&s->port, &s->hal);
+    s->t0_us64 = modcp_posix_now_us64();
+    const char *line_path = s->bus_mode ? s->line_port.path : s->m[0].port.path;
+    const char *line_link = s->bus_mode ? s->line_port.link : s->m[0].port.link;
+    if (s->bus_mode) {
+        sim_line_t line = {p0->data_bits, p0->parity, p0->stop_bits,
+                           p0->framing == MODCP_FRAMING_ASCII, char_us,
+                           p0->framing == MODCP_FRAMING_ASCII ? p0->ascii_timeout_ms * 1000u
+                                                              : modcp_params_t35_us(p0)};
+        const char *names[MAX_MEMBERS];
+        uint8_t addr[MAX_MEMBERS];
+        int fds[MAX_MEMBERS], wakes[MAX_MEMBERS];
+        for (size_t i = 0; i < s->n; i++) {
+            names[i] = s->m[i].name;
+            addr[i] = s->m[i].conf->params.slave_addr;
+            fds[i] = s->m[i].port.slave_fd;
+            wakes[i] = s->m[i].port.wake_wr;
+        }
+        for (size_t i = 0; i < s->n_ext; i++) {
+            names[s->n + i] = s->ext_name[i];
+            addr[s->n + i] = 0;
+            fds[s->n + i] = s->ext_fd[i];
+            wakes[s->n + i] = -1;
+        }
+        s->bus = sim_bus_new(&line, s->n + s->n_ext, names, addr, s->line_port.fd, fds, wakes,
+                             s->t0_us64, bus_print, s, s->seed);
+        if (s->bus == NULL || !apply_cli_faults(s)) {
+            if (s->bus == NULL) {
+                fprintf(stderr, "modcp-sim: cannot set up the bus\n");
+            }
+            sim_bus_free(s->bus);
+            modcp_posix_close(&s->line_port);
+            for (size_t i = 0; i < s->n; i++) {
+                modcp_posix_close(&s->m[i].port);
+            }
+            free_members(s);
+            free(s);
+            return 1;
+        }
+        sim_bus_trace(s->bus, atomic_load(&s->trace_on));
+    }
 
-    /* the two sides and the interface between them */
-    pthread_mutex_init(&s->snap_mu, NULL);
-    pthread_mutex_init(&s->cmd_mu, NULL);
-    pthread_mutex_init(&s->print_mu, NULL);
+    /* each member: the two sides and the interface between them */
     pthread_condattr_t ca;
     pthread_condattr_init(&ca);
     pthread_condattr_setclock(&ca, CLOCK_MONOTONIC);
-    pthread_cond_init(&s->cmd_cv, &ca);
+    for (size_t i = 0; i < s->n; i++) {
+        member_t *m = &s->m[i];
+        const modcp_params_t *p = &m->conf->params;
+        m->port.on_tx = on_tx;
+        m->port.on_tx_user = m;
+        m->port.now_us = modcp_posix_now_us();
+        m->core_t = m->port.now_us;
+        modcp_posix_hal(&m->port, &m->hal);
+        pthread_mutex_init(&m->snap_mu, NULL);
+        pthread_mutex_init(&m->cmd_mu, NULL);
+        pthread_cond_init(&m->cmd_cv, &ca);
+        modcp_bp_init(&m->bp);
+        modcp_cp_init(&m->cp, &m->hal, &m->bp);
+        modcp_fb_init(&m->fb, &m->bp, &m->memory.mem, m->record, m->record_len,
+                      m->conf->work_db, p->start_time_ms);
+        bool ascii = p->framing == MODCP_FRAMING_ASCII;
+        uint64_t gap = ascii ? (uint64_t)p->ascii_timeout_ms * 1000u : modcp_params_t35_us(p);
+        sim_trace_init(&m->tr, p->slave_addr, ascii, gap, trace_print, m);
+        if (s->bus_mode) {
+            char ev[32];
+            snprintf(ev, sizeof ev, "@%s ", m->name);
+            sim_trace_labels(&m->tr, NULL, NULL, ev);
+        }
+        cp_snapshot(m);
+    }
     pthread_condattr_destroy(&ca);
-    s->t0_us64 = modcp_posix_now_us64();
-    modcp_bp_init(&s->bp);
-    modcp_cp_init(&s->cp, &s->hal, &s->bp);
-    modcp_fb_init(&s->fb, &s->bp, &s->memory.mem, s->record, s->record_len, s->conf->work_db,
-                  p->start_time_ms);
-    bool ascii = p->framing == MODCP_FRAMING_ASCII;
-    uint64_t gap = ascii ? (uint64_t)p->ascii_timeout_ms * 1000u : modcp_params_t35_us(p);
-    sim_trace_init(&s->tr, p->slave_addr, ascii, gap, trace_print, s);
-    cp_snapshot(s);
 
     /* console FIFO */
     int control_fd = -1, control_wfd = -1;
@@ -725,23 +1481,55 @@ int main(int argc, char **argv)
     pthread_sigmask(SIG_BLOCK, &block, &old);
 
     char settings[48];
-    modcp_conf_line_settings(p, settings, sizeof settings);
-    printf_line(s, "modcp-sim: slave %u on %s (%s)", (unsigned)p->slave_addr, s->port.path, settings);
-    if (s->port.link[0] != '\0') {
-        printf_line(s, "modcp-sim: link %s -> %s", s->port.link, s->port.path);
+    modcp_conf_line_settings(p0, settings, sizeof settings);
+    if (!s->bus_mode) {
+        printf_line(s, "modcp-sim: slave %u on %s (%s)", (unsigned)p0->slave_addr, line_path,
+                    settings);
+    } else {
+        printf_line(s, "modcp-sim: bus on %s (%s), %zu member%s", line_path, settings, s->n,
+                    s->n == 1u ? "" : "s");
+        for (size_t i = 0; i < s->n; i++) {
+            printf_line(s, "modcp-sim: slave %u on %s (%s) member @%s, %s",
+                        (unsigned)s->m[i].conf->params.slave_addr, line_path, settings,
+                        s->m[i].name, s->m[i].config);
+        }
+    }
+    for (size_t i = 0; i < s->n_ext; i++) {
+        printf_line(s, "modcp-sim: member @%s on %s (external: a QEMU board's UART)",
+                    s->ext_name[i], s->ext_tty[i]);
+    }
+    if (line_link[0] != '\0') {
+        printf_line(s, "modcp-sim: link %s -> %s", line_link, line_path);
     }
 
-    modcp_posix_thread_t t_cp, t_cpu;
-    if (modcp_posix_thread_start(&t_cp, cp_thread, s) != 0 ||
-        modcp_posix_thread_start(&t_cpu, cpu_thread, s) != 0) {
-        fprintf(stderr, "modcp-sim: cannot start threads\n");
-        modcp_posix_close(&s->port);
-        return 1;
+    modcp_posix_thread_t t_bus;
+    bool ok = true;
+    if (s->bus != NULL) {
+        ok = modcp_posix_thread_start(&t_bus, sim_bus_thread, s->bus) == 0;
+    }
+    s->cpu_t0_us64 = modcp_posix_now_us64();
+    size_t started = 0;
+    for (size_t i = 0; ok && i < s->n; i++) {
+        member_t *m = &s->m[i];
+        ok = modcp_posix_thread_start(&m->t_cp, cp_thread, m) == 0;
+        if (ok) {
+            ok = modcp_posix_thread_start(&m->t_cpu, cpu_thread, m) == 0;
+            if (!ok) {
+                atomic_store(&s->stop, true);
+                modcp_posix_thread_join(&m->t_cp);
+            }
+        }
+        if (ok) {
+            started++;
+        }
     }
     pthread_sigmask(SIG_SETMASK, &old, NULL);
 
-    bool go_on = true;
-    if (s->script != NULL) {
+    bool go_on = ok;
+    if (!ok) {
+        fprintf(stderr, "modcp-sim: cannot start threads\n");
+    }
+    if (go_on && s->script != NULL) {
         go_on = run_script(s);
     }
     if (go_on) {
@@ -749,13 +1537,27 @@ int main(int argc, char **argv)
     }
 
     atomic_store(&s->stop, true);
-    modcp_posix_wake(&s->port);
-    pthread_mutex_lock(&s->cmd_mu);
-    pthread_cond_broadcast(&s->cmd_cv);
-    pthread_mutex_unlock(&s->cmd_mu);
-    modcp_posix_thread_join(&t_cpu);
-    modcp_posix_thread_join(&t_cp);
-    modcp_posix_close(&s->port);
+    for (size_t i = 0; i < started; i++) {
+        member_t *m = &s->m[i];
+        modcp_posix_wake(&m->port);
+        pthread_mutex_lock(&m->cmd_mu);
+        pthread_cond_broadcast(&m->cmd_cv);
+        pthread_mutex_unlock(&m->cmd_mu);
+    }
+    for (size_t i = 0; i < started; i++) {
+        modcp_posix_thread_join(&s->m[i].t_cpu);
+        modcp_posix_thread_join(&s->m[i].t_cp);
+    }
+    if (s->bus != NULL) {
+        sim_bus_stop(s->bus);
+        modcp_posix_thread_join(&t_bus);
+        sim_bus_free(s->bus);
+        s->bus = NULL;
+        modcp_posix_close(&s->line_port);
+    }
+    for (size_t i = 0; i < s->n; i++) {
+        modcp_posix_close(&s->m[i].port);
+    }
     if (control_fd >= 0) {
         close(control_fd);
     }
@@ -772,8 +1574,7 @@ int main(int argc, char **argv)
     } else {
         printf_line(s, "modcp-sim: stopped");
     }
-    modcp_conf_memory_free(&s->memory);
-    free(s->conf);
+    free_members(s);
     free(s);
-    return 0;
+    return ok ? 0 : 1;
 }

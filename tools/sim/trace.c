@@ -166,6 +166,21 @@ void sim_trace_init(sim_trace_t *t, uint8_t own_addr, bool ascii, uint64_t gap_u
     t->gap_us = gap_us;
     t->print = print;
     t->user = user;
+    snprintf(t->rx_label, sizeof t->rx_label, "master");
+    snprintf(t->tx_label, sizeof t->tx_label, "slave %u", (unsigned)own_addr);
+}
+
+void sim_trace_labels(sim_trace_t *t, const char *rx, const char *tx, const char *ev)
+{
+    if (rx != NULL) {
+        snprintf(t->rx_label, sizeof t->rx_label, "%s", rx);
+    }
+    if (tx != NULL) {
+        snprintf(t->tx_label, sizeof t->tx_label, "%s", tx);
+    }
+    if (ev != NULL) {
+        snprintf(t->ev_label, sizeof t->ev_label, "%s", ev);
+    }
 }
 
 static int hexval(uint8_t c)
@@ -193,6 +208,7 @@ static bool ascii_decode(const uint8_t *in, size_t n, uint8_t *out, size_t cap, 
         end--;
     }
     if ((end - 1u) % 2u != 0u) {
+        *out_len = end - 1u; /* the caller names the odd count */
         return false;
     }
     size_t k = 0;
@@ -218,8 +234,14 @@ static void describe_adu(const sim_trace_t *t, const uint8_t *raw, size_t rlen, 
     size_t check = 2u;
     bool ok;
     if (t->ascii) {
+        n = 0;
         if (!ascii_decode(raw, rlen, buf, sizeof buf, &n)) {
-            snprintf(out, cap, "%snot an ASCII frame", errors ? "line error, " : "");
+            if (n != 0u) {
+                snprintf(out, cap, "%snot an ASCII frame: odd number of hex digits (%zu)",
+                         errors ? "line error, " : "", n);
+            } else {
+                snprintf(out, cap, "%snot an ASCII frame", errors ? "line error, " : "");
+            }
             return;
         }
         a = buf;
@@ -229,7 +251,7 @@ static void describe_adu(const sim_trace_t *t, const uint8_t *raw, size_t rlen, 
         snprintf(out, cap, "%sshort frame (%zu bytes)", errors ? "line error, " : "", n);
         return;
     }
-    if (!reply && a[0] != t->own_addr && a[0] != 0u) {
+    if (!reply && !t->any_addr && a[0] != t->own_addr && a[0] != 0u) {
         snprintf(out, cap, "%snot for us (slave %u)", errors ? "line error, " : "", (unsigned)a[0]);
         return;
     }
@@ -240,12 +262,12 @@ static void describe_adu(const sim_trace_t *t, const uint8_t *raw, size_t rlen, 
     }
     char what[200];
     sim_describe_pdu(a + 1, n - 1u - check, reply, what, sizeof what);
-    if (reply) {
-        snprintf(out, cap, "%s", what);
-        return;
-    }
     const char *pre_err = errors ? "line error, " : "";
     const char *pre_chk = ok ? "" : (t->ascii ? "LRC error, " : "CRC error, ");
+    if (reply) {
+        snprintf(out, cap, "%s%s%s", pre_err, pre_chk, what);
+        return;
+    }
     if (a[0] == 0u) {
         snprintf(out, cap, "%s%sbroadcast %s", pre_err, pre_chk, what);
     } else {
@@ -254,7 +276,7 @@ static void describe_adu(const sim_trace_t *t, const uint8_t *raw, size_t rlen, 
 }
 
 static void print_frame(sim_trace_t *t, const char *dir, const uint8_t *b, size_t n, bool reply,
-                        bool errors, uint64_t t_us)
+                        bool errors, uint64_t t_us, const char *note)
 {
     char line[4096];
     size_t pos = 0;
@@ -267,27 +289,41 @@ static void print_frame(sim_trace_t *t, const char *dir, const uint8_t *b, size_
             }
             line[pos++] = (char)b[i];
         } else if (t->ascii) {
-            pos += (size_t)snprintf(line + pos, sizeof line - pos, "%s",
-                                    b[i] == '\r' ? "\\r" : (b[i] == '\n' ? "\\n" : "?"));
+            if (i == 0u) {
+                line[pos++] = ' ';
+            }
+            if (b[i] == '\r' || b[i] == '\n') {
+                pos += (size_t)snprintf(line + pos, sizeof line - pos, "%s",
+                                        b[i] == '\r' ? "\\r" : "\\n");
+            } else {
+                pos += (size_t)snprintf(line + pos, sizeof line - pos, "<%02X>", (unsigned)b[i]);
+            }
         } else {
             pos += (size_t)snprintf(line + pos, sizeof line - pos, " %02X", (unsigned)b[i]);
         }
     }
     char what[400];
     describe_adu(t, b, n, reply, errors, what, sizeof what);
-    snprintf(line + pos, sizeof line - pos, " | %s", what);
+    snprintf(line + pos, sizeof line - pos, " | %s%s%s", what, note != NULL ? " " : "",
+             note != NULL ? note : "");
     if (t->print != NULL) {
         t->print(t->user, line);
     }
 }
 
+static void print_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us);
+
 static void rx_flush(sim_trace_t *t)
 {
     if (t->rx_len > 0u) {
-        print_frame(t, "rx", t->rx, t->rx_len, false, t->rx_errors, t->rx_t0);
+        print_frame(t, t->rx_label, t->rx, t->rx_len, false, t->rx_errors, t->rx_t0, NULL);
     }
     t->rx_len = 0;
     t->rx_errors = false;
+    for (size_t i = 0; i < t->ev_n; i++) {
+        print_event(t, t->ev_q[i], t->ev_t[i]);
+    }
+    t->ev_n = 0;
 }
 
 void sim_trace_rx(sim_trace_t *t, uint8_t byte, uint8_t errors, uint64_t t_us)
@@ -323,18 +359,36 @@ void sim_trace_poll(sim_trace_t *t, uint64_t t_us)
 void sim_trace_tx(sim_trace_t *t, const uint8_t *buf, size_t len, uint64_t t_us)
 {
     rx_flush(t);
-    print_frame(t, "tx", buf, len, true, false, t_us);
+    print_frame(t, t->tx_label, buf, len, true, false, t_us, NULL);
+}
+
+void sim_trace_frame(sim_trace_t *t, const char *label, const uint8_t *buf, size_t len, bool reply,
+                     uint64_t t_us, const char *note)
+{
+    rx_flush(t);
+    print_frame(t, label, buf, len, reply, false, t_us, note);
 }
 
 void sim_trace_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us)
+{
+    if (t->rx_len > 0u && t->ev_n < sizeof t->ev_q / sizeof t->ev_q[0]) {
+        t->ev_q[t->ev_n] = ev; /* after the frame being received, which began earlier */
+        t->ev_t[t->ev_n] = t_us;
+        t->ev_n++;
+        return;
+    }
+    print_event(t, ev, t_us);
+}
+
+static void print_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us)
 {
     char line[512];
     const char *cls = MODCP_EVENT_CLASS(ev) == 0x08u   ? "receive error"
                       : MODCP_EVENT_CLASS(ev) == 0x0Eu ? "driver processing error"
                       : MODCP_EVENT_CLASS(ev) == 0x05u ? "CPU job error"
                                                        : "event";
-    snprintf(line, sizeof line, "[%5lu.%06lu] event (%02X)%02XH %s: %s",
-             (unsigned long)(t_us / 1000000u), (unsigned long)(t_us % 1000000u),
+    snprintf(line, sizeof line, "[%5lu.%06lu] %sevent (%02X)%02XH %s: %s",
+             (unsigned long)(t_us / 1000000u), (unsigned long)(t_us % 1000000u), t->ev_label,
              (unsigned)MODCP_EVENT_CLASS(ev), (unsigned)MODCP_EVENT_NUMBER(ev), cls,
              modcp_event_text(ev));
     if (t->print != NULL) {

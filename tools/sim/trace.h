@@ -1,10 +1,14 @@
 /* modcp-sim — frame trace: every frame received and sent with a microsecond time
  * stamp and its meaning, decoded in the tool from the bytes (the core is untouched).
  *
- *   [    1.234567] rx 05 03 00 50 00 02 C5 9E | slave 5 FC03 read holding registers addr 0x0050 (80) qty 2
- *   [    1.246012] tx 05 03 04 87 65 43 21 76 70 | FC03 reply, 4 data bytes
- *   [    2.000100] rx 07 03 00 00 00 01 84 6C | not for us (slave 7)
- *   [    2.100000] event (08)36H receive error: CRC/LRC of the request does not match */
+ *   [    1.234567] master 05 03 00 50 00 02 C5 9E | slave 5 FC03 read holding registers addr 0x0050 (80) qty 2
+ *   [    1.246012] slave 5 05 03 04 87 65 43 21 76 70 | FC03 reply, 4 data bytes
+ *   [    2.000100] master 07 03 00 00 00 01 84 6C | not for us (slave 7)
+ *   [    2.100000] event (08)36H receive error: CRC/LRC of the request does not match
+ * The sender of every frame is named (master, or the slave with its address; on a bus
+ * the member's name). Lines come in time order: an event raised while a request is
+ * still being received is printed after that request. In ASCII a byte that is not
+ * printable is shown in hex as <E9>. */
 #ifndef MODCP_SIM_TRACE_H
 #define MODCP_SIM_TRACE_H
 
@@ -27,16 +31,29 @@ typedef struct {
     uint64_t rx_last; /* time stamp of the last byte */
     void (*print)(void *user, const char *line);
     void *user;
+    char rx_label[24]; /* sender of received frames ("master") */
+    char tx_label[24]; /* sender of sent frames ("slave 5", "@b slave 5") */
+    char ev_label[24]; /* prefix of event lines ("" or "@b ") */
+    bool any_addr;     /* a bus's trace: no request is "not for us" */
+    /* events raised while a frame is being received: printed after it */
+    modcp_event_t ev_q[16];
+    uint64_t ev_t[16];
+    size_t ev_n;
 } sim_trace_t;
 
 void sim_trace_init(sim_trace_t *t, uint8_t own_addr, bool ascii, uint64_t gap_us,
                     void (*print)(void *user, const char *line), void *user);
+/* Names of the senders (NULL keeps the default) and the prefix of event lines. */
+void sim_trace_labels(sim_trace_t *t, const char *rx, const char *tx, const char *ev);
 /* A received character (errors: MODCP_LINE_*), at t us since start. */
 void sim_trace_rx(sim_trace_t *t, uint8_t byte, uint8_t errors, uint64_t t_us);
 /* Ends a received frame after the gap. */
 void sim_trace_poll(sim_trace_t *t, uint64_t t_us);
 /* A frame sent (the whole reply, as handed to the UART). */
 void sim_trace_tx(sim_trace_t *t, const uint8_t *buf, size_t len, uint64_t t_us);
+/* A frame with its sender's label and an optional note ("fault: CRC corrupted"). */
+void sim_trace_frame(sim_trace_t *t, const char *label, const uint8_t *buf, size_t len, bool reply,
+                     uint64_t t_us, const char *note);
 /* A diagnostic event. */
 void sim_trace_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us);
 

@@ -163,6 +163,14 @@ int modcp_posix_open_pty(modcp_posix_port_t *p, const char *link, uint32_t char_
                 modcp_posix_close(p);
                 return -EEXIST; /* never replace a regular file */
             }
+            struct stat tst, own;
+            if (stat(link, &tst) == 0 &&
+                !(stat(p->path, &own) == 0 && own.st_rdev == tst.st_rdev)) {
+                modcp_posix_close(p);
+                return -EBUSY; /* points at a device that exists: maybe a live instance's */
+            }
+            /* a stale link left by an instance that was killed (its pty is gone, or is
+             * the one we were just given) */
             (void)unlink(link);
         }
         if (symlink(p->path, link) != 0) {

@@ -73,7 +73,9 @@ uint32_t modcp_posix_now_ms(void);
 uint64_t modcp_posix_now_us64(void);
 
 /* Open a pseudo-terminal in raw mode; link (may be NULL or "") gets a symlink to the
- * slave. Returns 0 or -errno. */
+ * slave. An existing link is replaced only when it is stale (its target is gone):
+ * -EBUSY when it points at a device that exists (e.g. a running instance's pty),
+ * -EEXIST when link is not a symlink. Returns 0 or -errno. */
 int modcp_posix_open_pty(modcp_posix_port_t *p, const char *link, uint32_t char_us);
 
 /* Open a serial device with baud / data bits / parity / stop bits (termios; rates

@@ -1,0 +1,95 @@
+/* modcp-sim — one RS485 line shared by several members (slaves) and the master.
+ *
+ * The master's pty is the line's one end; every member has its own pty, whose far
+ * end the bus holds. The bus thread
+ *   - forwards every byte the master writes to every member at once (same timing);
+ *   - puts every member's reply on the line bit by bit: a member's reply is handed
+ *     to the bus when its UART starts (sim_bus_tx, from the member's CP thread), the
+ *     line level at any time is the wired AND of all senders' levels (idle and stop
+ *     bits 1, start bit 0: a driven 0 wins), and one UART receiver decodes the line
+ *     (falling edge = start bit, sampled in the middle of each bit). Each character
+ *     it decodes goes to the master and to every member that is not sending then
+ *     (a half-duplex transceiver does not hear itself). One sender gives back its
+ *     bytes exactly; two overlapping senders give what a receiver on a real line
+ *     would read from the mixed levels: a garbled frame, never two clean replies.
+ *     Members take their characters with the line time of each (sim_bus_take), so a
+ *     member thread that runs late still sees the gaps (t1.5, t3.5) of the line;
+ *   - applies the per-member faults (drop, delay, CRC, exception 06 / 04, silence,
+ *     noise) to the replies before they reach the line, and counts them;
+ *   - traces the line: the master's frames, each member's reply with its name,
+ *     faults, and each collision with what the receiver heard.
+ * All members share the line settings (the caller checks that they agree). */
+#ifndef MODCP_SIM_BUS_H
+#define MODCP_SIM_BUS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#define SIM_BUS_MAX_MEMBERS 16
+
+typedef struct {
+    /* settings (0 = off) */
+    uint8_t drop_pct;       /* drop this share of replies */
+    uint8_t crc_pct;        /* corrupt the CRC (LRC) of this share */
+    uint8_t exc06_pct;      /* answer exception 06 (busy) instead */
+    uint8_t exc04_pct;      /* answer exception 04 (slave device failure) instead */
+    uint32_t delay_min_ms;  /* delay each reply by min..max ms (fixed when equal) */
+    uint32_t delay_max_ms;
+    uint32_t silent_left;   /* do not answer the next N requests */
+    uint16_t noise_bytes;   /* N random bytes on the line one t3.5 after each reply */
+    /* counters */
+    uint32_t replies;       /* replies the member's CP sent */
+    uint32_t dropped, crc_corrupted, exc06, exc04, delayed, silenced, noise_sent;
+    uint32_t collisions;    /* replies that overlapped another sender's on the line */
+} sim_fault_t;
+
+typedef struct {
+    uint8_t data_bits, parity, stop_bits; /* parity: modcp_parity_t */
+    bool ascii;
+    uint32_t char_us;
+    uint32_t t35_us; /* RTU t3.5 (ASCII: the character timeout) for the trace's frame cut */
+} sim_line_t;
+
+typedef struct sim_bus sim_bus_t;
+
+/* master_fd: the pty master the master's side opens; member_fd[i]: the far end of
+ * member i's pty (what it sends is read and dropped: the bus puts its replies on the
+ * line); wake_fd[i]: written when member i has characters to take (sim_bus_take).
+ * wake_fd[i] < 0 makes member i external: member_fd[i] is a tty (a QEMU board's
+ * Modbus UART): the line's characters are written to it, and what it writes is put on
+ * the line (paced from its arrival; faults do not apply to it).
+ * names[i]: "a" (printed as "@a"), addr[i]: its slave address (for the trace).
+ * print: one trace line (thread-safe). */
+sim_bus_t *sim_bus_new(const sim_line_t *line, size_t n, const char *const names[],
+                       const uint8_t addr[], int master_fd, const int member_fd[],
+                       const int wake_fd[], uint64_t t0_us64,
+                       void (*print)(void *user, const char *line), void *user, uint32_t seed);
+
+/* The characters member m heard, each with the time (the member's 32-bit us clock)
+ * its stop bit ended on the line: a member fed with these times frames them by the
+ * line's timing, however late its thread runs. Returns how many (at most cap). */
+size_t sim_bus_take(sim_bus_t *b, size_t m, uint8_t *bytes, uint32_t *t_us, size_t cap);
+void sim_bus_free(sim_bus_t *b);
+
+/* The bus thread's body: runs until sim_bus_stop. */
+void *sim_bus_thread(void *bus);
+void sim_bus_stop(sim_bus_t *b);
+void sim_bus_trace(sim_bus_t *b, bool on);
+
+/* A member's UART starts a reply (buf as handed to the UART) at now_us (the member's
+ * clock as passed to its core). Any thread. */
+void sim_bus_tx(sim_bus_t *b, size_t member, const uint8_t *buf, uint16_t len, uint32_t now_us);
+
+/* Faults of a member: "KIND=VALUE" (drop=P, crc=P, exc06=P, exc04=P with P in %,
+ * delay=MS or delay=MIN-MAX, silent=N, noise=N) or "off". false + err on a bad one. */
+bool sim_bus_fault_set(sim_bus_t *b, size_t member, const char *spec, char *err, size_t cap);
+/* "faults: drop=30% ... | replies=12 dropped=4 ..." */
+void sim_bus_fault_describe(sim_bus_t *b, size_t member, char *out, size_t cap);
+/* Copy of a member's fault state (for tests in the tool). */
+sim_fault_t sim_bus_fault_get(sim_bus_t *b, size_t member);
+
+/* Parse a fault spec without a bus (command-line check). */
+bool sim_fault_parse(sim_fault_t *f, const char *spec, char *err, size_t cap);
+
+#endif
