@@ -105,7 +105,7 @@ static int frame_bit(const sim_bus_t *b, uint8_t v, unsigned i)
     if (b->line.parity != 0u && i == db + 1u) {
         unsigned ones = 0;
         for (unsigned k = 0; k < db; k++) {
-            ones += (v >> k) & 1u;
+            ones += ((unsigned)v >> k) & 1u;
         }
         return b->line.parity == 2u ? (int)(ones & 1u) : (int)((ones & 1u) ^ 1u);
     }
