@@ -5,6 +5,9 @@
 
 #include "modcp/crc.h"
 
+/* The 256-entry table (crc.c), for the one-step update below. */
+extern const uint16_t modcp_crc16_table[256];
+
 /* One byte into a running CRC: what the receive path does per byte (rtu.c). */
 static inline uint16_t modcp_crc16_byte(uint16_t crc, uint8_t b)
 {

@@ -21,8 +21,10 @@ modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us);
 void modcp_job_push(modcp_job_t *j);
 /* Drop the current job without waiting (CP re-parameterised). */
 void modcp_job_abort(modcp_job_t *j);
+#if MODCP_SHARED_PARAMS_BUFFER
 /* After MODCP_JOBP_PARAMS_START: msgbuf is free, the PARAMS record may be stored. */
 void modcp_job_params_grant(modcp_job_t *j);
+#endif
 /* Answer an INIT (NONE = ready). False if the ring is full (call again later). */
 bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev);
 

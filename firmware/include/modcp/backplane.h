@@ -138,6 +138,7 @@ typedef struct {
     modcp_event_t event; /* NONE = CP ready and initialised, else why not */
 } modcp_bp_ack_t;
 
+/* Both sides: empty rings and status area (before either side runs). */
 void modcp_bp_init(modcp_backplane_t *bp);
 
 /* CPU side: read a consistent copy; false if the CP was writing (try again). */
@@ -148,9 +149,6 @@ uint32_t modcp_bp_systat_request(modcp_backplane_t *bp);
 /* CPU side: true when request `req` has been answered; copies the 16-byte image
  * (byte 0 state 02H RUN / 05H fault, byte 2 flags F U B, bytes 4..15 six events). */
 bool modcp_bp_systat_result(const modcp_backplane_t *bp, uint32_t req, uint8_t out[16]);
-
-
-
 
 /* Header (de)serialisation into block data; return bytes used / false if short.
  * Layouts: backplane.c. The JOB and REPLY codecs run once per request each (inline). */

@@ -22,6 +22,8 @@
  *  - Diagnostic register (FC08 sub 02): bit 0 a character overrun happened (latched,
  *    cleared by sub 0A, 01 and 14); bit 1 comm-loss supervision expired (live); bit 2
  *    the last CPU job timed out, the CPU side is not answering (live). */
+/* Public for layout only: modcp_cp_t embeds modcp_comm_t, so the type is here; its fields
+ * are private and its functions are internal (firmware/src/commlog_internal.h). */
 #ifndef MODCP_COMMLOG_H
 #define MODCP_COMMLOG_H
 
@@ -62,6 +64,5 @@ typedef struct {
     bool listen_only;                  /* FC08 sub 04 until sub 01 */
     bool overrun_pending;              /* overrun not yet reported in an event byte */
 } modcp_comm_t;
-
 
 #endif

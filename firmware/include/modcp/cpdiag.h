@@ -22,6 +22,8 @@
  *    SYSTAT (modcp_diag_read_systat). Events after that go into the fresh SYSTAT; no
  *    event is lost between image and clear.
  *  - backplane protocol errors seen by job.c become events (0E)30H / (0E)3CH. */
+/* Public for layout only: modcp_cp_t embeds modcp_cpdiag_t, so the type is here; its fields
+ * are private and its functions are internal (firmware/src/cpdiag_internal.h). */
 #ifndef MODCP_CPDIAG_H
 #define MODCP_CPDIAG_H
 
@@ -43,6 +45,5 @@ typedef struct {
     uint32_t proto_seen;   /* job.c's proto_errors already reported */
     uint32_t illegal_seen; /* job.c's illegal_msgs already reported */
 } modcp_cpdiag_t;
-
 
 #endif

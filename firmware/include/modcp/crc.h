@@ -8,11 +8,9 @@
 
 #define MODCP_CRC_INIT 0xFFFFu
 
-/* The 256-entry table (crc.c), for the one-step update below. */
-extern const uint16_t modcp_crc16_table[256];
-
-
+/* CRC-16 of n bytes, from MODCP_CRC_INIT (sent low byte first). */
 uint16_t modcp_crc16(const uint8_t *p, size_t n);
+/* LRC of n bytes (ASCII framing). */
 uint8_t modcp_lrc(const uint8_t *p, size_t n);
 
 #endif

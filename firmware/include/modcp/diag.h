@@ -52,10 +52,9 @@ typedef struct {
 #endif
 } modcp_diag_t;
 
-
-/* Text and remedy of an event in English (for the simulator / console; not used on
- * the hot path). Unknown events give "unknown event". */
+/* Text of an event in English (simulator / console; "unknown event" if unknown). */
 const char *modcp_event_text(modcp_event_t ev);
+/* Remedy of an event in English (simulator / console; "unknown event" if unknown). */
 const char *modcp_event_remedy(modcp_event_t ev);
 
 #endif

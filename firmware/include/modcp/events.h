@@ -74,5 +74,4 @@ enum {
                                         for our address within commloss_ms) */
 };
 
-
 #endif

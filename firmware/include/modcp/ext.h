@@ -10,6 +10,8 @@
  * request (modcp_pdu_finished) and polls the supervision with the time
  * (modcp_commloss_poll).
  * docs/extended-functions.md has every frame and every decision. */
+/* Public for layout only: modcp_cp_t embeds modcp_ext_t, so the type is here; its fields
+ * are private and its functions are internal (firmware/src/ext_internal.h). */
 #ifndef MODCP_EXT_H
 #define MODCP_EXT_H
 
@@ -78,11 +80,8 @@ enum {
 
 /* ---- persistent state --------------------------------------------------------------- */
 
-
 /* ---- comm-loss supervision (commloss.c) --------------------------------------------- */
 
-
 /* ---- indirection scanner (scanner.c) ------------------------------------------------ */
-
 
 #endif

@@ -1,6 +1,9 @@
 /* modcp — CP side of the backplane: turns a request into a job of 32-byte blocks,
  * waits for the CPU side's reply, times out; and receives the PARAMS / INIT messages
  * the CPU side sends (SPEC §6). Polled with the current time; no clock is read. */
+/* Public for layout only: modcp_cp_t embeds modcp_job_t, so the type is here; its fields
+ * are private and its functions (but modcp_job_busy) are internal
+ * (firmware/src/job_internal.h). */
 #ifndef MODCP_JOB_H
 #define MODCP_JOB_H
 
@@ -64,15 +67,7 @@ typedef struct {
                               proto_errors); the CP reports (0E)3CH, cpdiag.c */
 } modcp_job_t;
 
-
-
-
-
-
+/* True while a job (a request's transfer to the CPU side) is running. */
 bool modcp_job_busy(const modcp_job_t *j);
-
-#if MODCP_SHARED_PARAMS_BUFFER
-#endif
-
 
 #endif

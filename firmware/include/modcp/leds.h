@@ -14,6 +14,8 @@
  * nothing is called per byte. The minimum on-time counts from the moment the LED was
  * switched on, so every frame is visible for at least 200 ms however late the poll
  * comes. set_led is called only when a level changes. */
+/* Public for layout only: modcp_cp_t embeds modcp_leds_t, so the type is here; its fields
+ * are private and its functions are internal (firmware/src/leds_internal.h). */
 #ifndef MODCP_LEDS_H
 #define MODCP_LEDS_H
 
@@ -34,6 +36,5 @@ typedef struct {
     uint32_t rx_seen_us; /* the link's last_us at the last poll */
     uint16_t tx_seen;    /* the link's tx_starts at the last poll */
 } modcp_leds_t;
-
 
 #endif

@@ -19,6 +19,8 @@
  * (08)37H is reported. Frames longer than the buffer are discarded and counted ((08)16H).
  *
  * Buffer: one buffer holds the request and then, in place, the reply. */
+/* Public for layout only: modcp_cp_t embeds modcp_link_t, so the type is here; its fields
+ * are private and its functions are internal (firmware/src/link_internal.h). */
 #ifndef MODCP_LINK_H
 #define MODCP_LINK_H
 
@@ -135,7 +137,5 @@ typedef struct { /* members by size: no padding */
     bool tx_on;       /* a transmission is on the line: from its start to transmission
                          complete (or its abort) */
 } modcp_link_t;
-
-
 
 #endif

@@ -1,5 +1,7 @@
 /* modcp — mapping engine: Modbus addresses -> controller operands (004 §3, 003 §4).
  * Pure functions over the parameters and the controller's area sizes. */
+/* Public: the mapping functions are internal (firmware/src/map_internal.h); the types are
+ * here because modcp_params_t, the FB and the controller memory use them. */
 #ifndef MODCP_MAP_H
 #define MODCP_MAP_H
 
@@ -30,9 +32,5 @@ typedef struct {
     uint16_t counters;
     uint16_t work_db; /* the FB's work area (instance DB): never writable by the master */
 } modcp_areas_t;
-
-
-
-
 
 #endif

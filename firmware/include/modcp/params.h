@@ -192,15 +192,12 @@ typedef struct {
 /* Defaults of SPEC §2 (no mapping windows, all writes disabled). */
 void modcp_params_defaults(modcp_params_t *p);
 
-
-
 /* Serialise to buf (cap bytes). Returns the record length, or 0 if cap is too small. */
 size_t modcp_params_encode(const modcp_params_t *p, uint8_t *buf, size_t cap);
 
 /* Parse a record. Returns MODCP_EV_NONE or MODCP_EV_PARAM_RECORD (bad magic, version,
  * length or CRC); p is fully written only on success. Does not validate field values. */
 modcp_event_t modcp_params_decode(const uint8_t *buf, size_t len, modcp_params_t *p);
-
 
 /* End-of-frame gap in microseconds for RTU (manual table x f_MUL, or the Modbus rule). */
 uint32_t modcp_params_t35_us(const modcp_params_t *p);

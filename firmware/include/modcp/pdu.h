@@ -1,5 +1,7 @@
 /* modcp — PDU engine: decode and validate requests, decide between an immediate reply
  * (FC08, exceptions), a CPU job, or silence (broadcast); encode replies. */
+/* Public for layout only: modcp_cp_t embeds modcp_pdu_t, so the type is here; its fields
+ * are private and its functions are internal (firmware/src/pdu_internal.h). */
 #ifndef MODCP_PDU_H
 #define MODCP_PDU_H
 
@@ -48,9 +50,5 @@ typedef struct {
     uint16_t rcap;
     modcp_pdu_x_t x;     /* reply description (echo / rbytes), exception, job sequence */
 } modcp_pdu_t;
-
-
-
-
 
 #endif

@@ -33,7 +33,6 @@ typedef struct {
 /* The DB with this number, or NULL. */
 modcp_db_t *modcp_plcmem_db(const modcp_plcmem_t *mem, uint16_t number);
 
-
 /* Read len bytes of the operand into out: M/I/Q/DB bytes from op->offset (op->bit
  * ignored: whole bytes), or T/C elements from op->offset (2 bytes each, high first).
  * Returns (0E)38H for I/Q/M/T/C out of range, (0E)39H for a missing or short DB. */
@@ -43,9 +42,6 @@ modcp_event_t modcp_plcmem_read(const modcp_plcmem_t *mem, const modcp_operand_t
 /* Write len bytes (M, Q, I, DB, or T/C elements high byte first). Same events. */
 modcp_event_t modcp_plcmem_write(modcp_plcmem_t *mem, const modcp_operand_t *op,
                                  const uint8_t *in, uint16_t len);
-
-
-
 
 /* Read-modify-write of op->count bits starting at op->offset / op->bit; bit k of the
  * request is bit (k % 8) of bits[k / 8]. Other bits of the touched bytes are untouched.

@@ -24,14 +24,13 @@
  *   FC16 1 ... 123, FC23 read / write 1 ... 125 / 121 (as above);
  *   32-bit: FC03 1 ... 62 (248 bytes), FC16 1 ... 61 (244 bytes), FC23 62 / 60.
  * These are also at or below every ASCII limit above. */
+/* Public: constants only: the limit functions are internal (firmware/src/quantity_internal.h). */
 #ifndef MODCP_QUANTITY_H
 #define MODCP_QUANTITY_H
 
 #include <stdint.h>
 
 #include "modcp/params.h"
-
-
 
 /* Limit classes: the function-code table (pdu.c) names one per function code. */
 enum {
@@ -49,7 +48,5 @@ enum {
  * same three for 32-bit registers. */
 enum { MODCP_QCOL_RTU = 0, MODCP_QCOL_ASCII = 1, MODCP_QCOL_SPEC = 2, MODCP_QCOL_R32 = 3 };
 extern const uint16_t modcp_qty_limits[MODCP_QLIM_COUNT][6];
-
-
 
 #endif

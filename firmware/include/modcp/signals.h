@@ -21,6 +21,8 @@
  * last character (time to RTS off); in those states the link never arms it, and
  * modcp_sig_on_timer() claims the expiry. An early expiry re-arms the remainder, so
  * the reply never leaves before rts_on_delay and RTS never drops before rts_off_delay. */
+/* Public for layout only: modcp_cp_t embeds modcp_sig_t, so the type is here; its fields
+ * are private and its functions are internal (firmware/src/signals_internal.h). */
 #ifndef MODCP_SIGNALS_H
 #define MODCP_SIGNALS_H
 
@@ -51,7 +53,6 @@ typedef struct {
     bool rts, dtr;         /* outputs as last set */
     uint16_t aborts;       /* sends and receptions aborted by CTS / DSR */
 } modcp_sig_t;
-
 
 enum {
     MODCP_SIGBIT_RTS = 0x01,
