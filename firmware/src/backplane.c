@@ -25,6 +25,7 @@
 #include "modcp/backplane.h"
 
 #include <string.h>
+#include "backplane_internal.h"
 
 #define BP_INIT_LEN 14u
 #define BP_NO_ABORT 0x100u

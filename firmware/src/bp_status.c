@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "modcp/backplane.h"
+#include "backplane_internal.h"
 
 modcp_cp_status_t *modcp_bp_status_begin(modcp_backplane_t *bp)
 {

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "modcp/diag.h"
+#include "commlog_internal.h"
 
 _Static_assert(MODCP_COMM_LOG_LEN == MODCP_COMM_LOG, "comm event log length");
 _Static_assert(MODCP_COMM_LOG_LEN <= 255u, "log_len is a byte");

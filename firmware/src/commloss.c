@@ -16,6 +16,8 @@
 #include <stddef.h>
 
 #include "modcp/ext.h"
+#include "diag_internal.h"
+#include "ext_internal.h"
 
 void modcp_ext_init(modcp_ext_t *x)
 {

@@ -10,6 +10,16 @@
 #include <string.h>
 
 #include "modcp/crc.h"
+#include "backplane_internal.h"
+#include "cpdiag_internal.h"
+#include "diag_internal.h"
+#include "ext_internal.h"
+#include "job_internal.h"
+#include "leds_internal.h"
+#include "link_internal.h"
+#include "params_internal.h"
+#include "pdu_internal.h"
+#include "signals_internal.h"
 
 static modcp_pdu_env_t env_of(modcp_cp_t *cp)
 {

@@ -4,6 +4,8 @@
 #include <string.h>
 
 #include "modcp/hal.h"
+#include "cpdiag_internal.h"
+#include "diag_internal.h"
 
 #define MODULE_CLASS_CP 0x0Cu
 

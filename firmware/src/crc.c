@@ -1,5 +1,6 @@
 /* modcp — CRC-16 (Modbus) by a 256-entry table, and the ASCII LRC. */
 #include "modcp/crc.h"
+#include "crc_internal.h"
 
 /* Reflected polynomial 0xA001 (x^16 + x^15 + x^2 + 1). */
 const uint16_t modcp_crc16_table[256] = {

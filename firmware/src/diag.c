@@ -2,6 +2,8 @@
 #include "modcp/diag.h"
 
 #include <string.h>
+#include "commlog_internal.h"
+#include "diag_internal.h"
 
 void modcp_diag_init(modcp_diag_t *d)
 {

@@ -43,6 +43,8 @@
 #include <string.h>
 
 #include "modcp/crc.h"
+#include "backplane_internal.h"
+#include "plcmem_internal.h"
 
 void modcp_fb_init(modcp_fb_t *fb, modcp_backplane_t *bp, modcp_plcmem_t *mem,
                    const uint8_t *record, uint16_t record_len, uint16_t work_db,

@@ -24,6 +24,8 @@
 
 #include <stddef.h>
 #include <string.h>
+#include "backplane_internal.h"
+#include "job_internal.h"
 
 #define JOB_NO_ABORT 0x100u
 

@@ -3,6 +3,7 @@
 
 #include <stddef.h>
 #include <string.h>
+#include "leds_internal.h"
 
 static void set(modcp_leds_t *x, modcp_led_t led, bool on, uint32_t now_us)
 {

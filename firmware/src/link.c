@@ -13,6 +13,8 @@
 
 #include "modcp/link.h"
 #include "link_internal.h"
+#include "diag_internal.h"
+#include "params_internal.h"
 
 static void set_de(const modcp_link_t *l, bool on)
 {

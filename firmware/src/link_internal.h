@@ -4,6 +4,7 @@
 #define MODCP_LINK_INTERNAL_H
 
 #include "modcp/link.h"
+#include "diag_internal.h"
 
 /* Keep a cold path out of the hot one (a leaf function needs no stack frame). */
 #if defined(__GNUC__)
@@ -94,5 +95,33 @@ void rtu_internal_error(modcp_link_t *l);
 bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f);
 const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p);
 uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len);
+
+/* Moved from modcp/link.h: the core's own interface. */
+void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag, uint8_t *buf,
+                     uint16_t cap);
+/* Apply parameters (framing, address, timing, interface) and enable. */
+void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p);
+/* Stop listening (CP not ready). */
+void modcp_link_disable(modcp_link_t *l);
+void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
+void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
+/* Timer expiry. Returns true when a valid frame for us or broadcast is ready in *f;
+ * the link is then BUSY until modcp_link_reply() or modcp_link_done(). */
+bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f);
+/* Send the reply PDU that was written to f->pdu[0 .. pdu_len). */
+void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us);
+/* Request finished without a reply (broadcast, error). */
+void modcp_link_done(modcp_link_t *l);
+/* Transmission complete: the driver is released and the link receives again. */
+void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us);
+/* Transmission complete of the last stop bit, recorded for the TXD LED; with RS232
+ * automatic signals the link receives again only later (modcp_link_on_tx_done at RTS
+ * OFF). */
+void modcp_link_tx_complete(modcp_link_t *l);
+/* RS232 automatic signals (signals.c): a reply held in TURNAROUND is sent now (send)
+ * or dropped (!send, back to receiving). */
+void modcp_link_tx_release(modcp_link_t *l, bool send, uint32_t now_us);
+/* Drop the frame being received (DSR went OFF): it ends silently at t3.5. */
+void modcp_link_rx_discard(modcp_link_t *l);
 
 #endif

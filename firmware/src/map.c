@@ -33,6 +33,7 @@
 #include "modcp/map.h"
 
 #include <stddef.h>
+#include "map_internal.h"
 
 #define TC_MAX_CP341 16u   /* 004 §3.3: CP 341 reads at most 16 timers / counters */
 #define WORDS_PER_DB 512u  /* 004 §3.4 */

@@ -70,6 +70,7 @@
 #include <string.h>
 
 #include "params_fields.h"
+#include "params_internal.h"
 
 /* ---- the rows ------------------------------------------------------------------ */
 

@@ -22,6 +22,11 @@
 
 #include "modcp/quantity.h"
 #include "pdu_internal.h"
+#include "commlog_internal.h"
+#include "diag_internal.h"
+#include "events_internal.h"
+#include "ext_internal.h"
+#include "quantity_internal.h"
 
 /* ---- the function-code table ------------------------------------------------------ */
 

@@ -32,6 +32,10 @@
 
 #include "modcp/quantity.h"
 #include "pdu_internal.h"
+#include "ext_internal.h"
+#include "map_internal.h"
+#include "params_internal.h"
+#include "quantity_internal.h"
 
 enum { PH_EARLY = 0, PH_CHECK = 1, PH_WRITE = 2, PH_READ = 3 };
 

@@ -12,6 +12,8 @@
 
 #include "modcp/quantity.h"
 #include "pdu_internal.h"
+#include "map_internal.h"
+#include "quantity_internal.h"
 
 /* A read job whose data land after the reply's function code and byte count. */
 static modcp_pdu_action_t read_job(modcp_pdu_t *s, const modcp_operand_t *o, uint16_t len,

@@ -7,6 +7,7 @@
 
 #include <stddef.h>
 #include <string.h>
+#include "plcmem_internal.h"
 
 modcp_db_t *modcp_plcmem_db(const modcp_plcmem_t *mem, uint16_t number)
 {

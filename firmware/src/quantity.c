@@ -5,6 +5,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include "quantity_internal.h"
 
 uint8_t modcp_regs32_kind(const modcp_params_t *p, uint8_t fc, uint16_t reg)
 {

@@ -40,6 +40,7 @@
 #include "modcp/crc.h"
 #include "modcp/link.h"
 #include "link_internal.h"
+#include "crc_internal.h"
 
 
 void rtu_count_char(modcp_rtu_t *r)

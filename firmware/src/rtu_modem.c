@@ -35,6 +35,7 @@
 #include "modcp/crc.h"
 #include "modcp/link.h"
 #include "link_internal.h"
+#include "crc_internal.h"
 
 #define RTU_M_LEAD 0x01u  /* the stretch began with our address or 0 */
 #define RTU_M_FIRST 0x02u /* the candidate is the stretch's first character */

@@ -17,6 +17,8 @@
 #include <stddef.h>
 
 #include "modcp/ext.h"
+#include "ext_internal.h"
+#include "map_internal.h"
 
 static bool scanner_on(const modcp_params_t *p)
 {

@@ -24,6 +24,9 @@
 #include <stddef.h>
 
 #include "pdu_internal.h"
+#include "commlog_internal.h"
+#include "diag_internal.h"
+#include "ext_internal.h"
 
 static uint16_t get16(const uint8_t *p)
 {

@@ -3,6 +3,9 @@
 
 #include <stddef.h>
 #include <string.h>
+#include "diag_internal.h"
+#include "link_internal.h"
+#include "signals_internal.h"
 
 static void out(modcp_sig_t *s, modcp_signal_t sig, bool on)
 {

@@ -3,6 +3,7 @@
 #include <stdint.h>
 
 #include "modcp/params.h"
+#include "params_internal.h"
 
 #define US_PER_S 1000000u
 #define T35_BITS_X10 385u /* 3.5 characters of 11 bits, x10 */

@@ -36,6 +36,8 @@
 #include "modcp/link.h"
 #include "modcp/params.h"
 #include "modcp/plcmem.h"
+#include "diag_internal.h"
+#include "link_internal.h"
 
 #define NREGS 123u
 #define FRAME_LEN (7u + 2u * NREGS + 2u) /* 255 */

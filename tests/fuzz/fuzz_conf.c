@@ -13,6 +13,7 @@
 
 #include "modcp/params.h"
 #include "modcp_conf.h"
+#include "params_internal.h"
 
 static void die(const char *what)
 {

@@ -19,6 +19,7 @@
 #include "modcp/fb.h"
 #include "modcp/params.h"
 #include "modcp/plcmem.h"
+#include "diag_internal.h"
 
 #define NDB 4
 static const uint16_t db_numbers[NDB] = {1, 80, 800, 65535};

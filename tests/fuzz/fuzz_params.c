@@ -27,6 +27,7 @@
 #include "modcp/fb.h"
 #include "modcp/params.h"
 #include "modcp/plcmem.h"
+#include "params_internal.h"
 
 #define HEADER 8u /* "MCPR", version, payload length */
 #define RAW_MAX (2u * MODCP_PARAMS_RECORD_MAX)

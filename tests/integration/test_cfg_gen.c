@@ -11,6 +11,7 @@
 
 #include "modcp/cfg_gen.h"
 #include "modcp/params.h"
+#include "params_internal.h"
 
 static void test_record(void **state)
 {

@@ -13,6 +13,7 @@
 #include "modcp/console.h"
 #include "modcp/hal.h"
 #include "modcp/signals.h"
+#include "diag_internal.h"
 
 typedef struct {
     uint8_t i[16], q[16], m[32];

@@ -18,6 +18,8 @@
 #include "frames.h"
 #include "modcp/crc.h"
 #include "modcp/link.h"
+#include "diag_internal.h"
+#include "link_internal.h"
 
 static world_t *ascii_started(void)
 {

@@ -9,6 +9,7 @@
 #include <cmocka.h>
 
 #include "modcp/backplane.h"
+#include "backplane_internal.h"
 
 static modcp_block_t blk(uint8_t kind, uint8_t first_byte, uint8_t len)
 {

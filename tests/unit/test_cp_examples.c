@@ -13,6 +13,8 @@
 #include <cmocka.h>
 
 #include "world.h"
+#include "backplane_internal.h"
+#include "params_internal.h"
 
 static world_t *started(const modcp_params_t *p)
 {

@@ -7,6 +7,7 @@
 
 #include "frames.h"
 #include "modcp/crc.h"
+#include "crc_internal.h"
 
 static void check_frame_crc(const char *hex)
 {

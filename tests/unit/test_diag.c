@@ -15,6 +15,10 @@
 #include "modcp/cpdiag.h"
 #include "modcp/diag.h"
 #include "modcp/leds.h"
+#include "backplane_internal.h"
+#include "cpdiag_internal.h"
+#include "diag_internal.h"
+#include "params_internal.h"
 
 #define FC08_REQ "05 08 00 00 A5 C3 DA 8E" /* 004 §6.7, answered by the CP alone */
 #define CHAR_US 1146u

@@ -14,6 +14,8 @@
 #include "ascii_world.h"
 #include "ext_support.h"
 #include "modcp/hal.h"
+#include "diag_internal.h"
+#include "pdu_internal.h"
 
 #define S 5 /* slave address of the example set */
 

@@ -14,6 +14,8 @@
 #include "modcp/fb.h"
 #include "modcp/job.h"
 #include "modcp/plcmem.h"
+#include "backplane_internal.h"
+#include "job_internal.h"
 
 #define WORK_DB 80
 #define RECORD_LEN 150 /* 5 PARAMS blocks: 4 x 32 + 22 */

@@ -16,6 +16,9 @@
 #include "modcp/diag.h"
 #include "modcp/link.h"
 #include "modcp/params.h"
+#include "diag_internal.h"
+#include "link_internal.h"
+#include "params_internal.h"
 
 /* 004 §6.3 FC03 example request and response (004 §9 CRCs) */
 #define FC03_REQ "05 03 00 50 00 02 C5 9E"

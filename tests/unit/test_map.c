@@ -11,6 +11,9 @@
 #include "modcp/map.h"
 #include "modcp/params.h"
 #include "world.h"
+#include "events_internal.h"
+#include "map_internal.h"
+#include "params_internal.h"
 
 /* ---- fixtures ------------------------------------------------------------------ */
 

@@ -11,6 +11,7 @@
 #include "modcp/events.h"
 #include "modcp/params.h"
 #include "world.h"
+#include "params_internal.h"
 
 #define RECORD_LEN 318u /* 8 header + 308 payload + 2 CRC */
 

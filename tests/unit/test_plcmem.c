@@ -10,6 +10,7 @@
 #include <cmocka.h>
 
 #include "modcp/plcmem.h"
+#include "plcmem_internal.h"
 
 typedef struct {
     uint8_t i[256], q[512], m[2048];

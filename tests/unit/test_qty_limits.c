@@ -15,6 +15,7 @@
 
 #include "modcp/quantity.h"
 #include "world.h"
+#include "quantity_internal.h"
 
 #define RTU_ADU_MAX 256u /* Modbus over serial line V1.02 §2.5.1 */
 

@@ -17,6 +17,8 @@
 #include "frames.h"
 #include "modcp/map.h"
 #include "modcp/quantity.h"
+#include "map_internal.h"
+#include "quantity_internal.h"
 
 static world_t *rtu32(void)
 {

@@ -16,6 +16,8 @@
 #include "fake_hal_log.h"
 #include "lineworld.h"
 #include "modcp/signals.h"
+#include "params_internal.h"
+#include "signals_internal.h"
 
 #define FC03_REQ "05 03 00 50 00 02 C5 9E"
 #define FC03_RSP "05 03 04 87 65 43 21 76 70"

@@ -14,6 +14,7 @@
 
 #include "modcp/events.h"
 #include "params_fields.h"
+#include "params_internal.h"
 
 #define IDX_GLOBAL 16u /* src[] slot for issue index 0xFF */
 

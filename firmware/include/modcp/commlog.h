@@ -22,6 +22,8 @@
  *  - Diagnostic register (FC08 sub 02): bit 0 a character overrun happened (latched,
  *    cleared by sub 0A, 01 and 14); bit 1 comm-loss supervision expired (live); bit 2
  *    the last CPU job timed out, the CPU side is not answering (live). */
+/* Public for layout only: modcp_cp_t embeds modcp_comm_t, so the type is here; its fields
+ * are private and its functions are internal (firmware/src/commlog_internal.h). */
 #ifndef MODCP_COMMLOG_H
 #define MODCP_COMMLOG_H
 
@@ -62,14 +64,5 @@ typedef struct {
     bool listen_only;                  /* FC08 sub 04 until sub 01 */
     bool overrun_pending;              /* overrun not yet reported in an event byte */
 } modcp_comm_t;
-
-/* Add an event byte (newest first; the oldest falls out beyond 64). */
-void modcp_comm_log(modcp_comm_t *c, uint8_t ev);
-void modcp_comm_clear_log(modcp_comm_t *c);
-/* Log the receive event of a valid frame for us (broadcast: addr 0). */
-void modcp_comm_rx(modcp_comm_t *c, bool broadcast);
-/* A serial-line counter (modcp_counter_t) was incremented: keeps the overrun flag and
- * logs the 0x82 receive event of a damaged frame. Called by modcp_diag_count(). */
-void modcp_comm_counted(modcp_comm_t *c, unsigned counter);
 
 #endif

@@ -29,7 +29,6 @@
 #include "modcp/pdu.h"
 #include "modcp/signals.h"
 
-
 #if MODCP_SHARED_PARAMS_BUFFER
 #define MODCP_CP_BUF_SIZE                                                                    \
     (MODCP_LINK_BUF_MAX > MODCP_PARAMS_RECORD_MAX ? MODCP_LINK_BUF_MAX : MODCP_PARAMS_RECORD_MAX)
@@ -75,15 +74,21 @@ typedef struct modcp_cp {
 #endif
 } modcp_cp_t;
 
+/* Set up the CP on its HAL and backplane (not ready until PARAMS and INIT arrive). */
 void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp);
 
+/* UART receive interrupt: one received character. */
 void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us);
+/* UART receive interrupt: a character lost to line errors (MODCP_LINE_* bits). */
 void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us);
+/* The one-shot timer armed through the HAL expired. */
 void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us);
+/* The last character of the reply has left the line. */
 void modcp_cp_on_tx_done(modcp_cp_t *cp, uint32_t now_us);
 /* RS232 inputs CTS / DSR (true = ON), at start and on every change; used with
  * automatic secondary signals (params.rs232_auto, see modcp/signals.h). */
 void modcp_cp_on_signals(modcp_cp_t *cp, bool cts, bool dsr, uint32_t now_us);
+/* CP task, often: backplane, job timeouts, LEDs, status area. */
 void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us);
 
 /* Ready: configured and the FB initialised. */

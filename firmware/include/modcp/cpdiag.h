@@ -22,6 +22,8 @@
  *    SYSTAT (modcp_diag_read_systat). Events after that go into the fresh SYSTAT; no
  *    event is lost between image and clear.
  *  - backplane protocol errors seen by job.c become events (0E)30H / (0E)3CH. */
+/* Public for layout only: modcp_cp_t embeds modcp_cpdiag_t, so the type is here; its fields
+ * are private and its functions are internal (firmware/src/cpdiag_internal.h). */
 #ifndef MODCP_CPDIAG_H
 #define MODCP_CPDIAG_H
 
@@ -43,23 +45,5 @@ typedef struct {
     uint32_t proto_seen;   /* job.c's proto_errors already reported */
     uint32_t illegal_seen; /* job.c's illegal_msgs already reported */
 } modcp_cpdiag_t;
-
-void modcp_cpdiag_init(modcp_cpdiag_t *d);
-/* A line error reached the link; reported: the link reports it ((08)0CH / (08)0DH), i.e.
- * it is enabled and in normal mode. */
-void modcp_cpdiag_line_error(modcp_cpdiag_t *d, uint8_t line_errors, bool reported);
-/* A character was received correctly. */
-void modcp_cpdiag_good_char(modcp_cpdiag_t *d);
-/* A PARAMS record was taken: ok (applied) or rejected; irq_setting: its diag_irq field
- * (-1 when the record could not be decoded). Clears the wire break. */
-void modcp_cpdiag_params(modcp_cpdiag_t *d, bool ok, int irq_setting);
-/* Backplane protocol errors counted by job.c (totals): new blocks of a kind the CPU
- * side must not send -> (0E)3CH "illegal job"; other new unexpected blocks (sequence
- * gap, data without its header, continuation without a start, short INIT) -> (0E)30H
- * "unexpected acknowledgement". At most one of each per call (per poll). */
-void modcp_cpdiag_backplane(modcp_cpdiag_t *d, modcp_diag_t *diag, uint32_t proto_errors,
-                            uint32_t illegal_msgs);
-/* Serve a SYSTAT request (number req) if it is new: image + clear. run: CP in RUN. */
-void modcp_cpdiag_systat(modcp_cpdiag_t *d, modcp_diag_t *diag, uint32_t req, bool run);
 
 #endif

@@ -8,17 +8,9 @@
 
 #define MODCP_CRC_INIT 0xFFFFu
 
-/* The 256-entry table (crc.c), for the one-step update below. */
-extern const uint16_t modcp_crc16_table[256];
-
-/* One byte into a running CRC: what the receive path does per byte (rtu.c). */
-static inline uint16_t modcp_crc16_byte(uint16_t crc, uint8_t b)
-{
-    return (uint16_t)((crc >> 8) ^ modcp_crc16_table[(crc ^ b) & 0xFFu]);
-}
-
-uint16_t modcp_crc16_update(uint16_t crc, const uint8_t *p, size_t n);
+/* CRC-16 of n bytes, from MODCP_CRC_INIT (sent low byte first). */
 uint16_t modcp_crc16(const uint8_t *p, size_t n);
+/* LRC of n bytes (ASCII framing). */
 uint8_t modcp_lrc(const uint8_t *p, size_t n);
 
 #endif

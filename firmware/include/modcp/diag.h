@@ -52,23 +52,9 @@ typedef struct {
 #endif
 } modcp_diag_t;
 
-void modcp_diag_init(modcp_diag_t *d);
-/* Record an event (NONE is ignored). */
-void modcp_diag_event(modcp_diag_t *d, modcp_event_t ev);
-/* Increment a serial-line counter. Bus and slave message counts (0B, 0E) wrap
- * 65535 -> 0, the error counts saturate at 65535 (002 §8: frame counters modulo
- * 65536, error counters saturating). */
-void modcp_diag_count(modcp_diag_t *d, modcp_counter_t c);
-void modcp_diag_clear_counters(modcp_diag_t *d);
-/* Empty the diagnostic buffer (001 §8.3: re-parameterisation of the CP clears it). */
-void modcp_diag_clear_buffer(modcp_diag_t *d);
-/* SYSTAT image (16 bytes as 004 §7.4: state, 0, flags, 0, 6 event words high byte
- * first); clears the SYSTAT events and flags. run: CP state RUN (else fault). */
-void modcp_diag_read_systat(modcp_diag_t *d, bool run, uint8_t out[16]);
-
-/* Text and remedy of an event in English (for the simulator / console; not used on
- * the hot path). Unknown events give "unknown event". */
+/* Text of an event in English (simulator / console; "unknown event" if unknown). */
 const char *modcp_event_text(modcp_event_t ev);
+/* Remedy of an event in English (simulator / console; "unknown event" if unknown). */
 const char *modcp_event_remedy(modcp_event_t ev);
 
 #endif

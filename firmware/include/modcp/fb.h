@@ -107,6 +107,7 @@ typedef struct {
     modcp_event_t init_event; /* last event the CP answered INIT with (ERROR_INFO of 2) */
 } modcp_fb_t;
 
+/* CPU side: the FB on its backplane and controller memory, with the PARAMS record. */
 void modcp_fb_init(modcp_fb_t *fb, modcp_backplane_t *bp, modcp_plcmem_t *mem,
                    const uint8_t *record, uint16_t record_len, uint16_t work_db,
                    uint32_t start_time_ms);

@@ -14,6 +14,8 @@
  * nothing is called per byte. The minimum on-time counts from the moment the LED was
  * switched on, so every frame is visible for at least 200 ms however late the poll
  * comes. set_led is called only when a level changes. */
+/* Public for layout only: modcp_cp_t embeds modcp_leds_t, so the type is here; its fields
+ * are private and its functions are internal (firmware/src/leds_internal.h). */
 #ifndef MODCP_LEDS_H
 #define MODCP_LEDS_H
 
@@ -34,15 +36,5 @@ typedef struct {
     uint32_t rx_seen_us; /* the link's last_us at the last poll */
     uint16_t tx_seen;    /* the link's tx_starts at the last poll */
 } modcp_leds_t;
-
-/* Power-on: SF on, TXD and RXD off. */
-void modcp_leds_init(modcp_leds_t *x, const modcp_hal_t *hal);
-/* Silence that ends a received frame (t3.5 of the link). */
-void modcp_leds_configure(modcp_leds_t *x, uint32_t quiet_us);
-/* Drive the LEDs at now_us from the link's receive / transmit record; sf: the group
- * error is present. */
-void modcp_leds_poll(modcp_leds_t *x, bool sf, const modcp_link_t *l, uint32_t now_us);
-/* Levels as bits (1 << modcp_led_t) for the status area. */
-uint8_t modcp_leds_bits(const modcp_leds_t *x);
 
 #endif

@@ -19,6 +19,8 @@
  * (08)37H is reported. Frames longer than the buffer are discarded and counted ((08)16H).
  *
  * Buffer: one buffer holds the request and then, in place, the reply. */
+/* Public for layout only: modcp_cp_t embeds modcp_link_t, so the type is here; its fields
+ * are private and its functions are internal (firmware/src/link_internal.h). */
 #ifndef MODCP_LINK_H
 #define MODCP_LINK_H
 
@@ -135,33 +137,5 @@ typedef struct { /* members by size: no padding */
     bool tx_on;       /* a transmission is on the line: from its start to transmission
                          complete (or its abort) */
 } modcp_link_t;
-
-void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag, uint8_t *buf,
-                     uint16_t cap);
-/* Apply parameters (framing, address, timing, interface) and enable. */
-void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p);
-/* Stop listening (CP not ready). */
-void modcp_link_disable(modcp_link_t *l);
-
-void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
-void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
-/* Timer expiry. Returns true when a valid frame for us or broadcast is ready in *f;
- * the link is then BUSY until modcp_link_reply() or modcp_link_done(). */
-bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f);
-/* Send the reply PDU that was written to f->pdu[0 .. pdu_len). */
-void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us);
-/* Request finished without a reply (broadcast, error). */
-void modcp_link_done(modcp_link_t *l);
-/* Transmission complete: the driver is released and the link receives again. */
-void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us);
-/* Transmission complete of the last stop bit, recorded for the TXD LED; with RS232
- * automatic signals the link receives again only later (modcp_link_on_tx_done at RTS
- * OFF). */
-void modcp_link_tx_complete(modcp_link_t *l);
-/* RS232 automatic signals (signals.c): a reply held in TURNAROUND is sent now (send)
- * or dropped (!send, back to receiving). */
-void modcp_link_tx_release(modcp_link_t *l, bool send, uint32_t now_us);
-/* Drop the frame being received (DSR went OFF): it ends silently at t3.5. */
-void modcp_link_rx_discard(modcp_link_t *l);
 
 #endif

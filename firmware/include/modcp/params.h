@@ -192,16 +192,6 @@ typedef struct {
 /* Defaults of SPEC §2 (no mapping windows, all writes disabled). */
 void modcp_params_defaults(modcp_params_t *p);
 
-/* Validate. Writes up to max issues to out (may be NULL with max 0) and returns the
- * total number of issues found. Never modifies p. */
-size_t modcp_params_validate(const modcp_params_t *p, modcp_param_issue_t *out, size_t max);
-
-/* Validate and make the effective copy: corrects non-fatal fields (f_MUL -> 1, ASCII
- * timeout -> 1000 ms). Returns the first fatal event, or MODCP_EV_NONE when usable;
- * *first_warning (may be NULL) receives the first non-fatal event. */
-modcp_event_t modcp_params_apply(const modcp_params_t *in, modcp_params_t *out,
-                                 modcp_event_t *first_warning);
-
 /* Serialise to buf (cap bytes). Returns the record length, or 0 if cap is too small. */
 size_t modcp_params_encode(const modcp_params_t *p, uint8_t *buf, size_t cap);
 
@@ -209,13 +199,8 @@ size_t modcp_params_encode(const modcp_params_t *p, uint8_t *buf, size_t cap);
  * length or CRC); p is fully written only on success. Does not validate field values. */
 modcp_event_t modcp_params_decode(const uint8_t *buf, size_t len, modcp_params_t *p);
 
-/* Effective CPU job limit in bytes (job_limit or the model's 1024 / 450). */
-uint16_t modcp_params_job_limit(const modcp_params_t *p);
-
 /* End-of-frame gap in microseconds for RTU (manual table x f_MUL, or the Modbus rule). */
 uint32_t modcp_params_t35_us(const modcp_params_t *p);
-/* t1.5 in microseconds (1.5 character times of 11 bits; 750 us above 19200 baud). */
-uint32_t modcp_params_t15_us(const modcp_params_t *p);
 /* One character time in microseconds (start + data + parity + stop bits). */
 uint32_t modcp_params_char_us(const modcp_params_t *p);
 

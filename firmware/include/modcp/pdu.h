@@ -1,5 +1,7 @@
 /* modcp — PDU engine: decode and validate requests, decide between an immediate reply
  * (FC08, exceptions), a CPU job, or silence (broadcast); encode replies. */
+/* Public for layout only: modcp_cp_t embeds modcp_pdu_t, so the type is here; its fields
+ * are private and its functions are internal (firmware/src/pdu_internal.h). */
 #ifndef MODCP_PDU_H
 #define MODCP_PDU_H
 
@@ -48,24 +50,5 @@ typedef struct {
     uint16_t rcap;
     modcp_pdu_x_t x;     /* reply description (echo / rbytes), exception, job sequence */
 } modcp_pdu_t;
-
-/* Handle a request PDU (pdu[0] = function code) received for addr (0 = broadcast).
- * The buffer has room for cap bytes of reply PDU; replies are written in place. */
-modcp_pdu_action_t modcp_pdu_request(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t addr,
-                                     uint8_t *pdu, uint16_t len, uint16_t cap, uint16_t *out_len);
-
-/* The job started for the current request finished with ev (NONE = success; rlen
- * data bytes landed at s->rdata). Encodes the reply or exception 04. */
-modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                      modcp_event_t ev, uint8_t *pdu, uint16_t *out_len);
-
-/* Encode an exception reply for fc with code; returns the PDU length (2). */
-uint16_t modcp_pdu_exception(uint8_t *pdu, uint8_t fc, uint8_t code);
-
-/* The request ended with action a (REPLY or NO_REPLY): FC11 event counter, FC12 send
- * event, comm-loss supervision, FC08 sub 01 / 0A effects. The CP calls it once per
- * request, right before the reply goes out (built with the extended set only). */
-void modcp_pdu_finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_pdu_action_t a,
-                        uint32_t now_us);
 
 #endif

@@ -33,9 +33,6 @@ typedef struct {
 /* The DB with this number, or NULL. */
 modcp_db_t *modcp_plcmem_db(const modcp_plcmem_t *mem, uint16_t number);
 
-/* Area sizes as the CPU side reports them at init (work_db left 0). */
-void modcp_plcmem_areas(const modcp_plcmem_t *mem, modcp_areas_t *out);
-
 /* Read len bytes of the operand into out: M/I/Q/DB bytes from op->offset (op->bit
  * ignored: whole bytes), or T/C elements from op->offset (2 bytes each, high first).
  * Returns (0E)38H for I/Q/M/T/C out of range, (0E)39H for a missing or short DB. */
@@ -45,23 +42,6 @@ modcp_event_t modcp_plcmem_read(const modcp_plcmem_t *mem, const modcp_operand_t
 /* Write len bytes (M, Q, I, DB, or T/C elements high byte first). Same events. */
 modcp_event_t modcp_plcmem_write(modcp_plcmem_t *mem, const modcp_operand_t *op,
                                  const uint8_t *in, uint16_t len);
-
-/* Check an access of len bytes at op as modcp_plcmem_read / _write would (same
- * events), copying nothing; *bytes = the storage of those bytes for I / Q / M / DB
- * (valid while the memory layout stays), NULL for T / C (elements: use read / write)
- * or on an error. */
-modcp_event_t modcp_plcmem_locate(const modcp_plcmem_t *mem, const modcp_operand_t *op,
-                                  uint16_t len, uint8_t **bytes);
-
-/* The same for a bit write of op->count bits from op->offset / op->bit (same events as
- * modcp_plcmem_write_bits); *bytes = the storage at op->offset. */
-modcp_event_t modcp_plcmem_locate_bits(const modcp_plcmem_t *mem, const modcp_operand_t *op,
-                                       uint8_t **bytes);
-
-/* Bit k (k < count) of bits (bit k % 8 of bits[k / 8]) into bit first + k of dst (bit
- * (first + k) % 8 of dst[(first + k) / 8]); the other bits of dst are untouched. A byte at
- * a time: whole bytes are stored, masks only at the first and the last byte. */
-void modcp_bits_put(uint8_t *dst, uint32_t first, uint32_t count, const uint8_t *bits);
 
 /* Read-modify-write of op->count bits starting at op->offset / op->bit; bit k of the
  * request is bit (k % 8) of bits[k / 8]. Other bits of the touched bytes are untouched.

@@ -1,0 +1,135 @@
+/* modcp — the core's internal interface of backplane.c (modcp/backplane.h holds what a port or
+ * an application calls). Not part of the public API: for the core, its tests and tools. */
+#ifndef MODCP_BACKPLANE_INTERNAL_H
+#define MODCP_BACKPLANE_INTERNAL_H
+
+#include "modcp/backplane.h"
+
+/* CP side: publish the status area. */
+void modcp_bp_publish_status(modcp_backplane_t *bp, const modcp_cp_status_t *st);
+/* CP side: write the status area in place — begin (the seqlock turns odd) returns it,
+ * fill in every field, end (even again) publishes it. */
+modcp_cp_status_t *modcp_bp_status_begin(modcp_backplane_t *bp);
+void modcp_bp_status_end(modcp_backplane_t *bp);
+/* Zero-copy block transfer: the producer writes a block straight into its slot and the
+ * consumer reads it there, so data crosses the backplane with one copy in and one out.
+ * Producer: modcp_ring_slot() gives the free slot (NULL when the ring is full: the
+ * producer produces nothing and tries again later, so a put never fails), it fills
+ * data / len / kind / flags / tag, then modcp_ring_publish() stamps the sequence number
+ * and hands the slot over. Consumer: modcp_ring_peek() gives the oldest block,
+ * modcp_ring_release() hands its slot back when the consumer is done with it. */
+static inline modcp_block_t *modcp_ring_slot(modcp_ring_t *r)
+{
+    uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
+    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_acquire);
+    if ((uint32_t)(head - tail) >= MODCP_BP_DEPTH) {
+        return (modcp_block_t *)0;
+    }
+    return &r->slot[head & (MODCP_BP_DEPTH - 1u)];
+}
+static inline void modcp_ring_publish(modcp_ring_t *r, uint8_t *seq)
+{
+    uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
+    r->slot[head & (MODCP_BP_DEPTH - 1u)].seq = *seq;
+    *seq = (uint8_t)(*seq + 1u);
+    atomic_store_explicit(&r->head, head + 1u, memory_order_release);
+}
+static inline void modcp_ring_release(modcp_ring_t *r)
+{
+    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_relaxed);
+    atomic_store_explicit(&r->tail, tail + 1u, memory_order_release);
+}
+/* Copy the n (<= 32) data bytes of a block: a whole block as one fixed-size copy (a few
+ * word moves instead of a byte-count loop), a shorter one as it is. */
+static inline void modcp_block_copy(uint8_t *dst, const uint8_t *src, uint32_t n)
+{
+    if (n == MODCP_BLOCK_SIZE) {
+        memcpy(dst, src, MODCP_BLOCK_SIZE);
+    } else {
+        memcpy(dst, src, n);
+    }
+}
+/* Copying forms (tests, and messages built elsewhere). Producer side: publish one
+ * block (seq is filled in from *seq, which is then incremented). Returns false (nothing
+ * written) when the ring is full. */
+bool modcp_ring_put(modcp_ring_t *r, const modcp_block_t *b, uint8_t *seq);
+/* Producer side: a block from its parts, written into the free slot and published;
+ * false (nothing written) when the ring is full or len > 32. */
+bool modcp_ring_put_data(modcp_ring_t *r, uint8_t *seq, uint8_t kind, uint8_t flags, uint8_t tag,
+                         const uint8_t *data, uint8_t len);
+/* Consumer side: copy out and acknowledge the oldest block. Returns false when empty. */
+bool modcp_ring_get(modcp_ring_t *r, modcp_block_t *b);
+/* Consumer side: the oldest block without taking it (NULL when empty). It stays valid
+ * until the consumer takes it. */
+static inline const modcp_block_t *modcp_ring_peek(const modcp_ring_t *r)
+{
+    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_relaxed);
+    uint32_t head = atomic_load_explicit(&r->head, memory_order_acquire);
+    if (head == tail) {
+        return (const modcp_block_t *)0;
+    }
+    return &r->slot[tail & (MODCP_BP_DEPTH - 1u)];
+}
+/* Blocks free for the producer. */
+static inline uint32_t modcp_ring_space(const modcp_ring_t *r)
+{
+    uint32_t head = atomic_load_explicit(&r->head, memory_order_acquire);
+    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_acquire);
+    uint32_t used = head - tail;
+    return used >= MODCP_BP_DEPTH ? 0u : MODCP_BP_DEPTH - used;
+}
+static inline void modcp_bp_put16(uint8_t *d, uint16_t v)
+{
+    d[0] = (uint8_t)(v & 0xFFu);
+    d[1] = (uint8_t)(v >> 8);
+}
+static inline uint16_t modcp_bp_get16(const uint8_t *d)
+{
+    return (uint16_t)((unsigned)d[0] | ((unsigned)d[1] << 8));
+}
+static inline uint8_t modcp_bp_job_encode(const modcp_bp_job_t *j, uint8_t *d)
+{
+    d[0] = j->op;
+    d[1] = j->opnd.area;
+    d[2] = j->opnd.bit;
+    modcp_bp_put16(d + 3, j->opnd.db);
+    modcp_bp_put16(d + 5, j->opnd.offset);
+    modcp_bp_put16(d + 7, j->opnd.count);
+    modcp_bp_put16(d + 9, j->len);
+    return (uint8_t)MODCP_BP_JOB_HDR_LEN;
+}
+static inline bool modcp_bp_job_decode(const uint8_t *d, uint8_t len, modcp_bp_job_t *j)
+{
+    if (len < MODCP_BP_JOB_HDR_LEN) {
+        return false;
+    }
+    j->op = d[0];
+    j->opnd.area = d[1];
+    j->opnd.bit = d[2];
+    j->opnd.db = modcp_bp_get16(d + 3);
+    j->opnd.offset = modcp_bp_get16(d + 5);
+    j->opnd.count = modcp_bp_get16(d + 7);
+    j->len = modcp_bp_get16(d + 9);
+    return true;
+}
+static inline uint8_t modcp_bp_reply_encode(const modcp_bp_reply_t *r, uint8_t *d)
+{
+    modcp_bp_put16(d, r->event);
+    modcp_bp_put16(d + 2, r->error_nr);
+    modcp_bp_put16(d + 4, r->len);
+    return (uint8_t)MODCP_BP_REPLY_HDR_LEN;
+}
+static inline bool modcp_bp_reply_decode(const uint8_t *d, uint8_t len, modcp_bp_reply_t *r)
+{
+    if (len < MODCP_BP_REPLY_HDR_LEN) {
+        return false;
+    }
+    r->event = modcp_bp_get16(d);
+    r->error_nr = modcp_bp_get16(d + 2);
+    r->len = modcp_bp_get16(d + 4);
+    return true;
+}
+uint8_t modcp_bp_init_encode(const modcp_bp_init_t *i, uint8_t *d);
+bool modcp_bp_init_decode(const uint8_t *d, uint8_t len, modcp_bp_init_t *i);
+
+#endif

@@ -1,0 +1,17 @@
+/* modcp — the core's internal interface of commlog.c (modcp/commlog.h holds what a port or
+ * an application calls). Not part of the public API: for the core, its tests and tools. */
+#ifndef MODCP_COMMLOG_INTERNAL_H
+#define MODCP_COMMLOG_INTERNAL_H
+
+#include "modcp/commlog.h"
+
+/* Add an event byte (newest first; the oldest falls out beyond 64). */
+void modcp_comm_log(modcp_comm_t *c, uint8_t ev);
+void modcp_comm_clear_log(modcp_comm_t *c);
+/* Log the receive event of a valid frame for us (broadcast: addr 0). */
+void modcp_comm_rx(modcp_comm_t *c, bool broadcast);
+/* A serial-line counter (modcp_counter_t) was incremented: keeps the overrun flag and
+ * logs the 0x82 receive event of a damaged frame. Called by modcp_diag_count(). */
+void modcp_comm_counted(modcp_comm_t *c, unsigned counter);
+
+#endif

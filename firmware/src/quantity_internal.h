@@ -1,0 +1,34 @@
+/* modcp — the core's internal interface of quantity.c (modcp/quantity.h holds what a port or
+ * an application calls). Not part of the public API: for the core, its tests and tools. */
+#ifndef MODCP_QUANTITY_INTERNAL_H
+#define MODCP_QUANTITY_INTERNAL_H
+
+#include "modcp/quantity.h"
+
+/* Register width of holding register `reg` for fc: 0 = the 16-bit scheme (regs32 off,
+ * FC04, or an address outside every 32-bit range: the mapping then refuses it), else
+ * modcp_r32_kind_t + 1 of the range that holds it (as modcp_map_regs' out->bit). */
+uint8_t modcp_regs32_kind(const modcp_params_t *p, uint8_t fc, uint16_t reg);
+/* Bytes per register for a kind returned by modcp_regs32_kind(): 4 for int32 and
+ * float, else 2. */
+uint8_t modcp_reg_bytes(uint8_t r32_kind);
+/* Largest quantity of limit class lim (MODCP_QLIM_*, < MODCP_QLIM_COUNT) for the
+ * quantity_limits set and framing of p and the register kind (0 for bits and 16-bit
+ * registers); 0 for MODCP_QLIM_NONE. */
+static inline uint16_t modcp_qty_limit(const modcp_params_t *p, uint8_t lim, uint8_t r32_kind)
+{
+    unsigned col = p->qty_limits == (uint8_t)MODCP_QLIMITS_SPEC
+                       ? MODCP_QCOL_SPEC
+                       : (p->framing == (uint8_t)MODCP_FRAMING_ASCII ? MODCP_QCOL_ASCII
+                                                                     : MODCP_QCOL_RTU);
+    if (r32_kind == (uint8_t)(MODCP_R32_INT32 + 1u) || r32_kind == (uint8_t)(MODCP_R32_FLOAT + 1u)) {
+        col += MODCP_QCOL_R32; /* 4 bytes per register */
+    }
+    return modcp_qty_limits[lim][col];
+}
+/* Largest quantity of fc (01, 02, 03, 04, 15, 16) for the quantity_limits set and the
+ * framing of p and the register kind (0 for bits and 16-bit registers). 0 for other
+ * function codes. */
+uint16_t modcp_qty_max(const modcp_params_t *p, uint8_t fc, uint8_t r32_kind);
+
+#endif
