@@ -94,8 +94,7 @@ static void hal_timer_arm(void *ctx, uint32_t us)
 {
     modcp_cmsdk_port_t *p = ctx;
     p->eof_gen++;
-    p->eof_quiet = 0u;
-    p->eof_rx_mark = p->rx_bytes + p->overruns;
+    modcp_eof_confirm_arm(&p->eof, p->rx_bytes + p->overruns);
     eof_start(p, us);
 }
 
@@ -249,15 +248,8 @@ void modcp_cmsdk_port_timer_isr(modcp_cmsdk_port_t *port)
     if (port->eof_gen != gen) {
         return; /* the core re-armed for a character: that timer stands */
     }
-    uint32_t mark = port->rx_bytes + port->overruns;
-    if (mark != port->eof_rx_mark) {
-        port->eof_rx_mark = mark;
-        port->eof_quiet = 0u;
-    } else {
-        port->eof_quiet++;
-    }
-    if (port->eof_quiet < MODCP_CMSDK_EOF_QUIET_ROUNDS) {
-        port->eof_confirms++;
+    if (!modcp_eof_confirm_expiry(&port->eof, port->rx_bytes + port->overruns,
+                                  MODCP_CMSDK_EOF_QUIET_ROUNDS)) {
         eof_start(port, 1u);
         return;
     }

@@ -50,8 +50,7 @@ static void hal_timer_arm(void *ctx, uint32_t us)
 {
     modcp_stm32_port_t *p = ctx;
     p->eof_gen++;
-    p->eof_quiet = 0u;
-    p->eof_rx_mark = p->rx_bytes + p->line_errors;
+    modcp_eof_confirm_arm(&p->eof, p->rx_bytes + p->line_errors);
     oneshot_start(p, us);
 }
 
@@ -76,15 +75,8 @@ static void oneshot_fired(void *ctx, uint32_t now_us)
     if (p->eof_gen != gen) {
         return; /* the core re-armed for a character: that timer stands */
     }
-    uint32_t mark = p->rx_bytes + p->line_errors;
-    if (mark != p->eof_rx_mark) {
-        p->eof_rx_mark = mark;
-        p->eof_quiet = 0u;
-    } else {
-        p->eof_quiet++;
-    }
-    if (p->eof_quiet < MODCP_STM32_EOF_QUIET_ROUNDS) {
-        p->eof_confirms++;
+    if (!modcp_eof_confirm_expiry(&p->eof, p->rx_bytes + p->line_errors,
+                                  MODCP_STM32_EOF_QUIET_ROUNDS)) {
         oneshot_start(p, 1u);
         return;
     }

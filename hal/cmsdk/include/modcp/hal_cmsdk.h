@@ -43,6 +43,7 @@
 
 #include "modcp/cp.h"
 #include "modcp/hal.h"
+#include "modcp/hal_eof.h"
 
 /* ---- time base ---------------------------------------------------------------- */
 
@@ -82,9 +83,7 @@ typedef struct {
     uint32_t tx_bytes;
     uint32_t overruns;
     uint32_t eof_gen;      /* end-of-frame arms by the core */
-    uint32_t eof_rx_mark;  /* rx_bytes + overruns at the last arm / expiry */
-    uint32_t eof_quiet;    /* expiries in a row with nothing received */
-    uint32_t eof_confirms; /* confirmation one-shots started (statistics) */
+    modcp_eof_confirm_t eof; /* end-of-frame confirmation (modcp/hal_eof.h), mark = rx_bytes + overruns */
 } modcp_cmsdk_port_t;
 
 /* End-of-frame expiries in a row without a received character before the core hears of

@@ -49,6 +49,7 @@
 
 #include "modcp/cp.h"
 #include "modcp/hal.h"
+#include "modcp/hal_eof.h"
 
 /* Peripheral bases and interrupt numbers of the STM32F405/407 (RM0090). */
 #define STM32_GPIOA 0x40020000u
@@ -150,9 +151,7 @@ typedef struct {
     uint32_t tx_bytes;
     uint32_t line_errors;
     uint32_t eof_gen;      /* end-of-frame arms by the core */
-    uint32_t eof_rx_mark;  /* rx_bytes + line_errors at the last arm / expiry */
-    uint32_t eof_quiet;    /* expiries in a row with nothing received */
-    uint32_t eof_confirms; /* confirmation one-shots started (statistics) */
+    modcp_eof_confirm_t eof; /* end-of-frame confirmation (modcp/hal_eof.h), mark = rx_bytes + line_errors */
 } modcp_stm32_port_t;
 
 /* End-of-frame expiries in a row without a received character before the core hears of
