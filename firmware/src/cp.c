@@ -147,9 +147,15 @@ static void line_poll(modcp_cp_t *cp, uint32_t now_us)
 {
     if (cp->bp != NULL) {
         uint32_t req = atomic_load_explicit(&cp->bp->systat_req, memory_order_acquire);
-        modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, modcp_cp_ready(cp));
+        if (req != cp->cpdiag.systat_ack) { /* a new SYSTAT request */
+            modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, modcp_cp_ready(cp));
+        }
     }
-    modcp_cpdiag_backplane(&cp->cpdiag, &cp->diag, cp->job.proto_errors, cp->job.illegal_msgs);
+    if (cp->job.proto_errors != cp->cpdiag.proto_seen ||
+        cp->job.illegal_msgs != cp->cpdiag.illegal_seen) { /* new backplane errors */
+        modcp_cpdiag_backplane(&cp->cpdiag, &cp->diag, cp->job.proto_errors,
+                               cp->job.illegal_msgs);
+    }
     if (cp->cpdiag.wire_break && cp->link.last_us != cp->err_mark_us) {
         modcp_cpdiag_good_char(&cp->cpdiag); /* a character arrived after the BREAK */
     }
@@ -199,15 +205,17 @@ bool modcp_cp_ready(const modcp_cp_t *cp)
 }
 
 /* Finish the current request with the PDU engine's decision. */
-static void finish(modcp_cp_t *cp, modcp_pdu_action_t a, uint16_t out_len, uint32_t now_us)
+static void finish(modcp_cp_t *cp, const modcp_pdu_env_t *env, modcp_pdu_action_t a,
+                   uint16_t out_len, uint32_t now_us)
 {
 #if MODCP_WITH_EXTENDED
-    modcp_pdu_env_t env = env_of(cp);
-    modcp_pdu_finished(&cp->pdu, &env, a, now_us); /* FC11/12 accounting, comm loss */
+    modcp_pdu_finished(&cp->pdu, env, a, now_us); /* FC11/12 accounting, comm loss */
     if (cp->ext.delimiter_changed) { /* FC08 sub 03 / 01: the ASCII input delimiter */
         cp->link.ascii_delim = cp->ext.ascii_delimiter;
         cp->ext.delimiter_changed = false;
     }
+#else
+    (void)env;
 #endif
     if (a == MODCP_PDU_REPLY) {
         line_reply(cp, out_len, now_us);
@@ -218,9 +226,9 @@ static void finish(modcp_cp_t *cp, modcp_pdu_action_t a, uint16_t out_len, uint3
 
 /* Start the PDU engine's job, or finish the request. A request of the extended set
  * may need several jobs in sequence: modcp_pdu_complete() then returns the next. */
-static void run_action(modcp_cp_t *cp, modcp_pdu_action_t a, uint16_t out_len, uint32_t now_us)
+static void run_action(modcp_cp_t *cp, const modcp_pdu_env_t *env, modcp_pdu_action_t a,
+                       uint16_t out_len, uint32_t now_us)
 {
-    modcp_pdu_env_t env = env_of(cp);
     while (a == MODCP_PDU_JOB) {
         uint32_t timeout_us = (uint32_t)cp->params.cpu_timeout_ms * 1000u;
         modcp_event_t ev = modcp_job_start(&cp->job, &cp->pdu.job, cp->pdu.wdata, cp->pdu.rdata,
@@ -230,9 +238,9 @@ static void run_action(modcp_cp_t *cp, modcp_pdu_action_t a, uint16_t out_len, u
             cp->request_pending = true;
             return;
         }
-        a = modcp_pdu_complete(&cp->pdu, &env, ev, cp->frame.pdu, &out_len);
+        a = modcp_pdu_complete(&cp->pdu, env, ev, cp->frame.pdu, &out_len);
     }
-    finish(cp, a, out_len, now_us);
+    finish(cp, env, a, out_len, now_us);
 }
 
 static void process_request(modcp_cp_t *cp, uint32_t now_us)
@@ -242,7 +250,7 @@ static void process_request(modcp_cp_t *cp, uint32_t now_us)
     uint16_t out_len = 0;
     modcp_pdu_action_t a =
         modcp_pdu_request(&cp->pdu, &env, f->addr, f->pdu, f->pdu_len, f->pdu_cap, &out_len);
-    run_action(cp, a, out_len, now_us);
+    run_action(cp, &env, a, out_len, now_us);
     if (cp->request_pending) {
         modcp_job_push(&cp->job); /* the first blocks go out at once */
     }
@@ -458,7 +466,7 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
             uint16_t out_len = 0;
             modcp_event_t ev = cp->job.event;
             modcp_pdu_action_t a = modcp_pdu_complete(&cp->pdu, &env, ev, cp->frame.pdu, &out_len);
-            run_action(cp, a, out_len, now_us); /* the reply, or the next job */
+            run_action(cp, &env, a, out_len, now_us); /* the reply, or the next job */
         } else if (r == MODCP_JOBP_PARAMS) {
             take_params(cp);
         } else if (r == MODCP_JOBP_INIT) {

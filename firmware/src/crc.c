@@ -38,12 +38,22 @@ const uint16_t modcp_crc16_table[256] = {
     0x8201, 0x42C0, 0x4380, 0x8341, 0x4100, 0x81C1, 0x8081, 0x4040,
 };
 
+/* Four bytes per turn (the reply of a long read: 255 bytes), then the rest. */
 uint16_t modcp_crc16_update(uint16_t crc, const uint8_t *p, size_t n)
 {
-    while (n-- > 0u) {
-        crc = modcp_crc16_byte(crc, *p++);
+    uint32_t c = crc;
+    const uint8_t *end4 = p + (n & ~(size_t)3u);
+    while (p != end4) {
+        c = (c >> 8) ^ modcp_crc16_table[(c ^ p[0]) & 0xFFu];
+        c = (c >> 8) ^ modcp_crc16_table[(c ^ p[1]) & 0xFFu];
+        c = (c >> 8) ^ modcp_crc16_table[(c ^ p[2]) & 0xFFu];
+        c = (c >> 8) ^ modcp_crc16_table[(c ^ p[3]) & 0xFFu];
+        p += 4;
     }
-    return crc;
+    for (n &= 3u; n > 0u; n--) {
+        c = (c >> 8) ^ modcp_crc16_table[(c ^ *p++) & 0xFFu];
+    }
+    return (uint16_t)c;
 }
 
 uint16_t modcp_crc16(const uint8_t *p, size_t n)

@@ -5,15 +5,21 @@
 #include <string.h>
 #include "leds_internal.h"
 
-static void set(modcp_leds_t *x, modcp_led_t led, bool on, uint32_t now_us)
+static void change(modcp_leds_t *x, modcp_led_t led, bool on, uint32_t now_us)
 {
-    if (x->on[led] == on) {
-        return;
-    }
     x->on[led] = on;
+    x->bits = (uint8_t)(on ? x->bits | (1u << led) : x->bits & ~(1u << led));
     x->on_us[led] = now_us;
     if (x->hal != NULL && x->hal->set_led != NULL) {
         x->hal->set_led(x->hal->ctx, led, on);
+    }
+}
+
+/* Set a level; the HAL hears of changes only. */
+static inline void set(modcp_leds_t *x, modcp_led_t led, bool on, uint32_t now_us)
+{
+    if (x->on[led] != on) {
+        change(x, led, on, now_us);
     }
 }
 
@@ -24,6 +30,7 @@ void modcp_leds_init(modcp_leds_t *x, const modcp_hal_t *hal)
     /* set every LED explicitly at power-on: SF on, TXD / RXD off */
     x->on[MODCP_LED_TXD] = true;
     x->on[MODCP_LED_RXD] = true;
+    x->bits = (uint8_t)((1u << MODCP_LED_TXD) | (1u << MODCP_LED_RXD));
     set(x, MODCP_LED_SF, true, 0);
     set(x, MODCP_LED_TXD, false, 0);
     set(x, MODCP_LED_RXD, false, 0);
@@ -57,15 +64,4 @@ void modcp_leds_poll(modcp_leds_t *x, bool sf, const modcp_link_t *l, uint32_t n
                now_us - l->last_us >= x->quiet_us) {
         set(x, MODCP_LED_RXD, false, now_us);
     }
-}
-
-uint8_t modcp_leds_bits(const modcp_leds_t *x)
-{
-    uint8_t b = 0;
-    for (unsigned i = 0; i < MODCP_LED_COUNT; i++) {
-        if (x->on[i]) {
-            b = (uint8_t)(b | (1u << i));
-        }
-    }
-    return b;
 }

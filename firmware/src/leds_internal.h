@@ -13,6 +13,9 @@ void modcp_leds_configure(modcp_leds_t *x, uint32_t quiet_us);
  * error is present. */
 void modcp_leds_poll(modcp_leds_t *x, bool sf, const modcp_link_t *l, uint32_t now_us);
 /* Levels as bits (1 << modcp_led_t) for the status area. */
-uint8_t modcp_leds_bits(const modcp_leds_t *x);
+static inline uint8_t modcp_leds_bits(const modcp_leds_t *x)
+{
+    return x->bits; /* kept by every change of a level (leds.c) */
+}
 
 #endif
