@@ -9,8 +9,18 @@
 void modcp_bp_publish_status(modcp_backplane_t *bp, const modcp_cp_status_t *st);
 /* CP side: write the status area in place — begin (the seqlock turns odd) returns it,
  * fill in every field, end (even again) publishes it. */
-modcp_cp_status_t *modcp_bp_status_begin(modcp_backplane_t *bp);
-void modcp_bp_status_end(modcp_backplane_t *bp);
+static inline modcp_cp_status_t *modcp_bp_status_begin(modcp_backplane_t *bp)
+{
+    uint32_t seq = atomic_load_explicit(&bp->status_seq, memory_order_relaxed);
+    atomic_store_explicit(&bp->status_seq, seq + 1u, memory_order_relaxed);
+    atomic_thread_fence(memory_order_release);
+    return &bp->status;
+}
+static inline void modcp_bp_status_end(modcp_backplane_t *bp)
+{
+    uint32_t seq = atomic_load_explicit(&bp->status_seq, memory_order_relaxed);
+    atomic_store_explicit(&bp->status_seq, seq + 1u, memory_order_release);
+}
 /* Zero-copy block transfer: the producer writes a block straight into its slot and the
  * consumer reads it there, so data crosses the backplane with one copy in and one out.
  * Producer: modcp_ring_slot() gives the free slot (NULL when the ring is full: the

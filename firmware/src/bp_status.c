@@ -6,20 +6,6 @@
 #include "modcp/backplane.h"
 #include "backplane_internal.h"
 
-modcp_cp_status_t *modcp_bp_status_begin(modcp_backplane_t *bp)
-{
-    uint32_t seq = atomic_load_explicit(&bp->status_seq, memory_order_relaxed);
-    atomic_store_explicit(&bp->status_seq, seq + 1u, memory_order_relaxed);
-    atomic_thread_fence(memory_order_release);
-    return &bp->status;
-}
-
-void modcp_bp_status_end(modcp_backplane_t *bp)
-{
-    uint32_t seq = atomic_load_explicit(&bp->status_seq, memory_order_relaxed);
-    atomic_store_explicit(&bp->status_seq, seq + 1u, memory_order_release);
-}
-
 void modcp_bp_publish_status(modcp_backplane_t *bp, const modcp_cp_status_t *st)
 {
     memcpy(modcp_bp_status_begin(bp), st, sizeof *st);

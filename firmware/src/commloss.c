@@ -37,22 +37,6 @@ void modcp_ext_reset(modcp_ext_t *x, modcp_diag_t *d)
     }
 }
 
-void modcp_commloss_request(modcp_ext_t *x, uint32_t now_us)
-{
-    x->cl_last_us = now_us;
-    x->cl_lost = false;
-}
-
-void modcp_commloss_write(modcp_ext_t *x, const modcp_params_t *p, uint32_t now_us)
-{
-    if (p->commloss_ms == 0u || x->cl_armed) {
-        return;
-    }
-    x->cl_armed = true;
-    x->cl_lost = false;
-    x->cl_last_us = now_us;
-}
-
 void modcp_commloss_poll(modcp_ext_t *x, const modcp_params_t *p, modcp_diag_t *d,
                          uint32_t now_us)
 {

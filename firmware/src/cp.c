@@ -484,7 +484,9 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
     line_poll(cp, now_us);
 #if MODCP_WITH_EXTENDED
     /* comm-loss time; the flags are published from ext / diag (ext_flags) */
-    modcp_commloss_poll(&cp->ext, &cp->params, &cp->diag, now_us);
+    if (cp->params.commloss_ms != 0u || cp->ext.cl_armed || cp->ext.cl_lost) {
+        modcp_commloss_poll(&cp->ext, &cp->params, &cp->diag, now_us);
+    }
 #endif
     publish(cp);
 }

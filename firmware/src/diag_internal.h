@@ -11,7 +11,15 @@ void modcp_diag_event(modcp_diag_t *d, modcp_event_t ev);
 /* Increment a serial-line counter. Bus and slave message counts (0B, 0E) wrap
  * 65535 -> 0, the error counts saturate at 65535 (002 §8: frame counters modulo
  * 65536, error counters saturating). */
-void modcp_diag_count(modcp_diag_t *d, modcp_counter_t c);
+void modcp_diag_count_error(modcp_diag_t *d, modcp_counter_t c);
+static inline void modcp_diag_count(modcp_diag_t *d, modcp_counter_t c)
+{
+    if (c == MODCP_CNT_BUS_MSG || c == MODCP_CNT_SLAVE_MSG) {
+        d->counters[c]++; /* uint16_t: wraps 65535 -> 0; no FC12 log entry of its own */
+    } else {
+        modcp_diag_count_error(d, c); /* the others saturate (diag.c) */
+    }
+}
 void modcp_diag_clear_counters(modcp_diag_t *d);
 /* Empty the diagnostic buffer (001 §8.3: re-parameterisation of the CP clears it). */
 void modcp_diag_clear_buffer(modcp_diag_t *d);

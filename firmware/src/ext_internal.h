@@ -15,9 +15,22 @@ void modcp_ext_clear_counters(modcp_diag_t *d);
 uint16_t modcp_ext_diag_register(const modcp_ext_t *x, const modcp_diag_t *d);
 /* A valid request for our address (not broadcast) arrived: restart the time, clear
  * the comm-loss state. */
-void modcp_commloss_request(modcp_ext_t *x, uint32_t now_us);
+static inline void modcp_commloss_request(modcp_ext_t *x, uint32_t now_us)
+{
+    x->cl_last_us = now_us;
+    x->cl_lost = false;
+}
 /* An accepted (executed, no exception) write for our address: arms the supervision. */
-void modcp_commloss_write(modcp_ext_t *x, const modcp_params_t *p, uint32_t now_us);
+static inline void modcp_commloss_write(modcp_ext_t *x, const modcp_params_t *p,
+                                        uint32_t now_us)
+{
+    if (p->commloss_ms == 0u || x->cl_armed) {
+        return;
+    }
+    x->cl_armed = true;
+    x->cl_lost = false;
+    x->cl_last_us = now_us;
+}
 /* Expiry check (the CP's poll): reports MODCP_EV_COMMLOSS once per loss. The state
  * is x->cl_lost alone; the CP publishes MODCP_CPST_COMMLOSS from it. */
 void modcp_commloss_poll(modcp_ext_t *x, const modcp_params_t *p, modcp_diag_t *d,

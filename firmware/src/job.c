@@ -120,30 +120,23 @@ bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev)
 
 /* Push as many of the job's blocks as there are free slots; each block is written
  * straight into its slot (the write data: one copy from the request) and published at
- * once. The consumer's tail is read again only when the ring looks full. */
+ * once. */
 static void push_blocks(modcp_job_t *j)
 {
     modcp_ring_t *r = &j->bp->to_cpu;
     uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
-    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_acquire);
     if (!j->hdr_sent) {
-        if (head != tail) {
+        if (atomic_load_explicit(&r->tail, memory_order_acquire) != head) {
             return; /* previous blocks not consumed yet (see the top of this file) */
         }
         if (atomic_load_explicit(&j->bp->abort_tag, memory_order_acquire) == (uint32_t)j->tag) {
             atomic_store_explicit(&j->bp->abort_tag, JOB_NO_ABORT, memory_order_release);
         }
     }
-    uint8_t seq = j->tx_seq;
-    do {
-        if ((uint32_t)(head - tail) >= MODCP_BP_DEPTH) {
-            tail = atomic_load_explicit(&r->tail, memory_order_acquire);
-            if ((uint32_t)(head - tail) >= MODCP_BP_DEPTH) {
-                break; /* full: the rest at the next poll */
-            }
-        }
+    while (j->state == MODCP_JOBST_SENDING &&
+           head - atomic_load_explicit(&r->tail, memory_order_acquire) < MODCP_BP_DEPTH) {
         modcp_block_t *b = &r->slot[head & (MODCP_BP_DEPTH - 1u)];
-        uint8_t flags;
+        uint8_t flags = 0;
         uint8_t n;
         if (!j->hdr_sent) {
             n = modcp_bp_job_encode(&j->hdr, b->data);
@@ -154,7 +147,6 @@ static void push_blocks(modcp_job_t *j)
             n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
             modcp_block_copy(b->data, j->wdata + j->wpos, n);
             j->wpos = (uint16_t)(j->wpos + n);
-            flags = 0;
         }
         if (j->hdr.op == MODCP_JOB_READ || j->wpos >= j->hdr.len) {
             flags |= MODCP_BLK_LAST; /* nothing (more) to send */
@@ -164,12 +156,9 @@ static void push_blocks(modcp_job_t *j)
         b->kind = MODCP_BP_JOB;
         b->flags = flags;
         b->tag = j->tag;
-        b->seq = seq;
-        seq = (uint8_t)(seq + 1u);
-        head++;
-        atomic_store_explicit(&r->head, head, memory_order_release); /* hand it over */
-    } while (j->state == MODCP_JOBST_SENDING);
-    j->tx_seq = seq;
+        b->seq = j->tx_seq++;
+        atomic_store_explicit(&r->head, ++head, memory_order_release); /* hand it over */
+    }
 }
 
 static modcp_jobp_t finish(modcp_job_t *j, modcp_event_t ev, uint16_t error_nr)

@@ -79,6 +79,20 @@ static const fc_row_t fc_table[] = {
     EXT_ONLY({0x2Bu, 2u,  0u, F_EXT,                                             MODCP_QLIM_NONE,       modcp_pdu_fc43})
 };
 
+_Static_assert(sizeof fc_table / sizeof fc_table[0] == (MODCP_WITH_EXTENDED ? 16u : 9u),
+               "fc_first_row below indexes fc_table: keep both in step");
+
+/* fc -> 1 + the index of its first row in fc_table (0: no row). The rows of one fc
+ * are adjacent (FC08: cp341, then extended). */
+#define FC_SLOTS 0x2Cu
+static const uint8_t fc_first_row[FC_SLOTS] = {
+    [0x03u] = 1u, [0x10u] = 2u, [0x06u] = 3u, [0x01u] = 4u, [0x02u] = 5u, [0x04u] = 6u,
+    [0x05u] = 7u, [0x0Fu] = 8u, [0x08u] = 9u,
+#if MODCP_WITH_EXTENDED
+    [0x17u] = 11u, [0x16u] = 12u, [0x0Bu] = 13u, [0x0Cu] = 14u, [0x11u] = 15u, [0x2Bu] = 16u,
+#endif
+};
+
 /* The row of fc in the function set of p (NULL: not in it). Built without the
  * extended set, the engine is the cp341 set whatever p says. */
 static const fc_row_t *row_of(const modcp_params_t *p, uint8_t fc)
@@ -89,9 +103,12 @@ static const fc_row_t *row_of(const modcp_params_t *p, uint8_t fc)
     (void)p;
     const uint8_t set = F_CP341;
 #endif
-    for (size_t i = 0; i < sizeof fc_table / sizeof fc_table[0]; i++) {
-        const fc_row_t *r = &fc_table[i];
-        if (r->fc == fc && (r->flags & set) != 0u) {
+    if (fc >= FC_SLOTS || fc_first_row[fc] == 0u) {
+        return NULL;
+    }
+    const fc_row_t *end = fc_table + sizeof fc_table / sizeof fc_table[0];
+    for (const fc_row_t *r = &fc_table[fc_first_row[fc] - 1u]; r < end && r->fc == fc; r++) {
+        if ((r->flags & set) != 0u) {
             return r;
         }
     }
@@ -244,12 +261,13 @@ static modcp_pdu_action_t dispatch(modcp_pdu_t *s, const modcp_pdu_env_t *env, u
         uint16_t qty = r->lim != (uint8_t)MODCP_QLIM_NONE ? modcp_get16(pdu + 3) : 1u;
         bool scan = false;
 #if MODCP_WITH_EXTENDED
-        if ((r->flags & F_SCAN) != 0u && modcp_scan_touches(env->p, s->addr, qty)) {
+        if ((r->flags & F_SCAN) != 0u && env->p->scan_count != 0u &&
+            modcp_scan_touches(env->p, s->addr, qty)) {
             scan = true; /* scanner addresses: 16-bit operands, the scanner's handlers */
             h = s->fc == 0x03u ? modcp_pdu_scan_read : modcp_pdu_scan_write;
         }
 #endif
-        if (!scan && (r->flags & F_R32) != 0u) {
+        if (!scan && (r->flags & F_R32) != 0u && env->p->regs32 != 0u) { /* else 16-bit */
             s->r32_kind = modcp_regs32_kind(env->p, s->fc, s->addr);
         }
         if (r->lim != (uint8_t)MODCP_QLIM_NONE) {

@@ -15,6 +15,12 @@
 #include "map_internal.h"
 #include "quantity_internal.h"
 
+/* Bytes per register: 2 in the 16-bit scheme (r32_kind 0, no call), else by its kind. */
+static unsigned reg_bytes(uint8_t r32_kind)
+{
+    return r32_kind == 0u ? 2u : modcp_reg_bytes(r32_kind);
+}
+
 /* A read job whose data land after the reply's function code and byte count. */
 static modcp_pdu_action_t read_job(modcp_pdu_t *s, const modcp_operand_t *o, uint16_t len,
                                    uint8_t *pdu, uint16_t cap)
@@ -133,7 +139,7 @@ modcp_pdu_action_t modcp_pdu_write_reg(modcp_pdu_t *s, const modcp_pdu_env_t *en
     (void)cap;
     (void)out_len;
     s->qty = 1;
-    if (len != 3u + modcp_reg_bytes(s->r32_kind)) {
+    if (len != 3u + reg_bytes(s->r32_kind)) {
         return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
     modcp_operand_t o;
@@ -171,7 +177,7 @@ modcp_pdu_action_t modcp_pdu_write_regs(modcp_pdu_t *s, const modcp_pdu_env_t *e
     (void)cap;
     (void)out_len;
     const uint8_t bc = pdu[5];
-    if (bc != (unsigned)modcp_reg_bytes(s->r32_kind) * s->qty || len != 6u + bc) {
+    if (bc != reg_bytes(s->r32_kind) * s->qty || len != 6u + bc) {
         return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
     modcp_operand_t o;
