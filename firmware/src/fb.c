@@ -305,6 +305,9 @@ static void rx_data(modcp_fb_t *fb, const modcp_block_t *b)
             uint32_t k = jb->opnd.count - done;
             if (jb->opnd.bit == 0u && k >= (uint32_t)n * 8u) {
                 modcp_block_copy(dst, b->data, n); /* whole bytes of the area */
+            } else if (k == 1u) { /* one coil (FC05): bit 0 of the data, start bit <= 7 */
+                unsigned m = 1u << jb->opnd.bit;
+                dst[0] = (uint8_t)((dst[0] & ~m) | (((unsigned)b->data[0] << jb->opnd.bit) & m));
             } else {
                 modcp_bits_put(dst, jb->opnd.bit, k > (uint32_t)n * 8u ? (uint32_t)n * 8u : k,
                                b->data);

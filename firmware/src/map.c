@@ -55,7 +55,7 @@ static bool is_tc(uint8_t area)
      AREA_BIT(MODCP_AREA_C) | AREA_BIT(MODCP_AREA_DB))
 #define INPUT_AREAS (AREA_BIT(MODCP_AREA_M) | AREA_BIT(MODCP_AREA_I) | AREA_BIT(MODCP_AREA_DB))
 
-uint32_t modcp_map_area_size(const modcp_areas_t *a, uint8_t area)
+static inline uint32_t area_size(const modcp_areas_t *a, uint8_t area)
 {
     if (a == NULL || area == MODCP_AREA_DB) {
         return 0x10000u;
@@ -74,6 +74,11 @@ uint32_t modcp_map_area_size(const modcp_areas_t *a, uint8_t area)
     default:
         return 0u;
     }
+}
+
+uint32_t modcp_map_area_size(const modcp_areas_t *a, uint8_t area)
+{
+    return area_size(a, area);
 }
 
 static bool limit_ok(const modcp_limit_t *l, uint32_t first, uint32_t last)
@@ -147,7 +152,7 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
         first = (uint32_t)w->start + rel / 8u;
         last = (uint32_t)w->start + (rel + (uint32_t)qty - 1u) / 8u;
     }
-    if (end_addr > w->to || last >= modcp_map_area_size(a, w->area)) {
+    if (end_addr > w->to || last >= area_size(a, w->area)) {
         return MODCP_EV_PAST_END;
     }
 
