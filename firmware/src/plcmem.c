@@ -14,6 +14,14 @@ modcp_db_t *modcp_plcmem_db(const modcp_plcmem_t *mem, uint16_t number)
     if (mem->dbs == NULL) {
         return NULL;
     }
+    if (mem->db_count <= 4u) { /* a few DBs: in order, no halving */
+        for (uint32_t k = 0; k < mem->db_count; k++) {
+            if (mem->dbs[k].number == number) {
+                return &mem->dbs[k];
+            }
+        }
+        return NULL;
+    }
     uint32_t lo = 0;
     uint32_t hi = mem->db_count; /* search [lo, hi) */
     while (lo < hi) {
