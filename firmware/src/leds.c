@@ -8,7 +8,7 @@
 static void change(modcp_leds_t *x, modcp_led_t led, bool on, uint32_t now_us)
 {
     x->on[led] = on;
-    x->bits = (uint8_t)(on ? x->bits | (1u << led) : x->bits & ~(1u << led));
+    x->bits = (uint8_t)((x->bits & ~(1u << led)) | ((unsigned)on << led));
     x->on_us[led] = now_us;
     if (x->hal != NULL && x->hal->set_led != NULL) {
         x->hal->set_led(x->hal->ctx, led, on);

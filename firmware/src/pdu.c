@@ -178,7 +178,7 @@ static modcp_pdu_action_t fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8
 
 /* Every job of the request is done: the reply is the echo of the request's first
  * s->x.echo bytes, or fc, byte count and the s->x.rbytes data read to pdu + 2. */
-static modcp_pdu_action_t encode(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+static inline modcp_pdu_action_t encode(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
                                  uint16_t *out_len)
 {
     if (s->broadcast) {
