@@ -8,7 +8,9 @@
  * end-of-frame timer is armed once, by the frame's first character (or line error
  * in place of one), and link.c re-arms it for the rest of t3.5 after the last one; the
  * frame is checked only when t3.5 has passed. Time stamps are the ends of characters,
- * as the UART receive interrupt sees them.
+ * as the UART receive interrupt sees them. A block of characters back to back
+ * (modcp_cp_on_rx_block: DMA, FIFO) has the effect of its characters one by one at
+ * their ends; a run of our frame is stored and CRC'd in one loop.
  *
  * Decisions where the manual is silent:
  *  - A byte that arrives in SKIP after a gap >= t3.5 (the expiry is late or the SKIP
@@ -190,6 +192,51 @@ static void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
     rtu_on_byte(l, b, now_us);
 }
 
+/* Characters back to back (the k-th of n ended at end_us - (n-1-k) * char_us): runs of
+ * our frame with room in the buffer are stored and CRC'd in one loop, every other
+ * character goes through byte_other() at its own time, exactly as one by one. */
+static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us)
+{
+    const uint32_t c = l->char_us;
+    uint32_t t = end_us - (uint32_t)(n - 1u) * c; /* end of character k */
+    uint16_t k = 0;
+    while (k < n) {
+        if (l->state != MODCP_LINK_RX || l->len >= l->cap) {
+            byte_other(l, b[k], t);
+            k++;
+            t += c;
+            continue;
+        }
+        uint16_t m = (uint16_t)(n - k);
+        if (m > l->cap - l->len) {
+            m = (uint16_t)(l->cap - l->len);
+        }
+        uint8_t *d = &l->buf[l->len];
+        const uint8_t *s = &b[k];
+        uint16_t crc = l->fr.rtu.crc;
+        for (uint16_t i = 0; i < m; i++) {
+            d[i] = s[i];
+            crc = modcp_crc16_byte(crc, s[i]);
+        }
+        l->fr.rtu.crc = crc;
+        l->len = (uint16_t)(l->len + m);
+        k = (uint16_t)(k + m);
+        t += (uint32_t)(m - 1u) * c;
+        l->last_us = t;
+        t += c;
+    }
+}
+
+/* With the t1.5 check: only the block's first character can follow a silence; the
+ * others come one character time after the one before (no silence at all). */
+static void rtu_on_block_t15(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us)
+{
+    rtu_on_byte_t15(l, b[0], end_us - (uint32_t)(n - 1u) * l->char_us);
+    if (n > 1u) {
+        rtu_on_block(l, b + 1, (uint16_t)(n - 1u), end_us);
+    }
+}
+
 static void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
     (void)line_errors; /* every kind of error has the same effect on framing */
@@ -310,6 +357,6 @@ const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *
 }
 
 const modcp_framing_ops_t modcp_rtu_ops = {rtu_configure, rtu_on_byte, rtu_on_error,
-                                           rtu_on_timer, rtu_encode};
+                                           rtu_on_timer, rtu_encode, rtu_on_block};
 static const modcp_framing_ops_t rtu_t15_ops = {rtu_configure, rtu_on_byte_t15, rtu_on_error,
-                                                rtu_on_timer, rtu_encode};
+                                                rtu_on_timer, rtu_encode, rtu_on_block_t15};
