@@ -52,13 +52,15 @@ static void sig_on_rx(modcp_cp_t *cp, uint32_t now_us)
 {
     modcp_sig_on_rx(&cp->sig, &cp->link, now_us);
 }
+/* Disabled signals are idle (modcp_sig_configure / _disable): no timer of their own,
+ * transmission complete goes to the link; so the calls are skipped then. */
 static bool sig_on_timer(modcp_cp_t *cp, uint32_t now_us)
 {
-    return modcp_sig_on_timer(&cp->sig, &cp->link, now_us);
+    return cp->sig.enabled && modcp_sig_on_timer(&cp->sig, &cp->link, now_us);
 }
 static bool sig_on_tx_done(modcp_cp_t *cp, uint32_t now_us)
 {
-    return modcp_sig_on_tx_done(&cp->sig, &cp->link, now_us);
+    return cp->sig.enabled && modcp_sig_on_tx_done(&cp->sig, &cp->link, now_us);
 }
 #else
 /* Built without RS232 signals: reception always allowed, no timer or transmit

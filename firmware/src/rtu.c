@@ -214,9 +214,17 @@ static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
         uint8_t *d = &l->buf[l->len];
         const uint8_t *s = &b[k];
         uint16_t crc = l->fr.rtu.crc;
-        for (uint16_t i = 0; i < m; i++) {
-            d[i] = s[i];
-            crc = modcp_crc16_byte(crc, s[i]);
+        for (uint16_t pairs = (uint16_t)(m / 2u); pairs > 0u; pairs--) { /* two per turn */
+            uint8_t c0 = s[0], c1 = s[1];
+            d[0] = c0;
+            d[1] = c1;
+            crc = modcp_crc16_byte(modcp_crc16_byte(crc, c0), c1);
+            s += 2;
+            d += 2;
+        }
+        if ((m & 1u) != 0u) {
+            *d = *s;
+            crc = modcp_crc16_byte(crc, *s);
         }
         l->fr.rtu.crc = crc;
         l->len = (uint16_t)(l->len + m);
