@@ -304,11 +304,19 @@ void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us
     cp->published = false;
 }
 
+/* A frame for us has ended: kept out of modcp_cp_on_timer, so that its other expiries
+ * do not pay for process_request's stack frame. */
+static MODCP_CP_NOINLINE void frame_ready(modcp_cp_t *cp, uint32_t now_us)
+{
+    process_request(cp, now_us);
+}
+
 void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
 {
     /* the common expiry while a frame arrives (armed at its first character, bytes
-     * kept coming): only the rest of the silence is armed again; the RS232 signals
-     * never run a timer of their own while the link receives (guarded all the same) */
+     * kept coming): only the rest of the silence is armed again, nothing published;
+     * the RS232 signals never run a timer of their own while the link receives
+     * (guarded all the same) */
     if (!sig_enabled(cp) && link_timer_rearm(&cp->link, now_us)) {
         return;
     }
@@ -317,7 +325,7 @@ void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
         return; /* data output waiting time / time to RTS off */
     }
     if (modcp_link_on_timer(&cp->link, now_us, &cp->frame)) {
-        process_request(cp, now_us);
+        frame_ready(cp, now_us);
     }
 }
 

@@ -62,14 +62,15 @@ static inline void link_arm(const modcp_link_t *l, uint32_t us)
 /* The common timer expiry while a frame arrives: armed once at its first character,
  * it expires before the silence has passed since the last one (characters kept
  * coming) and only the rest is armed again. True if that was the case (nothing else
- * to do, nothing else changed); false: modcp_link_on_timer() decides. */
+ * to do, nothing else changed); false: modcp_link_on_timer() decides. (A link in RX
+ * or SKIP is enabled: stopping it resets the state to IDLE.) */
 static inline bool link_timer_rearm(const modcp_link_t *l, uint32_t now_us)
 {
     if (l->state != MODCP_LINK_RX && l->state != MODCP_LINK_SKIP) {
         return false;
     }
     uint32_t gap = now_us - l->last_us;
-    if (!l->enabled || gap >= l->silence_us) {
+    if (gap >= l->silence_us) {
         return false;
     }
     link_arm(l, l->silence_us - gap);
