@@ -37,9 +37,9 @@ typedef struct {
 } cut_t;
 
 typedef struct {
-    uint8_t b[700];
+    uint8_t b[1200];
     size_t n;
-    cut_t cuts[40];
+    cut_t cuts[300];
     size_t ncuts;
 } line_t;
 
@@ -421,6 +421,119 @@ static void test_rs232_signals(void **state)
 }
 #endif
 
+/* Random lines, byte by byte and in blocks: requests for us, for another slave,
+ * broadcasts, CRC errors and noise, with silences inside a frame (below and above
+ * t1.5) and between frames, t1.5 check and interference suppression on or off; cut
+ * into blocks at random wherever the port contract allows (each block handed over
+ * less than t3.5 after the character before it). */
+static uint32_t rnd_state = 12345u;
+static uint32_t rnd(uint32_t n)
+{
+    rnd_state ^= rnd_state << 13;
+    rnd_state ^= rnd_state >> 17;
+    rnd_state ^= rnd_state << 5;
+    return rnd_state % n;
+}
+
+static void add_bytes(line_t *l, const uint8_t *b, size_t n, uint32_t gap_us)
+{
+    char hex[3 * 64 + 1];
+    for (size_t i = 0; i < n; i++) {
+        snprintf(&hex[3 * i], 4, "%02X ", b[i]);
+    }
+    add_hex(l, hex, gap_us);
+}
+
+static void test_random_lines(void **state)
+{
+    (void)state;
+    const uint32_t c = 1146u;
+    unsigned replies = 0, frames = 0;
+    for (int run = 0; run < 60; run++) {
+        modcp_params_t p = example();
+        p.t15_check = rnd(2) ? 1u : 0u;
+        p.opmode = rnd(4) == 0 ? MODCP_OPMODE_SUPPRESS : MODCP_OPMODE_NORMAL;
+        line_t l = {0};
+        size_t nseg = 3u + rnd(6);
+        bool answered = false; /* modem mode: the segment before ended a frame at its CRC */
+        for (size_t seg = 0; seg < nseg && l.n < 900u; seg++) {
+            uint8_t f[64];
+            size_t n;
+            uint32_t kind = rnd(6);
+            switch (kind) {
+            case 0: /* FC03 for us */
+            case 1:
+                n = hex_frame(FC03_REQ, f, sizeof f);
+                break;
+            case 2: /* another slave or a broadcast FC06 */
+                f[0] = rnd(2) ? 6u : 0u;
+                f[1] = 6u;
+                f[2] = 0x00;
+                f[3] = 0x50;
+                f[4] = (uint8_t)rnd(256);
+                f[5] = (uint8_t)rnd(256);
+                n = add_crc(f, 6);
+                break;
+            case 3: /* a CRC error */
+                n = hex_frame(FC03_REQ, f, sizeof f);
+                f[n - 1u] ^= (uint8_t)(1u + rnd(255));
+                break;
+            default: /* noise, sometimes starting with our address */
+                n = 1u + rnd(12);
+                for (size_t i = 0; i < n; i++) {
+                    f[i] = (uint8_t)rnd(256);
+                }
+                if (rnd(2)) {
+                    f[0] = 5u;
+                }
+                break;
+            }
+            /* a master does not talk while we answer: in interference suppression a
+             * frame ends at its valid CRC, so after one only a new frame follows (what
+             * falls within a block's span is seen after it, docs/porting.md) */
+            uint32_t gap;
+            switch (seg == 0 || answered ? 3u : rnd(4)) {
+            case 0:
+                gap = 0; /* the same frame goes on */
+                break;
+            case 1:
+                gap = rnd(T15_US + 1u); /* within t1.5 */
+                break;
+            case 2:
+                gap = T15_US + 1u + rnd(T35_US - c - T15_US - 1u); /* over t1.5, under t3.5 */
+                break;
+            default:
+                gap = 60000u + rnd(20000u); /* a new frame, the last one answered */
+                break;
+            }
+            answered = p.opmode == MODCP_OPMODE_SUPPRESS && kind <= 2u;
+            size_t start = l.n;
+            add_bytes(&l, f, n, gap);
+            /* blocks: the first one after a silence that continues the frame may span
+             * less than t3.5 - gap, every later one at most 3 characters (< t3.5) */
+            size_t at = start;
+            size_t first_max = gap + c >= T35_US ? 30u : (T35_US - 1u - gap) / c;
+            bool first = true;
+            while (at < l.n) {
+                size_t max = first ? first_max : 3u;
+                size_t k = 1u + rnd((uint32_t)max);
+                at += k;
+                if (at < l.n) {
+                    split(&l, at);
+                }
+                first = false;
+            }
+        }
+        lw_t *x = both(&p, &l, 200);
+        replies += x->tx_calls;
+        frames += x->w->cp.diag.counters[MODCP_CNT_BUS_MSG] + x->w->cp.diag.counters[MODCP_CNT_BUS_CRC];
+        lw_free(x);
+    }
+    /* the lines were not all noise: requests were answered, frames counted */
+    assert_true(replies >= 20u);
+    assert_true(frames >= 60u);
+}
+
 /* An empty block changes nothing. */
 static void test_empty_block(void **state)
 {
@@ -451,6 +564,7 @@ int main(void)
 #if MODCP_WITH_RS232_SIGNALS
         cmocka_unit_test(test_rs232_signals),
 #endif
+        cmocka_unit_test(test_random_lines),
         cmocka_unit_test(test_empty_block),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
