@@ -352,4 +352,4 @@ static const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_p
 }
 
 const modcp_framing_ops_t modcp_ascii_ops = {ascii_configure, ascii_on_byte, ascii_on_error,
-                                             ascii_on_timer, ascii_encode};
+                                             ascii_on_timer, ascii_encode, NULL};

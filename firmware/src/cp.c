@@ -52,13 +52,15 @@ static void sig_on_rx(modcp_cp_t *cp, uint32_t now_us)
 {
     modcp_sig_on_rx(&cp->sig, &cp->link, now_us);
 }
+/* Disabled signals are idle (modcp_sig_configure / _disable): no timer of their own,
+ * transmission complete goes to the link; so the calls are skipped then. */
 static bool sig_on_timer(modcp_cp_t *cp, uint32_t now_us)
 {
-    return modcp_sig_on_timer(&cp->sig, &cp->link, now_us);
+    return cp->sig.enabled && modcp_sig_on_timer(&cp->sig, &cp->link, now_us);
 }
 static bool sig_on_tx_done(modcp_cp_t *cp, uint32_t now_us)
 {
-    return modcp_sig_on_tx_done(&cp->sig, &cp->link, now_us);
+    return cp->sig.enabled && modcp_sig_on_tx_done(&cp->sig, &cp->link, now_us);
 }
 #else
 /* Built without RS232 signals: reception always allowed, no timer or transmit
@@ -279,7 +281,23 @@ void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
         return;
     }
     cp->published = false; /* see publish() */
-    modcp_link_on_byte(&cp->link, byte, now_us);
+    cp->link.ops->on_byte(&cp->link, byte, now_us); /* = modcp_link_on_byte(), inlined */
+}
+
+/* Characters back to back (DMA, FIFO): the link's block path; with RS232 automatic
+ * signals each goes through the per-character entry at its own time. */
+void modcp_cp_on_rx_block(modcp_cp_t *cp, const uint8_t *b, uint16_t n, uint32_t end_us)
+{
+    if (sig_enabled(cp)) {
+        uint32_t t = end_us - (uint32_t)(n - 1u) * cp->link.char_us;
+        for (uint16_t k = 0; k < n; k++) {
+            rx_signals(cp, b[k], t);
+            t += cp->link.char_us;
+        }
+        return;
+    }
+    cp->published = false; /* see publish() */
+    modcp_link_on_block(&cp->link, b, n, end_us);
 }
 
 void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us)
@@ -294,14 +312,28 @@ void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us
     cp->published = false;
 }
 
+/* A frame for us has ended: kept out of modcp_cp_on_timer, so that its other expiries
+ * do not pay for process_request's stack frame. */
+static MODCP_CP_NOINLINE void frame_ready(modcp_cp_t *cp, uint32_t now_us)
+{
+    process_request(cp, now_us);
+}
+
 void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
 {
+    /* the common expiry while a frame arrives (armed at its first character, bytes
+     * kept coming): only the rest of the silence is armed again, nothing published;
+     * the RS232 signals never run a timer of their own while the link receives
+     * (guarded all the same) */
+    if (!sig_enabled(cp) && link_timer_rearm(&cp->link, now_us)) {
+        return;
+    }
     cp->published = false;
     if (sig_on_timer(cp, now_us)) {
         return; /* data output waiting time / time to RTS off */
     }
     if (modcp_link_on_timer(&cp->link, now_us, &cp->frame)) {
-        process_request(cp, now_us);
+        frame_ready(cp, now_us);
     }
 }
 

@@ -43,7 +43,7 @@ const uint16_t modcp_crc16_table[256] = {
  * a Cortex-M3). */
 uint16_t modcp_crc16_update(uint16_t crc, const uint8_t *p, size_t n)
 {
-#if defined(__OPTIMIZE_SIZE__)
+#if defined(__OPTIMIZE_SIZE__) /* -Os (the MCU builds): the plain loop */
     while (n-- > 0u) {
         crc = modcp_crc16_byte(crc, *p++);
     }

@@ -52,7 +52,7 @@ static void off_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
     (void)b;
     (void)now_us;
 }
-static const modcp_framing_ops_t off_ops = {NULL, off_byte, NULL, NULL, NULL};
+static const modcp_framing_ops_t off_ops = {NULL, off_byte, NULL, NULL, NULL, NULL};
 
 /* The backend for the framing parameter (the only place that names the framings). */
 static const modcp_framing_ops_t *framing_ops(uint8_t framing)
@@ -156,6 +156,25 @@ void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
     l->ops->on_byte(l, b, now_us);
 }
 
+/* Characters back to back: the framing's block path (RTU: store and CRC in one loop),
+ * or its on_byte for each at the time it ended (ASCII, modem mode). A block holds no
+ * silence, so it never contains the end of one frame and the start of the next. */
+void modcp_link_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us)
+{
+    if (!l->enabled || n == 0u) {
+        return;
+    }
+    if (l->ops->on_block != NULL) {
+        l->ops->on_block(l, b, n, end_us);
+        return;
+    }
+    uint32_t t = end_us - (uint32_t)(n - 1u) * l->char_us;
+    for (uint16_t k = 0; k < n; k++) {
+        l->ops->on_byte(l, b[k], t);
+        t += l->char_us;
+    }
+}
+
 void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
     if (!l->enabled || line_errors == 0u) {
@@ -197,14 +216,8 @@ bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         start_tx(l);
         return false;
     }
-    if (l->state == MODCP_LINK_RX || l->state == MODCP_LINK_SKIP) {
-        /* armed once at the frame's first character: while characters kept coming,
-         * wait for the rest of the silence after the last one */
-        uint32_t gap = now_us - l->last_us;
-        if (gap < l->silence_us) {
-            link_arm(l, l->silence_us - gap);
-            return false;
-        }
+    if (link_timer_rearm(l, now_us)) {
+        return false; /* characters kept coming: the rest of the silence is armed */
     }
     return l->ops->on_timer(l, now_us, f);
 }

@@ -37,6 +37,10 @@ typedef struct modcp_framing_ops {
     /* The reply PDU at buf + 1 (address at buf[0]) framed in place; its length on the
      * line, 0 if it does not fit. */
     uint16_t (*encode)(modcp_link_t *l, uint16_t pdu_len);
+    /* Optional: n > 0 characters back to back, the last one ended at end_us (the k-th
+     * of n at end_us - (n-1-k) * char_us); must have exactly the effect of n on_byte
+     * calls at those times. NULL: the link calls on_byte for each. */
+    void (*on_block)(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us);
 } modcp_framing_ops_t;
 
 extern const modcp_framing_ops_t modcp_rtu_ops;   /* rtu.c */
@@ -53,6 +57,24 @@ static inline void link_arm(const modcp_link_t *l, uint32_t us)
     if (l->hal != NULL && l->hal->timer_arm != NULL) {
         l->hal->timer_arm(l->hal->ctx, us);
     }
+}
+
+/* The common timer expiry while a frame arrives: armed once at its first character,
+ * it expires before the silence has passed since the last one (characters kept
+ * coming) and only the rest is armed again. True if that was the case (nothing else
+ * to do, nothing else changed); false: modcp_link_on_timer() decides. (A link in RX
+ * or SKIP is enabled: stopping it resets the state to IDLE.) */
+static inline bool link_timer_rearm(const modcp_link_t *l, uint32_t now_us)
+{
+    if (l->state != MODCP_LINK_RX && l->state != MODCP_LINK_SKIP) {
+        return false;
+    }
+    uint32_t gap = now_us - l->last_us;
+    if (gap >= l->silence_us) {
+        return false;
+    }
+    link_arm(l, l->silence_us - gap);
+    return true;
 }
 
 static inline void link_event(const modcp_link_t *l, modcp_event_t ev)
@@ -104,6 +126,8 @@ void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p);
 /* Stop listening (CP not ready). */
 void modcp_link_disable(modcp_link_t *l);
 void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
+/* n characters back to back, the last one ended at end_us (modcp_cp_on_rx_block). */
+void modcp_link_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us);
 void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
 /* Timer expiry. Returns true when a valid frame for us or broadcast is ready in *f;
  * the link is then BUSY until modcp_link_reply() or modcp_link_done(). */

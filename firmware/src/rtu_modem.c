@@ -393,7 +393,7 @@ static bool rtu_m_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 }
 
 const modcp_framing_ops_t modcp_rtu_modem_ops = {rtu_configure, rtu_m_on_byte, rtu_m_on_error,
-                                                 rtu_m_on_timer, rtu_encode};
+                                                 rtu_m_on_timer, rtu_encode, NULL};
 const modcp_framing_ops_t modcp_rtu_modem_t15_ops = {rtu_configure, rtu_m_on_byte_t15,
                                                      rtu_m_on_error, rtu_m_on_timer,
-                                                     rtu_encode};
+                                                     rtu_encode, NULL};

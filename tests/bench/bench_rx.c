@@ -8,6 +8,8 @@
  *   bench_rx link-t15 FRAMES  the same with the t1.5 check on
  *   bench_rx cp FRAMES     bytes into modcp_cp_on_rx() (the port's entry: CP hooks too)
  *   bench_rx link-modem FRAMES  link mode in interference suppression (modem mode)
+ *   bench_rx link-block FRAMES  each frame in one block into modcp_link_on_block()
+ *                          (characters back to back, a UART with DMA or a FIFO)
  *   bench_rx slave-time N  the slave time (end of the request's last character to the
  *                          end of the reply's first) of N FC03 x10 requests at every
  *                          phase of the CPU cycle, normal and modem mode, 9600 baud /
@@ -118,6 +120,25 @@ static int link_frame(void)
         modcp_link_on_byte(&link_, frame[k], now_us);
         now_us += char_us;
     }
+    while (timer_on && !got) {
+        timer_on = 0;
+        now_us = timer_at;
+        got = modcp_link_on_timer(&link_, now_us, &fr) ? 1 : 0;
+    }
+    if (got) {
+        modcp_link_done(&link_);
+    }
+    now_us += 10000u;
+    return got;
+}
+
+/* The same frame handed over in one block at the end of its last character. */
+static int link_block_frame(void)
+{
+    int got = 0;
+    now_us += (uint32_t)(FRAME_LEN - 1u) * char_us;
+    modcp_link_on_block(&link_, frame, (uint16_t)FRAME_LEN, now_us);
+    now_us += char_us;
     while (timer_on && !got) {
         timer_on = 0;
         now_us = timer_at;
@@ -341,9 +362,10 @@ int main(int argc, char **argv)
         return 0;
     }
     if (argc < 3 || (strcmp(argv[1], "link") != 0 && strcmp(argv[1], "link-t15") != 0 &&
-                     strcmp(argv[1], "link-modem") != 0 && strcmp(argv[1], "cp") != 0)) {
-        fprintf(stderr, "usage: bench_rx link|link-t15|link-modem|cp FRAMES | slave-time N | "
-                        "--summary\n");
+                     strcmp(argv[1], "link-modem") != 0 && strcmp(argv[1], "link-block") != 0 &&
+                     strcmp(argv[1], "cp") != 0)) {
+        fprintf(stderr, "usage: bench_rx link|link-t15|link-modem|link-block|cp FRAMES | "
+                        "slave-time N | --summary\n");
         return 2;
     }
     const int link_mode = strcmp(argv[1], "cp") != 0;
@@ -354,7 +376,9 @@ int main(int argc, char **argv)
     } else {
         cp_setup();
     }
-    int (*one)(void) = link_mode ? link_frame : cp_frame;
+    int (*one)(void) = !link_mode                             ? cp_frame
+                       : strcmp(argv[1], "link-block") == 0 ? link_block_frame
+                                                            : link_frame;
     if (!one()) { /* warm up, check */
         fprintf(stderr, "bench_rx: the FC16 request was not %s\n",
                 link_mode ? "delivered" : "answered");

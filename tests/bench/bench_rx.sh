@@ -7,6 +7,8 @@
 #   rx_cp_instr_per_byte=    modcp_cp_on_rx() (the port's entry, CP hooks included)
 #   rx_modem_instr_per_byte= modcp_link_on_byte() in interference suppression (modem
 #                            mode: the frame ends at its CRC, without t3.5)
+#   rx_block_instr_per_byte= modcp_link_on_block(): the frame in one block (characters
+#                            back to back, DMA / FIFO), per byte
 #   slave_time_us_p50_<mode>_<baud>_cycle<ms>ms= / slave_time_us_model_...=
 #                            the slave time with the injected clock (bench_rx slave-time)
 # Frames: FC16 with 123 registers (255 bytes), 9600 baud, see bench_rx.c.
@@ -34,4 +36,5 @@ echo "rx_t15_instr_per_byte=$(per_byte link-t15 modcp_link_on_byte)"
 echo "rx_timer_instr_per_byte=$(per_byte link modcp_link_on_timer)"
 echo "rx_cp_instr_per_byte=$(per_byte cp modcp_cp_on_rx)"
 echo "rx_modem_instr_per_byte=$(per_byte link-modem modcp_link_on_byte)"
+echo "rx_block_instr_per_byte=$(per_byte link-block modcp_link_on_block)"
 "$X" slave-time "${BENCH_SLAVE_N:-200}"

@@ -2,6 +2,7 @@
  * possible. A port creates a modcp_cp_t, calls modcp_cp_init() with its HAL and the
  * backplane, and then feeds events:
  *   UART rx interrupt     -> modcp_cp_on_rx() / modcp_cp_on_line_error()
+ *   UART DMA / FIFO       -> modcp_cp_on_rx_block() (characters back to back)
  *   one-shot timer        -> modcp_cp_on_timer()
  *   transmission complete -> modcp_cp_on_tx_done()
  *   RS232 CTS / DSR change -> modcp_cp_on_signals()  (automatic secondary signals)
@@ -79,6 +80,8 @@ void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp
 
 /* UART receive interrupt: one received character. */
 void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us);
+/* UART with DMA / FIFO: n characters back to back, the last one ended at end_us. */
+void modcp_cp_on_rx_block(modcp_cp_t *cp, const uint8_t *b, uint16_t n, uint32_t end_us);
 /* UART receive interrupt: a character lost to line errors (MODCP_LINE_* bits). */
 void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us);
 /* The one-shot timer armed through the HAL expired. */
