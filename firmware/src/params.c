@@ -75,11 +75,11 @@
 /* ---- the rows ------------------------------------------------------------------ */
 
 #define ROW_S(member, width, field, index, min, max, def, ev, flags, ...)                      \
-    {(uint16_t)offsetof(modcp_params_t, member), (uint16_t)((min) > 0xFFFF ? 0 : (min)),     \
+    {(uint16_t)MODCP_PARAM_OFF(member), (uint16_t)((min) > 0xFFFF ? 0 : (min)),               \
      (uint16_t)((max) > 0xFFFF ? 0xFFFF : (max)), (uint16_t)(def), (uint8_t)(field),          \
      MODCP_EVENT_NUMBER(ev), (uint8_t)((width) | ((flags) << 5)), (uint8_t)(index)},
 #define ROW_G(member, count, type, members, field)                                           \
-    {(uint16_t)offsetof(modcp_params_t, member), (uint16_t)sizeof(type), 0u, 0u,            \
+    {(uint16_t)MODCP_PARAM_OFF(member), (uint16_t)sizeof(type), 0u, 0u,                     \
      (uint8_t)(field), (uint8_t)(members), 0u, (uint8_t)(count)},
 #define ROW_M(...)
 #define MEMBER_S(...)
@@ -135,12 +135,14 @@ static void param_put(modcp_params_t *p, const modcp_param_row_t *r, uint32_t v)
 
 /* ---- defaults ----------------------------------------------------------------- */
 
+#if MODCP_WITH_EXTENDED
 static void set_id(char *dst, const char *src)
 {
     size_t n = strlen(src);
     memset(dst, 0, MODCP_ID_STRING_MAX + 1u);
     memcpy(dst, src, n <= MODCP_ID_STRING_MAX ? n : MODCP_ID_STRING_MAX);
 }
+#endif
 
 void modcp_params_defaults(modcp_params_t *p)
 {
@@ -153,9 +155,11 @@ void modcp_params_defaults(modcp_params_t *p)
             param_put(p, r, r->def);
         }
     }
+#if MODCP_WITH_EXTENDED
     set_id(p->vendor, "modcp");
     set_id(p->product, "modcp-cp");
     set_id(p->revision, "0.1");
+#endif
 }
 
 /* ---- validation ----------------------------------------------------------------- */
@@ -362,6 +366,7 @@ static void check_limit(issue_sink_t *s, modcp_param_field_t field, const modcp_
     }
 }
 
+#if MODCP_WITH_EXTENDED
 static bool id_terminated(const char *str)
 {
     for (size_t i = 0; i <= MODCP_ID_STRING_MAX; i++) {
@@ -401,6 +406,7 @@ static void check_scanner(issue_sink_t *s, const modcp_params_t *p)
         }
     }
 }
+#endif
 
 /* The rules a row's range cannot say (MODCP_PF_CUSTOM); *v: the value to report. */
 static bool custom_ok(const modcp_params_t *p, const modcp_param_row_t *r, uint32_t *v)
@@ -420,11 +426,13 @@ static bool custom_ok(const modcp_params_t *p, const modcp_param_row_t *r, uint3
     case MODCP_PF_RS232_AUTO: return *v == 0u || p->iface == MODCP_IFACE_RS232;
     case MODCP_PF_JOB_LIMIT: return *v <= model_limit(p->cpu_model);
     case MODCP_PF_SCANNER: return MODCP_PARAM_WIDTH(r) != 1u || scan_count_ok(p);
+#if MODCP_WITH_EXTENDED
     case MODCP_PF_ID_STRING: {
         const char *str = (const char *)p + r->off;
         *v = (uint8_t)str[MODCP_ID_STRING_MAX];
         return id_terminated(str);
     }
+#endif
     default: return true;
     }
 }
@@ -444,7 +452,11 @@ static void check_group(const modcp_params_t *p, issue_sink_t *s, uint8_t field)
         check_limit(s, MODCP_PF_LIM_M, &p->lim_m, false);
         check_limit(s, MODCP_PF_LIM_Q, &p->lim_q, false);
         break;
-    default: check_scanner(s, p); break;
+    default:
+#if MODCP_WITH_EXTENDED
+        check_scanner(s, p); /* without the extended set scan_count is 0 (its row) */
+#endif
+        break;
     }
 }
 

@@ -35,11 +35,16 @@ typedef struct {
     size_t pos;
 } codec_t;
 
-/* One field: width 1, 2, 4 (little-endian) or MODCP_PW_STR. */
+/* One field: width 1, 2, 4 (little-endian) or MODCP_PW_STR. off at or above
+ * MODCP_PARAM_ABSENT (a row, or a struct of a group, this build does not keep): only its
+ * place in the record (encode leaves the zeros there). */
 static void field(codec_t *c, size_t off, uint8_t width)
 {
     size_t at = c->pos;
     c->pos += width;
+    if (off >= MODCP_PARAM_ABSENT) {
+        return;
+    }
     if (c->wr != NULL) {
         uint8_t *r = c->wr + at;
         const uint8_t *f = c->src + off;
@@ -122,6 +127,7 @@ size_t modcp_params_encode(const modcp_params_t *p, uint8_t *buf, size_t cap)
     if (buf == NULL || cap < RECORD_BYTES) {
         return 0u;
     }
+    memset(buf, 0, RECORD_BYTES); /* the bytes of members this build does not keep */
     memcpy(buf, record_magic, sizeof record_magic);
     put16(buf + 4, (uint16_t)MODCP_PARAMS_VERSION);
     put16(buf + 6, (uint16_t)PAYLOAD_BYTES);
