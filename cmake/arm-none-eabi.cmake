@@ -7,7 +7,11 @@
 # cortex-m33 (FPv5-SP, ARMv8-M mainline without TrustZone code); hard float ABI where
 # there is an FPU. Everything (core library, HAL, boards) is compiled -Os with function and
 # data sections; executables are linked with --gc-sections against newlib-nano and no
-# host start files (each board brings its own startup code and linker script).
+# host start files (each board brings its own startup code and linker script). The core
+# library is also compiled for link-time optimisation (MODCP_LTO, firmware/CMakeLists.txt;
+# boards/ links the images with -flto). Keep -mcpu/-mthumb in the link flags: a
+# CMAKE_EXE_LINKER_FLAGS given on the command line replaces the _INIT value below, and
+# the LTO code generation at link time then targets the wrong core.
 set(CMAKE_SYSTEM_NAME Generic)
 set(CMAKE_SYSTEM_PROCESSOR arm)
 

@@ -75,11 +75,11 @@
 /* ---- the rows ------------------------------------------------------------------ */
 
 #define ROW_S(member, width, field, index, min, max, def, ev, flags, ...)                      \
-    {(uint16_t)offsetof(modcp_params_t, member), (uint16_t)((min) > 0xFFFF ? 0 : (min)),     \
+    {(uint16_t)MODCP_PARAM_OFF(member), (uint16_t)((min) > 0xFFFF ? 0 : (min)),               \
      (uint16_t)((max) > 0xFFFF ? 0xFFFF : (max)), (uint16_t)(def), (uint8_t)(field),          \
      MODCP_EVENT_NUMBER(ev), (uint8_t)((width) | ((flags) << 5)), (uint8_t)(index)},
 #define ROW_G(member, count, type, members, field)                                           \
-    {(uint16_t)offsetof(modcp_params_t, member), (uint16_t)sizeof(type), 0u, 0u,            \
+    {(uint16_t)MODCP_PARAM_OFF(member), (uint16_t)sizeof(type), 0u, 0u,                     \
      (uint8_t)(field), (uint8_t)(members), 0u, (uint8_t)(count)},
 #define ROW_M(...)
 #define MEMBER_S(...)
@@ -135,12 +135,14 @@ static void param_put(modcp_params_t *p, const modcp_param_row_t *r, uint32_t v)
 
 /* ---- defaults ----------------------------------------------------------------- */
 
+#if MODCP_WITH_EXTENDED
 static void set_id(char *dst, const char *src)
 {
     size_t n = strlen(src);
     memset(dst, 0, MODCP_ID_STRING_MAX + 1u);
     memcpy(dst, src, n <= MODCP_ID_STRING_MAX ? n : MODCP_ID_STRING_MAX);
 }
+#endif
 
 void modcp_params_defaults(modcp_params_t *p)
 {
@@ -153,9 +155,11 @@ void modcp_params_defaults(modcp_params_t *p)
             param_put(p, r, r->def);
         }
     }
+#if MODCP_WITH_EXTENDED
     set_id(p->vendor, "modcp");
     set_id(p->product, "modcp-cp");
     set_id(p->revision, "0.1");
+#endif
 }
 
 /* ---- validation ----------------------------------------------------------------- */
@@ -168,13 +172,15 @@ typedef struct {
     modcp_event_t first_warning;
 } issue_sink_t;
 
-static void add_issue(issue_sink_t *s, modcp_param_field_t field, uint8_t index,
-                      modcp_event_t ev, bool fatal, uint32_t value)
+/* field and index of an issue in one argument (fewer arguments at every call) */
+#define FI(field, index) ((uint16_t)(((unsigned)(field) << 8) | (uint8_t)(index)))
+
+static void add_issue(issue_sink_t *s, uint16_t fi, modcp_event_t ev, bool fatal, uint32_t value)
 {
     if (s->out != NULL && s->n < s->max) {
         modcp_param_issue_t *it = &s->out[s->n];
-        it->field = (uint8_t)field;
-        it->index = index;
+        it->field = (uint8_t)(fi >> 8);
+        it->index = (uint8_t)fi;
         it->event = ev;
         it->fatal = fatal;
         it->value = value;
@@ -189,22 +195,16 @@ static void add_issue(issue_sink_t *s, modcp_param_field_t field, uint8_t index,
     }
 }
 
-static void add_fatal(issue_sink_t *s, modcp_param_field_t field, uint8_t index,
-                      modcp_event_t ev, uint32_t value)
+static void add_fatal(issue_sink_t *s, uint16_t fi, modcp_event_t ev, uint32_t value)
 {
-    add_issue(s, field, index, ev, true, value);
+    add_issue(s, fi, ev, true, value);
 }
 
+/* 300, 600, 1200, 2400, 4800, 9600, 19200, 38400, 76800 (300 x 2^k), 57600, 115200 */
 static bool baud_ok(uint32_t baud)
 {
-    static const uint32_t rates[] = {300u,   600u,   1200u,  2400u,  4800u,  9600u,
-                                     19200u, 38400u, 57600u, 76800u, 115200u};
-    for (size_t i = 0; i < sizeof rates / sizeof rates[0]; i++) {
-        if (rates[i] == baud) {
-            return true;
-        }
-    }
-    return false;
+    uint32_t k = baud / 300u;
+    return baud % 300u == 0u && ((k <= 256u && (k & (k - 1u)) == 0u) || k == 192u || k == 384u);
 }
 
 static uint16_t model_limit(uint8_t cpu_model)
@@ -220,148 +220,143 @@ static bool scan_count_ok(const modcp_params_t *p)
            (uint32_t)p->scan_start + (uint32_t)p->scan_count <= 0x10000u;
 }
 
-static bool is_tc(uint8_t area)
-{
-    return area == MODCP_AREA_T || area == MODCP_AREA_C;
-}
-
 static uint32_t pair(uint16_t hi, uint16_t lo)
 {
     return ((uint32_t)hi << 16) | (uint32_t)lo;
 }
 
+/* The areas a bit window may map (bit n = modcp_area_t n). */
+#define AREA_BIT(a) (1u << (unsigned)(a))
+#define AREAS_COILS                                                                               \
+    (AREA_BIT(MODCP_AREA_M) | AREA_BIT(MODCP_AREA_Q) | AREA_BIT(MODCP_AREA_T) |                  \
+     AREA_BIT(MODCP_AREA_C) | AREA_BIT(MODCP_AREA_DB))
+#define AREAS_INPUTS (AREA_BIT(MODCP_AREA_M) | AREA_BIT(MODCP_AREA_I) | AREA_BIT(MODCP_AREA_DB))
+
 /* Checks one bit window on its own; returns true when it is usable for the
  * overlap check (enabled and without a problem of its own). */
-static bool check_window(issue_sink_t *s, modcp_param_field_t field, uint8_t idx,
-                         const modcp_bitwin_t *w, bool coils, modcp_event_t ev)
+static bool check_window(issue_sink_t *s, uint16_t fi, modcp_event_t ev, const modcp_bitwin_t *w,
+                         unsigned areas)
 {
-    bool area_ok;
+    uint32_t bad;
     if (w->area == MODCP_AREA_NONE) {
         return false;
     }
-    if (coils) {
-        area_ok = w->area == MODCP_AREA_M || w->area == MODCP_AREA_Q ||
-                  w->area == MODCP_AREA_T || w->area == MODCP_AREA_C ||
-                  w->area == MODCP_AREA_DB;
+    if (w->area > MODCP_AREA_DB || (areas & AREA_BIT(w->area)) == 0u) {
+        bad = w->area;
+    } else if (w->from > w->to) {
+        bad = pair(w->from, w->to);
+    } else if (w->area == MODCP_AREA_DB && w->db == 0u) {
+        bad = w->db;
     } else {
-        area_ok = w->area == MODCP_AREA_M || w->area == MODCP_AREA_I ||
-                  w->area == MODCP_AREA_DB;
-    }
-    if (!area_ok) {
-        add_fatal(s, field, idx, ev, w->area);
-        return false;
-    }
-    if (w->from > w->to) {
-        add_fatal(s, field, idx, ev, pair(w->from, w->to));
-        return false;
-    }
-    if (w->area == MODCP_AREA_DB && w->db == 0u) {
-        add_fatal(s, field, idx, ev, w->db);
-        return false;
-    }
-    uint32_t bits = (uint32_t)w->to - (uint32_t)w->from + 1u;
-    uint32_t last;
-    if (is_tc(w->area)) {
-        if (bits % 16u != 0u) {
-            add_fatal(s, field, idx, ev, bits);
-            return false;
+        uint32_t bits = (uint32_t)w->to - (uint32_t)w->from + 1u;
+        bool tc = w->area == MODCP_AREA_T || w->area == MODCP_AREA_C; /* 16 bits per element */
+        uint32_t last = (uint32_t)w->start + (tc ? bits / 16u - 1u : (bits - 1u) / 8u);
+        if (tc && bits % 16u != 0u) {
+            bad = bits;
+        } else if (last > 0xFFFFu) {
+            bad = last;
+        } else {
+            return true;
         }
-        last = (uint32_t)w->start + bits / 16u - 1u;
-    } else {
-        last = (uint32_t)w->start + (bits - 1u) / 8u;
     }
-    if (last > 0xFFFFu) {
-        add_fatal(s, field, idx, ev, last);
-        return false;
-    }
-    return true;
+    add_fatal(s, fi, ev, bad);
+    return false;
 }
 
-static void check_windows(issue_sink_t *s, const modcp_bitwin_t *w, size_t count, bool coils)
+/* The usable entries (bit k of ok) of count structs, stride bytes apart, whose from and
+ * to are the u16 at f[0], f[1] and (same_db) the DB number at f[2]: an entry overlapping
+ * an earlier one is reported once, with the earlier one's index as the value; with
+ * same_db, one on the same DB as an earlier one with that DB number. */
+static void check_overlaps(issue_sink_t *s, uint8_t field, modcp_event_t ev, const uint8_t *base,
+                           uint8_t stride, uint8_t count, uint32_t ok, bool same_db)
 {
-    modcp_param_field_t field = coils ? MODCP_PF_COILS : MODCP_PF_INPUTS;
-    modcp_event_t ev_bad = coils ? MODCP_EV_COIL_FROMTO : MODCP_EV_INPUT_FROMTO;
-    modcp_event_t ev_ovl = coils ? MODCP_EV_COIL_OVERLAP : MODCP_EV_INPUT_OVERLAP;
-    bool ok[MODCP_COIL_WINDOWS];
-    for (size_t i = 0; i < count; i++) {
-        ok[i] = check_window(s, field, (uint8_t)i, &w[i], coils, ev_bad);
-    }
-    for (size_t j = 1; j < count; j++) {
-        if (!ok[j]) {
+    for (uint8_t j = 1; j < count; j++) {
+        const uint16_t *b = (const uint16_t *)(const void *)(base + (size_t)j * stride);
+        if ((ok & (1u << j)) == 0u) {
             continue;
         }
-        for (size_t i = 0; i < j; i++) {
-            if (ok[i] && w[i].from <= w[j].to && w[j].from <= w[i].to) {
-                add_fatal(s, field, (uint8_t)j, ev_ovl, (uint32_t)i);
-                break;
+        for (uint8_t i = 0; i < j; i++) {
+            const uint16_t *a = (const uint16_t *)(const void *)(base + (size_t)i * stride);
+            uint32_t bad;
+            if ((ok & (1u << i)) == 0u) {
+                continue;
             }
+            if (a[0] <= b[1] && b[0] <= a[1]) {
+                bad = i;
+            } else if (same_db && a[2] == b[2]) {
+                bad = b[2];
+            } else {
+                continue;
+            }
+            add_fatal(s, FI(field, j), ev, bad);
+            break;
         }
     }
 }
+_Static_assert(offsetof(modcp_bitwin_t, to) == offsetof(modcp_bitwin_t, from) + 2u, "from, to");
+_Static_assert(offsetof(modcp_r32range_t, from) == 0u && offsetof(modcp_r32range_t, to) == 2u &&
+                   offsetof(modcp_r32range_t, db) == 4u,
+               "from, to, db");
+_Static_assert(MODCP_EV_COIL_OVERLAP == MODCP_EV_COIL_FROMTO + 2 &&
+                   MODCP_EV_INPUT_OVERLAP == MODCP_EV_INPUT_FROMTO + 2,
+               "the overlap event follows the from/to event by 2");
 
-static bool r32_unused(const modcp_r32range_t *r)
+static void check_windows(issue_sink_t *s, const modcp_bitwin_t *w, uint8_t count, uint8_t field,
+                          modcp_event_t ev, unsigned areas)
 {
-    return r->from == 0u && r->to == 0u && r->db == 0u;
+    uint32_t ok = 0;
+    for (uint8_t i = 0; i < count; i++) {
+        if (check_window(s, FI(field, i), ev, &w[i], areas)) {
+            ok |= 1u << i;
+        }
+    }
+    check_overlaps(s, field, (modcp_event_t)(ev + 2u), (const uint8_t *)&w->from,
+                   (uint8_t)sizeof *w, count, ok, false);
 }
 
 static void check_r32(issue_sink_t *s, const modcp_params_t *p)
 {
-    bool ok[3];
+    uint32_t ok = 0;
     for (uint8_t k = 0; k < 3u; k++) {
         const modcp_r32range_t *r = &p->r32[k];
-        ok[k] = false;
-        if (r32_unused(r)) {
-            continue;
+        uint32_t bad;
+        if (r->from == 0u && r->to == 0u && r->db == 0u) {
+            continue; /* unused */
         }
         if (r->from > r->to) {
-            add_fatal(s, MODCP_PF_R32, k, MODCP_EV_PARAM_RECORD, pair(r->from, r->to));
-            continue;
-        }
-        if (r->db == 0u) {
-            add_fatal(s, MODCP_PF_R32, k, MODCP_EV_PARAM_RECORD, 0u);
-            continue;
-        }
-        uint32_t per = k == MODCP_R32_INT16 ? 2u : 4u;
-        uint32_t bytes = ((uint32_t)r->to - (uint32_t)r->from + 1u) * per;
-        if (bytes > 65536u) {
-            add_fatal(s, MODCP_PF_R32, k, MODCP_EV_PARAM_RECORD, bytes);
-            continue;
-        }
-        ok[k] = true;
-    }
-    for (uint8_t j = 1; j < 3u; j++) {
-        if (!ok[j]) {
-            continue;
-        }
-        const modcp_r32range_t *b = &p->r32[j];
-        for (uint8_t i = 0; i < j; i++) {
-            const modcp_r32range_t *a = &p->r32[i];
-            if (!ok[i]) {
+            bad = pair(r->from, r->to);
+        } else if (r->db == 0u) {
+            bad = 0u;
+        } else {
+            bad = ((uint32_t)r->to - (uint32_t)r->from + 1u) * (k == MODCP_R32_INT16 ? 2u : 4u);
+            if (bad <= 65536u) { /* bytes: one DB */
+                ok |= 1u << k;
                 continue;
             }
-            if (a->from <= b->to && b->from <= a->to) {
-                add_fatal(s, MODCP_PF_R32, j, MODCP_EV_PARAM_RECORD, i);
-                break;
-            }
-            if (a->db == b->db) {
-                add_fatal(s, MODCP_PF_R32, j, MODCP_EV_PARAM_RECORD, b->db);
-                break;
-            }
+        }
+        add_fatal(s, FI(MODCP_PF_R32, k), MODCP_EV_PARAM_RECORD, bad);
+    }
+    check_overlaps(s, MODCP_PF_R32, MODCP_EV_PARAM_RECORD, (const uint8_t *)p->r32,
+                   (uint8_t)sizeof p->r32[0], 3u, ok, true);
+}
+
+/* lim_db, lim_m, lim_q (one group of three): max 0 = not writable, any min is fine */
+static void check_limits(issue_sink_t *s, const modcp_params_t *p)
+{
+    for (uint8_t k = 0; k < 3u; k++) {
+        const modcp_limit_t *l = (const modcp_limit_t *)(const void *)((const uint8_t *)p +
+            offsetof(modcp_params_t, lim_db) + k * sizeof(modcp_limit_t));
+        if (l->max != 0u && (l->min > l->max || (k == 0u && l->min == 0u))) {
+            add_fatal(s, FI(MODCP_PF_LIM_DB + k, 0u), MODCP_EV_WRITE_LIMITS, pair(l->min, l->max));
         }
     }
 }
+_Static_assert(offsetof(modcp_params_t, lim_m) ==
+                   offsetof(modcp_params_t, lim_db) + sizeof(modcp_limit_t) &&
+                   MODCP_PF_LIM_M == MODCP_PF_LIM_DB + 1 && MODCP_PF_LIM_Q == MODCP_PF_LIM_DB + 2,
+               "lim_db, lim_m, lim_q in a row");
 
-static void check_limit(issue_sink_t *s, modcp_param_field_t field, const modcp_limit_t *l,
-                        bool is_db)
-{
-    if (l->max == 0u) {
-        return; /* area not writable: any min is fine */
-    }
-    if (l->min > l->max || (is_db && l->min == 0u)) {
-        add_fatal(s, field, 0u, MODCP_EV_WRITE_LIMITS, pair(l->min, l->max));
-    }
-}
-
+#if MODCP_WITH_EXTENDED
 static bool id_terminated(const char *str)
 {
     for (size_t i = 0; i <= MODCP_ID_STRING_MAX; i++) {
@@ -380,27 +375,23 @@ static void check_scanner(issue_sink_t *s, const modcp_params_t *p)
     }
     for (uint8_t i = 0; i < p->scan_count; i++) {
         const modcp_operand_ref_t *e = &p->scan[i];
-        switch (e->area) {
-        case MODCP_AREA_NONE: /* unused entry */
-        case MODCP_AREA_T:
-        case MODCP_AREA_C:
-            break;
-        case MODCP_AREA_DB:
-        case MODCP_AREA_M:
-        case MODCP_AREA_I:
-        case MODCP_AREA_Q:
-            if (e->area == MODCP_AREA_DB && e->db == 0u) {
-                add_fatal(s, MODCP_PF_SCANNER, i, MODCP_EV_PARAM_RECORD, e->db);
-            } else if (e->offset > 0xFFFEu) { /* the word's second byte must exist */
-                add_fatal(s, MODCP_PF_SCANNER, i, MODCP_EV_PARAM_RECORD, e->offset);
-            }
-            break;
-        default:
-            add_fatal(s, MODCP_PF_SCANNER, i, MODCP_EV_PARAM_RECORD, e->area);
-            break;
+        uint32_t bad;
+        if (e->area == MODCP_AREA_NONE || e->area == MODCP_AREA_T || e->area == MODCP_AREA_C) {
+            continue; /* unused entry, or an element number */
         }
+        if (e->area > MODCP_AREA_DB) {
+            bad = e->area;
+        } else if (e->area == MODCP_AREA_DB && e->db == 0u) {
+            bad = e->db;
+        } else if (e->offset > 0xFFFEu) { /* the word's second byte must exist */
+            bad = e->offset;
+        } else {
+            continue;
+        }
+        add_fatal(s, FI(MODCP_PF_SCANNER, i), MODCP_EV_PARAM_RECORD, bad);
     }
 }
+#endif
 
 /* The rules a row's range cannot say (MODCP_PF_CUSTOM); *v: the value to report. */
 static bool custom_ok(const modcp_params_t *p, const modcp_param_row_t *r, uint32_t *v)
@@ -420,11 +411,13 @@ static bool custom_ok(const modcp_params_t *p, const modcp_param_row_t *r, uint3
     case MODCP_PF_RS232_AUTO: return *v == 0u || p->iface == MODCP_IFACE_RS232;
     case MODCP_PF_JOB_LIMIT: return *v <= model_limit(p->cpu_model);
     case MODCP_PF_SCANNER: return MODCP_PARAM_WIDTH(r) != 1u || scan_count_ok(p);
+#if MODCP_WITH_EXTENDED
     case MODCP_PF_ID_STRING: {
         const char *str = (const char *)p + r->off;
         *v = (uint8_t)str[MODCP_ID_STRING_MAX];
         return id_terminated(str);
     }
+#endif
     default: return true;
     }
 }
@@ -432,19 +425,25 @@ static bool custom_ok(const modcp_params_t *p, const modcp_param_row_t *r, uint3
 static void check_group(const modcp_params_t *p, issue_sink_t *s, uint8_t field)
 {
     switch (field) {
-    case MODCP_PF_COILS: check_windows(s, p->coils, MODCP_COIL_WINDOWS, true); break;
-    case MODCP_PF_INPUTS: check_windows(s, p->inputs, MODCP_INPUT_WINDOWS, false); break;
+    case MODCP_PF_COILS:
+        check_windows(s, p->coils, MODCP_COIL_WINDOWS, MODCP_PF_COILS, MODCP_EV_COIL_FROMTO,
+                      AREAS_COILS);
+        break;
+    case MODCP_PF_INPUTS:
+        check_windows(s, p->inputs, MODCP_INPUT_WINDOWS, MODCP_PF_INPUTS, MODCP_EV_INPUT_FROMTO,
+                      AREAS_INPUTS);
+        break;
     case MODCP_PF_R32:
         if (p->regs32 != 0u) {
             check_r32(s, p);
         }
         break;
-    case MODCP_PF_LIM_DB:
-        check_limit(s, MODCP_PF_LIM_DB, &p->lim_db, true);
-        check_limit(s, MODCP_PF_LIM_M, &p->lim_m, false);
-        check_limit(s, MODCP_PF_LIM_Q, &p->lim_q, false);
+    case MODCP_PF_LIM_DB: check_limits(s, p); break;
+    default:
+#if MODCP_WITH_EXTENDED
+        check_scanner(s, p); /* without the extended set scan_count is 0 (its row) */
+#endif
         break;
-    default: check_scanner(s, p); break;
     }
 }
 
@@ -467,8 +466,7 @@ static void run_checks(const modcp_params_t *p, issue_sink_t *s, modcp_params_t 
         }
         if (!ok) {
             bool warn = (flags & MODCP_PF_WARN) != 0u;
-            add_issue(s, (modcp_param_field_t)r->field, r->index,
-                      (modcp_event_t)(0x0E00u | r->event), !warn, v);
+            add_issue(s, FI(r->field, r->index), (modcp_event_t)(0x0E00u | r->event), !warn, v);
             if (warn && fix != NULL) {
                 param_put(fix, r, r->def);
             }

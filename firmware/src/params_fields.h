@@ -59,6 +59,31 @@ typedef struct {
     uint8_t width;
 } modcp_param_member_t;
 
+/* A row whose member this build does not keep (modcp/params.h: the scanner entries and
+ * the ID strings without MODCP_WITH_EXTENDED) has off == MODCP_PARAM_ABSENT: its bytes
+ * stay in the record (encoded as zeros, skipped by the decoder), nothing validates it.
+ * MODCP_PARAM_OFF(member) is the member's offset, or MODCP_PARAM_ABSENT for a member
+ * listed as MODCP_PX_ABSENT_<member> below (chosen by the preprocessor, so offsetof never
+ * names a missing member). */
+#define MODCP_PARAM_ABSENT 0xFFFFu
+#if !MODCP_WITH_EXTENDED
+#define MODCP_PX_ABSENT_scan MODCP_PX_PROBE
+#define MODCP_PX_ABSENT_vendor MODCP_PX_PROBE
+#define MODCP_PX_ABSENT_product MODCP_PX_PROBE
+#define MODCP_PX_ABSENT_revision MODCP_PX_PROBE
+#define MODCP_PX_ABSENT_app_name MODCP_PX_PROBE
+#endif
+#define MODCP_PX_PROBE ~, 1
+#define MODCP_PX_SECOND(a, b, ...) b
+#define MODCP_PX_IS(...) MODCP_PX_SECOND(__VA_ARGS__, 0, ~)
+#define MODCP_PX_CAT_(a, b) a##b
+#define MODCP_PX_CAT(a, b) MODCP_PX_CAT_(a, b)
+#define MODCP_PX_IF_0(absent, present) present
+#define MODCP_PX_IF_1(absent, present) absent
+#define MODCP_PARAM_OFF(member)                                                                   \
+    MODCP_PX_CAT(MODCP_PX_IF_, MODCP_PX_IS(MODCP_PX_ABSENT_##member))                             \
+    (MODCP_PARAM_ABSENT, offsetof(modcp_params_t, member))
+
 #define MODCP_PARAM_WIDTH(r) ((uint8_t)((r)->wf & 0x1Fu))
 #define MODCP_PARAM_FLAGS(r) ((uint8_t)((r)->wf >> 5))
 

@@ -27,79 +27,88 @@ _Static_assert(PAYLOAD_BYTES <= 0xFFFFu, "payload length must fit u16");
 
 static const uint8_t record_magic[4] = {'M', 'C', 'P', 'R'};
 
+/* encode: dst = the payload, src = the parameters; decode: the other way round */
 typedef struct {
-    uint8_t *wr;        /* encode: the payload */
-    const uint8_t *src; /*         and the parameters */
-    const uint8_t *rd;  /* decode: the payload */
-    uint8_t *dst;       /*         and the parameters */
-    size_t pos;
+    uint8_t *dst;
+    const uint8_t *src;
 } codec_t;
 
-/* One field: width 1, 2, 4 (little-endian) or MODCP_PW_STR. */
-static void field(codec_t *c, size_t off, uint8_t width)
+/* One field of width 1, 2, 4 (little-endian) or MODCP_PW_STR: at its place in the
+ * payload (at) and in modcp_params_t (off). */
+typedef void field_fn(const codec_t *c, size_t at, size_t off, uint8_t width);
+
+static void enc_field(const codec_t *c, size_t at, size_t off, uint8_t width)
 {
-    size_t at = c->pos;
-    c->pos += width;
-    if (c->wr != NULL) {
-        uint8_t *r = c->wr + at;
-        const uint8_t *f = c->src + off;
-        if (width == MODCP_PW_STR) { /* up to the NUL, zero padded */
-            bool end = false;
-            for (size_t i = 0; i < MODCP_PW_STR; i++) {
-                end = end || f[i] == 0u;
-                r[i] = end ? 0u : f[i];
-            }
-            return;
+    uint8_t *r = c->dst + at;
+    const uint8_t *f = c->src + off;
+    if (width == MODCP_PW_STR) { /* up to the NUL, zero padded */
+        bool end = false;
+        for (size_t i = 0; i < MODCP_PW_STR; i++) {
+            end = end || f[i] == 0u;
+            r[i] = end ? 0u : f[i];
         }
-        uint32_t v = width == 1u ? *f : 0u;
-        if (width == 2u) {
-            uint16_t x;
-            memcpy(&x, f, sizeof x);
-            v = x;
-        } else if (width == 4u) {
-            memcpy(&v, f, sizeof v);
-        }
-        for (uint8_t i = 0; i < width; i++) {
-            r[i] = (uint8_t)(v >> (8u * i));
-        }
-    } else {
-        const uint8_t *r = c->rd + at;
-        uint8_t *f = c->dst + off;
-        if (width == MODCP_PW_STR) {
-            memcpy(f, r, MODCP_PW_STR);
-            f[MODCP_PW_STR] = 0u;
-            return;
-        }
-        uint32_t v = 0;
-        for (uint8_t i = 0; i < width; i++) {
-            v |= (uint32_t)r[i] << (8u * i);
-        }
-        if (width == 1u) {
-            *f = (uint8_t)v;
-        } else if (width == 2u) {
-            uint16_t x = (uint16_t)v;
-            memcpy(f, &x, sizeof x);
-        } else {
-            memcpy(f, &v, sizeof v);
-        }
+        return;
+    }
+    uint32_t v = width == 1u ? *f : 0u;
+    if (width == 2u) {
+        uint16_t x;
+        memcpy(&x, f, sizeof x);
+        v = x;
+    } else if (width == 4u) {
+        memcpy(&v, f, sizeof v);
+    }
+    for (uint8_t i = 0; i < width; i++) {
+        r[i] = (uint8_t)(v >> (8u * i));
     }
 }
 
-/* Every field in record order. */
-static void walk(codec_t *c)
+static void dec_field(const codec_t *c, size_t at, size_t off, uint8_t width)
+{
+    const uint8_t *r = c->src + at;
+    uint8_t *f = c->dst + off;
+    if (width == MODCP_PW_STR) {
+        memcpy(f, r, MODCP_PW_STR);
+        f[MODCP_PW_STR] = 0u;
+        return;
+    }
+    uint32_t v = 0;
+    for (uint8_t i = 0; i < width; i++) {
+        v |= (uint32_t)r[i] << (8u * i);
+    }
+    if (width == 1u) {
+        *f = (uint8_t)v;
+    } else if (width == 2u) {
+        uint16_t x = (uint16_t)v;
+        memcpy(f, &x, sizeof x);
+    } else {
+        memcpy(f, &v, sizeof v);
+    }
+}
+
+/* Every field in record order. A member at or above MODCP_PARAM_ABSENT (a row, or a
+ * struct of a group, this build does not keep) has only its place in the record (encode
+ * leaves the zeros there). */
+static void walk(const codec_t *c, field_fn *fn)
 {
     const modcp_param_member_t *m = modcp_param_members;
+    size_t at = 0;
     for (uint8_t i = 0; i < modcp_param_row_count; i++) {
         const modcp_param_row_t *r = &modcp_param_rows[i];
         uint8_t w = MODCP_PARAM_WIDTH(r);
         if (w != 0u) {
-            field(c, r->off, w);
+            if (r->off != MODCP_PARAM_ABSENT) {
+                fn(c, at, r->off, w);
+            }
+            at += w;
             continue;
         }
         for (uint8_t k = 0; k < r->index; k++) { /* group: struct by struct */
             size_t base = (size_t)r->off + (size_t)k * r->min;
             for (uint8_t j = 0; j < r->event; j++) {
-                field(c, base + m[j].off, m[j].width);
+                if (r->off != MODCP_PARAM_ABSENT) {
+                    fn(c, at, base + m[j].off, m[j].width);
+                }
+                at += m[j].width;
             }
         }
         m += r->event;
@@ -122,11 +131,12 @@ size_t modcp_params_encode(const modcp_params_t *p, uint8_t *buf, size_t cap)
     if (buf == NULL || cap < RECORD_BYTES) {
         return 0u;
     }
+    memset(buf, 0, RECORD_BYTES); /* the bytes of members this build does not keep */
     memcpy(buf, record_magic, sizeof record_magic);
     put16(buf + 4, (uint16_t)MODCP_PARAMS_VERSION);
     put16(buf + 6, (uint16_t)PAYLOAD_BYTES);
-    codec_t c = {buf + HEADER_BYTES, (const uint8_t *)p, NULL, NULL, 0u};
-    walk(&c);
+    codec_t c = {buf + HEADER_BYTES, (const uint8_t *)p};
+    walk(&c, enc_field);
     put16(buf + HEADER_BYTES + PAYLOAD_BYTES, modcp_crc16(buf, HEADER_BYTES + PAYLOAD_BYTES));
     return RECORD_BYTES;
 }
@@ -142,7 +152,7 @@ modcp_event_t modcp_params_decode(const uint8_t *buf, size_t len, modcp_params_t
     }
     /* The record is sound: from here on nothing can fail, decode straight into p. */
     memset(p, 0, sizeof *p);
-    codec_t c = {NULL, NULL, buf + HEADER_BYTES, (uint8_t *)p, 0u};
-    walk(&c);
+    codec_t c = {(uint8_t *)p, buf + HEADER_BYTES};
+    walk(&c, dec_field);
     return MODCP_EV_NONE;
 }

@@ -93,17 +93,24 @@ static void m_cand_start(modcp_link_t *l, uint8_t b)
     l->state = MODCP_LINK_RX;
 }
 
-/* The candidate is no frame: its characters belong to the stretch again. */
-static void m_drop(modcp_link_t *l)
+/* The candidate is given up: its first n characters belong to the stretch again (the
+ * rest, if any, stays in the buffer for m_resync), the line is followed in SKIP. */
+static MODCP_NOINLINE void m_unclaim(modcp_link_t *l, uint16_t n)
 {
     modcp_rtu_t *r = &l->fr.rtu;
-    for (uint16_t i = 0; i < l->len; i++) {
+    for (uint16_t i = 0; i < n; i++) {
         m_fold(l, l->buf[i]);
     }
     l->rx_bad = l->rx_bad || (r->flags & RTU_M_SBAD) != 0u;
     r->flags = (uint8_t)(r->flags & ~(RTU_M_FIRST | RTU_M_OPEN));
     l->len = 0;
     l->state = MODCP_LINK_SKIP;
+}
+
+/* The candidate is no frame: its characters belong to the stretch again. */
+static void m_drop(modcp_link_t *l)
+{
+    m_unclaim(l, l->len);
 }
 
 /* The character at index r->stop was stored: function code, byte count or the last. */
@@ -193,11 +200,7 @@ static MODCP_NOINLINE void m_resync(modcp_link_t *l)
 {
     uint16_t n = l->len;
     for (;;) {
-        m_fold(l, l->buf[0]);
-        l->rx_bad = l->rx_bad || (l->fr.rtu.flags & RTU_M_SBAD) != 0u;
-        l->fr.rtu.flags = (uint8_t)(l->fr.rtu.flags & ~(RTU_M_FIRST | RTU_M_OPEN));
-        l->len = 0;
-        l->state = MODCP_LINK_SKIP;
+        m_unclaim(l, 1u);
         int res = M_CONT;
         uint16_t k = 1;
         while (k < n && res == M_CONT) {

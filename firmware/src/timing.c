@@ -31,21 +31,16 @@ static uint32_t bit_time_us(uint32_t bits_x10, uint32_t baud)
     return div_ceil(bits_x10 * (US_PER_S / 10u), baud);
 }
 
-/* The manual's TIME_OUT table (004 §5.3); other rates by the same 3.5 x 11-bit rule. */
+/* The manual's TIME_OUT table (004 §5.3): 300 ... 76800 baud, 300 x 2^k, is 38,400,000 /
+ * baud us (128 ms ... 0.5 ms); other rates (57600 -> 669, 115200 -> 335) by the 3.5 x
+ * 11-bit rule. Computed instead of a switch of nine rates. */
 static uint32_t table_timeout_us(uint32_t baud)
 {
-    switch (baud) {
-    case 300u: return 128000u;
-    case 600u: return 64000u;
-    case 1200u: return 32000u;
-    case 2400u: return 16000u;
-    case 4800u: return 8000u;
-    case 9600u: return 4000u;
-    case 19200u: return 2000u;
-    case 38400u: return 1000u;
-    case 76800u: return 500u;
-    default: return bit_time_us(T35_BITS_X10, baud); /* 57600 -> 669, 115200 -> 335 */
+    uint32_t k = baud / 300u;
+    if (baud % 300u == 0u && k <= 256u && (k & (k - 1u)) == 0u) {
+        return 38400000u / baud;
     }
+    return bit_time_us(T35_BITS_X10, baud);
 }
 
 uint32_t modcp_params_t35_us(const modcp_params_t *p)

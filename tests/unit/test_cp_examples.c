@@ -514,9 +514,7 @@ static void test_manual_refuses_compiled_out(void **state)
     refused(&q, MODCP_PF_COMMLOSS);
     q = p;
     q.scan_start = 9000;
-    q.scan_count = 1;
-    q.scan[0].area = MODCP_AREA_M;
-    q.scan[0].offset = 10;
+    q.scan_count = 1; /* (the entries themselves are not kept without the extended set) */
     refused(&q, MODCP_PF_SCANNER);
     q = p;
     q.iface = MODCP_IFACE_RS232;

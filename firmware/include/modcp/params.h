@@ -129,12 +129,17 @@ typedef struct {
     /* indirection scanner (extended set) */
     uint16_t scan_start; /* first scanner register address */
     uint8_t scan_count;  /* 0 = off, 1 ... 16 */
+#if MODCP_WITH_EXTENDED
+    /* Kept only with the extended set (164 bytes): without it the record still carries
+     * them (one record for every build), the decoder skips them and scan_count must be
+     * 0 (params.c). */
     modcp_operand_ref_t scan[MODCP_SCANNER_MAX];
     /* device identification (extended set), NUL-terminated */
     char vendor[MODCP_ID_STRING_MAX + 1];
     char product[MODCP_ID_STRING_MAX + 1];
     char revision[MODCP_ID_STRING_MAX + 1];
     char app_name[MODCP_ID_STRING_MAX + 1];
+#endif
     /* diagnostics */
     uint8_t diag_irq; /* diagnostic interrupt records (001 §8.4): 0 off (default), 1 on */
 } modcp_params_t;
