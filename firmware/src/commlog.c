@@ -8,11 +8,12 @@
 
 _Static_assert(MODCP_COMM_LOG_LEN == MODCP_COMM_LOG, "comm event log length");
 _Static_assert(MODCP_COMM_LOG_LEN <= 255u, "log_len is a byte");
+_Static_assert((MODCP_COMM_LOG_LEN & (MODCP_COMM_LOG_LEN - 1u)) == 0u, "the log ring wraps by a mask");
 
 void modcp_comm_log(modcp_comm_t *c, uint8_t ev)
 {
-    memmove(&c->log[1], &c->log[0], MODCP_COMM_LOG_LEN - 1u);
-    c->log[0] = ev;
+    c->log_head = (uint8_t)((c->log_head - 1u) & (MODCP_COMM_LOG_LEN - 1u));
+    c->log[c->log_head] = ev; /* newest first from log_head (a ring: the oldest drops) */
     if (c->log_len < MODCP_COMM_LOG_LEN) {
         c->log_len++;
     }
@@ -22,6 +23,7 @@ void modcp_comm_clear_log(modcp_comm_t *c)
 {
     memset(c->log, 0, sizeof c->log);
     c->log_len = 0;
+    c->log_head = 0;
 }
 
 static uint8_t rx_flags(modcp_comm_t *c)

@@ -8,6 +8,12 @@
 /* Add an event byte (newest first; the oldest falls out beyond 64). */
 void modcp_comm_log(modcp_comm_t *c, uint8_t ev);
 void modcp_comm_clear_log(modcp_comm_t *c);
+/* The i-th event byte of the log, newest first (i < log_len). The log is a ring: an
+ * event is one store, nothing moves. */
+static inline uint8_t modcp_comm_log_at(const modcp_comm_t *c, unsigned i)
+{
+    return c->log[(c->log_head + i) & (MODCP_COMM_LOG_LEN - 1u)];
+}
 /* Log the receive event of a valid frame for us (broadcast: addr 0). */
 void modcp_comm_rx(modcp_comm_t *c, bool broadcast);
 /* A serial-line counter (modcp_counter_t) was incremented: keeps the overrun flag and

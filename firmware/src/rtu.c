@@ -208,9 +208,20 @@ static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
     }
     while (b < e) {
         if (l->state != MODCP_LINK_RX || l->len >= l->cap) {
-            byte_other(l, *b++, t);
-            t += c;
-            continue;
+            if (l->state != MODCP_LINK_IDLE || (*b != l->own_addr && *b != 0u)) {
+                byte_other(l, *b++, t);
+                t += c;
+                continue;
+            }
+            /* our frame starts here (frame_start without its first character, which
+             * the run below stores and CRCs): no leaving the loop */
+            l->fr.rtu.count = 1;
+            l->rx_bad = false;
+            l->rx_overflow = false;
+            l->len = 0; /* configured: cap >= RTU_MIN_FRAME */
+            l->fr.rtu.crc = MODCP_CRC_INIT;
+            l->state = MODCP_LINK_RX;
+            link_arm(l, l->t35_us);
         }
         unsigned m = (unsigned)(e - b); /* a run of our frame: as many as fit */
         if (m > (unsigned)(l->cap - l->len)) {

@@ -14,6 +14,7 @@
 #include "ascii_world.h"
 #include "ext_support.h"
 #include "modcp/hal.h"
+#include "commlog_internal.h"
 #include "diag_internal.h"
 #include "pdu_internal.h"
 
@@ -290,8 +291,8 @@ static void test_fc08_restart_clear_log(void **state)
     ext_bad_crc(w, S, "03 00 50 00 01");
     ext_expect(w, S, "08 00 01 00 00", "08 00 01 00 00"); /* keep the log */
     assert_int_equal(w->cp.diag.comm.log_len, 6);         /* 80 40 82 80 40 00 */
-    assert_int_equal(w->cp.diag.comm.log[0], 0x00);
-    assert_int_equal(w->cp.diag.comm.log[1], 0x40);
+    assert_int_equal(modcp_comm_log_at(&w->cp.diag.comm, 0), 0x00);
+    assert_int_equal(modcp_comm_log_at(&w->cp.diag.comm, 1), 0x40);
     assert_int_equal(ext_counter(w, S, 0x0C), 0);
     ext_expect(w, S, "08 00 01 FF 00", "08 00 01 FF 00");
     assert_int_equal(w->cp.diag.comm.log_len, 1);
@@ -645,8 +646,8 @@ static void test_broadcast_of_extended_fcs(void **state)
     assert_int_equal(w->cp.diag.counters[MODCP_CNT_NO_RESPONSE], 7);
     assert_int_equal(world_db(w, 800)[1], 0x00);
     /* send events of broadcasts with an exception: 41, receive C0 */
-    assert_int_equal(w->cp.diag.comm.log[0], 0x41);
-    assert_int_equal(w->cp.diag.comm.log[1], 0xC0);
+    assert_int_equal(modcp_comm_log_at(&w->cp.diag.comm, 0), 0x41);
+    assert_int_equal(modcp_comm_log_at(&w->cp.diag.comm, 1), 0xC0);
     world_free(w);
 }
 
