@@ -5,8 +5,16 @@
 
 #include "modcp/commlog.h"
 
-/* Add an event byte (newest first; the oldest falls out beyond 64). */
-void modcp_comm_log(modcp_comm_t *c, uint8_t ev);
+/* Add an event byte (newest first; the oldest falls out beyond 64): a ring, one store
+ * (inline: twice per request). */
+static inline void modcp_comm_log(modcp_comm_t *c, uint8_t ev)
+{
+    c->log_head = (uint8_t)((c->log_head - 1u) & (MODCP_COMM_LOG_LEN - 1u));
+    c->log[c->log_head] = ev;
+    if (c->log_len < MODCP_COMM_LOG_LEN) {
+        c->log_len++;
+    }
+}
 void modcp_comm_clear_log(modcp_comm_t *c);
 /* The i-th event byte of the log, newest first (i < log_len). The log is a ring: an
  * event is one store, nothing moves. */
@@ -14,8 +22,24 @@ static inline uint8_t modcp_comm_log_at(const modcp_comm_t *c, unsigned i)
 {
     return c->log[(c->log_head + i) & (MODCP_COMM_LOG_LEN - 1u)];
 }
+/* The receive event's flags: listen-only, and a character overrun not yet reported. */
+static inline uint8_t modcp_comm_rx_flags(modcp_comm_t *c)
+{
+    uint8_t ev = MODCP_COMM_RX;
+    if (c->listen_only) {
+        ev |= MODCP_COMM_RX_LISTEN;
+    }
+    if (c->overrun_pending) {
+        ev |= MODCP_COMM_RX_OVERRUN;
+        c->overrun_pending = false;
+    }
+    return ev;
+}
 /* Log the receive event of a valid frame for us (broadcast: addr 0). */
-void modcp_comm_rx(modcp_comm_t *c, bool broadcast);
+static inline void modcp_comm_rx(modcp_comm_t *c, bool broadcast)
+{
+    modcp_comm_log(c, (uint8_t)(modcp_comm_rx_flags(c) | (broadcast ? MODCP_COMM_RX_BROADCAST : 0u)));
+}
 /* A serial-line counter (modcp_counter_t) was incremented: keeps the overrun flag and
  * logs the 0x82 receive event of a damaged frame. Called by modcp_diag_count(). */
 void modcp_comm_counted(modcp_comm_t *c, unsigned counter);

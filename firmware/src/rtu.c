@@ -348,6 +348,9 @@ uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
     if (l->buf == NULL || n + 2u > (uint32_t)l->cap) {
         return 0;
     }
+    if (l->reply_same && n + 2u == (uint32_t)l->len) {
+        return l->len; /* the request's frame, unchanged: its CRC is in place */
+    }
     uint16_t crc = modcp_crc16(l->buf, n);
     l->buf[n] = (uint8_t)(crc & 0xFFu); /* low byte first */
     l->buf[n + 1u] = (uint8_t)(crc >> 8);
