@@ -105,10 +105,10 @@ static bool sf_on(const modcp_cp_t *cp)
 /* Hand a reply to the link; with RS232 automatic signals it waits for RTS / CTS. */
 static void line_reply(modcp_cp_t *cp, uint16_t out_len, uint32_t now_us)
 {
-    /* FC05 / FC06: the reply is the request, unchanged (RTU sends it with its CRC) */
-    cp->link.reply_same = cp->pdu.same && out_len == cp->frame.pdu_len;
+    /* FC05 / FC06: the reply is the request, unchanged (out_len is the request's
+     * length; RTU sends the frame with its CRC as received) */
+    cp->link.reply_same = cp->pdu.same;
     modcp_link_reply(&cp->link, out_len, now_us);
-    cp->link.reply_same = false;
 #if MODCP_WITH_RS232_SIGNALS
     modcp_sig_on_reply(&cp->sig, &cp->link, now_us);
 #endif
