@@ -1,4 +1,5 @@
 /* modcp — communication event log and flags (see modcp/commlog.h). */
+#define MODCP_COMMLOG_C /* -Os: the out-of-line copies of commlog_internal.h */
 #include "modcp/commlog.h"
 
 #include <string.h>
