@@ -25,6 +25,30 @@
 /* SPEC §2 function set `cp341`: exactly 01-06, 08 sub 0000, 15, 16; every FC of the
  * extended set -> exception 01, (08)31H; FC08 sub-functions other than 0000 -> 03,
  * (08)35H as in the manual (004 §6.7); the scanner is off. */
+/* The FC12 event log is a ring: newest first, at most 64, the oldest drops out; a
+ * clear empties it and the next event is the newest (and only) one. */
+static void test_comm_log_ring(void **state)
+{
+    (void)state;
+    modcp_comm_t c;
+    memset(&c, 0, sizeof c);
+    for (unsigned k = 0; k < 70u; k++) {
+        modcp_comm_log(&c, (uint8_t)k);
+        assert_int_equal(modcp_comm_log_at(&c, 0), k);
+    }
+    assert_int_equal(c.log_len, MODCP_COMM_LOG_LEN);
+    for (unsigned i = 0; i < MODCP_COMM_LOG_LEN; i++) {
+        assert_int_equal(modcp_comm_log_at(&c, i), 69u - i); /* 69 ... 6: 0..5 dropped */
+    }
+    modcp_comm_clear_log(&c);
+    assert_int_equal(c.log_len, 0);
+    modcp_comm_log(&c, 0x80);
+    modcp_comm_log(&c, 0x40);
+    assert_int_equal(c.log_len, 2);
+    assert_int_equal(modcp_comm_log_at(&c, 0), 0x40);
+    assert_int_equal(modcp_comm_log_at(&c, 1), 0x80);
+}
+
 static void test_cp341_set(void **state)
 {
     (void)state;
@@ -654,6 +678,7 @@ static void test_broadcast_of_extended_fcs(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_comm_log_ring),
         cmocka_unit_test(test_cp341_set),
         cmocka_unit_test(test_fc08_counters_after_known_traffic),
         cmocka_unit_test(test_fc08_wrap_and_saturation),
