@@ -105,6 +105,9 @@ static bool sf_on(const modcp_cp_t *cp)
 /* Hand a reply to the link; with RS232 automatic signals it waits for RTS / CTS. */
 static void line_reply(modcp_cp_t *cp, uint16_t out_len, uint32_t now_us)
 {
+    /* FC05 / FC06: the reply is the request, unchanged (out_len is the request's
+     * length; RTU sends the frame with its CRC as received) */
+    cp->link.reply_same = cp->pdu.same;
     modcp_link_reply(&cp->link, out_len, now_us);
 #if MODCP_WITH_RS232_SIGNALS
     modcp_sig_on_reply(&cp->sig, &cp->link, now_us);
@@ -297,7 +300,12 @@ void modcp_cp_on_rx_block(modcp_cp_t *cp, const uint8_t *b, uint16_t n, uint32_t
         return;
     }
     cp->published = false; /* see publish() */
-    modcp_link_on_block(&cp->link, b, n, end_us);
+    modcp_link_t *l = &cp->link;
+    if (l->enabled && n != 0u && l->ops->on_block != NULL) {
+        l->ops->on_block(l, b, n, end_us); /* = modcp_link_on_block(), its usual case */
+    } else {
+        modcp_link_on_block(l, b, n, end_us);
+    }
 }
 
 void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us)

@@ -150,6 +150,7 @@ static modcp_pdu_action_t fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8
                                uint16_t *out_len)
 {
     const modcp_event_t ev = s->err;
+    s->same = false; /* the reply is an exception */
     modcp_diag_event(env->diag, ev);
     uint8_t code = s->x.exc;
     if (code == (uint8_t)MODCP_EXC_OF_EVENT) {

@@ -127,7 +127,8 @@ modcp_pdu_action_t modcp_pdu_write_coil(modcp_pdu_t *s, const modcp_pdu_env_t *e
         return MODCP_PDU_FAIL;
     }
     s->bitval = value == 0xFF00u ? 1u : 0u;
-    s->x.echo = 5;
+    s->x.echo = 5; /* len 5 (the table) */
+    s->same = true;
     return modcp_pdu_job(s, MODCP_JOB_BITWRITE, &o, 1, &s->bitval, NULL, 0);
 }
 
@@ -147,6 +148,7 @@ modcp_pdu_action_t modcp_pdu_write_reg(modcp_pdu_t *s, const modcp_pdu_env_t *en
         return MODCP_PDU_FAIL;
     }
     s->x.echo = len;
+    s->same = true;
     return modcp_pdu_job(s, MODCP_JOB_WRITE, &o, o.count, pdu + 3, NULL, 0);
 }
 

@@ -183,7 +183,7 @@ modcp_pdu_action_t modcp_pdu_fc12(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     put16(pdu + 4, d->comm.event_count);
     put16(pdu + 6, d->counters[MODCP_CNT_BUS_MSG]); /* message count = FC08 sub 0B */
     for (uint16_t i = 0; i < n; i++) {
-        pdu[8u + i] = d->comm.log[i]; /* newest first */
+        pdu[8u + i] = modcp_comm_log_at(&d->comm, i); /* newest first */
     }
     *out_len = (uint16_t)(8u + n);
     return MODCP_PDU_REPLY;

@@ -14,6 +14,7 @@
 #include "ascii_world.h"
 #include "ext_support.h"
 #include "modcp/hal.h"
+#include "commlog_internal.h"
 #include "diag_internal.h"
 #include "pdu_internal.h"
 
@@ -24,6 +25,30 @@
 /* SPEC §2 function set `cp341`: exactly 01-06, 08 sub 0000, 15, 16; every FC of the
  * extended set -> exception 01, (08)31H; FC08 sub-functions other than 0000 -> 03,
  * (08)35H as in the manual (004 §6.7); the scanner is off. */
+/* The FC12 event log is a ring: newest first, at most 64, the oldest drops out; a
+ * clear empties it and the next event is the newest (and only) one. */
+static void test_comm_log_ring(void **state)
+{
+    (void)state;
+    modcp_comm_t c;
+    memset(&c, 0, sizeof c);
+    for (unsigned k = 0; k < 70u; k++) {
+        modcp_comm_log(&c, (uint8_t)k);
+        assert_int_equal(modcp_comm_log_at(&c, 0), k);
+    }
+    assert_int_equal(c.log_len, MODCP_COMM_LOG_LEN);
+    for (unsigned i = 0; i < MODCP_COMM_LOG_LEN; i++) {
+        assert_int_equal(modcp_comm_log_at(&c, i), 69u - i); /* 69 ... 6: 0..5 dropped */
+    }
+    modcp_comm_clear_log(&c);
+    assert_int_equal(c.log_len, 0);
+    modcp_comm_log(&c, 0x80);
+    modcp_comm_log(&c, 0x40);
+    assert_int_equal(c.log_len, 2);
+    assert_int_equal(modcp_comm_log_at(&c, 0), 0x40);
+    assert_int_equal(modcp_comm_log_at(&c, 1), 0x80);
+}
+
 static void test_cp341_set(void **state)
 {
     (void)state;
@@ -290,8 +315,8 @@ static void test_fc08_restart_clear_log(void **state)
     ext_bad_crc(w, S, "03 00 50 00 01");
     ext_expect(w, S, "08 00 01 00 00", "08 00 01 00 00"); /* keep the log */
     assert_int_equal(w->cp.diag.comm.log_len, 6);         /* 80 40 82 80 40 00 */
-    assert_int_equal(w->cp.diag.comm.log[0], 0x00);
-    assert_int_equal(w->cp.diag.comm.log[1], 0x40);
+    assert_int_equal(modcp_comm_log_at(&w->cp.diag.comm, 0), 0x00);
+    assert_int_equal(modcp_comm_log_at(&w->cp.diag.comm, 1), 0x40);
     assert_int_equal(ext_counter(w, S, 0x0C), 0);
     ext_expect(w, S, "08 00 01 FF 00", "08 00 01 FF 00");
     assert_int_equal(w->cp.diag.comm.log_len, 1);
@@ -645,14 +670,15 @@ static void test_broadcast_of_extended_fcs(void **state)
     assert_int_equal(w->cp.diag.counters[MODCP_CNT_NO_RESPONSE], 7);
     assert_int_equal(world_db(w, 800)[1], 0x00);
     /* send events of broadcasts with an exception: 41, receive C0 */
-    assert_int_equal(w->cp.diag.comm.log[0], 0x41);
-    assert_int_equal(w->cp.diag.comm.log[1], 0xC0);
+    assert_int_equal(modcp_comm_log_at(&w->cp.diag.comm, 0), 0x41);
+    assert_int_equal(modcp_comm_log_at(&w->cp.diag.comm, 1), 0xC0);
     world_free(w);
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_comm_log_ring),
         cmocka_unit_test(test_cp341_set),
         cmocka_unit_test(test_fc08_counters_after_known_traffic),
         cmocka_unit_test(test_fc08_wrap_and_saturation),

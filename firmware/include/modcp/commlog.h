@@ -58,8 +58,10 @@ enum {
 
 typedef struct {
     uint16_t event_count;              /* FC11: successful completions, wraps */
-    uint8_t log[MODCP_COMM_LOG_LEN];   /* FC12: newest first */
+    uint8_t log[MODCP_COMM_LOG_LEN];   /* FC12: a ring, newest at log[log_head]; read
+                                          it with modcp_comm_log_at() */
     uint8_t log_len;
+    uint8_t log_head;
     uint16_t diag_reg;                 /* latched MODCP_DREG_* bits */
     bool listen_only;                  /* FC08 sub 04 until sub 01 */
     bool overrun_pending;              /* overrun not yet reported in an event byte */

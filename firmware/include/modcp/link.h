@@ -136,6 +136,9 @@ typedef struct { /* members by size: no padding */
                          modcp_link_tx_release() (signals.c decides RTS / CTS) */
     bool tx_on;       /* a transmission is on the line: from its start to transmission
                          complete (or its abort) */
+    bool reply_same;  /* set by the caller before every modcp_link_reply(): the reply is
+                         the request's PDU, unchanged (FC05 / FC06 echo), so a framing
+                         may send the frame as received (RTU: its CRC in place) */
 } modcp_link_t;
 
 #endif

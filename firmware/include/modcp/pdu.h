@@ -43,6 +43,9 @@ typedef struct {
     uint8_t bits;        /* FC01/02 on I / Q / M: the read data are a bit string to align */
     uint8_t r32_kind;    /* 32-bit scheme: modcp_r32_kind_t + 1, 0 = 16-bit */
     uint8_t bitval;      /* FC05: the coil value as a 1-bit write job */
+    bool same;           /* the reply is the request's PDU, unchanged (FC05 / FC06 echo:
+                            the job reads nothing into the buffer); cleared by an
+                            exception. The link may send the request's frame as it is */
     modcp_event_t err;   /* the event of a refused request (MODCP_PDU_FAIL) */
     modcp_bp_job_t job;  /* the job to run for MODCP_PDU_JOB */
     const uint8_t *wdata; /* job write data (inside the request) */
