@@ -78,6 +78,15 @@ class Fail(Exception):
     pass
 
 
+# Host-time limits. They only bound how long a test waits for something that should
+# come; none of them makes anything happen twice. A loaded host stalls QEMU's threads
+# (seen: over a second at load average ~10 on 2 cores), so they are generous.
+REPLY_TIMEOUT_S = 5.0     # a request that must be answered
+CONSOLE_TIMEOUT_S = 10.0  # a console command
+START_TIMEOUT_S = 40.0    # QEMU up, console prompt, first FC08 echo
+WATCHDOG_S = 590          # the whole test (ctest's TIMEOUT is 600): never leave QEMU behind
+
+
 class Target:
     """One firmware image in QEMU, its Modbus pty and its console pty."""
 
@@ -96,7 +105,7 @@ class Target:
                                      text=True, start_new_session=True)
         self.lines = queue.Queue()
         threading.Thread(target=self._drain, daemon=True).start()
-        deadline = time.time() + 20
+        deadline = time.time() + START_TIMEOUT_S
         while time.time() < deadline and not (self.modbus_tty and self.console_tty):
             try:
                 line = self.lines.get(timeout=max(0.1, deadline - time.time()))
@@ -148,11 +157,11 @@ class Target:
         return os.read(fd, 4096) if r else b""
 
     def _wait_console(self):
-        deadline = time.time() + 15
+        deadline = time.time() + START_TIMEOUT_S
         buf = b""
         while time.time() < deadline:
             os.write(self.cfd, b"\r")
-            end = time.time() + 0.5
+            end = time.time() + 2.0
             while time.time() < end:
                 buf += self._read(self.cfd, end - time.time())
                 if b"> " in buf:
@@ -164,7 +173,7 @@ class Target:
         while self._read(fd, 0.05):
             pass
 
-    def console(self, cmd, timeout=3.0):
+    def console(self, cmd, timeout=CONSOLE_TIMEOUT_S):
         """Run one console command; returns its answer (without echo and prompt)."""
         if not self.has_console:
             raise Fail("console: %s has no console (%r)" % (self.board, cmd))
@@ -182,18 +191,29 @@ class Target:
 
     # ---- Modbus, raw frames ----
     def _wait_modbus(self):
-        deadline = time.time() + 15
+        """Until an FC08 echo is answered. Each attempt waits long enough for a slow
+        host (an echo written while the previous one is still on its way would join it
+        into one damaged frame), and the line is quiet before the suite starts."""
+        deadline = time.time() + START_TIMEOUT_S
         req = adu([0x08, 0x00, 0x00, 0xA5, 0x5A])
         while time.time() < deadline:
-            if self.transact(req, timeout=0.4) == req:
+            if self.transact(req, timeout=2.0, expect_len=len(req)) == req:
+                while self._read(self.mfd, 0.3):
+                    pass
                 return
         raise Fail("no answer to an FC08 echo on %s" % self.modbus_tty)
 
-    def transact(self, req, timeout=1.0, expect_len=None, pieces=None, gap_s=0.0):
+    def transact(self, req, timeout=REPLY_TIMEOUT_S, expect_len=None, pieces=None, gap_s=0.0):
         """Send req (optionally in pieces with gap_s between them) and return the
-        reply: complete when expect_len bytes are in, or after 50 ms of silence.
-        self.max_gap_s is the longest pause the host actually made between two pieces
-        (from the end of one write to the end of the next)."""
+        reply: complete when expect_len bytes are in or, without expect_len, when the
+        bytes received form a frame with a valid CRC; otherwise what came until the
+        timeout. A pause inside the reply never ends it early: QEMU writes a reply byte
+        by byte from the vCPU thread, and a loaded host deschedules that thread for tens
+        of milliseconds, so a reply cut at a silence would leave its tail to be taken as
+        the next reply. The timeout is host time and generous: it costs nothing when
+        the reply comes, and a request that gets none fails just the same (nothing is
+        sent twice). self.max_gap_s is the longest pause the host actually made between
+        two pieces (from the end of one write to the end of the next)."""
         self._flush(self.mfd)
         self.max_gap_s = 0.0
         if pieces:
@@ -217,14 +237,14 @@ class Target:
         out = b""
         end = time.time() + timeout
         while time.time() < end:
-            wait = end - time.time() if not out else min(0.05, end - time.time())
-            data = self._read(self.mfd, wait)
+            data = self._read(self.mfd, end - time.time())
             if data:
                 out += data
-                if expect_len is not None and len(out) >= expect_len:
+                if expect_len is not None:
+                    if len(out) >= expect_len:
+                        break
+                elif len(out) >= 4 and crc16(out[:-2]) == out[-2:]:
                     break
-            elif out:
-                break
         if self.counting and out:
             self.replied += 1
         return out
@@ -347,9 +367,15 @@ def suite_firmware(t, c):
     # broadcast: executed, never answered
     rep = t.transact(adu([0x06, 0x01, 0x82, 0x77, 0x88], addr=0), timeout=0.3)
     c.ok(rep == b"", "broadcast FC06: no reply")
-    time.sleep(0.1)
     if c.console(t, "broadcast FC06 executed: console get DB800.DBW772 = 0x7788"):
-        v = console_value(t.console("get DB800.DBW772"))
+        # executed once the slave's end of frame and the next FB cycle have passed: read
+        # back until then (the request itself is sent once)
+        end = time.time() + REPLY_TIMEOUT_S
+        while True:
+            v = console_value(t.console("get DB800.DBW772"))
+            if v == 0x7788 or time.time() > end:
+                break
+            time.sleep(0.05)
         c.ok(v == 0x7788, "broadcast FC06 executed: DB800.DBW772 = 0x7788 (got %s)" % v)
     rep = t.transact(adu([0x03, 0x00, 0x50, 0x00, 0x02], addr=0), timeout=0.3)
     c.ok(rep == b"", "broadcast FC03: dropped, no reply")
@@ -520,7 +546,7 @@ def main():
     signal.signal(signal.SIGTERM, on_signal)  # ctest's timeout: stop QEMU too
     signal.signal(signal.SIGHUP, on_signal)
     signal.signal(signal.SIGALRM, on_signal)
-    signal.alarm(175)  # a watchdog below ctest's 180 s: never leave QEMU behind
+    signal.alarm(WATCHDOG_S)  # a watchdog below ctest's TIMEOUT: never leave QEMU behind
     log("image %s" % elf)
     target = Target(args.root, args.board, elf, log)
     stop = threading.Event()
@@ -540,7 +566,8 @@ def main():
             threading.Thread(target=bridge_fifo, args=(fifo, target, stop), daemon=True).start()
             if args.suite == "libmodbus":
                 cmd = [args.master, "--device", target.modbus_tty, "--baud", "9600",
-                       "--parity", "E", "--slave", str(SLAVE), "--random", str(args.random)]
+                       "--parity", "E", "--slave", str(SLAVE), "--random", str(args.random),
+                       "--timeout-ms", str(int(REPLY_TIMEOUT_S * 1000))]
                 # the paused user program is driven through the console: without one
                 # the master leaves its pause group out
                 if checks.console(target, "pause: user program paused / resumed via the console"):
@@ -548,8 +575,8 @@ def main():
             else:
                 cmd = [args.python, args.master, "--device", target.modbus_tty, "--baud",
                        "9600", "--parity", "E", "--slave", str(SLAVE), "--random",
-                       str(args.random)]
-            passed, failed, rc = run_master(cmd, log, timeout=170)
+                       str(args.random), "--timeout", str(REPLY_TIMEOUT_S)]
+            passed, failed, rc = run_master(cmd, log, timeout=WATCHDOG_S - 10)
         status = target.console("status") if target.has_console else ""
         if target.has_console:
             log("console status: " + status)
