@@ -35,7 +35,8 @@ bridged to the console (`pause` / `resume` stop and restart the cyclic user prog
 A board without a console (microbit: its only UART is the Modbus line) runs every check
 that needs no console; the ones that read or write through the console (console get /
 set / status / board, the paused user program) are reported as "n/a", counted apart,
-never as passed.
+never as passed. Its bus counters are read with FC08 diagnostics instead (sub 0B..0F,
+12: messages, CRC errors, exceptions, slave messages, no response, overruns).
 
 Exit status: 0 passed, 1 failed, 77 skipped (no qemu-system-arm or no image: build the
 images with tools/build-arm).
@@ -250,12 +251,29 @@ class Target:
         return out
 
     def counters(self):
-        """The slave's bus counters from the console's status line ({} without a
-        console: a board whose only UART is the Modbus line)."""
-        if not self.has_console:
-            return {}
-        text = self.console("status")
-        return {k: int(v) for k, v in re.findall(r"(\w+)=(\d+)\b", text)}
+        """The slave's bus counters: from the console's status line, or, on a board
+        whose only UART is the Modbus line, from FC08 diagnostics (FC08_COUNTERS, one
+        request each, not counted as the script's own requests). FC08 values are taken
+        as they stood before these queries: a query counts itself and the ones before
+        it in bus_msg and slave_msg."""
+        if self.has_console:
+            text = self.console("status")
+            return {k: int(v) for k, v in re.findall(r"(\w+)=(\d+)\b", text)}
+        counting, self.counting = self.counting, False
+        out = {}
+        try:
+            for i, (sub, name) in enumerate(FC08_COUNTERS):
+                req = adu([0x08, 0x00, sub, 0x00, 0x00])
+                rep = self.transact(req, expect_len=8)
+                if len(rep) != 8 or rep[:4] != req[:4] or crc16(rep[:6]) != rep[6:]:
+                    raise Fail("FC08 sub %02X (%s): reply %s" % (sub, name, rep.hex(" ")))
+                v = struct.unpack(">H", rep[4:6])[0]
+                if name in ("bus_msg", "slave_msg"):
+                    v -= i + 1
+                out[name] = v
+        finally:
+            self.counting = counting
+        return out
 
 
 # ---- the firmware suite -----------------------------------------------------------------
@@ -301,6 +319,10 @@ def exc_of(rep):
 
 # status counters of frames the slave could not take: a cut frame shows up here
 DAMAGE = ("bus_crc", "too_long", "char_errors", "breaks", "overrun", "t15")
+# the same through FC08 diagnostics (no console; 16-bit counters): a frame with a
+# character error, BREAK or t1.5 violation counts in bus_crc there too
+FC08_COUNTERS = ((0x0B, "bus_msg"), (0x0C, "bus_crc"), (0x0D, "exceptions"),
+                 (0x0E, "slave_msg"), (0x0F, "no_response"), (0x12, "overrun"))
 
 
 def damage(before, after):
@@ -577,16 +599,23 @@ def main():
                        "9600", "--parity", "E", "--slave", str(SLAVE), "--random",
                        str(args.random), "--timeout", str(REPLY_TIMEOUT_S)]
             passed, failed, rc = run_master(cmd, log, timeout=WATCHDOG_S - 10)
-        status = target.console("status") if target.has_console else ""
         if target.has_console:
+            status = target.console("status")
             log("console status: " + status)
-        end = {k: int(v) for k, v in re.findall(r"(\w+)=(\d+)\b", status)}
+            end = {k: int(v) for k, v in re.findall(r"(\w+)=(\d+)\b", status)}
+        else:
+            end = target.counters()
+            log("FC08 counters: " + " ".join("%s=%d" % kv for kv in end.items()))
         if args.suite == "libmodbus":
             # master_libmodbus clears the slave's counters (FC08 sub 0A) before its random
             # operations: the end values count from there (a frame damaged before the
             # clear shows as a failed check of the master)
             start = {}
         d = {k: end.get(k, 0) - start.get(k, 0) for k in end}
+        if start and not target.has_console:
+            # the FC08 queries that read `start` are frames on the bus too
+            for k in ("bus_msg", "slave_msg"):
+                d[k] = d.get(k, 0) - len(FC08_COUNTERS)
         damaged = damage(start, end) - checks.expected_damage
         if args.suite in ("firmware", "smoke"):
             # the script's own requests: answered = a reply came (a request that must
