@@ -31,9 +31,9 @@ static void os_start(modcp_nrf51_port_t *p)
     TIMER_TASKS_START(t) = 1u; /* COMPARE[0] stops and clears it (SHORTS) */
 }
 
-static void hal_timer_arm(void *ctx, uint32_t us)
+/* Start the one-shot for `us` (0: stop it). */
+static void oneshot_start(modcp_nrf51_port_t *p, uint32_t us)
 {
-    modcp_nrf51_port_t *p = ctx;
     uintptr_t t = p->cfg->timer;
     TIMER_TASKS_STOP(t) = 1u;
     TIMER_EVENTS_COMPARE(t, 0) = 0u; /* an expiry not yet handled is dropped: the ISR
@@ -46,6 +46,14 @@ static void hal_timer_arm(void *ctx, uint32_t us)
     os_start(p);
 }
 
+static void hal_timer_arm(void *ctx, uint32_t us)
+{
+    modcp_nrf51_port_t *p = ctx;
+    p->eof_gen++;
+    modcp_eof_confirm_arm(&p->eof, p->rx_bytes + p->line_errors);
+    oneshot_start(p, us);
+}
+
 void modcp_nrf51_port_timer_isr(modcp_nrf51_port_t *port)
 {
     uintptr_t t = port->cfg->timer;
@@ -55,6 +63,22 @@ void modcp_nrf51_port_timer_isr(modcp_nrf51_port_t *port)
     TIMER_EVENTS_COMPARE(t, 0) = 0u;
     if (port->os_left != 0u) {
         os_start(port); /* a wait longer than the 16-bit compare: the next part */
+        return;
+    }
+    /* End-of-frame expiry, reported to the core only after MODCP_NRF51_EOF_QUIET_ROUNDS
+     * expiries in a row (the first one and 1 us confirmation one-shots) found no
+     * character in the UART or arriving meanwhile (modcp/hal_eof.h, docs/porting.md
+     * section 4). In QEMU the UART model's 6-byte FIFO is filled from the pty and the
+     * timers run in the same main-loop iteration, the pty first; a late expiry would
+     * otherwise be taken before bytes the master wrote long before. */
+    uint32_t gen = port->eof_gen;
+    modcp_nrf51_port_uart_isr(port); /* a character already received is older than this expiry */
+    if (port->eof_gen != gen) {
+        return; /* the core re-armed for a character: that timer stands */
+    }
+    if (!modcp_eof_confirm_expiry(&port->eof, port->rx_bytes + port->line_errors,
+                                  MODCP_NRF51_EOF_QUIET_ROUNDS)) {
+        oneshot_start(port, 1u);
         return;
     }
     if (port->cp != NULL) {

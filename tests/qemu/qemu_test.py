@@ -35,7 +35,8 @@ bridged to the console (`pause` / `resume` stop and restart the cyclic user prog
 A board without a console (microbit: its only UART is the Modbus line) runs every check
 that needs no console; the ones that read or write through the console (console get /
 set / status / board, the paused user program) are reported as "n/a", counted apart,
-never as passed.
+never as passed. Its bus counters are read with FC08 diagnostics instead (sub 0B..0F,
+12: messages, CRC errors, exceptions, slave messages, no response, overruns).
 
 Exit status: 0 passed, 1 failed, 77 skipped (no qemu-system-arm or no image: build the
 images with tools/build-arm).
@@ -78,6 +79,15 @@ class Fail(Exception):
     pass
 
 
+# Host-time limits. They only bound how long a test waits for something that should
+# come; none of them makes anything happen twice. A loaded host stalls QEMU's threads
+# (seen: over a second at load average ~10 on 2 cores), so they are generous.
+REPLY_TIMEOUT_S = 5.0     # a request that must be answered
+CONSOLE_TIMEOUT_S = 10.0  # a console command
+START_TIMEOUT_S = 40.0    # QEMU up, console prompt, first FC08 echo
+WATCHDOG_S = 590          # the whole test (ctest's TIMEOUT is 600): never leave QEMU behind
+
+
 class Target:
     """One firmware image in QEMU, its Modbus pty and its console pty."""
 
@@ -96,7 +106,7 @@ class Target:
                                      text=True, start_new_session=True)
         self.lines = queue.Queue()
         threading.Thread(target=self._drain, daemon=True).start()
-        deadline = time.time() + 20
+        deadline = time.time() + START_TIMEOUT_S
         while time.time() < deadline and not (self.modbus_tty and self.console_tty):
             try:
                 line = self.lines.get(timeout=max(0.1, deadline - time.time()))
@@ -148,11 +158,11 @@ class Target:
         return os.read(fd, 4096) if r else b""
 
     def _wait_console(self):
-        deadline = time.time() + 15
+        deadline = time.time() + START_TIMEOUT_S
         buf = b""
         while time.time() < deadline:
             os.write(self.cfd, b"\r")
-            end = time.time() + 0.5
+            end = time.time() + 2.0
             while time.time() < end:
                 buf += self._read(self.cfd, end - time.time())
                 if b"> " in buf:
@@ -164,7 +174,7 @@ class Target:
         while self._read(fd, 0.05):
             pass
 
-    def console(self, cmd, timeout=3.0):
+    def console(self, cmd, timeout=CONSOLE_TIMEOUT_S):
         """Run one console command; returns its answer (without echo and prompt)."""
         if not self.has_console:
             raise Fail("console: %s has no console (%r)" % (self.board, cmd))
@@ -182,18 +192,29 @@ class Target:
 
     # ---- Modbus, raw frames ----
     def _wait_modbus(self):
-        deadline = time.time() + 15
+        """Until an FC08 echo is answered. Each attempt waits long enough for a slow
+        host (an echo written while the previous one is still on its way would join it
+        into one damaged frame), and the line is quiet before the suite starts."""
+        deadline = time.time() + START_TIMEOUT_S
         req = adu([0x08, 0x00, 0x00, 0xA5, 0x5A])
         while time.time() < deadline:
-            if self.transact(req, timeout=0.4) == req:
+            if self.transact(req, timeout=2.0, expect_len=len(req)) == req:
+                while self._read(self.mfd, 0.3):
+                    pass
                 return
         raise Fail("no answer to an FC08 echo on %s" % self.modbus_tty)
 
-    def transact(self, req, timeout=1.0, expect_len=None, pieces=None, gap_s=0.0):
+    def transact(self, req, timeout=REPLY_TIMEOUT_S, expect_len=None, pieces=None, gap_s=0.0):
         """Send req (optionally in pieces with gap_s between them) and return the
-        reply: complete when expect_len bytes are in, or after 50 ms of silence.
-        self.max_gap_s is the longest pause the host actually made between two pieces
-        (from the end of one write to the end of the next)."""
+        reply: complete when expect_len bytes are in or, without expect_len, when the
+        bytes received form a frame with a valid CRC; otherwise what came until the
+        timeout. A pause inside the reply never ends it early: QEMU writes a reply byte
+        by byte from the vCPU thread, and a loaded host deschedules that thread for tens
+        of milliseconds, so a reply cut at a silence would leave its tail to be taken as
+        the next reply. The timeout is host time and generous: it costs nothing when
+        the reply comes, and a request that gets none fails just the same (nothing is
+        sent twice). self.max_gap_s is the longest pause the host actually made between
+        two pieces (from the end of one write to the end of the next)."""
         self._flush(self.mfd)
         self.max_gap_s = 0.0
         if pieces:
@@ -217,25 +238,59 @@ class Target:
         out = b""
         end = time.time() + timeout
         while time.time() < end:
-            wait = end - time.time() if not out else min(0.05, end - time.time())
-            data = self._read(self.mfd, wait)
+            data = self._read(self.mfd, end - time.time())
             if data:
                 out += data
-                if expect_len is not None and len(out) >= expect_len:
+                if expect_len is not None:
+                    if len(out) >= expect_len:
+                        break
+                elif len(out) >= 4 and crc16(out[:-2]) == out[-2:]:
                     break
-            elif out:
-                break
         if self.counting and out:
             self.replied += 1
         return out
 
-    def counters(self):
-        """The slave's bus counters from the console's status line ({} without a
-        console: a board whose only UART is the Modbus line)."""
+    def wait_taken(self, before, n=1):
+        """Until the slave has ended n more frames than the counters `before` show. QEMU
+        reads the pty only while its threads run: a frame the slave does not answer
+        must have been taken before the next one is written, or a host stall makes
+        both reach the UART back to back, as one frame (measured at load average ~7:
+        2-3 % of "request for slave 6, 0.3 s, request for slave 5" pairs on every
+        board). Through the console; without one a pause of 1 s is all there is."""
         if not self.has_console:
-            return {}
-        text = self.console("status")
-        return {k: int(v) for k, v in re.findall(r"(\w+)=(\d+)\b", text)}
+            time.sleep(1.0)
+            return
+        end = time.time() + REPLY_TIMEOUT_S
+        while time.time() < end:
+            if frames(self.counters()) - frames(before) >= n:
+                return
+            time.sleep(0.02)
+        raise Fail("the slave did not end %d frame(s) within %.0f s" % (n, REPLY_TIMEOUT_S))
+
+    def counters(self):
+        """The slave's bus counters: from the console's status line, or, on a board
+        whose only UART is the Modbus line, from FC08 diagnostics (FC08_COUNTERS, one
+        request each, not counted as the script's own requests). FC08 values are taken
+        as they stood before these queries: a query counts itself and the ones before
+        it in bus_msg and slave_msg."""
+        if self.has_console:
+            text = self.console("status")
+            return {k: int(v) for k, v in re.findall(r"(\w+)=(\d+)\b", text)}
+        counting, self.counting = self.counting, False
+        out = {}
+        try:
+            for i, (sub, name) in enumerate(FC08_COUNTERS):
+                req = adu([0x08, 0x00, sub, 0x00, 0x00])
+                rep = self.transact(req, expect_len=8)
+                if len(rep) != 8 or rep[:4] != req[:4] or crc16(rep[:6]) != rep[6:]:
+                    raise Fail("FC08 sub %02X (%s): reply %s" % (sub, name, rep.hex(" ")))
+                v = struct.unpack(">H", rep[4:6])[0]
+                if name in ("bus_msg", "slave_msg"):
+                    v -= i + 1
+                out[name] = v
+        finally:
+            self.counting = counting
+        return out
 
 
 # ---- the firmware suite -----------------------------------------------------------------
@@ -281,10 +336,19 @@ def exc_of(rep):
 
 # status counters of frames the slave could not take: a cut frame shows up here
 DAMAGE = ("bus_crc", "too_long", "char_errors", "breaks", "overrun", "t15")
+# the same through FC08 diagnostics (no console; 16-bit counters): a frame with a
+# character error, BREAK or t1.5 violation counts in bus_crc there too
+FC08_COUNTERS = ((0x0B, "bus_msg"), (0x0C, "bus_crc"), (0x0D, "exceptions"),
+                 (0x0E, "slave_msg"), (0x0F, "no_response"), (0x12, "overrun"))
 
 
 def damage(before, after):
     return sum(after.get(k, 0) - before.get(k, 0) for k in DAMAGE)
+
+
+def frames(cnt):
+    """Frames the slave ended: each counts once, as a message, a CRC error or too long."""
+    return sum(cnt.get(k, 0) for k in ("bus_msg", "bus_crc", "too_long"))
 
 
 def console_value(text):
@@ -319,8 +383,17 @@ def suite_firmware(t, c):
     else:
         c.ok(False, "FC03 byte by byte: the host never kept its pauses below t3.5/2")
     before = t.counters()
-    rep = t.transact(req, timeout=0.8, pieces=[4], gap_s=0.300)
-    c.ok(rep == b"", "FC03 split by a 300 ms gap (> t3.5): two fragments, no reply")
+    if t.has_console:
+        # the second piece only once the slave has ended the first (a host stall could
+        # otherwise hand QEMU both pieces at once: see Target.wait_taken)
+        t._flush(t.mfd)
+        os.write(t.mfd, req[:4])
+        t.wait_taken(before, 1)
+        rep = t.transact(req[4:], timeout=0.8)
+        t.wait_taken(before, 2)
+    else:
+        rep = t.transact(req, timeout=0.8, pieces=[4], gap_s=0.300)
+    c.ok(rep == b"", "FC03 split by a gap > t3.5: two fragments, no reply")
     after = t.counters()
     if c.console(t, "both fragments counted as CRC errors"):
         c.ok(after.get("bus_crc", 0) - before.get("bus_crc", 0) == 2,
@@ -345,16 +418,28 @@ def suite_firmware(t, c):
         c.ok(rep == adu([0x01, 0x01, 0x01]), "console set M1150.5, FC01 coil 1205 reads 1")
 
     # broadcast: executed, never answered
+    before = t.counters()
     rep = t.transact(adu([0x06, 0x01, 0x82, 0x77, 0x88], addr=0), timeout=0.3)
     c.ok(rep == b"", "broadcast FC06: no reply")
-    time.sleep(0.1)
+    t.wait_taken(before)
     if c.console(t, "broadcast FC06 executed: console get DB800.DBW772 = 0x7788"):
-        v = console_value(t.console("get DB800.DBW772"))
+        # executed once the slave's end of frame and the next FB cycle have passed: read
+        # back until then (the request itself is sent once)
+        end = time.time() + REPLY_TIMEOUT_S
+        while True:
+            v = console_value(t.console("get DB800.DBW772"))
+            if v == 0x7788 or time.time() > end:
+                break
+            time.sleep(0.05)
         c.ok(v == 0x7788, "broadcast FC06 executed: DB800.DBW772 = 0x7788 (got %s)" % v)
+    before = t.counters()
     rep = t.transact(adu([0x03, 0x00, 0x50, 0x00, 0x02], addr=0), timeout=0.3)
     c.ok(rep == b"", "broadcast FC03: dropped, no reply")
+    t.wait_taken(before)
+    before = t.counters()
     rep = t.transact(adu([0x03, 0x00, 0x50, 0x00, 0x02], addr=6), timeout=0.3)
     c.ok(rep == b"", "request for slave 6: ignored")
+    t.wait_taken(before)
 
     # exceptions
     for name, pdu, code in (
@@ -520,7 +605,7 @@ def main():
     signal.signal(signal.SIGTERM, on_signal)  # ctest's timeout: stop QEMU too
     signal.signal(signal.SIGHUP, on_signal)
     signal.signal(signal.SIGALRM, on_signal)
-    signal.alarm(175)  # a watchdog below ctest's 180 s: never leave QEMU behind
+    signal.alarm(WATCHDOG_S)  # a watchdog below ctest's TIMEOUT: never leave QEMU behind
     log("image %s" % elf)
     target = Target(args.root, args.board, elf, log)
     stop = threading.Event()
@@ -540,7 +625,8 @@ def main():
             threading.Thread(target=bridge_fifo, args=(fifo, target, stop), daemon=True).start()
             if args.suite == "libmodbus":
                 cmd = [args.master, "--device", target.modbus_tty, "--baud", "9600",
-                       "--parity", "E", "--slave", str(SLAVE), "--random", str(args.random)]
+                       "--parity", "E", "--slave", str(SLAVE), "--random", str(args.random),
+                       "--timeout-ms", str(int(REPLY_TIMEOUT_S * 1000))]
                 # the paused user program is driven through the console: without one
                 # the master leaves its pause group out
                 if checks.console(target, "pause: user program paused / resumed via the console"):
@@ -548,18 +634,25 @@ def main():
             else:
                 cmd = [args.python, args.master, "--device", target.modbus_tty, "--baud",
                        "9600", "--parity", "E", "--slave", str(SLAVE), "--random",
-                       str(args.random)]
-            passed, failed, rc = run_master(cmd, log, timeout=170)
-        status = target.console("status") if target.has_console else ""
+                       str(args.random), "--timeout", str(REPLY_TIMEOUT_S)]
+            passed, failed, rc = run_master(cmd, log, timeout=WATCHDOG_S - 10)
         if target.has_console:
+            status = target.console("status")
             log("console status: " + status)
-        end = {k: int(v) for k, v in re.findall(r"(\w+)=(\d+)\b", status)}
+            end = {k: int(v) for k, v in re.findall(r"(\w+)=(\d+)\b", status)}
+        else:
+            end = target.counters()
+            log("FC08 counters: " + " ".join("%s=%d" % kv for kv in end.items()))
         if args.suite == "libmodbus":
             # master_libmodbus clears the slave's counters (FC08 sub 0A) before its random
             # operations: the end values count from there (a frame damaged before the
             # clear shows as a failed check of the master)
             start = {}
         d = {k: end.get(k, 0) - start.get(k, 0) for k in end}
+        if start and not target.has_console:
+            # the FC08 queries that read `start` are frames on the bus too
+            for k in ("bus_msg", "slave_msg"):
+                d[k] = d.get(k, 0) - len(FC08_COUNTERS)
         damaged = damage(start, end) - checks.expected_damage
         if args.suite in ("firmware", "smoke"):
             # the script's own requests: answered = a reply came (a request that must

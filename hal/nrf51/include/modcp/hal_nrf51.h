@@ -39,6 +39,7 @@
 
 #include "modcp/cp.h"
 #include "modcp/hal.h"
+#include "modcp/hal_eof.h"
 
 #define MODCP_NRF51_TIMER0 0x40008000u
 #define MODCP_NRF51_TIMER1 0x40009000u
@@ -108,7 +109,15 @@ typedef struct {
     uint32_t rx_bytes;
     uint32_t tx_bytes;
     uint32_t line_errors;
+    uint32_t eof_gen;        /* end-of-frame arms by the core */
+    modcp_eof_confirm_t eof; /* end-of-frame confirmation (modcp/hal_eof.h), mark = rx_bytes + line_errors */
 } modcp_nrf51_port_t;
+
+/* Expiries in a row without a received character before one reaches the core
+ * (docs/porting.md section 4). */
+#ifndef MODCP_NRF51_EOF_QUIET_ROUNDS
+#define MODCP_NRF51_EOF_QUIET_ROUNDS 3u /* 1: report the first quiet expiry (no confirmation; experiments) */
+#endif
 
 /* Fill port->hal, set up the one-shot timer and the DE / LED pins. */
 void modcp_nrf51_port_init(modcp_nrf51_port_t *port, const modcp_nrf51_cfg_t *cfg);
