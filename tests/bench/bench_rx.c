@@ -107,19 +107,11 @@ static void link_setup(int t15, int modem)
     char_us = modcp_params_char_us(&p);
 }
 
-/* One frame into the link; returns 1 when it was delivered as a request. */
-static int link_frame(void)
+/* The end of a frame: the timer's expiries until the link hands it over (1) or gives
+ * up (0), then a pause before the next frame. */
+static int link_frame_end(void)
 {
     int got = 0;
-    for (unsigned k = 0; k < FRAME_LEN; k++) {
-        if (due()) {
-            timer_on = 0;
-            now_us = timer_at;
-            (void)modcp_link_on_timer(&link_, now_us, &fr);
-        }
-        modcp_link_on_byte(&link_, frame[k], now_us);
-        now_us += char_us;
-    }
     while (timer_on && !got) {
         timer_on = 0;
         now_us = timer_at;
@@ -132,23 +124,28 @@ static int link_frame(void)
     return got;
 }
 
+/* One frame into the link; returns 1 when it was delivered as a request. */
+static int link_frame(void)
+{
+    for (unsigned k = 0; k < FRAME_LEN; k++) {
+        if (due()) {
+            timer_on = 0;
+            now_us = timer_at;
+            (void)modcp_link_on_timer(&link_, now_us, &fr);
+        }
+        modcp_link_on_byte(&link_, frame[k], now_us);
+        now_us += char_us;
+    }
+    return link_frame_end();
+}
+
 /* The same frame handed over in one block at the end of its last character. */
 static int link_block_frame(void)
 {
-    int got = 0;
     now_us += (uint32_t)(FRAME_LEN - 1u) * char_us;
     modcp_link_on_block(&link_, frame, (uint16_t)FRAME_LEN, now_us);
     now_us += char_us;
-    while (timer_on && !got) {
-        timer_on = 0;
-        now_us = timer_at;
-        got = modcp_link_on_timer(&link_, now_us, &fr) ? 1 : 0;
-    }
-    if (got) {
-        modcp_link_done(&link_);
-    }
-    now_us += 10000u;
-    return got;
+    return link_frame_end();
 }
 
 /* ---- cp mode --------------------------------------------------------------------- */

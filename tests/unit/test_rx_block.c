@@ -43,22 +43,31 @@ typedef struct {
     size_t ncuts;
 } line_t;
 
-static void add_hex(line_t *l, const char *hex, uint32_t gap_us)
+/* A new block after gap_us of silence (none before the line's first byte). */
+static void cut(line_t *l, uint32_t gap_us)
 {
     if (l->n > 0 || gap_us > 0) {
         l->cuts[l->ncuts++] = (cut_t){l->n, gap_us};
     }
+}
+
+static void add_hex(line_t *l, const char *hex, uint32_t gap_us)
+{
+    cut(l, gap_us);
     l->n += hex_frame(hex, &l->b[l->n], sizeof l->b - l->n);
+}
+
+static void add_bytes(line_t *l, const uint8_t *b, size_t n, uint32_t gap_us)
+{
+    assert_true(n <= sizeof l->b - l->n);
+    cut(l, gap_us);
+    memcpy(&l->b[l->n], b, n);
+    l->n += n;
 }
 
 static void add_text(line_t *l, const char *text, uint32_t gap_us)
 {
-    if (l->n > 0 || gap_us > 0) {
-        l->cuts[l->ncuts++] = (cut_t){l->n, gap_us};
-    }
-    size_t k = strlen(text);
-    memcpy(&l->b[l->n], text, k);
-    l->n += k;
+    add_bytes(l, (const uint8_t *)text, strlen(text), gap_us);
 }
 
 /* Split the last block at byte `at` (no silence: the port handed it over in parts). */
@@ -232,11 +241,7 @@ static void test_other_address(void **state)
     line_t l = {0};
     uint8_t f[8] = {6, 3, 0x00, 0x50, 0x00, 0x02};
     add_crc(f, 6);
-    char hex[40];
-    for (size_t i = 0; i < 8; i++) {
-        snprintf(&hex[3 * i], 4, "%02X ", f[i]);
-    }
-    add_hex(&l, hex, 0);
+    add_bytes(&l, f, 8, 0);
     lw_t *x = both(&p, &l, 50);
     assert_int_equal(x->tx_calls, 0);
     assert_int_equal(cnt(x)[MODCP_CNT_BUS_MSG], 1);
@@ -252,11 +257,7 @@ static void test_broadcast(void **state)
     line_t l = {0};
     uint8_t f[8] = {0, 6, 0x00, 0x50, 0x12, 0x34};
     add_crc(f, 6);
-    char hex[40];
-    for (size_t i = 0; i < 8; i++) {
-        snprintf(&hex[3 * i], 4, "%02X ", f[i]);
-    }
-    add_hex(&l, hex, 0);
+    add_bytes(&l, f, 8, 0);
     lw_t *x = both(&p, &l, 50);
     assert_int_equal(x->tx_calls, 0);
     assert_memory_equal(world_db(x->w, 800) + 160, "\x12\x34", 2);
@@ -433,15 +434,6 @@ static uint32_t rnd(uint32_t n)
     rnd_state ^= rnd_state >> 17;
     rnd_state ^= rnd_state << 5;
     return rnd_state % n;
-}
-
-static void add_bytes(line_t *l, const uint8_t *b, size_t n, uint32_t gap_us)
-{
-    char hex[3 * 64 + 1];
-    for (size_t i = 0; i < n; i++) {
-        snprintf(&hex[3 * i], 4, "%02X ", b[i]);
-    }
-    add_hex(l, hex, gap_us);
 }
 
 static void test_random_lines(void **state)
