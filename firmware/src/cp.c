@@ -300,12 +300,7 @@ void modcp_cp_on_rx_block(modcp_cp_t *cp, const uint8_t *b, uint16_t n, uint32_t
         return;
     }
     cp->published = false; /* see publish() */
-    modcp_link_t *l = &cp->link;
-    if (l->enabled && n != 0u && l->ops->on_block != NULL) {
-        l->ops->on_block(l, b, n, end_us); /* = modcp_link_on_block(), its usual case */
-    } else {
-        modcp_link_on_block(l, b, n, end_us);
-    }
+    modcp_link_on_block(&cp->link, b, n, end_us);
 }
 
 void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us)

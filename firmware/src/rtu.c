@@ -10,8 +10,7 @@
  * frame is checked only when t3.5 has passed. Time stamps are the ends of characters,
  * as the UART receive interrupt sees them. A block of characters back to back
  * (modcp_cp_on_rx_block: DMA, FIFO) has the effect of its characters one by one at
- * their ends; a run of our frame is stored and CRC'd in one loop, and (not -Os) our
- * frame's start (idle, our address or 0) opens that run without leaving the loop.
+ * their ends; a run of our frame is stored and CRC'd in one loop.
  * The reply of an FC05 / FC06 is the request unchanged (l->reply_same, set by the CP
  * from the PDU engine): its frame goes out as received, the CRC already in place.
  *
@@ -211,24 +210,9 @@ static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
     }
     while (b < e) {
         if (l->state != MODCP_LINK_RX || l->len >= l->cap) {
-#if !defined(__OPTIMIZE_SIZE__) /* not -Os: our frame's start stays in the loop */
-            if (l->state == MODCP_LINK_IDLE && (*b == l->own_addr || *b == 0u)) {
-                /* frame_start() without its first character, which the run below
-                 * stores and CRCs */
-                l->fr.rtu.count = 1;
-                l->rx_bad = false;
-                l->rx_overflow = false;
-                l->len = 0; /* configured: cap >= RTU_MIN_FRAME */
-                l->fr.rtu.crc = MODCP_CRC_INIT;
-                l->state = MODCP_LINK_RX;
-                link_arm(l, l->t35_us);
-            } else
-#endif
-            {
-                byte_other(l, *b++, t);
-                t += c;
-                continue;
-            }
+            byte_other(l, *b++, t); /* a frame's start included: frame_start() */
+            t += c;
+            continue;
         }
         unsigned m = (unsigned)(e - b); /* a run of our frame: as many as fit */
         if (m > (unsigned)(l->cap - l->len)) {
