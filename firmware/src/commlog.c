@@ -1,5 +1,4 @@
 /* modcp — communication event log and flags (see modcp/commlog.h). */
-#define MODCP_COMMLOG_C /* -Os: the out-of-line copies of commlog_internal.h */
 #include "modcp/commlog.h"
 
 #include <string.h>
@@ -10,6 +9,34 @@
 _Static_assert(MODCP_COMM_LOG_LEN == MODCP_COMM_LOG, "comm event log length");
 _Static_assert(MODCP_COMM_LOG_LEN <= 255u, "log_len is a byte");
 _Static_assert((MODCP_COMM_LOG_LEN & (MODCP_COMM_LOG_LEN - 1u)) == 0u, "the log ring wraps by a mask");
+
+void modcp_comm_log(modcp_comm_t *c, uint8_t ev)
+{
+    c->log_head = (uint8_t)((c->log_head - 1u) & (MODCP_COMM_LOG_LEN - 1u));
+    c->log[c->log_head] = ev;
+    if (c->log_len < MODCP_COMM_LOG_LEN) {
+        c->log_len++;
+    }
+}
+
+/* The receive event's flags: listen-only, and a character overrun not yet reported. */
+static uint8_t rx_flags(modcp_comm_t *c)
+{
+    uint8_t ev = MODCP_COMM_RX;
+    if (c->listen_only) {
+        ev |= MODCP_COMM_RX_LISTEN;
+    }
+    if (c->overrun_pending) {
+        ev |= MODCP_COMM_RX_OVERRUN;
+        c->overrun_pending = false;
+    }
+    return ev;
+}
+
+void modcp_comm_rx(modcp_comm_t *c, bool broadcast)
+{
+    modcp_comm_log(c, (uint8_t)(rx_flags(c) | (broadcast ? MODCP_COMM_RX_BROADCAST : 0u)));
+}
 
 void modcp_comm_clear_log(modcp_comm_t *c)
 {
@@ -24,6 +51,6 @@ void modcp_comm_counted(modcp_comm_t *c, unsigned counter)
         c->overrun_pending = true;
         c->diag_reg |= MODCP_DREG_OVERRUN;
     } else if (counter == (unsigned)MODCP_CNT_BUS_CRC) {
-        modcp_comm_log(c, (uint8_t)(modcp_comm_rx_flags(c) | MODCP_COMM_RX_COMM_ERROR));
+        modcp_comm_log(c, (uint8_t)(rx_flags(c) | MODCP_COMM_RX_COMM_ERROR));
     }
 }
