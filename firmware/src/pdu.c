@@ -41,14 +41,19 @@ enum {
     F_NOCOUNT = 1u << 7, /* not counted by the FC11 event counter (FC11, FC12) */
 };
 
-typedef struct {
+/* In fc_row_t.lim next to the limit class: the request PDU has exactly min_len bytes
+ * (without it: at least min_len, the handler checks the rest against the byte count). */
+#define L_EXACT 0x80u
+
+typedef struct { /* 8 bytes on a 32-bit target */
     uint8_t fc;
     uint8_t min_len; /* request PDU length, function code included */
-    uint8_t max_len; /* 0: the handler checks it against the byte count */
     uint8_t flags;   /* F_* */
-    uint8_t lim;     /* MODCP_QLIM_*: quantity at pdu[3..4], limits in quantity.c */
+    uint8_t lim;     /* MODCP_QLIM_*: quantity at pdu[3..4], limits in quantity.c;
+                        | L_EXACT: the length is exactly min_len */
     modcp_pdu_handler_t run;
 } fc_row_t;
+_Static_assert(MODCP_QLIM_COUNT <= L_EXACT, "L_EXACT shares the byte of the limit class");
 
 #if MODCP_WITH_EXTENDED
 #define EXT_ONLY(...) __VA_ARGS__,
@@ -60,23 +65,23 @@ typedef struct {
 /* The function codes, the most frequent first (one row per function set where the
  * handlers differ). */
 static const fc_row_t fc_table[] = {
-    /*       {fc,    min, max, function sets and flags,                        quantity limits,      handler} */
-             {0x03u, 5u,  5u, BOTH | F_ADDR | F_R32 | F_SCAN,                    MODCP_QLIM_READ_REGS,  modcp_pdu_read_regs},
-             {0x10u, 6u,  0u, BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_WRITE_REGS, modcp_pdu_write_regs},
-             {0x06u, 3u,  0u, BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_NONE,       modcp_pdu_write_reg},
-             {0x01u, 5u,  5u, BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS,  modcp_pdu_read_bits},
-             {0x02u, 5u,  5u, BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS,  modcp_pdu_read_bits},
-             {0x04u, 5u,  5u, BOTH | F_ADDR,                                     MODCP_QLIM_READ_REGS,  modcp_pdu_read_regs},
-             {0x05u, 5u,  5u, BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_NONE,       modcp_pdu_write_coil},
-             {0x0Fu, 6u,  0u, BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_WRITE_BITS, modcp_pdu_write_coils},
-             {0x08u, 3u,  0u, F_CP341,                                           MODCP_QLIM_NONE,       modcp_pdu_diag0},
-    EXT_ONLY({0x08u, 3u,  0u, F_EXT,                                             MODCP_QLIM_NONE,       modcp_pdu_fc08})
-    EXT_ONLY({0x17u, 10u, 0u, F_EXT | F_WRITE,                                   MODCP_QLIM_NONE,       modcp_pdu_fc23})
-    EXT_ONLY({0x16u, 7u,  7u, F_EXT | F_WRITE,                                   MODCP_QLIM_NONE,       modcp_pdu_fc22})
-    EXT_ONLY({0x0Bu, 1u,  1u, F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE,       modcp_pdu_fc11})
-    EXT_ONLY({0x0Cu, 1u,  1u, F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE,       modcp_pdu_fc12})
-    EXT_ONLY({0x11u, 1u,  1u, F_EXT,                                             MODCP_QLIM_NONE,       modcp_pdu_fc17})
-    EXT_ONLY({0x2Bu, 2u,  0u, F_EXT,                                             MODCP_QLIM_NONE,       modcp_pdu_fc43})
+    /*       {fc,    min, function sets and flags,                        quantity limits | exact length,   handler} */
+             {0x03u, 5u,  BOTH | F_ADDR | F_R32 | F_SCAN,                    MODCP_QLIM_READ_REGS | L_EXACT,  modcp_pdu_read_regs},
+             {0x10u, 6u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_WRITE_REGS,           modcp_pdu_write_regs},
+             {0x06u, 3u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_NONE,                 modcp_pdu_write_reg},
+             {0x01u, 5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS | L_EXACT,  modcp_pdu_read_bits},
+             {0x02u, 5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS | L_EXACT,  modcp_pdu_read_bits},
+             {0x04u, 5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_REGS | L_EXACT,  modcp_pdu_read_regs},
+             {0x05u, 5u,  BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_NONE | L_EXACT,       modcp_pdu_write_coil},
+             {0x0Fu, 6u,  BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_WRITE_BITS,           modcp_pdu_write_coils},
+             {0x08u, 3u,  F_CP341,                                           MODCP_QLIM_NONE,                 modcp_pdu_diag0},
+    EXT_ONLY({0x08u, 3u,  F_EXT,                                             MODCP_QLIM_NONE,                 modcp_pdu_fc08})
+    EXT_ONLY({0x17u, 10u, F_EXT | F_WRITE,                                   MODCP_QLIM_NONE,                 modcp_pdu_fc23})
+    EXT_ONLY({0x16u, 7u,  F_EXT | F_WRITE,                                   MODCP_QLIM_NONE | L_EXACT,       modcp_pdu_fc22})
+    EXT_ONLY({0x0Bu, 1u,  F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE | L_EXACT,       modcp_pdu_fc11})
+    EXT_ONLY({0x0Cu, 1u,  F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE | L_EXACT,       modcp_pdu_fc12})
+    EXT_ONLY({0x11u, 1u,  F_EXT,                                             MODCP_QLIM_NONE | L_EXACT,       modcp_pdu_fc17})
+    EXT_ONLY({0x2Bu, 2u,  F_EXT,                                             MODCP_QLIM_NONE,                 modcp_pdu_fc43})
 };
 
 _Static_assert(sizeof fc_table / sizeof fc_table[0] == (MODCP_WITH_EXTENDED ? 16u : 9u),
@@ -254,12 +259,13 @@ static modcp_pdu_action_t dispatch(modcp_pdu_t *s, const modcp_pdu_env_t *env, u
     }
     s->fcflags = r->flags;
     modcp_pdu_handler_t h = r->run;
-    if (len < r->min_len || (r->max_len != 0u && len > r->max_len)) {
+    if (len < r->min_len || ((r->lim & L_EXACT) != 0u && len != r->min_len)) {
         return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
     if ((r->flags & F_ADDR) != 0u) {
+        const uint8_t lim = (uint8_t)(r->lim & ~L_EXACT);
         s->addr = modcp_get16(pdu + 1);
-        uint16_t qty = r->lim != (uint8_t)MODCP_QLIM_NONE ? modcp_get16(pdu + 3) : 1u;
+        uint16_t qty = lim != (uint8_t)MODCP_QLIM_NONE ? modcp_get16(pdu + 3) : 1u;
         bool scan = false;
 #if MODCP_WITH_EXTENDED
         if ((r->flags & F_SCAN) != 0u && env->p->scan_count != 0u &&
@@ -271,9 +277,9 @@ static modcp_pdu_action_t dispatch(modcp_pdu_t *s, const modcp_pdu_env_t *env, u
         if (!scan && (r->flags & F_R32) != 0u && env->p->regs32 != 0u) { /* else 16-bit */
             s->r32_kind = modcp_regs32_kind(env->p, s->fc, s->addr);
         }
-        if (r->lim != (uint8_t)MODCP_QLIM_NONE) {
+        if (lim != (uint8_t)MODCP_QLIM_NONE) {
             s->qty = qty;
-            if (qty < 1u || qty > modcp_qty_limit(env->p, r->lim, s->r32_kind)) {
+            if (qty < 1u || qty > modcp_qty_limit(env->p, lim, s->r32_kind)) {
                 return modcp_pdu_err(s, MODCP_EV_QUANTITY, MODCP_EXC_ILLEGAL_VALUE);
             }
         }
