@@ -33,6 +33,8 @@
 #include "modcp/map.h"
 
 #include <stddef.h>
+#include <string.h>
+
 #include "map_internal.h"
 
 #define TC_MAX_CP341 16u   /* 004 §3.3: CP 341 reads at most 16 timers / counters */
@@ -55,25 +57,29 @@ static bool is_tc(uint8_t area)
      AREA_BIT(MODCP_AREA_C) | AREA_BIT(MODCP_AREA_DB))
 #define INPUT_AREAS (AREA_BIT(MODCP_AREA_M) | AREA_BIT(MODCP_AREA_I) | AREA_BIT(MODCP_AREA_DB))
 
+/* The sizes of I, Q, M, T, C are consecutive fields of modcp_areas_t, in area order. */
+_Static_assert(MODCP_AREA_Q == MODCP_AREA_I + 1 && MODCP_AREA_M == MODCP_AREA_I + 2 &&
+                   MODCP_AREA_T == MODCP_AREA_I + 3 && MODCP_AREA_C == MODCP_AREA_I + 4,
+               "area order");
+_Static_assert(offsetof(modcp_areas_t, q_bytes) == offsetof(modcp_areas_t, i_bytes) + 2u &&
+                   offsetof(modcp_areas_t, m_bytes) == offsetof(modcp_areas_t, i_bytes) + 4u &&
+                   offsetof(modcp_areas_t, timers) == offsetof(modcp_areas_t, i_bytes) + 6u &&
+                   offsetof(modcp_areas_t, counters) == offsetof(modcp_areas_t, i_bytes) + 8u,
+               "modcp_areas_t: the sizes in area order");
+
 static inline uint32_t area_size(const modcp_areas_t *a, uint8_t area)
 {
     if (a == NULL || area == MODCP_AREA_DB) {
         return 0x10000u;
     }
-    switch (area) {
-    case MODCP_AREA_I:
-        return a->i_bytes;
-    case MODCP_AREA_Q:
-        return a->q_bytes;
-    case MODCP_AREA_M:
-        return a->m_bytes;
-    case MODCP_AREA_T:
-        return a->timers;
-    case MODCP_AREA_C:
-        return a->counters;
-    default:
+    if (area < MODCP_AREA_I || area > MODCP_AREA_C) {
         return 0u;
     }
+    uint16_t n;
+    memcpy(&n, (const uint8_t *)a + offsetof(modcp_areas_t, i_bytes) +
+                   2u * (unsigned)(area - MODCP_AREA_I),
+           sizeof n);
+    return n;
 }
 
 uint32_t modcp_map_area_size(const modcp_areas_t *a, uint8_t area)
@@ -156,22 +162,10 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
         return MODCP_EV_PAST_END;
     }
 
-    if (write) {
-        bool ok;
-        switch (w->area) {
-        case MODCP_AREA_M:
-            ok = limit_ok(&p->lim_m, first, last);
-            break;
-        case MODCP_AREA_Q:
-            ok = limit_ok(&p->lim_q, first, last);
-            break;
-        case MODCP_AREA_DB:
-            ok = db_write_ok(p, a, w->db);
-            break;
-        default:
-            ok = false;
-            break;
-        }
+    if (write) { /* a coil window: M, Q or DB (T / C refused above) */
+        const bool ok = w->area == MODCP_AREA_DB
+                            ? db_write_ok(p, a, w->db)
+                            : limit_ok(w->area == MODCP_AREA_M ? &p->lim_m : &p->lim_q, first, last);
         if (!ok) {
             return MODCP_EV_WRITE_DENIED;
         }
