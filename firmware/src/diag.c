@@ -36,8 +36,9 @@ void modcp_diag_event(modcp_diag_t *d, modcp_event_t ev)
     d->events_total++;
 }
 
-/* Every counter but the bus and slave message counts (modcp_diag_count, inline). */
-void modcp_diag_count_error(modcp_diag_t *d, modcp_counter_t c)
+/* Every counter but the bus and slave message counts (modcp_diag_count, inline). Out of
+ * line also under LTO: called from a few cold paths, one copy is enough. */
+__attribute__((noinline)) void modcp_diag_count_error(modcp_diag_t *d, modcp_counter_t c)
 {
     if ((unsigned)c >= MODCP_CNT_COUNT) {
         return;

@@ -155,8 +155,9 @@ static modcp_pdu_action_t fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8
                                uint16_t *out_len)
 {
     const modcp_event_t ev = s->err;
+    modcp_diag_t *d = env->diag;
     s->same = false; /* the reply is an exception */
-    modcp_diag_event(env->diag, ev);
+    modcp_diag_event(d, ev);
     uint8_t code = s->x.exc;
     if (code == (uint8_t)MODCP_EXC_OF_EVENT) {
         code = modcp_event_exception(ev);
@@ -168,14 +169,13 @@ static modcp_pdu_action_t fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8
     if (ev == MODCP_EV_XFER_TIMEOUT || ev == MODCP_EV_FB_TIMEOUT) {
         s->x.timeout = 1;
     }
-    modcp_diag_count(env->diag, MODCP_CNT_EXCEPTION);
-    if (code == (uint8_t)MODCP_EXC_NAK) {
-        modcp_diag_count(env->diag, MODCP_CNT_NAK);
-    } else if (code == (uint8_t)MODCP_EXC_BUSY) {
-        modcp_diag_count(env->diag, MODCP_CNT_BUSY);
+    /* the error counts (out of line in diag.c: one call each) */
+    modcp_diag_count_error(d, MODCP_CNT_EXCEPTION);
+    if (code == (uint8_t)MODCP_EXC_BUSY || code == (uint8_t)MODCP_EXC_NAK) {
+        modcp_diag_count_error(d, code == (uint8_t)MODCP_EXC_BUSY ? MODCP_CNT_BUSY : MODCP_CNT_NAK);
     }
     if (s->broadcast) {
-        modcp_diag_count(env->diag, MODCP_CNT_NO_RESPONSE);
+        modcp_diag_count_error(d, MODCP_CNT_NO_RESPONSE);
         return MODCP_PDU_NO_REPLY;
     }
     *out_len = modcp_pdu_exception(pdu, s->fc, code);
