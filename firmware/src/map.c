@@ -40,9 +40,11 @@
 #define TC_MAX_CP341 16u   /* 004 §3.3: CP 341 reads at most 16 timers / counters */
 #define WORDS_PER_DB 512u  /* 004 §3.4 */
 
+/* After the function code was checked (01 / 02 / 05 / 15, 03 / 04 / 06 / 16 / 22 / 23):
+ * every one but the reads writes. */
 static bool is_write_fc(uint8_t fc)
 {
-    return fc == 5u || fc == 6u || fc == 15u || fc == 16u || fc == 22u || fc == 23u;
+    return fc != 1u && fc != 2u && fc != 3u && fc != 4u;
 }
 
 static bool is_tc(uint8_t area)
@@ -135,13 +137,11 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
         return MODCP_EV_NO_WINDOW;
     }
 
-    const bool write = is_write_fc(fc);
+    const bool write = is_write_fc(fc); /* FC05 / FC15 */
+    const bool tc = is_tc(w->area);
     const uint32_t rel = (uint32_t)addr - (uint32_t)w->from;
-    const uint32_t end_addr = (uint32_t)addr + (uint32_t)qty - 1u;
-    uint32_t first; /* first byte / element */
-    uint32_t last;  /* last byte / element */
 
-    if (is_tc(w->area)) {
+    if (tc) {
         if (write) {
             return MODCP_EV_AREA_READONLY;
         }
@@ -152,13 +152,12 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
             (p->cpu_model == MODCP_CPU_CP341 && (uint32_t)qty / 16u > TC_MAX_CP341)) {
             return MODCP_EV_QUANTITY;
         }
-        first = (uint32_t)w->start + rel / 16u;
-        last = first + (uint32_t)qty / 16u - 1u;
-    } else {
-        first = (uint32_t)w->start + rel / 8u;
-        last = (uint32_t)w->start + (rel + (uint32_t)qty - 1u) / 8u;
     }
-    if (end_addr > w->to || last >= area_size(a, w->area)) {
+    /* first / last byte, or element for T / C (rel and qty then multiples of 16) */
+    const unsigned per = tc ? 4u : 3u; /* log2 of the bits per byte / element */
+    const uint32_t first = (uint32_t)w->start + (rel >> per);
+    const uint32_t last = (uint32_t)w->start + ((rel + (uint32_t)qty - 1u) >> per);
+    if ((uint32_t)addr + (uint32_t)qty - 1u > w->to || last >= area_size(a, w->area)) {
         return MODCP_EV_PAST_END;
     }
 
@@ -174,13 +173,8 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
     out->area = w->area;
     out->db = w->area == MODCP_AREA_DB ? w->db : 0u;
     out->offset = (uint16_t)first;
-    if (is_tc(w->area)) {
-        out->bit = 0u;
-        out->count = (uint16_t)(qty / 16u);
-    } else {
-        out->bit = (uint8_t)(rel % 8u);
-        out->count = qty;
-    }
+    out->bit = (uint8_t)(rel % 8u); /* 0 for T / C */
+    out->count = tc ? (uint16_t)(qty / 16u) : qty;
     return MODCP_EV_NONE;
 }
 
