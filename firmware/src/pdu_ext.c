@@ -40,8 +40,10 @@
 enum { PH_EARLY = 0, PH_CHECK = 1, PH_WRITE = 2, PH_READ = 3 };
 
 /* Operand k of the write part (write) or the read part. */
-static modcp_event_t operand(const modcp_pdu_t *s, const modcp_pdu_env_t *env, bool write,
-                             uint16_t k, modcp_operand_t *o)
+/* Out of line (also under LTO): called from five places of the sequence. */
+__attribute__((noinline)) static modcp_event_t operand(const modcp_pdu_t *s,
+                                                       const modcp_pdu_env_t *env, bool write,
+                                                       uint16_t k, modcp_operand_t *o)
 {
     const modcp_pdu_x_t *x = &s->x;
     if (write ? !x->wscan : !x->rscan) {
