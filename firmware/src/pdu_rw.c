@@ -21,19 +21,30 @@ static unsigned reg_bytes(uint8_t r32_kind)
     return r32_kind == 0u ? 2u : modcp_reg_bytes(r32_kind);
 }
 
-/* A read job whose data land after the reply's function code and byte count. */
-static modcp_pdu_action_t read_job(modcp_pdu_t *s, const modcp_operand_t *o, uint16_t len,
-                                   uint8_t *pdu, uint16_t cap)
+/* The job of a handler: op on the operand its mapping left in s->job.opnd, len data
+ * bytes (written from wdata, or read into rdata with rcap bytes of room). */
+static modcp_pdu_action_t job(modcp_pdu_t *s, uint8_t op, uint16_t len, const uint8_t *wdata,
+                              uint8_t *rdata, uint16_t rcap)
 {
-    return modcp_pdu_job(s, MODCP_JOB_READ, o, len, NULL, pdu + 2,
-                         (uint16_t)(cap > 2u ? cap - 2u : 0u));
+    s->job.op = op;
+    s->job.len = len;
+    s->wdata = wdata;
+    s->rdata = rdata;
+    s->rcap = rcap;
+    return MODCP_PDU_JOB;
 }
 
-/* The registers s->addr .. + qty mapped to their DB bytes (*o, width noted in
- * s->r32_kind); false with the request refused (s->err) when they do not map. */
-static bool map_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty,
-                     modcp_operand_t *o)
+/* A read job whose data land after the reply's function code and byte count. */
+static modcp_pdu_action_t read_job(modcp_pdu_t *s, uint16_t len, uint8_t *pdu, uint16_t cap)
 {
+    return job(s, MODCP_JOB_READ, len, NULL, pdu + 2, (uint16_t)(cap > 2u ? cap - 2u : 0u));
+}
+
+/* The registers s->addr .. + qty mapped to their DB bytes (s->job.opnd, width noted in
+ * s->r32_kind); false with the request refused (s->err) when they do not map. */
+static bool map_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty)
+{
+    modcp_operand_t *o = &s->job.opnd;
     modcp_event_t ev = modcp_map_regs(env->p, env->areas, s->fc, s->addr, qty, o);
     if (ev != MODCP_EV_NONE) {
         (void)modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
@@ -44,12 +55,11 @@ static bool map_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty,
     return true;
 }
 
-/* The bits s->addr .. + qty mapped to their operand (*o); false with the request
- * refused (s->err) when they do not map. */
-static bool map_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty,
-                     modcp_operand_t *o)
+/* The bits s->addr .. + qty mapped to their operand (s->job.opnd); false with the
+ * request refused (s->err) when they do not map. */
+static bool map_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty)
 {
-    modcp_event_t ev = modcp_map_bits(env->p, env->areas, s->fc, s->addr, qty, o);
+    modcp_event_t ev = modcp_map_bits(env->p, env->areas, s->fc, s->addr, qty, &s->job.opnd);
     if (ev != MODCP_EV_NONE) {
         (void)modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
         return false;
@@ -76,23 +86,23 @@ modcp_pdu_action_t modcp_pdu_read_bits(modcp_pdu_t *s, const modcp_pdu_env_t *en
 {
     (void)len;
     (void)out_len;
-    modcp_operand_t o;
-    if (!map_bits(s, env, s->qty, &o)) {
+    if (!map_bits(s, env, s->qty)) {
         return MODCP_PDU_FAIL;
     }
+    modcp_operand_t *o = &s->job.opnd;
     uint16_t bytes;
-    if (o.area == MODCP_AREA_T || o.area == MODCP_AREA_C) {
-        bytes = (uint16_t)(o.count * 2u); /* whole words, high byte first */
+    if (o->area == MODCP_AREA_T || o->area == MODCP_AREA_C) {
+        bytes = (uint16_t)(o->count * 2u); /* whole words, high byte first */
         s->x.rbytes = bytes;
     } else {
-        bytes = (uint16_t)((o.bit + s->qty + 7u) / 8u);
-        s->shift = o.bit;
+        bytes = (uint16_t)((o->bit + s->qty + 7u) / 8u);
+        s->shift = o->bit;
         s->bits = 1; /* pdu.c aligns the bit string */
         s->x.rbytes = (uint16_t)((s->qty + 7u) / 8u);
-        o.count = bytes; /* the job reads whole bytes */
-        o.bit = 0;
+        o->count = bytes; /* the job reads whole bytes */
+        o->bit = 0;
     }
-    return read_job(s, &o, bytes, pdu, cap);
+    return read_job(s, bytes, pdu, cap);
 }
 
 /* FC03 / FC04: read registers. */
@@ -101,12 +111,11 @@ modcp_pdu_action_t modcp_pdu_read_regs(modcp_pdu_t *s, const modcp_pdu_env_t *en
 {
     (void)len;
     (void)out_len;
-    modcp_operand_t o;
-    if (!map_regs(s, env, s->qty, &o)) {
+    if (!map_regs(s, env, s->qty)) {
         return MODCP_PDU_FAIL;
     }
-    s->x.rbytes = o.count;
-    return read_job(s, &o, o.count, pdu, cap);
+    s->x.rbytes = s->job.opnd.count;
+    return read_job(s, s->job.opnd.count, pdu, cap);
 }
 
 /* FC05: write single coil (reply: echo of the request). */
@@ -122,14 +131,13 @@ modcp_pdu_action_t modcp_pdu_write_coil(modcp_pdu_t *s, const modcp_pdu_env_t *e
     if (value != 0xFF00u && value != 0x0000u) {
         return modcp_pdu_err(s, MODCP_EV_COIL_VALUE, MODCP_EXC_ILLEGAL_VALUE);
     }
-    modcp_operand_t o;
-    if (!map_bits(s, env, 1, &o)) {
+    if (!map_bits(s, env, 1)) {
         return MODCP_PDU_FAIL;
     }
     s->bitval = value == 0xFF00u ? 1u : 0u;
     s->x.echo = 5; /* len 5 (the table) */
     s->same = true;
-    return modcp_pdu_job(s, MODCP_JOB_BITWRITE, &o, 1, &s->bitval, NULL, 0);
+    return job(s, MODCP_JOB_BITWRITE, 1, &s->bitval, NULL, 0);
 }
 
 /* FC06: write single register (reply: echo; 5 bytes, 7 for an int32 / float register
@@ -143,13 +151,12 @@ modcp_pdu_action_t modcp_pdu_write_reg(modcp_pdu_t *s, const modcp_pdu_env_t *en
     if (len != 3u + reg_bytes(s->r32_kind)) {
         return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
-    modcp_operand_t o;
-    if (!map_regs(s, env, 1, &o)) {
+    if (!map_regs(s, env, 1)) {
         return MODCP_PDU_FAIL;
     }
     s->x.echo = len;
     s->same = true;
-    return modcp_pdu_job(s, MODCP_JOB_WRITE, &o, o.count, pdu + 3, NULL, 0);
+    return job(s, MODCP_JOB_WRITE, s->job.opnd.count, pdu + 3, NULL, 0);
 }
 
 /* FC15: write multiple coils (reply: fc, start, quantity). */
@@ -163,12 +170,11 @@ modcp_pdu_action_t modcp_pdu_write_coils(modcp_pdu_t *s, const modcp_pdu_env_t *
     if (bc != (s->qty + 7u) / 8u || len != 6u + bc) {
         return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
-    modcp_operand_t o;
-    if (!map_bits(s, env, s->qty, &o)) {
+    if (!map_bits(s, env, s->qty)) {
         return MODCP_PDU_FAIL;
     }
     s->x.echo = 5;
-    return modcp_pdu_job(s, MODCP_JOB_BITWRITE, &o, bc, pdu + 6, NULL, 0);
+    return job(s, MODCP_JOB_BITWRITE, bc, pdu + 6, NULL, 0);
 }
 
 /* FC16: write multiple registers (reply: fc, start, quantity). */
@@ -182,15 +188,14 @@ modcp_pdu_action_t modcp_pdu_write_regs(modcp_pdu_t *s, const modcp_pdu_env_t *e
     if (bc != reg_bytes(s->r32_kind) * s->qty || len != 6u + bc) {
         return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
-    modcp_operand_t o;
-    if (!map_regs(s, env, s->qty, &o)) {
+    if (!map_regs(s, env, s->qty)) {
         return MODCP_PDU_FAIL;
     }
-    if (o.count != bc) {
+    if (s->job.opnd.count != bc) {
         return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
     s->x.echo = 5;
-    return modcp_pdu_job(s, MODCP_JOB_WRITE, &o, bc, pdu + 6, NULL, 0);
+    return job(s, MODCP_JOB_WRITE, bc, pdu + 6, NULL, 0);
 }
 
 /* FC08 in the manual set: sub-function 0000 (return query data) only. */
