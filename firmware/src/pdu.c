@@ -63,7 +63,8 @@ _Static_assert(MODCP_QLIM_COUNT <= L_EXACT, "L_EXACT shares the byte of the limi
 #define BOTH (F_CP341 | F_EXT)
 
 /* The function codes, the most frequent first (one row per function set where the
- * handlers differ). */
+ * handlers differ: a row of the cp341 set only is followed by the same fc's row of the
+ * extended set, row_of() relies on it). */
 static const fc_row_t fc_table[] = {
     /*       {fc,    min, function sets and flags,                        quantity limits | exact length,   handler} */
              {0x03u, 5u,  BOTH | F_ADDR | F_R32 | F_SCAN,                    MODCP_QLIM_READ_REGS | L_EXACT,  modcp_pdu_read_regs},
@@ -87,8 +88,8 @@ static const fc_row_t fc_table[] = {
 _Static_assert(sizeof fc_table / sizeof fc_table[0] == (MODCP_WITH_EXTENDED ? 16u : 9u),
                "fc_first_row below indexes fc_table: keep both in step");
 
-/* fc -> 1 + the index of its first row in fc_table (0: no row). The rows of one fc
- * are adjacent (FC08: cp341, then extended). */
+/* fc -> 1 + the index of its first row in fc_table (0: no row). An fc has at most two
+ * rows, adjacent (FC08: cp341, then extended). */
 #define FC_SLOTS 0x2Cu
 static const uint8_t fc_first_row[FC_SLOTS] = {
     [0x03u] = 1u, [0x10u] = 2u, [0x06u] = 3u, [0x01u] = 4u, [0x02u] = 5u, [0x04u] = 6u,
@@ -108,16 +109,20 @@ static const fc_row_t *row_of(const modcp_params_t *p, uint8_t fc)
     (void)p;
     const uint8_t set = F_CP341;
 #endif
-    if (fc >= FC_SLOTS || fc_first_row[fc] == 0u) {
+    const unsigned first = fc < FC_SLOTS ? fc_first_row[fc] : 0u;
+    if (first == 0u) {
         return NULL;
     }
-    const fc_row_t *end = fc_table + sizeof fc_table / sizeof fc_table[0];
-    for (const fc_row_t *r = &fc_table[fc_first_row[fc] - 1u]; r < end && r->fc == fc; r++) {
-        if ((r->flags & set) != 0u) {
-            return r;
-        }
+    const fc_row_t *r = &fc_table[first - 1u];
+    if ((r->flags & set) != 0u) {
+        return r;
     }
-    return NULL;
+#if MODCP_WITH_EXTENDED
+    if (set == F_EXT) {
+        return r + 1; /* FC08's cp341 row: its extended row follows (the only fc with two) */
+    }
+#endif
+    return NULL; /* cp341 set: an fc of the extended set only */
 }
 
 /* ---- exceptions, reply encoding ----------------------------------------------------- */
