@@ -12,9 +12,9 @@ uint8_t modcp_regs32_kind(const modcp_params_t *p, uint8_t fc, uint16_t reg);
 /* Bytes per register for a kind returned by modcp_regs32_kind(): 4 for int32 and
  * float, else 2. */
 uint8_t modcp_reg_bytes(uint8_t r32_kind);
-/* Largest quantity of limit class lim (MODCP_QLIM_*, < MODCP_QLIM_COUNT) for the
- * quantity_limits set and framing of p and the register kind (0 for bits and 16-bit
- * registers); 0 for MODCP_QLIM_NONE. */
+/* Largest quantity of limit class lim (MODCP_QLIM_*, RW_* only with the extended set)
+ * for the quantity_limits set and framing of p and the register kind (0 for bits and
+ * 16-bit registers); 0 for MODCP_QLIM_NONE. */
 static inline uint16_t modcp_qty_limit(const modcp_params_t *p, uint8_t lim, uint8_t r32_kind)
 {
     unsigned col = p->qty_limits == (uint8_t)MODCP_QLIMITS_SPEC
