@@ -94,7 +94,7 @@ static bool limit_ok(const modcp_limit_t *l, uint32_t first, uint32_t last)
     return l->max != 0u && first >= l->min && last <= l->max;
 }
 
-static bool db_write_ok(const modcp_params_t *p, const modcp_areas_t *a, uint32_t db)
+bool modcp_map_db_write_ok(const modcp_params_t *p, const modcp_areas_t *a, uint32_t db)
 {
     if (a != NULL && a->work_db != 0u && db == a->work_db) {
         return false; /* the FB's work area is never writable (004 §3.5) */
@@ -163,7 +163,7 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
 
     if (write) { /* a coil window: M, Q or DB (T / C refused above) */
         const bool ok = w->area == MODCP_AREA_DB
-                            ? db_write_ok(p, a, w->db)
+                            ? modcp_map_db_write_ok(p, a, w->db)
                             : limit_ok(w->area == MODCP_AREA_M ? &p->lim_m : &p->lim_q, first, last);
         if (!ok) {
             return MODCP_EV_WRITE_DENIED;
@@ -201,7 +201,7 @@ static modcp_event_t map_regs32(const modcp_params_t *p, const modcp_areas_t *a,
         bytes > 0xFFFFu) {
         return MODCP_EV_PAST_END;
     }
-    if (is_write_fc(fc) && !db_write_ok(p, a, r->db)) {
+    if (is_write_fc(fc) && !modcp_map_db_write_ok(p, a, r->db)) {
         return MODCP_EV_WRITE_DENIED;
     }
     out->area = MODCP_AREA_DB;
@@ -247,7 +247,7 @@ modcp_event_t modcp_map_regs(const modcp_params_t *p, const modcp_areas_t *a, ui
     if (word + (uint32_t)qty > WORDS_PER_DB) {
         return MODCP_EV_DB_ACCESS; /* would cross into the next DB */
     }
-    if (is_write_fc(fc) && !db_write_ok(p, a, db)) {
+    if (is_write_fc(fc) && !modcp_map_db_write_ok(p, a, db)) {
         return MODCP_EV_WRITE_DENIED;
     }
     out->area = MODCP_AREA_DB;

@@ -25,6 +25,9 @@ modcp_event_t modcp_map_regs(const modcp_params_t *p, const modcp_areas_t *a, ui
 /* Size of a controller area in bytes (M, Q, I) or elements (T, C) as reported at init;
  * DB (and areas == NULL): 65536, since DB sizes are checked by the CPU side. */
 uint32_t modcp_map_area_size(const modcp_areas_t *a, uint8_t area);
+/* May the master write to DB db? Inside the parameters' DB limits (lim_db, db >= 1)
+ * and not the FB's work DB (a == NULL: unknown, not checked). */
+bool modcp_map_db_write_ok(const modcp_params_t *p, const modcp_areas_t *a, uint32_t db);
 /* Inverse of the register scheme (8.6): register number of DB db, byte offset dbw
  * relative to base. Returns false when not addressable. */
 bool modcp_map_reg_of(uint16_t base_db, uint16_t db, uint16_t dbw, uint16_t *reg);

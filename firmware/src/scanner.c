@@ -93,8 +93,7 @@ modcp_event_t modcp_scan_map(const modcp_params_t *p, const modcp_areas_t *a, ui
         if (first + 1u > 0xFFFFu) {
             return MODCP_EV_PAST_END;
         }
-        if (write && ((a != NULL && a->work_db != 0u && e->db == a->work_db) ||
-                      !limit_ok(&p->lim_db, e->db, e->db))) {
+        if (write && !modcp_map_db_write_ok(p, a, e->db)) {
             return MODCP_EV_WRITE_DENIED;
         }
         out->db = e->db;
