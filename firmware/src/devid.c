@@ -44,6 +44,27 @@ static bool run_indicator(const modcp_pdu_env_t *env)
     return env->fb_ready && !(env->ext != NULL && env->ext->cpu_stalled);
 }
 
+/* The objects of the CP in id order, i = 0..3: 00 vendor, 01 product, 02 revision,
+ * 06 application name (present when not empty). Their strings are consecutive fields
+ * of modcp_params_t. */
+#define ID_FIELD (MODCP_ID_STRING_MAX + 1u)
+_Static_assert(offsetof(modcp_params_t, product) == offsetof(modcp_params_t, vendor) + ID_FIELD &&
+                   offsetof(modcp_params_t, revision) ==
+                       offsetof(modcp_params_t, vendor) + 2u * ID_FIELD &&
+                   offsetof(modcp_params_t, app_name) ==
+                       offsetof(modcp_params_t, vendor) + 3u * ID_FIELD,
+               "the identification strings are consecutive");
+
+static const char *obj_value(const modcp_params_t *p, size_t i)
+{
+    return (const char *)p + offsetof(modcp_params_t, vendor) + i * ID_FIELD;
+}
+
+static uint8_t obj_id(size_t i)
+{
+    return i < 3u ? (uint8_t)i : 0x06u;
+}
+
 modcp_pdu_action_t modcp_pdu_fc17(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
                                   uint16_t len, uint16_t cap, uint16_t *out_len)
 {
@@ -51,10 +72,10 @@ modcp_pdu_action_t modcp_pdu_fc17(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     if (cap < 4u) {
         return modcp_pdu_err(s, MODCP_EV_JOB_LENGTH, MODCP_EXC_DEVICE_FAILURE);
     }
-    const char *parts[3] = {env->p->vendor, env->p->product, env->p->revision};
     uint16_t o = 4; /* fc, byte count, slave id, run indicator */
-    for (size_t i = 0; i < 3u; i++) {
-        uint8_t n = id_len(parts[i]);
+    for (size_t i = 0; i < 3u; i++) { /* vendor, product, revision */
+        const char *part = obj_value(env->p, i);
+        uint8_t n = id_len(part);
         if (n == 0u) {
             continue;
         }
@@ -64,7 +85,7 @@ modcp_pdu_action_t modcp_pdu_fc17(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         if ((uint32_t)o + n > cap) {
             break; /* never with the CP's buffer (at most 4 + 50 bytes) */
         }
-        memcpy(pdu + o, parts[i], n);
+        memcpy(pdu + o, part, n);
         o = (uint16_t)(o + n);
     }
     pdu[1] = (uint8_t)(o - 2u);
@@ -72,24 +93,6 @@ modcp_pdu_action_t modcp_pdu_fc17(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     pdu[3] = run_indicator(env) ? 0xFFu : 0x00u;
     *out_len = o;
     return MODCP_PDU_REPLY;
-}
-
-typedef struct {
-    uint8_t id;
-    const char *value;
-} object_t;
-
-/* The objects of the CP in id order; returns their number. */
-static size_t objects(const modcp_params_t *p, object_t out[4])
-{
-    size_t n = 0;
-    out[n++] = (object_t){0x00, p->vendor};
-    out[n++] = (object_t){0x01, p->product};
-    out[n++] = (object_t){0x02, p->revision};
-    if (id_len(p->app_name) > 0u) {
-        out[n++] = (object_t){0x06, p->app_name};
-    }
-    return n;
 }
 
 modcp_pdu_action_t modcp_pdu_fc43(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
@@ -106,12 +109,12 @@ modcp_pdu_action_t modcp_pdu_fc43(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     if (code < 1u || code > 4u) {
         return modcp_pdu_err(s, MODCP_EV_MEI_CODE, MODCP_EXC_ILLEGAL_VALUE);
     }
-    object_t obj[4];
-    size_t total = objects(env->p, obj);
+    const modcp_params_t *p = env->p;
+    const size_t total = id_len(p->app_name) > 0u ? 4u : 3u;
     size_t first = 0;
     size_t last; /* one past the last object of the category */
     if (code == 4u) {
-        for (first = 0; first < total && obj[first].id != want; first++) {
+        for (first = 0; first < total && obj_id(first) != want; first++) {
         }
         if (first == total) {
             return modcp_pdu_err(s, MODCP_EV_NO_WINDOW, MODCP_EXC_ILLEGAL_ADDRESS);
@@ -119,7 +122,7 @@ modcp_pdu_action_t modcp_pdu_fc43(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         last = first + 1u;
     } else {
         last = code == 1u ? 3u : total; /* basic: 00..02; regular / extended: all */
-        while (first < last && obj[first].id != want) {
+        while (first < last && obj_id(first) != want) {
             first++;
         }
         if (first == last) {
@@ -135,18 +138,19 @@ modcp_pdu_action_t modcp_pdu_fc43(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     uint8_t more = 0x00;
     uint8_t next = 0x00;
     for (size_t i = first; i < last; i++) {
-        uint8_t n = id_len(obj[i].value);
+        const char *value = obj_value(p, i);
+        uint8_t n = id_len(value);
         if ((uint32_t)o + 2u + n > limit) {
             if (count == 0u) {
                 return modcp_pdu_err(s, MODCP_EV_JOB_LENGTH, MODCP_EXC_DEVICE_FAILURE);
             }
             more = 0xFF;
-            next = obj[i].id;
+            next = obj_id(i);
             break;
         }
-        pdu[o] = obj[i].id;
+        pdu[o] = obj_id(i);
         pdu[o + 1u] = n;
-        memcpy(pdu + o + 2u, obj[i].value, n);
+        memcpy(pdu + o + 2u, value, n);
         o = (uint16_t)(o + 2u + n);
         count++;
     }
