@@ -113,11 +113,15 @@ static modcp_pdu_action_t read_job(modcp_pdu_t *s, const modcp_operand_t *o, uin
                                    uint8_t *pdu)
 {
     const modcp_pdu_x_t *x = &s->x;
-    if (!x->rscan) {
-        return modcp_pdu_job(s, MODCP_JOB_READ, o, o->count, NULL, pdu + x->roff,
-                             (uint16_t)(x->cap - x->roff));
+    uint16_t n = o->count; /* direct: all of it */
+    uint16_t off = x->roff;
+    uint16_t room = (uint16_t)(x->cap - x->roff);
+    if (x->rscan) { /* scanner: the entry's word */
+        n = 2u;
+        off = (uint16_t)(off + 2u * k);
+        room = 2u;
     }
-    return modcp_pdu_job(s, MODCP_JOB_READ, o, 2, NULL, pdu + x->roff + 2u * k, 2);
+    return modcp_pdu_job(s, MODCP_JOB_READ, o, n, NULL, pdu + off, room);
 }
 
 modcp_pdu_action_t modcp_pdu_seq_next(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu)
@@ -144,13 +148,14 @@ modcp_pdu_action_t modcp_pdu_seq_next(modcp_pdu_t *s, const modcp_pdu_env_t *env
             if (o.area == MODCP_AREA_NONE || (o.area == MODCP_AREA_DB) != pass0) {
                 continue; /* unused scanner entry: the value is discarded */
             }
-            if (!x->wscan) {
-                return modcp_pdu_job(s, x->wop, &o, x->wlen, pdu + x->woff, NULL, 0);
+            /* direct: the whole data; scanner: the entry's word, or FC22's masks */
+            uint16_t n = x->wlen;
+            uint16_t off = x->woff;
+            if (x->wscan) {
+                n = x->wop == MODCP_JOB_MASKWRITE ? 4u : 2u;
+                off = (uint16_t)(off + (n == 2u ? 2u * k : 0u));
             }
-            if (x->wop == MODCP_JOB_MASKWRITE) {
-                return modcp_pdu_job(s, x->wop, &o, 4, pdu + x->woff, NULL, 0);
-            }
-            return modcp_pdu_job(s, x->wop, &o, 2, pdu + x->woff + 2u * k, NULL, 0);
+            return modcp_pdu_job(s, x->wop, &o, n, pdu + off, NULL, 0);
         }
         const uint16_t n = x->phase == PH_CHECK ? (uint16_t)(nw + nr) : nr;
         if (x->idx >= n) {
