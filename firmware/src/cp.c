@@ -255,10 +255,7 @@ static void process_request(modcp_cp_t *cp, uint32_t now_us)
     uint16_t out_len = 0;
     modcp_pdu_action_t a =
         modcp_pdu_request(&cp->pdu, &env, f->addr, f->pdu, f->pdu_len, f->pdu_cap, &out_len);
-    run_action(cp, &env, a, out_len, now_us);
-    if (cp->request_pending) {
-        modcp_job_push(&cp->job); /* the first blocks go out at once */
-    }
+    run_action(cp, &env, a, out_len, now_us); /* a job's first blocks go out at once */
 }
 
 /* Cold part of modcp_cp_on_rx: RS232 automatic signals configured (DSR gates the

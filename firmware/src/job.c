@@ -43,6 +43,8 @@ bool modcp_job_busy(const modcp_job_t *j)
     return j->state != MODCP_JOBST_IDLE;
 }
 
+static void push_blocks(modcp_job_t *j);
+
 modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const uint8_t *wdata,
                               uint8_t *rbuf, uint16_t rcap, uint16_t limit, uint32_t timeout_us,
                               uint32_t now_us)
@@ -74,6 +76,7 @@ modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const u
     j->event = MODCP_EV_NONE;
     j->error_nr = 0;
     j->state = MODCP_JOBST_SENDING;
+    push_blocks(j); /* the first blocks go out at once */
     return MODCP_EV_NONE;
 }
 
@@ -120,45 +123,68 @@ bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev)
 
 /* Push as many of the job's blocks as there are free slots; each block is written
  * straight into its slot (the write data: one copy from the request) and published at
- * once. */
+ * once. A job whose header and write data fit one block (up to MODCP_BP_JOB_INLINE data
+ * bytes: every FC05 / FC06 / FC22, FC15 up to 168 coils, FC16 up to 10 registers) and
+ * every read job cross as that one block, flagged FIRST and LAST. */
 static void push_blocks(modcp_job_t *j)
 {
     modcp_ring_t *r = &j->bp->to_cpu;
     uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
+    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_acquire);
+    uint32_t len = j->hdr.len;
+    uint32_t pos = j->wpos;
+    modcp_block_t *b;
     if (!j->hdr_sent) {
-        if (atomic_load_explicit(&r->tail, memory_order_acquire) != head) {
+        if (tail != head) {
             return; /* previous blocks not consumed yet (see the top of this file) */
         }
         if (atomic_load_explicit(&j->bp->abort_tag, memory_order_acquire) == (uint32_t)j->tag) {
             atomic_store_explicit(&j->bp->abort_tag, JOB_NO_ABORT, memory_order_release);
         }
-    }
-    while (j->state == MODCP_JOBST_SENDING &&
-           head - atomic_load_explicit(&r->tail, memory_order_acquire) < MODCP_BP_DEPTH) {
-        modcp_block_t *b = &r->slot[head & (MODCP_BP_DEPTH - 1u)];
-        uint8_t flags = 0;
-        uint8_t n;
-        if (!j->hdr_sent) {
-            n = modcp_bp_job_encode(&j->hdr, b->data);
-            flags = MODCP_BLK_FIRST;
-            j->hdr_sent = true;
+        b = &r->slot[head & (MODCP_BP_DEPTH - 1u)];
+        uint32_t n = modcp_bp_job_encode(&j->hdr, b->data);
+        uint8_t flags = MODCP_BLK_FIRST | MODCP_BLK_LAST;
+        if (j->hdr.op == MODCP_JOB_READ) {
+            /* nothing to send: the header is the job */
+        } else if (len <= MODCP_BP_JOB_INLINE) { /* the data in the header block */
+            for (const uint8_t *w = j->wdata; pos < len; pos++) {
+                b->data[MODCP_BP_JOB_HDR_LEN + pos] = w[pos];
+            }
+            n += len;
         } else {
-            uint32_t rest = (uint32_t)j->hdr.len - j->wpos;
-            n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
-            modcp_block_copy(b->data, j->wdata + j->wpos, n);
-            j->wpos = (uint16_t)(j->wpos + n);
+            flags = MODCP_BLK_FIRST; /* data blocks follow */
         }
-        if (j->hdr.op == MODCP_JOB_READ || j->wpos >= j->hdr.len) {
-            flags |= MODCP_BLK_LAST; /* nothing (more) to send */
-            j->state = MODCP_JOBST_WAITING;
-        }
-        b->len = n;
+        j->hdr_sent = true;
+        b->len = (uint8_t)n;
         b->kind = MODCP_BP_JOB;
         b->flags = flags;
         b->tag = j->tag;
         b->seq = j->tx_seq++;
         atomic_store_explicit(&r->head, ++head, memory_order_release); /* hand it over */
+        if (flags & MODCP_BLK_LAST) {
+            j->state = MODCP_JOBST_WAITING;
+            return;
+        }
     }
+    while (head - tail < MODCP_BP_DEPTH ||
+           head - (tail = atomic_load_explicit(&r->tail, memory_order_acquire)) < MODCP_BP_DEPTH) {
+        b = &r->slot[head & (MODCP_BP_DEPTH - 1u)];
+        uint32_t rest = len - pos;
+        uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
+        modcp_block_copy(b->data, j->wdata + pos, n);
+        pos += n;
+        b->len = n;
+        b->kind = MODCP_BP_JOB;
+        b->flags = pos >= len ? MODCP_BLK_LAST : 0u;
+        b->tag = j->tag;
+        b->seq = j->tx_seq++;
+        atomic_store_explicit(&r->head, ++head, memory_order_release); /* hand it over */
+        if (pos >= len) {
+            j->state = MODCP_JOBST_WAITING; /* nothing more to send */
+            break;
+        }
+    }
+    j->wpos = (uint16_t)pos;
 }
 
 static modcp_jobp_t finish(modcp_job_t *j, modcp_event_t ev, uint16_t error_nr)
@@ -178,40 +204,47 @@ static modcp_jobp_t finish_reply(modcp_job_t *j)
     return finish(j, ok ? MODCP_EV_NONE : MODCP_EV_XFER_STATE, 0);
 }
 
+/* Store n bytes of REPLY data (only what fits rbuf) and count all of them (saturating). */
+static void reply_data(modcp_job_t *j, const uint8_t *d, uint32_t n)
+{
+    uint32_t room = j->rlen < j->rcap ? (uint32_t)j->rcap - j->rlen : 0u;
+    uint32_t k = n < room ? n : room;
+    if (k > 0u) {
+        modcp_block_copy(j->rbuf + j->rlen, d, k);
+    }
+    uint32_t total = (uint32_t)j->rlen + n;
+    j->rlen = (uint16_t)(total > 0xFFFFu ? 0xFFFFu : total);
+}
+
 static modcp_jobp_t rx_reply(modcp_job_t *j, const modcp_block_t *b)
 {
     if (!modcp_job_busy(j) || b->tag != j->tag) {
         return MODCP_JOBP_NOTHING; /* stale reply of a job we gave up on */
     }
     if ((b->flags & MODCP_BLK_FIRST) != 0u) {
-        modcp_bp_reply_t r;
-        if (j->state == MODCP_JOBST_RECEIVING || !modcp_bp_reply_decode(b->data, b->len, &r)) {
+        if (j->state == MODCP_JOBST_RECEIVING || b->len < MODCP_BP_REPLY_HDR_LEN) {
             j->proto_errors++;
             return finish(j, MODCP_EV_XFER_STATE, 0);
         }
-        if (r.event != MODCP_EV_NONE) {
-            return finish(j, r.event, r.error_nr);
+        modcp_event_t ev = modcp_bp_get16(b->data);
+        if (ev != MODCP_EV_NONE) {
+            return finish(j, ev, modcp_bp_get16(b->data + 2));
         }
-        j->rexpect = r.len;
+        j->rexpect = modcp_bp_get16(b->data + 4);
         j->rlen = 0;
         j->state = MODCP_JOBST_RECEIVING;
-        if ((b->flags & MODCP_BLK_LAST) != 0u) {
-            return finish_reply(j);
+        if ((b->flags & MODCP_BLK_LAST) == 0u) {
+            return MODCP_JOBP_NOTHING; /* data blocks follow */
         }
-        return MODCP_JOBP_NOTHING;
+        /* the whole reply in one block: its data after the header */
+        reply_data(j, b->data + MODCP_BP_REPLY_HDR_LEN, b->len - MODCP_BP_REPLY_HDR_LEN);
+        return finish_reply(j);
     }
     if (j->state != MODCP_JOBST_RECEIVING) {
         j->proto_errors++; /* data before the header */
         return finish(j, MODCP_EV_XFER_STATE, 0);
     }
-    uint32_t room = j->rlen < j->rcap ? (uint32_t)j->rcap - j->rlen : 0u;
-    uint32_t n = b->len < room ? b->len : room;
-    if (n > 0u) {
-        modcp_block_copy(j->rbuf + j->rlen, b->data, n);
-    }
-    /* count everything that arrived (saturating), store only what fits */
-    uint32_t total = (uint32_t)j->rlen + b->len;
-    j->rlen = (uint16_t)(total > 0xFFFFu ? 0xFFFFu : total);
+    reply_data(j, b->data, b->len);
     if ((b->flags & MODCP_BLK_LAST) != 0u) {
         return finish_reply(j);
     }
@@ -292,13 +325,6 @@ static bool params_wait(const modcp_job_t *j)
            (next->flags & MODCP_BLK_FIRST) != 0u;
 }
 #endif
-
-void modcp_job_push(modcp_job_t *j)
-{
-    if (j->state == MODCP_JOBST_SENDING) {
-        push_blocks(j);
-    }
-}
 
 modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us)
 {

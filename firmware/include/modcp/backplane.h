@@ -154,5 +154,9 @@ bool modcp_bp_systat_result(const modcp_backplane_t *bp, uint32_t req, uint8_t o
  * Layouts: backplane.c. The JOB and REPLY codecs run once per request each (inline). */
 #define MODCP_BP_JOB_HDR_LEN 11u
 #define MODCP_BP_REPLY_HDR_LEN 6u
+/* A JOB whose write data fits after its header (up to 21 bytes) and a REPLY whose read
+ * data fits after its header (up to 26 bytes) cross as that one block, FIRST and LAST. */
+#define MODCP_BP_JOB_INLINE (MODCP_BLOCK_SIZE - MODCP_BP_JOB_HDR_LEN)
+#define MODCP_BP_REPLY_INLINE (MODCP_BLOCK_SIZE - MODCP_BP_REPLY_HDR_LEN)
 
 #endif
