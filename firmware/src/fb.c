@@ -84,43 +84,54 @@ static modcp_operand_t opnd_at(const modcp_operand_t *o, uint16_t pos)
  * when all of it fits (MODCP_BP_REPLY_INLINE: the reply is that one block) —, then the
  * data blocks; the data is read from controller memory straight into each slot (one
  * copy). */
+static void read_data(modcp_fb_t *fb, uint8_t *dst, uint32_t pos, uint32_t n)
+{
+    if (fb->job_mem != NULL) {
+        modcp_block_copy(dst, fb->job_mem + pos, n);
+    } else { /* T / C elements; the range was checked on the header */
+        modcp_operand_t o = opnd_at(&fb->job.opnd, (uint16_t)pos);
+        (void)modcp_plcmem_read(fb->mem, &o, dst, (uint16_t)n);
+    }
+}
+
 static void pump_reply(modcp_fb_t *fb)
 {
     modcp_ring_t *r = &fb->bp->to_cp;
     modcp_block_t *b;
-    while (fb->reply_pending && (b = modcp_ring_slot(r)) != NULL) {
+    if (!fb->reply_hdr_sent) {
+        if ((b = modcp_ring_slot(r)) == NULL) {
+            return;
+        }
         uint32_t len = fb->reply.len;
-        uint32_t pos = fb->reply_pos;
-        uint32_t at = 0; /* where the data starts in the block */
-        uint8_t flags = 0;
-        if (!fb->reply_hdr_sent) {
-            fb->reply_hdr_sent = true;
-            at = modcp_bp_reply_encode(&fb->reply, b->data);
-            flags = MODCP_BLK_FIRST;
-        }
-        if (at == 0u || len <= MODCP_BP_REPLY_INLINE) {
-            uint32_t rest = len - pos;
-            uint32_t n = rest > MODCP_BLOCK_SIZE - at ? MODCP_BLOCK_SIZE - at : rest;
-            if (n == 0u) {
-                /* no data */
-            } else if (fb->job_mem != NULL) {
-                modcp_block_copy(b->data + at, fb->job_mem + pos, n);
-            } else { /* T / C elements; the range was checked on the header */
-                modcp_operand_t o = opnd_at(&fb->job.opnd, (uint16_t)pos);
-                (void)modcp_plcmem_read(fb->mem, &o, b->data + at, (uint16_t)n);
+        uint32_t n = modcp_bp_reply_encode(&fb->reply, b->data);
+        uint8_t flags = MODCP_BLK_FIRST;
+        fb->reply_hdr_sent = true;
+        if (len <= MODCP_BP_REPLY_INLINE) { /* the whole reply in this block */
+            if (len > 0u) {
+                read_data(fb, b->data + n, 0, len);
             }
-            pos += n;
-            at += n;
-            if (pos >= len) {
-                flags |= MODCP_BLK_LAST;
-                fb->reply_pending = false;
-            }
-            fb->reply_pos = (uint16_t)pos;
+            n += len;
+            flags = MODCP_BLK_FIRST | MODCP_BLK_LAST;
+            fb->reply_pending = false;
         }
-        b->len = (uint8_t)at;
+        b->len = (uint8_t)n;
         b->kind = MODCP_BP_REPLY;
         b->flags = flags;
         b->tag = fb->job_tag;
+        modcp_ring_publish(r, &fb->tx_seq);
+    }
+    while (fb->reply_pending && (b = modcp_ring_slot(r)) != NULL) {
+        uint32_t rest = (uint32_t)fb->reply.len - fb->reply_pos;
+        uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
+        read_data(fb, b->data, fb->reply_pos, n);
+        b->len = n;
+        b->kind = MODCP_BP_REPLY;
+        b->flags = n == rest ? MODCP_BLK_LAST : 0u;
+        b->tag = fb->job_tag;
+        fb->reply_pos = (uint16_t)(fb->reply_pos + n);
+        if (n == rest) {
+            fb->reply_pending = false;
+        }
         modcp_ring_publish(r, &fb->tx_seq);
     }
 }

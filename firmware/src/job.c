@@ -130,61 +130,45 @@ static void push_blocks(modcp_job_t *j)
 {
     modcp_ring_t *r = &j->bp->to_cpu;
     uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
-    uint32_t tail = atomic_load_explicit(&r->tail, memory_order_acquire);
-    uint32_t len = j->hdr.len;
-    uint32_t pos = j->wpos;
-    modcp_block_t *b;
     if (!j->hdr_sent) {
-        if (tail != head) {
+        if (atomic_load_explicit(&r->tail, memory_order_acquire) != head) {
             return; /* previous blocks not consumed yet (see the top of this file) */
         }
         if (atomic_load_explicit(&j->bp->abort_tag, memory_order_acquire) == (uint32_t)j->tag) {
             atomic_store_explicit(&j->bp->abort_tag, JOB_NO_ABORT, memory_order_release);
         }
-        b = &r->slot[head & (MODCP_BP_DEPTH - 1u)];
-        uint32_t n = modcp_bp_job_encode(&j->hdr, b->data);
-        uint8_t flags = MODCP_BLK_FIRST | MODCP_BLK_LAST;
-        if (j->hdr.op == MODCP_JOB_READ) {
-            /* nothing to send: the header is the job */
-        } else if (len <= MODCP_BP_JOB_INLINE) { /* the data in the header block */
-            for (const uint8_t *w = j->wdata; pos < len; pos++) {
-                b->data[MODCP_BP_JOB_HDR_LEN + pos] = w[pos];
+    }
+    while (j->state == MODCP_JOBST_SENDING &&
+           head - atomic_load_explicit(&r->tail, memory_order_acquire) < MODCP_BP_DEPTH) {
+        modcp_block_t *b = &r->slot[head & (MODCP_BP_DEPTH - 1u)];
+        uint8_t flags = 0;
+        uint32_t n;
+        if (!j->hdr_sent) {
+            n = modcp_bp_job_encode(&j->hdr, b->data);
+            flags = MODCP_BLK_FIRST;
+            j->hdr_sent = true;
+            if (j->hdr.op != MODCP_JOB_READ && j->hdr.len <= MODCP_BP_JOB_INLINE) {
+                memcpy(b->data + n, j->wdata, j->hdr.len); /* the data with the header */
+                n += j->hdr.len;
+                j->wpos = j->hdr.len;
             }
-            n += len;
         } else {
-            flags = MODCP_BLK_FIRST; /* data blocks follow */
+            uint32_t rest = (uint32_t)j->hdr.len - j->wpos;
+            n = rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest;
+            modcp_block_copy(b->data, j->wdata + j->wpos, n);
+            j->wpos = (uint16_t)(j->wpos + n);
         }
-        j->hdr_sent = true;
+        if (j->hdr.op == MODCP_JOB_READ || j->wpos >= j->hdr.len) {
+            flags |= MODCP_BLK_LAST; /* nothing (more) to send */
+            j->state = MODCP_JOBST_WAITING;
+        }
         b->len = (uint8_t)n;
         b->kind = MODCP_BP_JOB;
         b->flags = flags;
         b->tag = j->tag;
         b->seq = j->tx_seq++;
         atomic_store_explicit(&r->head, ++head, memory_order_release); /* hand it over */
-        if (flags & MODCP_BLK_LAST) {
-            j->state = MODCP_JOBST_WAITING;
-            return;
-        }
     }
-    while (head - tail < MODCP_BP_DEPTH ||
-           head - (tail = atomic_load_explicit(&r->tail, memory_order_acquire)) < MODCP_BP_DEPTH) {
-        b = &r->slot[head & (MODCP_BP_DEPTH - 1u)];
-        uint32_t rest = len - pos;
-        uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
-        modcp_block_copy(b->data, j->wdata + pos, n);
-        pos += n;
-        b->len = n;
-        b->kind = MODCP_BP_JOB;
-        b->flags = pos >= len ? MODCP_BLK_LAST : 0u;
-        b->tag = j->tag;
-        b->seq = j->tx_seq++;
-        atomic_store_explicit(&r->head, ++head, memory_order_release); /* hand it over */
-        if (pos >= len) {
-            j->state = MODCP_JOBST_WAITING; /* nothing more to send */
-            break;
-        }
-    }
-    j->wpos = (uint16_t)pos;
 }
 
 static modcp_jobp_t finish(modcp_job_t *j, modcp_event_t ev, uint16_t error_nr)
