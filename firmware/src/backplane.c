@@ -35,11 +35,7 @@ _Static_assert((MODCP_BP_DEPTH & (MODCP_BP_DEPTH - 1u)) == 0u && MODCP_BP_DEPTH 
 
 void modcp_bp_init(modcp_backplane_t *bp)
 {
-    memset(bp, 0, sizeof *bp);
-    atomic_store_explicit(&bp->to_cpu.head, 0u, memory_order_relaxed);
-    atomic_store_explicit(&bp->to_cpu.tail, 0u, memory_order_relaxed);
-    atomic_store_explicit(&bp->to_cp.head, 0u, memory_order_relaxed);
-    atomic_store_explicit(&bp->to_cp.tail, 0u, memory_order_relaxed);
+    memset(bp, 0, sizeof *bp); /* empty rings (head = tail = 0), status area zero */
     atomic_store_explicit(&bp->abort_tag, BP_NO_ABORT, memory_order_release);
 }
 

@@ -69,13 +69,10 @@ modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const u
     j->wpos = 0;
     j->rbuf = rbuf;
     j->rcap = rbuf != NULL ? rcap : 0u;
-    j->rlen = 0;
-    j->rexpect = 0;
     j->t0_us = now_us;
     j->timeout_us = timeout_us;
-    j->event = MODCP_EV_NONE;
-    j->error_nr = 0;
-    j->state = MODCP_JOBST_SENDING;
+    j->state = MODCP_JOBST_SENDING; /* rlen / rexpect: on the REPLY header; event /
+                                       error_nr: when the job finishes */
     push_blocks(j); /* the first blocks go out at once */
     return MODCP_EV_NONE;
 }
@@ -148,9 +145,11 @@ static void push_blocks(modcp_job_t *j)
             flags = MODCP_BLK_FIRST;
             j->hdr_sent = true;
             if (j->hdr.op != MODCP_JOB_READ && j->hdr.len <= MODCP_BP_JOB_INLINE) {
-                memcpy(b->data + n, j->wdata, j->hdr.len); /* the data with the header */
-                n += j->hdr.len;
-                j->wpos = j->hdr.len;
+                uint32_t len = j->hdr.len; /* the data with the header */
+                for (const uint8_t *w = j->wdata; n < MODCP_BP_JOB_HDR_LEN + len; n++) {
+                    b->data[n] = *w++;
+                }
+                j->wpos = (uint16_t)len;
             }
         } else {
             uint32_t rest = (uint32_t)j->hdr.len - j->wpos;
@@ -188,47 +187,40 @@ static modcp_jobp_t finish_reply(modcp_job_t *j)
     return finish(j, ok ? MODCP_EV_NONE : MODCP_EV_XFER_STATE, 0);
 }
 
-/* Store n bytes of REPLY data (only what fits rbuf) and count all of them (saturating). */
-static void reply_data(modcp_job_t *j, const uint8_t *d, uint32_t n)
-{
-    uint32_t room = j->rlen < j->rcap ? (uint32_t)j->rcap - j->rlen : 0u;
-    uint32_t k = n < room ? n : room;
-    if (k > 0u) {
-        modcp_block_copy(j->rbuf + j->rlen, d, k);
-    }
-    uint32_t total = (uint32_t)j->rlen + n;
-    j->rlen = (uint16_t)(total > 0xFFFFu ? 0xFFFFu : total);
-}
-
 static modcp_jobp_t rx_reply(modcp_job_t *j, const modcp_block_t *b)
 {
     if (!modcp_job_busy(j) || b->tag != j->tag) {
         return MODCP_JOBP_NOTHING; /* stale reply of a job we gave up on */
     }
+    const uint8_t *d = b->data;
+    uint32_t n = b->len;
     if ((b->flags & MODCP_BLK_FIRST) != 0u) {
-        if (j->state == MODCP_JOBST_RECEIVING || b->len < MODCP_BP_REPLY_HDR_LEN) {
+        if (j->state == MODCP_JOBST_RECEIVING || n < MODCP_BP_REPLY_HDR_LEN) {
             j->proto_errors++;
             return finish(j, MODCP_EV_XFER_STATE, 0);
         }
-        modcp_event_t ev = modcp_bp_get16(b->data);
+        modcp_event_t ev = modcp_bp_get16(d);
         if (ev != MODCP_EV_NONE) {
-            return finish(j, ev, modcp_bp_get16(b->data + 2));
+            return finish(j, ev, modcp_bp_get16(d + 2));
         }
-        j->rexpect = modcp_bp_get16(b->data + 4);
+        j->rexpect = modcp_bp_get16(d + 4);
         j->rlen = 0;
         j->state = MODCP_JOBST_RECEIVING;
         if ((b->flags & MODCP_BLK_LAST) == 0u) {
             return MODCP_JOBP_NOTHING; /* data blocks follow */
         }
-        /* the whole reply in one block: its data after the header */
-        reply_data(j, b->data + MODCP_BP_REPLY_HDR_LEN, b->len - MODCP_BP_REPLY_HDR_LEN);
-        return finish_reply(j);
-    }
-    if (j->state != MODCP_JOBST_RECEIVING) {
+        d += MODCP_BP_REPLY_HDR_LEN; /* the whole reply in one block: data after the header */
+        n -= MODCP_BP_REPLY_HDR_LEN;
+    } else if (j->state != MODCP_JOBST_RECEIVING) {
         j->proto_errors++; /* data before the header */
         return finish(j, MODCP_EV_XFER_STATE, 0);
     }
-    reply_data(j, b->data, b->len);
+    if (n > 0u) { /* count everything that arrived (saturating), store only what fits */
+        uint32_t room = j->rlen < j->rcap ? (uint32_t)j->rcap - j->rlen : 0u;
+        modcp_block_copy(j->rbuf + j->rlen, d, n < room ? n : room);
+        uint32_t total = (uint32_t)j->rlen + n;
+        j->rlen = (uint16_t)(total > 0xFFFFu ? 0xFFFFu : total);
+    }
     if ((b->flags & MODCP_BLK_LAST) != 0u) {
         return finish_reply(j);
     }
