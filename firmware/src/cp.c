@@ -505,7 +505,11 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
             uint16_t out_len = 0;
             modcp_event_t ev = cp->job.event;
             modcp_pdu_action_t a = modcp_pdu_complete(&cp->pdu, &env, ev, cp->frame.pdu, &out_len);
-            run_action(cp, &env, a, out_len, now_us); /* the reply, or the next job */
+            if (a == MODCP_PDU_JOB) {
+                run_action(cp, &env, a, out_len, now_us); /* the next job */
+            } else {
+                finish(cp, &env, a, out_len, now_us); /* the reply */
+            }
             if (cp->job.state == MODCP_JOBST_IDLE && modcp_ring_peek(&cp->bp->to_cp) == NULL) {
                 break; /* what another modcp_job_poll would find: nothing */
             }

@@ -441,7 +441,19 @@ static void rx_blocks(modcp_fb_t *fb)
         /* PARAMS / INIT / REPLY travel the other way: ignored */
         modcp_ring_release(r);
         if (fb->reply_pending) {
-            pump_reply(fb);
+            modcp_block_t *rb;
+            if (fb->reply.len == 0u && (rb = modcp_ring_slot(&fb->bp->to_cp)) != NULL) {
+                /* a write's or an error's reply: its header alone, at once */
+                rb->len = modcp_bp_reply_encode(&fb->reply, rb->data);
+                rb->kind = MODCP_BP_REPLY;
+                rb->flags = MODCP_BLK_FIRST | MODCP_BLK_LAST;
+                rb->tag = fb->job_tag;
+                fb->reply_hdr_sent = true;
+                fb->reply_pending = false;
+                modcp_ring_publish(&fb->bp->to_cp, &fb->tx_seq);
+            } else {
+                pump_reply(fb);
+            }
         }
     }
 }
