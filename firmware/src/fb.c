@@ -6,17 +6,19 @@
  *   2. continue pushing a pending REPLY (as many blocks as there are free slots);
  *   3. read CP blocks in place: INIT_ACK while waiting for it; a JOB header is checked
  *      completely (operation, amount, area, range) before any data: a READ is answered
- *      at once, its data read from controller memory straight into each reply slot; a
- *      write job's data blocks are written straight from their slots into controller
- *      memory as they arrive, and the job is answered after its LAST block (no new
- *      blocks are read while a reply is still going out);
+ *      at once, its data read from controller memory straight into each reply slot (up
+ *      to MODCP_BP_REPLY_INLINE bytes into the header's own); a write job's data is
+ *      written straight from the slots into controller memory as it arrives (a
+ *      one-block job's, after its header, at once), and the job is answered after its
+ *      LAST block (no new blocks are read while a reply is still going out);
  *   4. initialisation: START_TIME check, retry every MODCP_FB_RETRY_MS while the CP
  *      answers "not ready" or is silent, push PARAMS then INIT.
  *
  * Data crosses the backplane once per 32-byte block each way: no job buffer, one copy
  * between a slot and controller memory. Consistency guarantee (SPEC §6): every block
- * is written or read within one call, so each block is consistent; a job whose blocks
- * are all handled in one FB call is consistent as a whole: a write job of up to
+ * is written or read within one call, so each block is consistent (a one-block job or
+ * reply as a whole); a job whose blocks are all handled in one FB call is consistent
+ * as a whole: a write job of up to
  * MODCP_BP_DEPTH blocks, header included, is executed only when all of them are in
  * (job_in_ring); a read's reply of up to MODCP_BP_DEPTH blocks goes out in the call
  * that answers it when the ring towards the CP is empty (as in normal operation); a
@@ -32,9 +34,9 @@
  *   the end of M / Q (INFO = last byte addressed).
  * Other replies: (0E)56H FB not in RUN, (0E)3AH BITWRITE with the work DB missing,
  * (0E)38H / (0E)39H from plcmem (checked on the header: nothing is written), (0E)33H
- * write data not as announced (a data block of another size than announced, or a
- * header flagged LAST for a write / not LAST for a read: nothing more of the job is
- * written). A job whose tag is the backplane's abort_tag was given up by the CP:
+ * write data not as announced (a data block of another size than announced, a header
+ * flagged LAST for a write without exactly its data after it, or not LAST for a read:
+ * nothing more of the job is written). A job whose tag is the backplane's abort_tag was given up by the CP:
  * nothing (more) of it is executed and it is not answered; a job that loses a block
  * (sequence gap) is not continued and not answered (the CP times out). */
 #include "modcp/fb.h"

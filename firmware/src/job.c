@@ -1,12 +1,14 @@
 /* modcp — CP side of the backplane (SPEC §6, 004 §4.6).
  *
  * A job goes out as one header block (kind JOB, FIRST, the job's tag, data = the
- * encoded modcp_bp_job_t; also LAST when no data follows) and ceil(len / 32) data
- * blocks of 32 bytes (the last one shorter and flagged LAST). Each poll pushes as many
- * blocks as the ring has free slots, each written in place into its slot (the write
- * data is copied once, from the request into the slot); nothing is produced when no
- * slot is free, so no put ever fails. REPLY blocks are read in place and released
- * (read data: one copy, from the slot into the caller's buffer).
+ * encoded modcp_bp_job_t) and, when its write data fits after the header (up to
+ * MODCP_BP_JOB_INLINE bytes) or there is none (READ), that is the whole job, flagged
+ * LAST too; else ceil(len / 32) data blocks of 32 bytes follow (the last one shorter
+ * and flagged LAST). The start and each poll push as many blocks as the ring has free
+ * slots, each written in place into its slot (the write data is copied once, from the
+ * request into the slot); nothing is produced when no slot is free, so no put ever
+ * fails. REPLY blocks are read in place and released (read data: one copy, from the
+ * slot into the caller's buffer; a header flagged LAST carries the data after it).
  *
  * The header of a new job is only pushed once the CPU-bound ring is empty, i.e. once
  * the CPU side has consumed every block of the previous job. In normal operation this

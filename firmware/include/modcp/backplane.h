@@ -15,6 +15,7 @@
  *   CP -> CPU  INIT_ACK modcp_bp_ack_t (event: NONE = ready)
  *   CP -> CPU  JOB      first block modcp_bp_job_t, then the write data
  *   CPU -> CP  REPLY    first block modcp_bp_reply_t, then the read data
+ * (a JOB / REPLY whose data fits after its header is that one block, FIRST and LAST)
  * A job is cancelled by the CP writing its tag to `abort_tag` (after a timeout); the
  * CPU side does not execute a job whose tag equals abort_tag, and the CP drops
  * REPLY blocks whose tag is not the tag of its current job. */
