@@ -21,6 +21,8 @@
  *   INIT  (14 bytes)  0..1 i_bytes | 2..3 q_bytes | 4..5 m_bytes | 6..7 timers |
  *                     8..9 counters | 10..11 work_db | 12..13 record_crc
  *   INIT_ACK (2 bytes) 0..1 event       (written/read by job.c and fb.c)
+ * A JOB / REPLY header block flagged LAST carries the message's data right after the
+ * header (JOB: up to 21 bytes from offset 11, REPLY: up to 26 from offset 6).
  * Decoders accept a longer block (trailing bytes ignored) and refuse a shorter one. */
 #include "modcp/backplane.h"
 
@@ -35,11 +37,7 @@ _Static_assert((MODCP_BP_DEPTH & (MODCP_BP_DEPTH - 1u)) == 0u && MODCP_BP_DEPTH 
 
 void modcp_bp_init(modcp_backplane_t *bp)
 {
-    memset(bp, 0, sizeof *bp);
-    atomic_store_explicit(&bp->to_cpu.head, 0u, memory_order_relaxed);
-    atomic_store_explicit(&bp->to_cpu.tail, 0u, memory_order_relaxed);
-    atomic_store_explicit(&bp->to_cp.head, 0u, memory_order_relaxed);
-    atomic_store_explicit(&bp->to_cp.tail, 0u, memory_order_relaxed);
+    memset(bp, 0, sizeof *bp); /* empty rings (head = tail = 0), status area zero */
     atomic_store_explicit(&bp->abort_tag, BP_NO_ABORT, memory_order_release);
 }
 

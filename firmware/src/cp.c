@@ -126,26 +126,6 @@ static void line_params(modcp_cp_t *cp, bool ok, int irq)
     }
 }
 
-/* Status-area fields of the line discipline and diagnostics. */
-static void line_status(const modcp_cp_t *cp, modcp_cp_status_t *st)
-{
-    st->flags |= (cp->cpdiag.wire_break ? MODCP_CPST_WIRE_BREAK : 0u) |
-                 (cp->cpdiag.param_error ? MODCP_CPST_PARAM_ERROR : 0u);
-    st->leds = modcp_leds_bits(&cp->leds);
-#if MODCP_WITH_RS232_SIGNALS
-    st->signals = modcp_sig_bits(&cp->sig);
-    st->signal_aborts = cp->sig.aborts;
-#endif /* else: stay 0 from modcp_bp_init (the CP is the status area's only writer) */
-    st->char_errors = cp->diag.char_errors;
-    st->breaks = cp->diag.breaks;
-    st->t15_discards = cp->diag.t15_discards;
-    st->frames_too_long = cp->diag.frames_too_long;
-    memcpy(st->diag_irq, cp->cpdiag.irq, sizeof st->diag_irq);
-    st->diag_irq_count = cp->cpdiag.irq_count;
-    st->systat_ack = cp->cpdiag.systat_ack;
-    memcpy(st->systat, cp->cpdiag.systat, sizeof st->systat);
-}
-
 /* CP task: SYSTAT requests of the CPU side, LEDs (from the link's receive / transmit
  * record: no hook per byte or per transmission). */
 static void line_poll(modcp_cp_t *cp, uint32_t now_us)
@@ -172,6 +152,7 @@ void modcp_cp_on_signals(modcp_cp_t *cp, bool cts, bool dsr, uint32_t now_us)
 #if MODCP_WITH_RS232_SIGNALS
     modcp_sig_on_inputs(&cp->sig, &cp->link, cts, dsr, now_us);
     cp->published = false;
+    cp->publish_all = true; /* the inputs are shown in the status area */
 #else
     (void)cp; /* no RS232 automatic signals in this build: inputs not used */
     (void)cts;
@@ -194,6 +175,7 @@ void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp
     modcp_job_init(&cp->job, bp, cp->record, (uint16_t)sizeof cp->record);
 #endif
     cp->param_event = MODCP_EV_PARAM_RECORD; /* nothing received yet */
+    cp->publish_all = true;
 #if MODCP_WITH_RS232_SIGNALS
     modcp_sig_init(&cp->sig, hal, &cp->diag);   /* RTS, DTR OFF */
 #endif
@@ -255,10 +237,7 @@ static void process_request(modcp_cp_t *cp, uint32_t now_us)
     uint16_t out_len = 0;
     modcp_pdu_action_t a =
         modcp_pdu_request(&cp->pdu, &env, f->addr, f->pdu, f->pdu_len, f->pdu_cap, &out_len);
-    run_action(cp, &env, a, out_len, now_us);
-    if (cp->request_pending) {
-        modcp_job_push(&cp->job); /* the first blocks go out at once */
-    }
+    run_action(cp, &env, a, out_len, now_us); /* a job's first blocks go out at once */
 }
 
 /* Cold part of modcp_cp_on_rx: RS232 automatic signals configured (DSR gates the
@@ -363,6 +342,7 @@ static void unconfigure(modcp_cp_t *cp)
 #endif
     cp->configured = false;
     cp->fb_ready = false;
+    cp->publish_all = true; /* signals off; PARAMS clears the buffer, sets param_event */
 }
 
 #if MODCP_SHARED_PARAMS_BUFFER
@@ -437,7 +417,13 @@ static void take_init(modcp_cp_t *cp)
  * poll clear it. What changes without any of them — with time or from the CPU side —
  * is compared with the published values, a few words: LEDs (time), comm-loss /
  * listen-only flags (time), the event count (an event logged by a poll: comm loss,
- * backplane errors) and the SYSTAT answer / diagnostic interrupt count. */
+ * backplane errors) and the SYSTAT answer / diagnostic interrupt count.
+ * A publication writes only the parts that can have changed: the flags, counters, LEDs
+ * and line error counts always (what a request changes); the diagnostic buffer, STATUS
+ * word, parameter event, SYSTAT image and diagnostic interrupt record when the event
+ * count, the SYSTAT answer or the interrupt count moved (nothing else changes them) or
+ * after PARAMS (cp->publish_all: the buffer cleared, a new parameter event); the RS232
+ * signals while the automatic signals run or after PARAMS / an input change. */
 /* MODCP_CPST_COMMLOSS / LISTEN_ONLY straight from their owners: the comm-loss
  * supervision (commloss.c, ext.cl_lost) and the FC08 listen-only mode (diag). */
 static uint32_t ext_flags(const modcp_cp_t *cp)
@@ -451,34 +437,52 @@ static uint32_t ext_flags(const modcp_cp_t *cp)
 #endif
 }
 
-static bool status_current(const modcp_cp_t *cp)
-{
-    const modcp_cp_status_t *st = &cp->bp->status; /* only the CP writes it */
-    return cp->published && st->events_total == cp->diag.events_total &&
-           st->leds == modcp_leds_bits(&cp->leds) &&
-           (st->flags & (MODCP_CPST_COMMLOSS | MODCP_CPST_LISTEN_ONLY)) == ext_flags(cp) &&
-           st->systat_ack == cp->cpdiag.systat_ack && st->diag_irq_count == cp->cpdiag.irq_count;
-}
-
 /* Publish the status area, written in place under the seqlock (no copy of it). */
 static void publish(modcp_cp_t *cp)
 {
-    if (status_current(cp)) {
+    modcp_cp_status_t *st = &cp->bp->status; /* only the CP writes it */
+    uint32_t ext = ext_flags(cp);
+    uint8_t leds = modcp_leds_bits(&cp->leds);
+    /* the rarely changing parts: with an event, a SYSTAT answer, an interrupt, PARAMS */
+    bool rare = cp->publish_all || st->events_total != cp->diag.events_total ||
+                st->systat_ack != cp->cpdiag.systat_ack ||
+                st->diag_irq_count != cp->cpdiag.irq_count;
+    if (cp->published && !rare && st->leds == leds &&
+        (st->flags & (MODCP_CPST_COMMLOSS | MODCP_CPST_LISTEN_ONLY)) == ext) {
         return;
     }
-    modcp_cp_status_t *st = modcp_bp_status_begin(cp->bp);
+    (void)modcp_bp_status_begin(cp->bp);
     st->flags = (cp->configured ? MODCP_CPST_CONFIGURED : 0u) |
                 (modcp_cp_ready(cp) ? MODCP_CPST_READY : 0u) |
-                (sf_on(cp) ? MODCP_CPST_SF : 0u) | ext_flags(cp);
-    st->events_total = cp->diag.events_total;
-    memcpy(st->buffer, cp->diag.buffer, sizeof st->buffer);
-    st->buffer_len = cp->diag.buffer_len;
-    st->status = cp->diag.status;
+                (sf_on(cp) ? MODCP_CPST_SF : 0u) | ext |
+                (cp->cpdiag.wire_break ? MODCP_CPST_WIRE_BREAK : 0u) |
+                (cp->cpdiag.param_error ? MODCP_CPST_PARAM_ERROR : 0u);
     memcpy(st->counters, cp->diag.counters, sizeof st->counters);
-    st->param_event = cp->param_event;
-    line_status(cp, st);
+    st->leds = leds;
+    st->char_errors = cp->diag.char_errors;
+    st->breaks = cp->diag.breaks;
+    st->t15_discards = cp->diag.t15_discards;
+    st->frames_too_long = cp->diag.frames_too_long;
+    if (rare) {
+        st->events_total = cp->diag.events_total;
+        memcpy(st->buffer, cp->diag.buffer, sizeof st->buffer);
+        st->buffer_len = cp->diag.buffer_len;
+        st->status = cp->diag.status;
+        st->param_event = cp->param_event;
+        st->systat_ack = cp->cpdiag.systat_ack;
+        memcpy(st->systat, cp->cpdiag.systat, sizeof st->systat);
+        memcpy(st->diag_irq, cp->cpdiag.irq, sizeof st->diag_irq);
+        st->diag_irq_count = cp->cpdiag.irq_count;
+    }
+#if MODCP_WITH_RS232_SIGNALS
+    if (cp->publish_all || cp->sig.enabled) {
+        st->signals = modcp_sig_bits(&cp->sig);
+        st->signal_aborts = cp->sig.aborts;
+    }
+#endif /* else: stay 0 from modcp_bp_init (the CP is the status area's only writer) */
     modcp_bp_status_end(cp->bp);
     cp->published = true;
+    cp->publish_all = false;
 }
 
 void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
@@ -501,7 +505,11 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
             uint16_t out_len = 0;
             modcp_event_t ev = cp->job.event;
             modcp_pdu_action_t a = modcp_pdu_complete(&cp->pdu, &env, ev, cp->frame.pdu, &out_len);
-            run_action(cp, &env, a, out_len, now_us); /* the reply, or the next job */
+            if (a == MODCP_PDU_JOB) {
+                run_action(cp, &env, a, out_len, now_us); /* the next job */
+            } else {
+                finish(cp, &env, a, out_len, now_us); /* the reply */
+            }
             if (cp->job.state == MODCP_JOBST_IDLE && modcp_ring_peek(&cp->bp->to_cp) == NULL) {
                 break; /* what another modcp_job_poll would find: nothing */
             }

@@ -6,17 +6,19 @@
  *   2. continue pushing a pending REPLY (as many blocks as there are free slots);
  *   3. read CP blocks in place: INIT_ACK while waiting for it; a JOB header is checked
  *      completely (operation, amount, area, range) before any data: a READ is answered
- *      at once, its data read from controller memory straight into each reply slot; a
- *      write job's data blocks are written straight from their slots into controller
- *      memory as they arrive, and the job is answered after its LAST block (no new
- *      blocks are read while a reply is still going out);
+ *      at once, its data read from controller memory straight into each reply slot (up
+ *      to MODCP_BP_REPLY_INLINE bytes into the header's own); a write job's data is
+ *      written straight from the slots into controller memory as it arrives (a
+ *      one-block job's, after its header, at once), and the job is answered after its
+ *      LAST block (no new blocks are read while a reply is still going out);
  *   4. initialisation: START_TIME check, retry every MODCP_FB_RETRY_MS while the CP
  *      answers "not ready" or is silent, push PARAMS then INIT.
  *
  * Data crosses the backplane once per 32-byte block each way: no job buffer, one copy
  * between a slot and controller memory. Consistency guarantee (SPEC §6): every block
- * is written or read within one call, so each block is consistent; a job whose blocks
- * are all handled in one FB call is consistent as a whole: a write job of up to
+ * is written or read within one call, so each block is consistent (a one-block job or
+ * reply as a whole); a job whose blocks are all handled in one FB call is consistent
+ * as a whole: a write job of up to
  * MODCP_BP_DEPTH blocks, header included, is executed only when all of them are in
  * (job_in_ring); a read's reply of up to MODCP_BP_DEPTH blocks goes out in the call
  * that answers it when the ring towards the CP is empty (as in normal operation); a
@@ -32,9 +34,9 @@
  *   the end of M / Q (INFO = last byte addressed).
  * Other replies: (0E)56H FB not in RUN, (0E)3AH BITWRITE with the work DB missing,
  * (0E)38H / (0E)39H from plcmem (checked on the header: nothing is written), (0E)33H
- * write data not as announced (a data block of another size than announced, or a
- * header flagged LAST for a write / not LAST for a read: nothing more of the job is
- * written). A job whose tag is the backplane's abort_tag was given up by the CP:
+ * write data not as announced (a data block of another size than announced, a header
+ * flagged LAST for a write without exactly its data after it, or not LAST for a read:
+ * nothing more of the job is written). A job whose tag is the backplane's abort_tag was given up by the CP:
  * nothing (more) of it is executed and it is not answered; a job that loses a block
  * (sequence gap) is not continued and not answered (the CP times out). */
 #include "modcp/fb.h"
@@ -80,35 +82,56 @@ static modcp_operand_t opnd_at(const modcp_operand_t *o, uint16_t pos)
 
 /* ---- replies ---------------------------------------------------------------------- */
 
-/* Push the pending REPLY into the free slots: its header, then for a READ the data,
- * read from controller memory straight into each slot (one copy). */
+/* Push the pending REPLY into the free slots: its header — followed by a READ's data
+ * when all of it fits (MODCP_BP_REPLY_INLINE: the reply is that one block) —, then the
+ * data blocks; the data is read from controller memory straight into each slot (one
+ * copy). */
+static void read_data(modcp_fb_t *fb, uint8_t *dst, uint32_t pos, uint32_t n)
+{
+    if (fb->job_mem != NULL) {
+        modcp_block_copy(dst, fb->job_mem + pos, n);
+    } else { /* T / C elements; the range was checked on the header */
+        modcp_operand_t o = opnd_at(&fb->job.opnd, (uint16_t)pos);
+        (void)modcp_plcmem_read(fb->mem, &o, dst, (uint16_t)n);
+    }
+}
+
 static void pump_reply(modcp_fb_t *fb)
 {
     modcp_ring_t *r = &fb->bp->to_cp;
     modcp_block_t *b;
-    while (fb->reply_pending && (b = modcp_ring_slot(r)) != NULL) {
-        b->kind = MODCP_BP_REPLY;
-        b->tag = fb->job_tag;
-        if (!fb->reply_hdr_sent) {
-            bool last = fb->reply.len == 0u;
-            b->len = modcp_bp_reply_encode(&fb->reply, b->data);
-            b->flags = (uint8_t)(MODCP_BLK_FIRST | (last ? MODCP_BLK_LAST : 0u));
-            fb->reply_hdr_sent = true;
-            fb->reply_pos = 0;
-        } else {
-            uint32_t rest = (uint32_t)fb->reply.len - fb->reply_pos;
-            uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
-            if (fb->job_mem != NULL) {
-                modcp_block_copy(b->data, fb->job_mem + fb->reply_pos, n);
-            } else { /* T / C elements; the range was checked on the header */
-                modcp_operand_t o = opnd_at(&fb->job.opnd, fb->reply_pos);
-                (void)modcp_plcmem_read(fb->mem, &o, b->data, n);
-            }
-            b->len = n;
-            b->flags = n == rest ? MODCP_BLK_LAST : 0u;
-            fb->reply_pos = (uint16_t)(fb->reply_pos + n);
+    if (!fb->reply_hdr_sent) {
+        if ((b = modcp_ring_slot(r)) == NULL) {
+            return;
         }
-        if ((b->flags & MODCP_BLK_LAST) != 0u) {
+        uint32_t len = fb->reply.len;
+        uint32_t n = modcp_bp_reply_encode(&fb->reply, b->data);
+        uint8_t flags = MODCP_BLK_FIRST;
+        fb->reply_hdr_sent = true;
+        if (len <= MODCP_BP_REPLY_INLINE) { /* the whole reply in this block */
+            if (len > 0u) {
+                read_data(fb, b->data + n, 0, len);
+            }
+            n += len;
+            flags = MODCP_BLK_FIRST | MODCP_BLK_LAST;
+            fb->reply_pending = false;
+        }
+        b->len = (uint8_t)n;
+        b->kind = MODCP_BP_REPLY;
+        b->flags = flags;
+        b->tag = fb->job_tag;
+        modcp_ring_publish(r, &fb->tx_seq);
+    }
+    while (fb->reply_pending && (b = modcp_ring_slot(r)) != NULL) {
+        uint32_t rest = (uint32_t)fb->reply.len - fb->reply_pos;
+        uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
+        read_data(fb, b->data, fb->reply_pos, n);
+        b->len = n;
+        b->kind = MODCP_BP_REPLY;
+        b->flags = n == rest ? MODCP_BLK_LAST : 0u;
+        b->tag = fb->job_tag;
+        fb->reply_pos = (uint16_t)(fb->reply_pos + n);
+        if (n == rest) {
             fb->reply_pending = false;
         }
         modcp_ring_publish(r, &fb->tx_seq);
@@ -181,11 +204,21 @@ static bool check_bitwrite(modcp_fb_t *fb)
     return true;
 }
 
-/* A job header arrived (its tag in job_tag): check everything that can be checked
- * before the data — nothing is written by a job that is refused. A READ is answered
- * at once (its data follows from memory, pump_reply); a write job becomes active and
- * its data blocks are executed as they arrive (rx_data). */
-static void start_job(modcp_fb_t *fb, bool last)
+#if defined(__GNUC__)
+#define FB_INLINE inline __attribute__((always_inline))
+#else
+#define FB_INLINE inline
+#endif
+
+static FB_INLINE void exec_data(modcp_fb_t *fb, const uint8_t *d, uint32_t n, bool last);
+
+/* A job's FIRST block b arrived, its header decoded into job (its tag in job_tag): check
+ * everything that can be checked before the data — nothing is written by a job that
+ * is refused. A READ is answered at once (its data follows from memory, pump_reply); a
+ * write job whose data came with the header (FIRST and LAST: the whole job in one
+ * block) is executed at once, else it becomes active and its data blocks are executed
+ * as they arrive (rx_data). */
+static void start_job(modcp_fb_t *fb, const modcp_block_t *b)
 {
     if (atomic_load_explicit(&fb->bp->abort_tag, memory_order_acquire) == (uint32_t)fb->job_tag) {
         return; /* the CP timed out on this job: nothing is written, nobody waits */
@@ -214,7 +247,11 @@ static void start_job(modcp_fb_t *fb, bool last)
         reply_fb_error(fb, MODCP_FB_ERR_AMOUNT, jb->len);
         return;
     }
-    if ((op == MODCP_JOB_READ) != last) {
+    /* a READ is its header alone (LAST); a write's header is LAST exactly when all of
+     * its data follows it in the block */
+    bool last = (b->flags & MODCP_BLK_LAST) != 0u;
+    if (op == MODCP_JOB_READ ? !last
+                             : last && (uint32_t)b->len != MODCP_BP_JOB_HDR_LEN + jb->len) {
         reply(fb, MODCP_EV_XFER_STATE, 0, 0); /* data not as announced: execute nothing */
         return;
     }
@@ -250,7 +287,11 @@ static void start_job(modcp_fb_t *fb, bool last)
         return;
     }
     fb->job_pos = 0;
-    fb->job_active = true;
+    if (last) {
+        exec_data(fb, b->data + MODCP_BP_JOB_HDR_LEN, jb->len, true); /* the whole job */
+    } else {
+        fb->job_active = true;
+    }
 }
 
 /* FC22 mask write (MODCP_JOB_MASKWRITE): the word is read, masked and written back in
@@ -271,46 +312,39 @@ static modcp_event_t exec_maskwrite(modcp_fb_t *fb, const uint8_t *masks)
     return ev;
 }
 
-/* A data block of the active write job, read in place and written straight into
- * controller memory (one copy). It must be exactly the next piece the header
- * announced (32 bytes, the last one shorter and flagged LAST); otherwise the job ends
- * with (0E)33H and nothing more of it is written. */
-static void rx_data(modcp_fb_t *fb, const modcp_block_t *b)
+/* n bytes of the active write job's data at job_pos, read in place and written
+ * straight into controller memory (one copy); last: the job's last bytes (CP_START_NDR
+ * and the reply). */
+static FB_INLINE void exec_data(modcp_fb_t *fb, const uint8_t *d, uint32_t n, bool last)
 {
-    if (atomic_load_explicit(&fb->bp->abort_tag, memory_order_acquire) == (uint32_t)fb->job_tag) {
-        fb->job_active = false; /* given up by the CP: nothing more is written */
-        return;
-    }
     const modcp_bp_job_t *jb = &fb->job;
-    uint32_t rest = (uint32_t)jb->len - fb->job_pos;
-    uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
-    bool last = n == rest;
-    if (b->len != n || ((b->flags & MODCP_BLK_LAST) != 0u) != last) {
-        reply(fb, MODCP_EV_XFER_STATE, 0, 0); /* data not as announced */
-        return;
-    }
     /* WRITE / BITWRITE: only Q, M, DB (area_allowed), so job_mem is the storage */
     uint8_t *dst = fb->job_mem + fb->job_pos;
     modcp_event_t ev = MODCP_EV_NONE;
     switch (jb->op) {
     case MODCP_JOB_WRITE:
-        modcp_block_copy(dst, b->data, n);
+        if (n <= 4u) { /* a register or two (FC06, FC16): no call for them */
+            for (uint32_t k = 0; k < n; k++) {
+                dst[k] = d[k];
+            }
+        } else {
+            modcp_block_copy(dst, d, n);
+        }
         break;
     case MODCP_JOB_MASKWRITE:
-        ev = exec_maskwrite(fb, b->data);
+        ev = exec_maskwrite(fb, d);
         break;
-    default: { /* BITWRITE: this block's bits, 256 per block (whole bytes of dst) */
+    default: { /* BITWRITE: this piece's bits, 8 per byte (whole bytes of dst) */
         uint32_t done = (uint32_t)fb->job_pos * 8u;
         if (done < jb->opnd.count) {
             uint32_t k = jb->opnd.count - done;
-            if (jb->opnd.bit == 0u && k >= (uint32_t)n * 8u) {
-                modcp_block_copy(dst, b->data, n); /* whole bytes of the area */
+            if (jb->opnd.bit == 0u && k >= n * 8u) {
+                modcp_block_copy(dst, d, n); /* whole bytes of the area */
             } else if (k == 1u) { /* one coil (FC05): bit 0 of the data, start bit <= 7 */
                 unsigned m = 1u << jb->opnd.bit;
-                dst[0] = (uint8_t)((dst[0] & ~m) | (((unsigned)b->data[0] << jb->opnd.bit) & m));
+                dst[0] = (uint8_t)((dst[0] & ~m) | (((unsigned)d[0] << jb->opnd.bit) & m));
             } else {
-                modcp_bits_put(dst, jb->opnd.bit, k > (uint32_t)n * 8u ? (uint32_t)n * 8u : k,
-                               b->data);
+                modcp_bits_put(dst, jb->opnd.bit, k > n * 8u ? n * 8u : k, d);
             }
         }
         break;
@@ -325,37 +359,51 @@ static void rx_data(modcp_fb_t *fb, const modcp_block_t *b)
     }
 }
 
-/* A JOB block, read in place; hdr: its decoded header when it is a FIRST block (NULL
- * if it does not decode). */
-static void rx_job(modcp_fb_t *fb, const modcp_block_t *b, const modcp_bp_job_t *hdr)
+/* A data block of the active write job. It must be exactly the next piece the header
+ * announced (32 bytes, the last one shorter and flagged LAST); otherwise the job ends
+ * with (0E)33H and nothing more of it is written. */
+static void rx_data(modcp_fb_t *fb, const modcp_block_t *b)
 {
-    if ((b->flags & MODCP_BLK_FIRST) != 0u) {
-        fb->job_active = false; /* a new FIRST abandons an unfinished job */
-        if (hdr != NULL) {
-            fb->job = *hdr;
-            fb->job_tag = b->tag;
-            start_job(fb, (b->flags & MODCP_BLK_LAST) != 0u);
-        }
-    } else if (fb->job_active && b->tag == fb->job_tag) {
-        rx_data(fb, b);
+    if (atomic_load_explicit(&fb->bp->abort_tag, memory_order_acquire) == (uint32_t)fb->job_tag) {
+        fb->job_active = false; /* given up by the CP: nothing more is written */
+        return;
     }
-    /* else: remainder of a job we never saw the start of, or that was answered */
+    uint32_t rest = (uint32_t)fb->job.len - fb->job_pos;
+    uint32_t n = rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest;
+    bool last = n == rest;
+    if (b->len != n || ((b->flags & MODCP_BLK_LAST) != 0u) != last) {
+        reply(fb, MODCP_EV_XFER_STATE, 0, 0); /* data not as announced */
+        return;
+    }
+    exec_data(fb, b->data, n, last);
 }
 
 /* A write job whose blocks all fit the ring waits until all of them are in, so it is
  * executed within one call however the CP side's publishing interleaves with this
  * call (two threads). The CP side publishes such a job completely into an empty ring
- * (job.c), so it never waits for long. */
-static bool job_in_ring(const modcp_fb_t *fb, const modcp_block_t *b, const modcp_bp_job_t *h)
+ * (job.c), so it never waits for long. b: a JOB header block not flagged LAST. */
+static bool job_in_ring(const modcp_fb_t *fb, const modcp_block_t *b)
 {
-    if ((b->flags & MODCP_BLK_LAST) != 0u) {
-        return true;
-    }
-    uint32_t need = 1u + ((uint32_t)h->len + MODCP_BLOCK_SIZE - 1u) / MODCP_BLOCK_SIZE;
-    return h->op == MODCP_JOB_READ || need > MODCP_BP_DEPTH ||
+    uint32_t len = modcp_bp_get16(b->data + 9); /* the header's len (backplane.c) */
+    uint32_t need = 1u + (len + MODCP_BLOCK_SIZE - 1u) / MODCP_BLOCK_SIZE;
+    return b->data[0] == MODCP_JOB_READ || need > MODCP_BP_DEPTH ||
            MODCP_BP_DEPTH - modcp_ring_space(&fb->bp->to_cpu) >= need ||
            /* given up by the CP (it never comes complete): take it, it is dropped */
            atomic_load_explicit(&fb->bp->abort_tag, memory_order_acquire) == (uint32_t)b->tag;
+}
+
+static void rx_ack(modcp_fb_t *fb, const modcp_block_t *b)
+{
+    if (fb->state == MODCP_FBST_INIT_WAIT) {
+        modcp_event_t ev = b->len >= 2u ? modcp_bp_get16(b->data) : MODCP_EV_XFER_STATE;
+        if (ev == MODCP_EV_NONE) {
+            fb->state = MODCP_FBST_RUN;
+            fb->out.cp_start_ok = true;
+            fb->out.cp_start_error = false;
+        } else {
+            fb->init_event = ev; /* not ready: retried on the next interval */
+        }
+    }
 }
 
 static void rx_blocks(modcp_fb_t *fb)
@@ -363,14 +411,12 @@ static void rx_blocks(modcp_fb_t *fb)
     modcp_ring_t *r = &fb->bp->to_cpu;
     const modcp_block_t *b;
     while (!fb->reply_pending && (b = modcp_ring_peek(r)) != NULL) {
-        modcp_bp_job_t h;
-        const modcp_bp_job_t *hdr = NULL;
-        if (b->kind == MODCP_BP_JOB && (b->flags & MODCP_BLK_FIRST) != 0u &&
-            modcp_bp_job_decode(b->data, b->len, &h)) {
-            if (!job_in_ring(fb, b, &h)) {
-                break; /* not all of its blocks in yet */
-            }
-            hdr = &h;
+        uint8_t kind = b->kind;
+        uint8_t flags = b->flags;
+        bool first = kind == MODCP_BP_JOB && (flags & MODCP_BLK_FIRST) != 0u;
+        bool hdr = first && b->len >= MODCP_BP_JOB_HDR_LEN;
+        if (hdr && (flags & MODCP_BLK_LAST) == 0u && !job_in_ring(fb, b)) {
+            break; /* not all of its blocks in yet */
         }
         if (fb->rx_synced && b->seq != fb->rx_seq) {
             fb->job_active = false; /* a block went missing: nothing more of that job */
@@ -379,27 +425,37 @@ static void rx_blocks(modcp_fb_t *fb)
         fb->rx_seq = (uint8_t)(b->seq + 1u);
         if (b->len > MODCP_BLOCK_SIZE) {
             fb->job_active = false;
-        } else if (b->kind == MODCP_BP_INIT_ACK) {
-            if (fb->state == MODCP_FBST_INIT_WAIT) {
-                modcp_event_t ev = b->len >= 2u
-                                       ? (modcp_event_t)((unsigned)b->data[0] |
-                                                         ((unsigned)b->data[1] << 8))
-                                       : MODCP_EV_XFER_STATE;
-                if (ev == MODCP_EV_NONE) {
-                    fb->state = MODCP_FBST_RUN;
-                    fb->out.cp_start_ok = true;
-                    fb->out.cp_start_error = false;
-                } else {
-                    fb->init_event = ev; /* not ready: retried on the next interval */
-                }
+        } else if (first) {
+            fb->job_active = false; /* a new FIRST abandons an unfinished job */
+            if (hdr) {
+                (void)modcp_bp_job_decode(b->data, b->len, &fb->job);
+                fb->job_tag = b->tag;
+                start_job(fb, b);
             }
-        } else if (b->kind == MODCP_BP_JOB) {
-            rx_job(fb, b, hdr);
+        } else if (kind == MODCP_BP_JOB) {
+            if (fb->job_active && b->tag == fb->job_tag) {
+                rx_data(fb, b);
+            }
+            /* else: remainder of a job we never saw the start of, or that was answered */
+        } else if (kind == MODCP_BP_INIT_ACK) {
+            rx_ack(fb, b);
         }
         /* PARAMS / INIT / REPLY travel the other way: ignored */
         modcp_ring_release(r);
         if (fb->reply_pending) {
-            pump_reply(fb);
+            modcp_block_t *rb;
+            if (fb->reply.len == 0u && (rb = modcp_ring_slot(&fb->bp->to_cp)) != NULL) {
+                /* a write's or an error's reply: its header alone, at once */
+                rb->len = modcp_bp_reply_encode(&fb->reply, rb->data);
+                rb->kind = MODCP_BP_REPLY;
+                rb->flags = MODCP_BLK_FIRST | MODCP_BLK_LAST;
+                rb->tag = fb->job_tag;
+                fb->reply_hdr_sent = true;
+                fb->reply_pending = false;
+                modcp_ring_publish(&fb->bp->to_cp, &fb->tx_seq);
+            } else {
+                pump_reply(fb);
+            }
         }
     }
 }

@@ -1,12 +1,14 @@
 /* modcp — CP side of the backplane (SPEC §6, 004 §4.6).
  *
  * A job goes out as one header block (kind JOB, FIRST, the job's tag, data = the
- * encoded modcp_bp_job_t; also LAST when no data follows) and ceil(len / 32) data
- * blocks of 32 bytes (the last one shorter and flagged LAST). Each poll pushes as many
- * blocks as the ring has free slots, each written in place into its slot (the write
- * data is copied once, from the request into the slot); nothing is produced when no
- * slot is free, so no put ever fails. REPLY blocks are read in place and released
- * (read data: one copy, from the slot into the caller's buffer).
+ * encoded modcp_bp_job_t) and, when its write data fits after the header (up to
+ * MODCP_BP_JOB_INLINE bytes) or there is none (READ), that is the whole job, flagged
+ * LAST too; else ceil(len / 32) data blocks of 32 bytes follow (the last one shorter
+ * and flagged LAST). The start and each poll push as many blocks as the ring has free
+ * slots, each written in place into its slot (the write data is copied once, from the
+ * request into the slot); nothing is produced when no slot is free, so no put ever
+ * fails. REPLY blocks are read in place and released (read data: one copy, from the
+ * slot into the caller's buffer; a header flagged LAST carries the data after it).
  *
  * The header of a new job is only pushed once the CPU-bound ring is empty, i.e. once
  * the CPU side has consumed every block of the previous job. In normal operation this
@@ -43,6 +45,8 @@ bool modcp_job_busy(const modcp_job_t *j)
     return j->state != MODCP_JOBST_IDLE;
 }
 
+static void push_blocks(modcp_job_t *j);
+
 modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const uint8_t *wdata,
                               uint8_t *rbuf, uint16_t rcap, uint16_t limit, uint32_t timeout_us,
                               uint32_t now_us)
@@ -67,13 +71,11 @@ modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const u
     j->wpos = 0;
     j->rbuf = rbuf;
     j->rcap = rbuf != NULL ? rcap : 0u;
-    j->rlen = 0;
-    j->rexpect = 0;
     j->t0_us = now_us;
     j->timeout_us = timeout_us;
-    j->event = MODCP_EV_NONE;
-    j->error_nr = 0;
-    j->state = MODCP_JOBST_SENDING;
+    j->state = MODCP_JOBST_SENDING; /* rlen / rexpect: on the REPLY header; event /
+                                       error_nr: when the job finishes */
+    push_blocks(j); /* the first blocks go out at once */
     return MODCP_EV_NONE;
 }
 
@@ -120,7 +122,9 @@ bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev)
 
 /* Push as many of the job's blocks as there are free slots; each block is written
  * straight into its slot (the write data: one copy from the request) and published at
- * once. */
+ * once. A job whose header and write data fit one block (up to MODCP_BP_JOB_INLINE data
+ * bytes: every FC05 / FC06 / FC22, FC15 up to 168 coils, FC16 up to 10 registers) and
+ * every read job cross as that one block, flagged FIRST and LAST. */
 static void push_blocks(modcp_job_t *j)
 {
     modcp_ring_t *r = &j->bp->to_cpu;
@@ -137,14 +141,21 @@ static void push_blocks(modcp_job_t *j)
            head - atomic_load_explicit(&r->tail, memory_order_acquire) < MODCP_BP_DEPTH) {
         modcp_block_t *b = &r->slot[head & (MODCP_BP_DEPTH - 1u)];
         uint8_t flags = 0;
-        uint8_t n;
+        uint32_t n;
         if (!j->hdr_sent) {
             n = modcp_bp_job_encode(&j->hdr, b->data);
             flags = MODCP_BLK_FIRST;
             j->hdr_sent = true;
+            if (j->hdr.op != MODCP_JOB_READ && j->hdr.len <= MODCP_BP_JOB_INLINE) {
+                uint32_t len = j->hdr.len; /* the data with the header */
+                for (const uint8_t *w = j->wdata; n < MODCP_BP_JOB_HDR_LEN + len; n++) {
+                    b->data[n] = *w++;
+                }
+                j->wpos = (uint16_t)len;
+            }
         } else {
             uint32_t rest = (uint32_t)j->hdr.len - j->wpos;
-            n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
+            n = rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest;
             modcp_block_copy(b->data, j->wdata + j->wpos, n);
             j->wpos = (uint16_t)(j->wpos + n);
         }
@@ -152,7 +163,7 @@ static void push_blocks(modcp_job_t *j)
             flags |= MODCP_BLK_LAST; /* nothing (more) to send */
             j->state = MODCP_JOBST_WAITING;
         }
-        b->len = n;
+        b->len = (uint8_t)n;
         b->kind = MODCP_BP_JOB;
         b->flags = flags;
         b->tag = j->tag;
@@ -183,35 +194,35 @@ static modcp_jobp_t rx_reply(modcp_job_t *j, const modcp_block_t *b)
     if (!modcp_job_busy(j) || b->tag != j->tag) {
         return MODCP_JOBP_NOTHING; /* stale reply of a job we gave up on */
     }
+    const uint8_t *d = b->data;
+    uint32_t n = b->len;
     if ((b->flags & MODCP_BLK_FIRST) != 0u) {
-        modcp_bp_reply_t r;
-        if (j->state == MODCP_JOBST_RECEIVING || !modcp_bp_reply_decode(b->data, b->len, &r)) {
+        if (j->state == MODCP_JOBST_RECEIVING || n < MODCP_BP_REPLY_HDR_LEN) {
             j->proto_errors++;
             return finish(j, MODCP_EV_XFER_STATE, 0);
         }
-        if (r.event != MODCP_EV_NONE) {
-            return finish(j, r.event, r.error_nr);
+        modcp_event_t ev = modcp_bp_get16(d);
+        if (ev != MODCP_EV_NONE) {
+            return finish(j, ev, modcp_bp_get16(d + 2));
         }
-        j->rexpect = r.len;
+        j->rexpect = modcp_bp_get16(d + 4);
         j->rlen = 0;
         j->state = MODCP_JOBST_RECEIVING;
-        if ((b->flags & MODCP_BLK_LAST) != 0u) {
-            return finish_reply(j);
+        if ((b->flags & MODCP_BLK_LAST) == 0u) {
+            return MODCP_JOBP_NOTHING; /* data blocks follow */
         }
-        return MODCP_JOBP_NOTHING;
-    }
-    if (j->state != MODCP_JOBST_RECEIVING) {
+        d += MODCP_BP_REPLY_HDR_LEN; /* the whole reply in one block: data after the header */
+        n -= MODCP_BP_REPLY_HDR_LEN;
+    } else if (j->state != MODCP_JOBST_RECEIVING) {
         j->proto_errors++; /* data before the header */
         return finish(j, MODCP_EV_XFER_STATE, 0);
     }
-    uint32_t room = j->rlen < j->rcap ? (uint32_t)j->rcap - j->rlen : 0u;
-    uint32_t n = b->len < room ? b->len : room;
-    if (n > 0u) {
-        modcp_block_copy(j->rbuf + j->rlen, b->data, n);
+    if (n > 0u) { /* count everything that arrived (saturating), store only what fits */
+        uint32_t room = j->rlen < j->rcap ? (uint32_t)j->rcap - j->rlen : 0u;
+        modcp_block_copy(j->rbuf + j->rlen, d, n < room ? n : room);
+        uint32_t total = (uint32_t)j->rlen + n;
+        j->rlen = (uint16_t)(total > 0xFFFFu ? 0xFFFFu : total);
     }
-    /* count everything that arrived (saturating), store only what fits */
-    uint32_t total = (uint32_t)j->rlen + b->len;
-    j->rlen = (uint16_t)(total > 0xFFFFu ? 0xFFFFu : total);
     if ((b->flags & MODCP_BLK_LAST) != 0u) {
         return finish_reply(j);
     }
@@ -292,13 +303,6 @@ static bool params_wait(const modcp_job_t *j)
            (next->flags & MODCP_BLK_FIRST) != 0u;
 }
 #endif
-
-void modcp_job_push(modcp_job_t *j)
-{
-    if (j->state == MODCP_JOBST_SENDING) {
-        push_blocks(j);
-    }
-}
 
 modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us)
 {

@@ -6,19 +6,16 @@
 #include "modcp/job.h"
 
 void modcp_job_init(modcp_job_t *j, modcp_backplane_t *bp, uint8_t *msgbuf, uint16_t msgcap);
-/* Start a job. hdr->len bytes of wdata are sent for WRITE / BITWRITE; for READ,
- * hdr->len bytes are expected back into rbuf (rcap >= hdr->len). limit is the CPU
- * transfer limit in bytes. Returns MODCP_EV_JOB_LENGTH when hdr->len > limit,
- * MODCP_EV_INTERNAL_SEND if a job is already running; else NONE. */
+/* Start a job and push its first blocks at once. hdr->len bytes of wdata are sent for
+ * WRITE / BITWRITE; for READ, hdr->len bytes are expected back into rbuf (rcap >=
+ * hdr->len). limit is the CPU transfer limit in bytes. Returns MODCP_EV_JOB_LENGTH when
+ * hdr->len > limit, MODCP_EV_INTERNAL_SEND if a job is already running; else NONE. */
 modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const uint8_t *wdata,
                               uint8_t *rbuf, uint16_t rcap, uint16_t limit, uint32_t timeout_us,
                               uint32_t now_us);
 /* Move blocks; detect completion and timeout ((0E)31H for READ/WRITE, (0E)3BH for
  * BITWRITE; the job's tag is then written to abort_tag). */
 modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us);
-/* Push the current job's blocks into the free slots now (what modcp_job_poll does
- * last), without reading anything: the CP calls it right after modcp_job_start. */
-void modcp_job_push(modcp_job_t *j);
 /* Drop the current job without waiting (CP re-parameterised). */
 void modcp_job_abort(modcp_job_t *j);
 #if MODCP_SHARED_PARAMS_BUFFER

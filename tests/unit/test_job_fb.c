@@ -1221,6 +1221,103 @@ static void test_bitwrite_multi_block(void **state)
     assert_int_equal(f->m[86], 0xFF);
 }
 
+/* A job whose write data fits after its header (up to 21 bytes) crosses as that one
+ * block, FIRST and LAST; so does a reply whose read data fits after its header (up to
+ * 26 bytes). One byte more and the data follows in a block of its own. */
+static void test_one_block_jobs(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    for (unsigned k = 0; k < 32; k++) {
+        f->wbuf[k] = (uint8_t)(0xA0u + k);
+    }
+    /* write of 21 bytes: one block = 11-byte header + the data */
+    uint32_t head0 = atomic_load(&f->bp.to_cpu.head);
+    assert_int_equal(start(f, MODCP_JOB_WRITE, MODCP_AREA_M, 0, 40, 0, 21, 21, 1024), MODCP_EV_NONE);
+    assert_int_equal(atomic_load(&f->bp.to_cpu.head) - head0, 1); /* pushed by the start */
+    const modcp_block_t *b = modcp_ring_peek(&f->bp.to_cpu);
+    assert_non_null(b);
+    assert_int_equal(b->flags, MODCP_BLK_FIRST | MODCP_BLK_LAST);
+    assert_int_equal(b->len, MODCP_BP_JOB_HDR_LEN + 21);
+    assert_memory_equal(b->data + MODCP_BP_JOB_HDR_LEN, f->wbuf, 21);
+    assert_int_equal(f->job.state, MODCP_JOBST_WAITING);
+    f->ndr_calls = 0;
+    fb(f, true);
+    assert_memory_equal(f->m + 40, f->wbuf, 21);
+    assert_int_equal(f->ndr_calls, 1);
+    b = modcp_ring_peek(&f->bp.to_cp); /* the reply: its header alone */
+    assert_non_null(b);
+    assert_int_equal(b->flags, MODCP_BLK_FIRST | MODCP_BLK_LAST);
+    assert_int_equal(b->len, MODCP_BP_REPLY_HDR_LEN);
+    assert_int_equal(poll(f), MODCP_JOBP_DONE);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+
+    /* write of 22 bytes: header, then one data block */
+    head0 = atomic_load(&f->bp.to_cpu.head);
+    assert_int_equal(start(f, MODCP_JOB_WRITE, MODCP_AREA_M, 0, 80, 0, 22, 22, 1024), MODCP_EV_NONE);
+    assert_int_equal(atomic_load(&f->bp.to_cpu.head) - head0, 2);
+    assert_int_equal(run_job(f), 1);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+    assert_memory_equal(f->m + 80, f->wbuf, 22);
+
+    /* read of 26 bytes: the reply is one block; of 27: header + one data block */
+    for (unsigned k = 0; k < 27; k++) {
+        f->db800[300 + k] = (uint8_t)(k * 3u + 1u);
+    }
+    for (uint16_t n = 26; n <= 27; n++) {
+        memset(f->rbuf, 0, 32);
+        uint32_t cp_head = atomic_load(&f->bp.to_cp.head);
+        assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_DB, 800, 300, 0, n, n, 1024),
+                         MODCP_EV_NONE);
+        fb(f, true);
+        assert_int_equal(atomic_load(&f->bp.to_cp.head) - cp_head, n == 26 ? 1u : 2u);
+        b = modcp_ring_peek(&f->bp.to_cp);
+        assert_int_equal(b->len, n == 26 ? MODCP_BP_REPLY_HDR_LEN + 26 : MODCP_BP_REPLY_HDR_LEN);
+        assert_int_equal(poll(f), MODCP_JOBP_DONE);
+        assert_int_equal(f->job.event, MODCP_EV_NONE);
+        assert_int_equal(f->job.rlen, n);
+        assert_memory_equal(f->rbuf, f->db800 + 300, n);
+    }
+}
+
+/* The FB on one-block jobs: the data after a LAST header must be exactly what the header
+ * announces, else (0E)33H and nothing is written; a header not flagged LAST ignores
+ * bytes after it (its data follows in blocks of their own). */
+static void test_fb_one_block_checks(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    uint8_t tag;
+    modcp_bp_reply_t r;
+    modcp_bp_job_t h = {.op = MODCP_JOB_WRITE, .opnd = {.area = MODCP_AREA_M, .offset = 10, .count = 4},
+                        .len = 4};
+    uint8_t d[MODCP_BLOCK_SIZE];
+    memset(d, 0x3C, sizeof d);
+    uint8_t n = modcp_bp_job_encode(&h, d);
+    cp_put(f, MODCP_BP_JOB, MODCP_BLK_FIRST | MODCP_BLK_LAST, 40, d, (uint8_t)(n + 3)); /* 3 of 4 */
+    fb(f, true);
+    assert_true(fb_reply(f, &tag, &r));
+    assert_int_equal(tag, 40);
+    assert_int_equal(r.event, MODCP_EV_XFER_STATE);
+    assert_int_equal(f->m[10], 0);
+    cp_put(f, MODCP_BP_JOB, MODCP_BLK_FIRST | MODCP_BLK_LAST, 41, d, (uint8_t)(n + 5)); /* 5 of 4 */
+    fb(f, true);
+    assert_true(fb_reply(f, &tag, &r));
+    assert_int_equal(r.event, MODCP_EV_XFER_STATE);
+    assert_int_equal(f->m[10], 0);
+    assert_int_equal(f->ndr_calls, 0);
+    /* header not LAST with bytes after it: they are ignored, the data block counts */
+    const uint8_t data[4] = {1, 2, 3, 4};
+    cp_put(f, MODCP_BP_JOB, MODCP_BLK_FIRST, 42, d, (uint8_t)(n + 4));
+    cp_put(f, MODCP_BP_JOB, MODCP_BLK_LAST, 42, data, 4);
+    fb(f, true);
+    assert_true(fb_reply(f, &tag, &r));
+    assert_int_equal(tag, 42);
+    assert_int_equal(r.event, MODCP_EV_NONE);
+    assert_memory_equal(f->m + 10, data, 4);
+    assert_int_equal(f->ndr_calls, 1);
+}
+
 /* CP side: a PARAMS message that loses a block is reported empty; blocks of the wrong
  * kind or a short INIT are protocol errors and reported as nothing. */
 static void test_cp_message_checks(void **state)
@@ -1290,6 +1387,8 @@ int main(void)
         T(test_read_streamed_per_block),
         T(test_fb_data_checks_per_block),
         T(test_bitwrite_multi_block),
+        T(test_one_block_jobs),
+        T(test_fb_one_block_checks),
     };
 #undef T
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -15,6 +15,7 @@
  *   CP -> CPU  INIT_ACK modcp_bp_ack_t (event: NONE = ready)
  *   CP -> CPU  JOB      first block modcp_bp_job_t, then the write data
  *   CPU -> CP  REPLY    first block modcp_bp_reply_t, then the read data
+ * (a JOB / REPLY whose data fits after its header is that one block, FIRST and LAST)
  * A job is cancelled by the CP writing its tag to `abort_tag` (after a timeout); the
  * CPU side does not execute a job whose tag equals abort_tag, and the CP drops
  * REPLY blocks whose tag is not the tag of its current job. */
@@ -154,5 +155,9 @@ bool modcp_bp_systat_result(const modcp_backplane_t *bp, uint32_t req, uint8_t o
  * Layouts: backplane.c. The JOB and REPLY codecs run once per request each (inline). */
 #define MODCP_BP_JOB_HDR_LEN 11u
 #define MODCP_BP_REPLY_HDR_LEN 6u
+/* A JOB whose write data fits after its header (up to 21 bytes) and a REPLY whose read
+ * data fits after its header (up to 26 bytes) cross as that one block, FIRST and LAST. */
+#define MODCP_BP_JOB_INLINE (MODCP_BLOCK_SIZE - MODCP_BP_JOB_HDR_LEN)
+#define MODCP_BP_REPLY_INLINE (MODCP_BLOCK_SIZE - MODCP_BP_REPLY_HDR_LEN)
 
 #endif

@@ -51,7 +51,8 @@ typedef struct modcp_cp {
     modcp_frame_t frame; /* request being processed */
     bool request_pending; /* a request waits for its job */
     bool ack_pending;     /* an INIT_ACK could not be sent yet */
-    bool published;
+    bool published;       /* the status area shows the CP's state (cp.c publish()) */
+    bool publish_all;     /* ... and its rarely changing parts are to be rewritten too */
     uint32_t err_mark_us; /* link.last_us after the last line error: when it moves on, a
                              character was received (the end of a wire break) */
     modcp_event_t ack_event;
