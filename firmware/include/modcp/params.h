@@ -96,11 +96,12 @@ typedef struct {
     uint8_t f_mul;      /* 1 ... 10 */
     uint8_t eof_timing; /* modcp_eof_timing_t */
     uint8_t t15_check;  /* 0 off, 1 on */
-    uint16_t ascii_timeout_ms; /* 1 ... 6500 */
-    /* interface */
+    /* interface (the two bytes next to the ones above: no padding; the record's order
+     * is that of the rows in params_fields.h, not this struct's) */
     uint8_t iface;            /* modcp_iface_t */
-    uint16_t turnaround_ms;   /* RS485: delay before the reply, 0 ... 100 */
     uint8_t rs232_auto;       /* RS232 automatic secondary signals: 0 off, 1 on */
+    uint16_t ascii_timeout_ms; /* protocol: 1 ... 6500 */
+    uint16_t turnaround_ms;   /* RS485: delay before the reply, 0 ... 100 */
     uint16_t rts_on_delay_ms; /* data output waiting time (RTS on -> CTS expected) */
     uint16_t rts_off_delay_ms; /* time to RTS off after the last character */
     /* mapping */
@@ -129,6 +130,8 @@ typedef struct {
     /* indirection scanner (extended set) */
     uint16_t scan_start; /* first scanner register address */
     uint8_t scan_count;  /* 0 = off, 1 ... 16 */
+    /* diagnostics (next to scan_count: no padding) */
+    uint8_t diag_irq; /* diagnostic interrupt records (001 §8.4): 0 off (default), 1 on */
 #if MODCP_WITH_EXTENDED
     /* Kept only with the extended set (164 bytes): without it the record still carries
      * them (one record for every build), the decoder skips them and scan_count must be
@@ -140,8 +143,6 @@ typedef struct {
     char revision[MODCP_ID_STRING_MAX + 1];
     char app_name[MODCP_ID_STRING_MAX + 1];
 #endif
-    /* diagnostics */
-    uint8_t diag_irq; /* diagnostic interrupt records (001 §8.4): 0 off (default), 1 on */
 } modcp_params_t;
 
 /* Field identifiers, used in validation issues so tools can name section/key. */
