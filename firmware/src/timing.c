@@ -19,9 +19,10 @@ static uint32_t eff_baud(const modcp_params_t *p)
     return p->baud != 0u ? p->baud : DEFAULT_BAUD;
 }
 
+/* ceil(num / den) for num >= 1 (every caller: bits x 1e6 or more): no remainder */
 static uint32_t div_ceil(uint32_t num, uint32_t den)
 {
-    return num / den + (num % den != 0u ? 1u : 0u);
+    return (num - 1u) / den + 1u;
 }
 
 /* ceil(bits_x10 / 10 * 1e6 / baud) = ceil(bits_x10 * 100000 / baud); fits in 32 bits
