@@ -38,7 +38,7 @@ static uint32_t bit_time_us(uint32_t bits_x10, uint32_t baud)
 static uint32_t table_timeout_us(uint32_t baud)
 {
     uint32_t k = baud / 300u;
-    if (baud % 300u == 0u && k <= 256u && (k & (k - 1u)) == 0u) {
+    if (k * 300u == baud && k <= 256u && (k & (k - 1u)) == 0u) {
         return 38400000u / baud;
     }
     return bit_time_us(T35_BITS_X10, baud);
