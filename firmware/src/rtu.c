@@ -204,7 +204,19 @@ static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
     const uint32_t c = l->char_us;
     const uint8_t *const e = b + n;
     uint32_t t = end_us - (uint32_t)(n - 1u) * c; /* end of the character at b */
-    if (l->t15_us != 0u && l->state == MODCP_LINK_RX && t - l->last_us > l->t15_us + c) {
+    if (l->state == MODCP_LINK_IDLE) {
+        if (*b == l->own_addr || *b == 0u) {
+            /* frame_start() of our frame, its first character left to the run below
+             * (a store and a CRC step from the initial value: the same effect) */
+            l->fr.rtu.count = 1;
+            l->fr.rtu.crc = MODCP_CRC_INIT;
+            l->rx_bad = false;
+            l->rx_overflow = false;
+            l->len = 0;
+            l->state = MODCP_LINK_RX;
+            link_arm(l, l->t35_us);
+        }
+    } else if (l->t15_us != 0u && l->state == MODCP_LINK_RX && t - l->last_us > l->t15_us + c) {
         t15_violated(l, *b++, t);
         t += c;
     }
@@ -310,12 +322,11 @@ bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f)
 static bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
     (void)now_us;
-    if (l->state != MODCP_LINK_RX && l->state != MODCP_LINK_SKIP) {
-        return false; /* stale or spurious expiry */
-    }
-    if (l->state == MODCP_LINK_SKIP) {
-        skip_end(l);
-        return false;
+    if (l->state != MODCP_LINK_RX) {
+        if (l->state == MODCP_LINK_SKIP) {
+            skip_end(l);
+        }
+        return false; /* else a stale or spurious expiry */
     }
     l->state = MODCP_LINK_IDLE;
     if (l->rx_bad) {
@@ -336,11 +347,11 @@ static bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
 {
     uint32_t n = 1u + (uint32_t)pdu_len; /* address + PDU */
+    if (l->reply_same && n + 2u == (uint32_t)l->len) {
+        return l->len; /* the request's frame, unchanged: its CRC is in place (len <= cap) */
+    }
     if (l->buf == NULL || n + 2u > (uint32_t)l->cap) {
         return 0;
-    }
-    if (l->reply_same && n + 2u == (uint32_t)l->len) {
-        return l->len; /* the request's frame, unchanged: its CRC is in place */
     }
     uint16_t crc = modcp_crc16(l->buf, n);
     l->buf[n] = (uint8_t)(crc & 0xFFu); /* low byte first */
