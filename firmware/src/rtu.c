@@ -124,6 +124,10 @@ void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
 static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     modcp_rtu_t *r = &l->fr.rtu;
+    if (l->modem) {
+        rtu_m_byte_other(l, b, now_us);
+        return;
+    }
     switch (l->state) {
     case MODCP_LINK_IDLE:
         frame_start(l, b, false, now_us);
@@ -155,11 +159,12 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
     }
 }
 
-/* The hot path: a character of our frame, with room in the buffer, is stored and goes
+/* The hot path: a character of our frame, with room in the buffer (r->stop is the
+ * capacity in normal operation; modem mode: see rtu_modem.c), is stored and goes
  * through one CRC step; nothing else. */
-static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
+void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
-    if (l->state != MODCP_LINK_RX || l->len >= l->cap) {
+    if (l->state != MODCP_LINK_RX || l->len >= l->fr.rtu.stop) {
         byte_other(l, b, now_us);
         return;
     }
@@ -173,6 +178,10 @@ static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
  * so that the check costs nothing when it is off. */
 static MODCP_NOINLINE void t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
+    if (l->modem) {
+        rtu_m_t15_violated(l, b, now_us);
+        return;
+    }
     if (!l->rx_bad) {
         link_mark_bad(l);
         if (l->diag != NULL) {
@@ -185,7 +194,7 @@ static MODCP_NOINLINE void t15_violated(modcp_link_t *l, uint8_t b, uint32_t now
     rtu_on_byte(l, b, now_us);
 }
 
-static void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
+void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     if (l->state == MODCP_LINK_RX && now_us - l->last_us > l->t15_us + l->char_us) {
         t15_violated(l, b, now_us);
@@ -366,10 +375,12 @@ static const modcp_framing_ops_t rtu_t15_ops;
 const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
 {
     l->silence_us = l->t35_us;
+    l->fr.rtu.stop = l->cap; /* normal operation: the hot path runs up to the capacity */
+    l->modem = p->opmode == (uint8_t)MODCP_OPMODE_SUPPRESS;
     if (l->cap < RTU_MIN_FRAME) {
         return NULL;
     }
-    if (p->opmode == (uint8_t)MODCP_OPMODE_SUPPRESS) {
+    if (l->modem) {
         return l->t15_us != 0u ? &modcp_rtu_modem_t15_ops : &modcp_rtu_modem_ops;
     }
     return l->t15_us != 0u ? &rtu_t15_ops : &modcp_rtu_ops;

@@ -261,7 +261,8 @@ static void m_stretch_end(modcp_link_t *l)
     }
 }
 
-static MODCP_NOINLINE void m_byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us)
+/* Every case but the plain one of rtu_on_byte() (rtu.c) in modem mode. */
+void rtu_m_byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     switch (l->state) {
     case MODCP_LINK_IDLE:
@@ -293,19 +294,6 @@ static MODCP_NOINLINE void m_byte_other(modcp_link_t *l, uint8_t b, uint32_t now
     }
 }
 
-/* The hot path of modem mode: a character of the candidate below r->stop is stored and
- * goes through one CRC step. */
-static void rtu_m_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
-{
-    if (l->state != MODCP_LINK_RX || l->len >= l->fr.rtu.stop) {
-        m_byte_other(l, b, now_us);
-        return;
-    }
-    l->last_us = now_us;
-    l->fr.rtu.crc = modcp_crc16_byte(l->fr.rtu.crc, b);
-    l->buf[l->len++] = b;
-}
-
 /* A damaged candidate: counted once when it has its function code, dropped. */
 static void m_cand_bad(modcp_link_t *l)
 {
@@ -317,22 +305,14 @@ static void m_cand_bad(modcp_link_t *l)
     m_drop(l);
 }
 
-static MODCP_NOINLINE void m_t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
+/* The t1.5 check (rtu_on_byte_t15, rtu.c) found a silence too long in the candidate. */
+void rtu_m_t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     if (!l->rx_bad && l->diag != NULL) {
         l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
     }
     m_cand_bad(l);
-    rtu_m_on_byte(l, b, now_us); /* it may start the next candidate */
-}
-
-static void rtu_m_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
-{
-    if (l->state == MODCP_LINK_RX && now_us - l->last_us > l->t15_us + l->char_us) {
-        m_t15_violated(l, b, now_us);
-        return;
-    }
-    rtu_m_on_byte(l, b, now_us);
+    rtu_on_byte(l, b, now_us); /* it may start the next candidate */
 }
 
 static void rtu_m_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
@@ -395,8 +375,10 @@ static bool rtu_m_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
     return false;
 }
 
-const modcp_framing_ops_t modcp_rtu_modem_ops = {rtu_configure, rtu_m_on_byte, rtu_m_on_error,
+/* The hot path (rtu_on_byte, rtu_on_byte_t15) is normal operation's: its other cases
+ * come here by l->modem. */
+const modcp_framing_ops_t modcp_rtu_modem_ops = {rtu_configure, rtu_on_byte, rtu_m_on_error,
                                                  rtu_m_on_timer, rtu_encode, NULL};
-const modcp_framing_ops_t modcp_rtu_modem_t15_ops = {rtu_configure, rtu_m_on_byte_t15,
+const modcp_framing_ops_t modcp_rtu_modem_t15_ops = {rtu_configure, rtu_on_byte_t15,
                                                      rtu_m_on_error, rtu_m_on_timer,
                                                      rtu_encode, NULL};
