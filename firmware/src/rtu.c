@@ -124,27 +124,32 @@ void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
 static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     modcp_rtu_t *r = &l->fr.rtu;
-    if (l->modem) {
-        rtu_m_byte_other(l, b, now_us);
-        return;
-    }
     switch (l->state) {
-    case MODCP_LINK_IDLE:
-        frame_start(l, b, false, now_us);
-        break;
-    case MODCP_LINK_RX: /* the buffer is full: the frame is too long */
-        l->rx_overflow = true;
-        l->last_us = now_us;
-        break;
     case MODCP_LINK_SKIP:
-        if (now_us - l->last_us >= l->t35_us) {
-            skip_end(l);
-            frame_start(l, b, false, now_us);
+        if (now_us - l->last_us < l->t35_us) {
+            l->last_us = now_us;
+            if (l->modem) {
+                rtu_m_push(l, b);
+            } else {
+                rtu_count_char(r);
+                r->crc = modcp_crc16_byte(r->crc, b);
+            }
             break;
         }
-        rtu_count_char(r);
-        r->crc = modcp_crc16_byte(r->crc, b);
+        if (l->modem) {
+            rtu_m_stretch_end(l);
+        } else {
+            skip_end(l);
+        }
+        goto start; /* the skipped frame ended: b starts a new one */
+    case MODCP_LINK_RX: /* normal: the buffer is full, the frame is too long; modem mode:
+                           function code, byte count, last character, or a full buffer */
         l->last_us = now_us;
+        if (l->modem) {
+            rtu_m_push(l, b);
+        } else {
+            l->rx_overflow = true;
+        }
         break;
     case MODCP_LINK_EOF:
     case MODCP_LINK_BUSY:
@@ -153,8 +158,15 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
         rtu_busy_track(l, b, false, now_us);
         break;
     default:
-        rtu_internal_error(l);
-        frame_start(l, b, false, now_us);
+        if (l->state != MODCP_LINK_IDLE) {
+            rtu_internal_error(l);
+        }
+    start:
+        if (l->modem) {
+            rtu_m_stretch_begin(l, b, now_us);
+        } else {
+            frame_start(l, b, false, now_us);
+        }
         break;
     }
 }
@@ -263,7 +275,8 @@ static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
     }
 }
 
-static void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
+/* Modem mode implies l->suppress. */
+void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
     (void)line_errors; /* every kind of error has the same effect on framing */
     modcp_rtu_t *r = &l->fr.rtu;
@@ -275,22 +288,34 @@ static void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
         frame_start(l, 0, true, now_us);
         break;
     case MODCP_LINK_RX:
-        if (!l->rx_bad && !l->rx_overflow && l->len >= RTU_MIN_FRAME && r->crc == 0u) {
-            return; /* after the CRC: not part of the frame */
+        if (l->modem) {
+            rtu_m_cand_bad(l);
+        } else {
+            if (!l->rx_bad && !l->rx_overflow && l->len >= RTU_MIN_FRAME && r->crc == 0u) {
+                return; /* after the CRC: not part of the frame */
+            }
+            link_mark_bad(l);
         }
-        link_mark_bad(l);
         l->last_us = now_us;
         break;
     case MODCP_LINK_SKIP:
         if (now_us - l->last_us >= l->t35_us) {
-            skip_end(l);
+            if (l->modem) {
+                rtu_m_stretch_end(l); /* a new stretch would begin: ignored as on an idle line */
+            } else {
+                skip_end(l);
+            }
             if (!l->suppress) {
                 frame_start(l, 0, true, now_us);
             }
             break;
         }
-        link_mark_bad(l);
-        rtu_count_char(r);
+        if (l->modem) {
+            l->rx_bad = true; /* among stray characters / another frame: not counted */
+        } else {
+            link_mark_bad(l);
+            rtu_count_char(r);
+        }
         l->last_us = now_us;
         break;
     case MODCP_LINK_EOF:
@@ -298,7 +323,7 @@ static void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
     case MODCP_LINK_TURNAROUND:
     case MODCP_LINK_TX:
         if (l->suppress && (!l->busy_rx || now_us - l->last_us >= l->t35_us)) {
-            break; /* not inside a frame: ignored, as between messages */
+            break; /* not inside a frame (modem mode: after the CRC): ignored, as between messages */
         }
         rtu_busy_track(l, 0, true, now_us);
         break;

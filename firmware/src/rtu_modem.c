@@ -78,7 +78,7 @@ static void m_fold(modcp_link_t *l, uint8_t b)
     rtu_count_char(r);
 }
 
-static void m_cand_start(modcp_link_t *l, uint8_t b)
+static MODCP_NOINLINE void m_cand_start(modcp_link_t *l, uint8_t b)
 {
     modcp_rtu_t *r = &l->fr.rtu;
     r->flags = (uint8_t)((r->flags & ~RTU_M_SBAD) | (l->rx_bad ? RTU_M_SBAD : 0u));
@@ -216,7 +216,7 @@ static MODCP_NOINLINE void m_resync(modcp_link_t *l)
     }
 }
 
-static void m_push(modcp_link_t *l, uint8_t b)
+void rtu_m_push(modcp_link_t *l, uint8_t b)
 {
     if (m_feed(l, b) == M_FAIL) {
         m_resync(l);
@@ -224,7 +224,7 @@ static void m_push(modcp_link_t *l, uint8_t b)
 }
 
 /* A stretch begins after t3.5 of silence; the timer is armed here, once. */
-static void m_stretch_begin(modcp_link_t *l, uint8_t b, uint32_t now_us)
+void rtu_m_stretch_begin(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     modcp_rtu_t *r = &l->fr.rtu;
     r->skip_crc = MODCP_CRC_INIT;
@@ -245,7 +245,7 @@ static void m_stretch_begin(modcp_link_t *l, uint8_t b, uint32_t now_us)
 }
 
 /* t3.5 after a stretch without a frame. */
-static void m_stretch_end(modcp_link_t *l)
+void rtu_m_stretch_end(modcp_link_t *l)
 {
     const modcp_rtu_t *r = &l->fr.rtu;
     l->state = MODCP_LINK_IDLE;
@@ -261,41 +261,8 @@ static void m_stretch_end(modcp_link_t *l)
     }
 }
 
-/* Every case but the plain one of rtu_on_byte() (rtu.c) in modem mode. */
-void rtu_m_byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us)
-{
-    switch (l->state) {
-    case MODCP_LINK_IDLE:
-        m_stretch_begin(l, b, now_us);
-        break;
-    case MODCP_LINK_SKIP:
-        if (now_us - l->last_us >= l->t35_us) {
-            m_stretch_end(l);
-            m_stretch_begin(l, b, now_us);
-            break;
-        }
-        l->last_us = now_us;
-        m_push(l, b);
-        break;
-    case MODCP_LINK_RX: /* function code, byte count, last character, or a full buffer */
-        l->last_us = now_us;
-        m_push(l, b);
-        break;
-    case MODCP_LINK_EOF:
-    case MODCP_LINK_BUSY:
-    case MODCP_LINK_TURNAROUND:
-    case MODCP_LINK_TX:
-        rtu_busy_track(l, b, false, now_us);
-        break;
-    default:
-        rtu_internal_error(l);
-        m_stretch_begin(l, b, now_us);
-        break;
-    }
-}
-
 /* A damaged candidate: counted once when it has its function code, dropped. */
-static void m_cand_bad(modcp_link_t *l)
+void rtu_m_cand_bad(modcp_link_t *l)
 {
     if (l->len >= 2u) {
         link_mark_bad(l);
@@ -311,41 +278,8 @@ void rtu_m_t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
     if (!l->rx_bad && l->diag != NULL) {
         l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
     }
-    m_cand_bad(l);
+    rtu_m_cand_bad(l);
     rtu_on_byte(l, b, now_us); /* it may start the next candidate */
-}
-
-static void rtu_m_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
-{
-    (void)line_errors;
-    switch (l->state) {
-    case MODCP_LINK_IDLE:
-        break; /* before the frame: ignored */
-    case MODCP_LINK_SKIP:
-        if (now_us - l->last_us >= l->t35_us) {
-            m_stretch_end(l); /* a new stretch would begin: ignored as on an idle line */
-            break;
-        }
-        l->rx_bad = true; /* among stray characters / another frame: not counted */
-        l->last_us = now_us;
-        break;
-    case MODCP_LINK_RX:
-        m_cand_bad(l);
-        l->last_us = now_us;
-        break;
-    case MODCP_LINK_EOF:
-    case MODCP_LINK_BUSY:
-    case MODCP_LINK_TURNAROUND:
-    case MODCP_LINK_TX:
-        if (!l->busy_rx || now_us - l->last_us >= l->t35_us) {
-            break; /* after the CRC, not inside a frame: ignored */
-        }
-        rtu_busy_track(l, 0, true, now_us);
-        break;
-    default:
-        rtu_internal_error(l);
-        break;
-    }
 }
 
 /* EOF: hand the frame over. RX / SKIP: t3.5 has passed since the last character. */
@@ -370,15 +304,15 @@ static bool rtu_m_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         m_drop(l);
     }
     if (l->state == MODCP_LINK_SKIP) {
-        m_stretch_end(l);
+        rtu_m_stretch_end(l);
     }
     return false;
 }
 
-/* The hot path (rtu_on_byte, rtu_on_byte_t15) is normal operation's: its other cases
- * come here by l->modem. */
-const modcp_framing_ops_t modcp_rtu_modem_ops = {rtu_configure, rtu_on_byte, rtu_m_on_error,
+/* The receive automaton (rtu_on_byte, rtu_on_byte_t15, rtu_on_error) is normal
+ * operation's (rtu.c): where modem mode differs, it comes here by l->modem. */
+const modcp_framing_ops_t modcp_rtu_modem_ops = {rtu_configure, rtu_on_byte, rtu_on_error,
                                                  rtu_m_on_timer, rtu_encode, NULL};
 const modcp_framing_ops_t modcp_rtu_modem_t15_ops = {rtu_configure, rtu_on_byte_t15,
-                                                     rtu_m_on_error, rtu_m_on_timer,
+                                                     rtu_on_error, rtu_m_on_timer,
                                                      rtu_encode, NULL};
