@@ -1,6 +1,8 @@
 /* modcp — RTU framing in interference suppression = modem mode (000 §5.6.1, §8;
  * 004 §2.2): the variant of the RTU backend (rtu.c) that modcp_link_configure selects
- * for the operating mode `suppression`; normal operation's hot path does not pay for it.
+ * for the operating mode `suppression` (l->modem). It shares rtu.c's receive automaton
+ * and hot path (a character below r->stop: a store and a CRC step); rtu.c calls the
+ * rtu_m_* hooks below where modem mode differs, and its end of frame is rtu_m_on_timer.
  *
  * "The start of a message is recognised by a correctly received slave address"; "the
  * end of the message by a formally correct message with a correct CRC". The line is
