@@ -45,7 +45,8 @@ static void reset_rx(modcp_link_t *l)
 }
 
 /* A disabled (or not yet configured) link: the line is ignored. Only on_byte is ever
- * reached through it: every other entry point checks l->enabled first. */
+ * reached through it (modcp_link_on_byte / _on_block): every other entry point checks
+ * l->enabled first. */
 static void off_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     (void)l;
@@ -157,11 +158,13 @@ void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 }
 
 /* Characters back to back: the framing's block path (RTU: store and CRC in one loop),
- * or its on_byte for each at the time it ended (ASCII, modem mode). A block holds no
- * silence, so it never contains the end of one frame and the start of the next. */
+ * or its on_byte for each at the time it ended (ASCII, modem mode). A disabled link has
+ * the "off" backend (its on_byte ignores the line). A block holds no silence, so it
+ * never contains the end of one frame and the start of the next. Only
+ * modcp_cp_on_rx_block calls this: a port that never does links none of it. */
 void modcp_link_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us)
 {
-    if (!l->enabled || n == 0u) {
+    if (n == 0u) {
         return;
     }
     if (l->ops->on_block != NULL) {

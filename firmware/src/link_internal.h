@@ -116,6 +116,19 @@ void rtu_internal_error(modcp_link_t *l);
 /* A formally correct frame in the buffer: counted, handed over (BUSY). */
 bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f);
 const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p);
+/* The receive automaton of both variants (rtu.c). The hot path: a character of the
+ * frame (modem mode: the candidate) below r->stop (normal operation: the capacity) is
+ * stored and goes through one CRC step. Where modem mode differs (frame start and end,
+ * the characters it looks at, line errors, t1.5) it calls rtu_m_* by l->modem. */
+void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
+void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us);
+void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
+/* Modem mode's part of that automaton (rtu_modem.c). */
+void rtu_m_stretch_begin(modcp_link_t *l, uint8_t b, uint32_t now_us); /* after t3.5 */
+void rtu_m_stretch_end(modcp_link_t *l);                               /* t3.5 passed */
+void rtu_m_push(modcp_link_t *l, uint8_t b);   /* a character of the stretch / candidate */
+void rtu_m_cand_bad(modcp_link_t *l);          /* a line error in the candidate */
+void rtu_m_t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us);
 uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len);
 
 /* Moved from modcp/link.h: the core's own interface. */

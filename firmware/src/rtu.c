@@ -1,6 +1,9 @@
 /* modcp — RTU framing (004 §5, SPEC §3.1): frame boundaries by the t3.5 gap, address
  * filter, running CRC, t1.5 check, frames that arrive while a request is in progress;
- * normal operation (interference suppression: rtu_modem.c).
+ * one receive automaton (rtu_on_byte, byte_other, rtu_on_error) for normal operation
+ * and interference suppression = modem mode, whose differences (frame start and end,
+ * the characters it looks at, line errors inside a frame) are the rtu_m_* hooks of
+ * rtu_modem.c, called by l->modem off the hot path.
  *
  * The backend behind modcp_rtu_ops (link_internal.h), its state in l->fr.rtu. A
  * character of our frame costs a store and one table-CRC step (plus one comparison with
@@ -125,22 +128,31 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
 {
     modcp_rtu_t *r = &l->fr.rtu;
     switch (l->state) {
-    case MODCP_LINK_IDLE:
-        frame_start(l, b, false, now_us);
-        break;
-    case MODCP_LINK_RX: /* the buffer is full: the frame is too long */
-        l->rx_overflow = true;
-        l->last_us = now_us;
-        break;
     case MODCP_LINK_SKIP:
-        if (now_us - l->last_us >= l->t35_us) {
-            skip_end(l);
-            frame_start(l, b, false, now_us);
+        if (now_us - l->last_us < l->t35_us) {
+            l->last_us = now_us;
+            if (l->modem) {
+                rtu_m_push(l, b);
+            } else {
+                rtu_count_char(r);
+                r->crc = modcp_crc16_byte(r->crc, b);
+            }
             break;
         }
-        rtu_count_char(r);
-        r->crc = modcp_crc16_byte(r->crc, b);
+        if (l->modem) {
+            rtu_m_stretch_end(l);
+        } else {
+            skip_end(l);
+        }
+        goto start; /* the skipped frame ended: b starts a new one */
+    case MODCP_LINK_RX: /* normal: the buffer is full, the frame is too long; modem mode:
+                           function code, byte count, last character, or a full buffer */
         l->last_us = now_us;
+        if (l->modem) {
+            rtu_m_push(l, b);
+        } else {
+            l->rx_overflow = true;
+        }
         break;
     case MODCP_LINK_EOF:
     case MODCP_LINK_BUSY:
@@ -149,17 +161,25 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
         rtu_busy_track(l, b, false, now_us);
         break;
     default:
-        rtu_internal_error(l);
-        frame_start(l, b, false, now_us);
+        if (l->state != MODCP_LINK_IDLE) {
+            rtu_internal_error(l);
+        }
+    start:
+        if (l->modem) {
+            rtu_m_stretch_begin(l, b, now_us);
+        } else {
+            frame_start(l, b, false, now_us);
+        }
         break;
     }
 }
 
-/* The hot path: a character of our frame, with room in the buffer, is stored and goes
+/* The hot path: a character of our frame, with room in the buffer (r->stop is the
+ * capacity in normal operation; modem mode: see rtu_modem.c), is stored and goes
  * through one CRC step; nothing else. */
-static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
+void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
-    if (l->state != MODCP_LINK_RX || l->len >= l->cap) {
+    if (l->state != MODCP_LINK_RX || l->len >= l->fr.rtu.stop) {
         byte_other(l, b, now_us);
         return;
     }
@@ -173,6 +193,10 @@ static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
  * so that the check costs nothing when it is off. */
 static MODCP_NOINLINE void t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
+    if (l->modem) {
+        rtu_m_t15_violated(l, b, now_us);
+        return;
+    }
     if (!l->rx_bad) {
         link_mark_bad(l);
         if (l->diag != NULL) {
@@ -185,7 +209,7 @@ static MODCP_NOINLINE void t15_violated(modcp_link_t *l, uint8_t b, uint32_t now
     rtu_on_byte(l, b, now_us);
 }
 
-static void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
+void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     if (l->state == MODCP_LINK_RX && now_us - l->last_us > l->t15_us + l->char_us) {
         t15_violated(l, b, now_us);
@@ -204,7 +228,19 @@ static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
     const uint32_t c = l->char_us;
     const uint8_t *const e = b + n;
     uint32_t t = end_us - (uint32_t)(n - 1u) * c; /* end of the character at b */
-    if (l->t15_us != 0u && l->state == MODCP_LINK_RX && t - l->last_us > l->t15_us + c) {
+    if (l->state == MODCP_LINK_IDLE) {
+        if (*b == l->own_addr || *b == 0u) {
+            /* frame_start() of our frame, its first character left to the run below
+             * (a store and a CRC step from the initial value: the same effect) */
+            l->fr.rtu.count = 1;
+            l->fr.rtu.crc = MODCP_CRC_INIT;
+            l->rx_bad = false;
+            l->rx_overflow = false;
+            l->len = 0;
+            l->state = MODCP_LINK_RX;
+            link_arm(l, l->t35_us);
+        }
+    } else if (l->t15_us != 0u && l->state == MODCP_LINK_RX && t - l->last_us > l->t15_us + c) {
         t15_violated(l, *b++, t);
         t += c;
     }
@@ -242,7 +278,8 @@ static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
     }
 }
 
-static void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
+/* Modem mode implies l->suppress. */
+void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
     (void)line_errors; /* every kind of error has the same effect on framing */
     modcp_rtu_t *r = &l->fr.rtu;
@@ -254,22 +291,34 @@ static void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
         frame_start(l, 0, true, now_us);
         break;
     case MODCP_LINK_RX:
-        if (!l->rx_bad && !l->rx_overflow && l->len >= RTU_MIN_FRAME && r->crc == 0u) {
-            return; /* after the CRC: not part of the frame */
+        if (l->modem) {
+            rtu_m_cand_bad(l);
+        } else {
+            if (!l->rx_bad && !l->rx_overflow && l->len >= RTU_MIN_FRAME && r->crc == 0u) {
+                return; /* after the CRC: not part of the frame */
+            }
+            link_mark_bad(l);
         }
-        link_mark_bad(l);
         l->last_us = now_us;
         break;
     case MODCP_LINK_SKIP:
         if (now_us - l->last_us >= l->t35_us) {
-            skip_end(l);
+            if (l->modem) {
+                rtu_m_stretch_end(l); /* a new stretch would begin: ignored as on an idle line */
+            } else {
+                skip_end(l);
+            }
             if (!l->suppress) {
                 frame_start(l, 0, true, now_us);
             }
             break;
         }
-        link_mark_bad(l);
-        rtu_count_char(r);
+        if (l->modem) {
+            l->rx_bad = true; /* among stray characters / another frame: not counted */
+        } else {
+            link_mark_bad(l);
+            rtu_count_char(r);
+        }
         l->last_us = now_us;
         break;
     case MODCP_LINK_EOF:
@@ -277,7 +326,7 @@ static void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
     case MODCP_LINK_TURNAROUND:
     case MODCP_LINK_TX:
         if (l->suppress && (!l->busy_rx || now_us - l->last_us >= l->t35_us)) {
-            break; /* not inside a frame: ignored, as between messages */
+            break; /* not inside a frame (modem mode: after the CRC): ignored, as between messages */
         }
         rtu_busy_track(l, 0, true, now_us);
         break;
@@ -310,12 +359,11 @@ bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f)
 static bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
     (void)now_us;
-    if (l->state != MODCP_LINK_RX && l->state != MODCP_LINK_SKIP) {
-        return false; /* stale or spurious expiry */
-    }
-    if (l->state == MODCP_LINK_SKIP) {
-        skip_end(l);
-        return false;
+    if (l->state != MODCP_LINK_RX) {
+        if (l->state == MODCP_LINK_SKIP) {
+            skip_end(l);
+        }
+        return false; /* else a stale or spurious expiry */
     }
     l->state = MODCP_LINK_IDLE;
     if (l->rx_bad) {
@@ -336,11 +384,11 @@ static bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
 {
     uint32_t n = 1u + (uint32_t)pdu_len; /* address + PDU */
+    if (l->reply_same && n + 2u == (uint32_t)l->len) {
+        return l->len; /* the request's frame, unchanged: its CRC is in place (len <= cap) */
+    }
     if (l->buf == NULL || n + 2u > (uint32_t)l->cap) {
         return 0;
-    }
-    if (l->reply_same && n + 2u == (uint32_t)l->len) {
-        return l->len; /* the request's frame, unchanged: its CRC is in place */
     }
     uint16_t crc = modcp_crc16(l->buf, n);
     l->buf[n] = (uint8_t)(crc & 0xFFu); /* low byte first */
@@ -355,10 +403,12 @@ static const modcp_framing_ops_t rtu_t15_ops;
 const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
 {
     l->silence_us = l->t35_us;
+    l->fr.rtu.stop = l->cap; /* normal operation: the hot path runs up to the capacity */
+    l->modem = p->opmode == (uint8_t)MODCP_OPMODE_SUPPRESS;
     if (l->cap < RTU_MIN_FRAME) {
         return NULL;
     }
-    if (p->opmode == (uint8_t)MODCP_OPMODE_SUPPRESS) {
+    if (l->modem) {
         return l->t15_us != 0u ? &modcp_rtu_modem_t15_ops : &modcp_rtu_modem_ops;
     }
     return l->t15_us != 0u ? &rtu_t15_ops : &modcp_rtu_ops;

@@ -1,6 +1,8 @@
 /* modcp — RTU framing in interference suppression = modem mode (000 §5.6.1, §8;
  * 004 §2.2): the variant of the RTU backend (rtu.c) that modcp_link_configure selects
- * for the operating mode `suppression`; normal operation's hot path does not pay for it.
+ * for the operating mode `suppression` (l->modem). It shares rtu.c's receive automaton
+ * and hot path (a character below r->stop: a store and a CRC step); rtu.c calls the
+ * rtu_m_* hooks below where modem mode differs, and its end of frame is rtu_m_on_timer.
  *
  * "The start of a message is recognised by a correctly received slave address"; "the
  * end of the message by a formally correct message with a correct CRC". The line is
@@ -78,7 +80,7 @@ static void m_fold(modcp_link_t *l, uint8_t b)
     rtu_count_char(r);
 }
 
-static void m_cand_start(modcp_link_t *l, uint8_t b)
+static MODCP_NOINLINE void m_cand_start(modcp_link_t *l, uint8_t b)
 {
     modcp_rtu_t *r = &l->fr.rtu;
     r->flags = (uint8_t)((r->flags & ~RTU_M_SBAD) | (l->rx_bad ? RTU_M_SBAD : 0u));
@@ -216,7 +218,7 @@ static MODCP_NOINLINE void m_resync(modcp_link_t *l)
     }
 }
 
-static void m_push(modcp_link_t *l, uint8_t b)
+void rtu_m_push(modcp_link_t *l, uint8_t b)
 {
     if (m_feed(l, b) == M_FAIL) {
         m_resync(l);
@@ -224,7 +226,7 @@ static void m_push(modcp_link_t *l, uint8_t b)
 }
 
 /* A stretch begins after t3.5 of silence; the timer is armed here, once. */
-static void m_stretch_begin(modcp_link_t *l, uint8_t b, uint32_t now_us)
+void rtu_m_stretch_begin(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     modcp_rtu_t *r = &l->fr.rtu;
     r->skip_crc = MODCP_CRC_INIT;
@@ -245,7 +247,7 @@ static void m_stretch_begin(modcp_link_t *l, uint8_t b, uint32_t now_us)
 }
 
 /* t3.5 after a stretch without a frame. */
-static void m_stretch_end(modcp_link_t *l)
+void rtu_m_stretch_end(modcp_link_t *l)
 {
     const modcp_rtu_t *r = &l->fr.rtu;
     l->state = MODCP_LINK_IDLE;
@@ -261,53 +263,8 @@ static void m_stretch_end(modcp_link_t *l)
     }
 }
 
-static MODCP_NOINLINE void m_byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us)
-{
-    switch (l->state) {
-    case MODCP_LINK_IDLE:
-        m_stretch_begin(l, b, now_us);
-        break;
-    case MODCP_LINK_SKIP:
-        if (now_us - l->last_us >= l->t35_us) {
-            m_stretch_end(l);
-            m_stretch_begin(l, b, now_us);
-            break;
-        }
-        l->last_us = now_us;
-        m_push(l, b);
-        break;
-    case MODCP_LINK_RX: /* function code, byte count, last character, or a full buffer */
-        l->last_us = now_us;
-        m_push(l, b);
-        break;
-    case MODCP_LINK_EOF:
-    case MODCP_LINK_BUSY:
-    case MODCP_LINK_TURNAROUND:
-    case MODCP_LINK_TX:
-        rtu_busy_track(l, b, false, now_us);
-        break;
-    default:
-        rtu_internal_error(l);
-        m_stretch_begin(l, b, now_us);
-        break;
-    }
-}
-
-/* The hot path of modem mode: a character of the candidate below r->stop is stored and
- * goes through one CRC step. */
-static void rtu_m_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
-{
-    if (l->state != MODCP_LINK_RX || l->len >= l->fr.rtu.stop) {
-        m_byte_other(l, b, now_us);
-        return;
-    }
-    l->last_us = now_us;
-    l->fr.rtu.crc = modcp_crc16_byte(l->fr.rtu.crc, b);
-    l->buf[l->len++] = b;
-}
-
 /* A damaged candidate: counted once when it has its function code, dropped. */
-static void m_cand_bad(modcp_link_t *l)
+void rtu_m_cand_bad(modcp_link_t *l)
 {
     if (l->len >= 2u) {
         link_mark_bad(l);
@@ -317,55 +274,14 @@ static void m_cand_bad(modcp_link_t *l)
     m_drop(l);
 }
 
-static MODCP_NOINLINE void m_t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
+/* The t1.5 check (rtu_on_byte_t15, rtu.c) found a silence too long in the candidate. */
+void rtu_m_t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     if (!l->rx_bad && l->diag != NULL) {
         l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
     }
-    m_cand_bad(l);
-    rtu_m_on_byte(l, b, now_us); /* it may start the next candidate */
-}
-
-static void rtu_m_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
-{
-    if (l->state == MODCP_LINK_RX && now_us - l->last_us > l->t15_us + l->char_us) {
-        m_t15_violated(l, b, now_us);
-        return;
-    }
-    rtu_m_on_byte(l, b, now_us);
-}
-
-static void rtu_m_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
-{
-    (void)line_errors;
-    switch (l->state) {
-    case MODCP_LINK_IDLE:
-        break; /* before the frame: ignored */
-    case MODCP_LINK_SKIP:
-        if (now_us - l->last_us >= l->t35_us) {
-            m_stretch_end(l); /* a new stretch would begin: ignored as on an idle line */
-            break;
-        }
-        l->rx_bad = true; /* among stray characters / another frame: not counted */
-        l->last_us = now_us;
-        break;
-    case MODCP_LINK_RX:
-        m_cand_bad(l);
-        l->last_us = now_us;
-        break;
-    case MODCP_LINK_EOF:
-    case MODCP_LINK_BUSY:
-    case MODCP_LINK_TURNAROUND:
-    case MODCP_LINK_TX:
-        if (!l->busy_rx || now_us - l->last_us >= l->t35_us) {
-            break; /* after the CRC, not inside a frame: ignored */
-        }
-        rtu_busy_track(l, 0, true, now_us);
-        break;
-    default:
-        rtu_internal_error(l);
-        break;
-    }
+    rtu_m_cand_bad(l);
+    rtu_on_byte(l, b, now_us); /* it may start the next candidate */
 }
 
 /* EOF: hand the frame over. RX / SKIP: t3.5 has passed since the last character. */
@@ -390,13 +306,15 @@ static bool rtu_m_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         m_drop(l);
     }
     if (l->state == MODCP_LINK_SKIP) {
-        m_stretch_end(l);
+        rtu_m_stretch_end(l);
     }
     return false;
 }
 
-const modcp_framing_ops_t modcp_rtu_modem_ops = {rtu_configure, rtu_m_on_byte, rtu_m_on_error,
+/* The receive automaton (rtu_on_byte, rtu_on_byte_t15, rtu_on_error) is normal
+ * operation's (rtu.c): where modem mode differs, it comes here by l->modem. */
+const modcp_framing_ops_t modcp_rtu_modem_ops = {rtu_configure, rtu_on_byte, rtu_on_error,
                                                  rtu_m_on_timer, rtu_encode, NULL};
-const modcp_framing_ops_t modcp_rtu_modem_t15_ops = {rtu_configure, rtu_m_on_byte_t15,
-                                                     rtu_m_on_error, rtu_m_on_timer,
+const modcp_framing_ops_t modcp_rtu_modem_t15_ops = {rtu_configure, rtu_on_byte_t15,
+                                                     rtu_on_error, rtu_m_on_timer,
                                                      rtu_encode, NULL};

@@ -125,6 +125,7 @@ typedef struct { /* members by size: no padding */
     } fr;
     uint8_t own_addr;
     bool suppress;    /* interference suppression (also RS485) */
+    bool modem;       /* RTU in interference suppression = modem mode (rtu_modem.c) */
     bool rs485;
     uint8_t ascii_delim; /* ASCII: end of frame is CR + this (LF; FC08 sub-function 03) */
     bool enabled;     /* configured; a disabled link ignores the line */
