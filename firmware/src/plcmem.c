@@ -9,7 +9,14 @@
 #include <string.h>
 #include "plcmem_internal.h"
 
-modcp_db_t *modcp_plcmem_db(const modcp_plcmem_t *mem, uint16_t number)
+#if defined(__GNUC__)
+#define PLCMEM_INLINE inline __attribute__((always_inline))
+#else
+#define PLCMEM_INLINE inline
+#endif
+
+/* The DB lookup, inlined into byte_area (every DB job) and behind modcp_plcmem_db. */
+static PLCMEM_INLINE modcp_db_t *find_db(const modcp_plcmem_t *mem, uint16_t number)
 {
     if (mem->dbs == NULL) {
         return NULL;
@@ -39,6 +46,11 @@ modcp_db_t *modcp_plcmem_db(const modcp_plcmem_t *mem, uint16_t number)
     return NULL;
 }
 
+modcp_db_t *modcp_plcmem_db(const modcp_plcmem_t *mem, uint16_t number)
+{
+    return find_db(mem, number);
+}
+
 void modcp_plcmem_areas(const modcp_plcmem_t *mem, modcp_areas_t *out)
 {
     out->i_bytes = mem->i_size;
@@ -51,8 +63,8 @@ void modcp_plcmem_areas(const modcp_plcmem_t *mem, modcp_areas_t *out)
 
 /* The byte storage of an I / Q / M / DB operand covering [offset, offset + len), or
  * NULL with *ev set. */
-static uint8_t *byte_area(const modcp_plcmem_t *mem, const modcp_operand_t *op, uint32_t len,
-                          modcp_event_t *ev)
+static PLCMEM_INLINE uint8_t *byte_area(const modcp_plcmem_t *mem, const modcp_operand_t *op,
+                                        uint32_t len, modcp_event_t *ev)
 {
     uint8_t *base = NULL;
     uint32_t size = 0;
@@ -71,7 +83,7 @@ static uint8_t *byte_area(const modcp_plcmem_t *mem, const modcp_operand_t *op, 
         size = mem->m_size;
         break;
     case MODCP_AREA_DB: {
-        const modcp_db_t *db = modcp_plcmem_db(mem, op->db);
+        const modcp_db_t *db = find_db(mem, op->db);
         err = MODCP_EV_DB_ACCESS;
         if (db != NULL) {
             base = db->data;
