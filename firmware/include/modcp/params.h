@@ -84,8 +84,11 @@ typedef struct {
 #define MODCP_ID_STRING_MAX 16
 
 typedef struct {
+    /* Members grouped by width (4, 1, 2 bytes, the 2-byte-aligned arrays, the strings)
+     * so the struct has no padding inside and the scalars stay at small offsets (short
+     * loads); the record's order is that of the rows (params_fields.h). */
+    uint32_t baud; /* 300 ... 115200 */
     /* character frame */
-    uint32_t baud;      /* 300 ... 115200 */
     uint8_t data_bits;  /* RTU 8; ASCII 7 (8 allowed) */
     uint8_t parity;     /* modcp_parity_t */
     uint8_t stop_bits;  /* 1, 2 */
@@ -96,25 +99,11 @@ typedef struct {
     uint8_t f_mul;      /* 1 ... 10 */
     uint8_t eof_timing; /* modcp_eof_timing_t */
     uint8_t t15_check;  /* 0 off, 1 on */
-    /* interface (the two bytes next to the ones above: no padding; the record's order
-     * is that of the rows in params_fields.h, not this struct's) */
-    uint8_t iface;            /* modcp_iface_t */
-    uint8_t rs232_auto;       /* RS232 automatic secondary signals: 0 off, 1 on */
-    uint16_t ascii_timeout_ms; /* protocol: 1 ... 6500 */
-    uint16_t turnaround_ms;   /* RS485: delay before the reply, 0 ... 100 */
-    uint16_t rts_on_delay_ms; /* data output waiting time (RTS on -> CTS expected) */
-    uint16_t rts_off_delay_ms; /* time to RTS off after the last character */
+    /* interface */
+    uint8_t iface;      /* modcp_iface_t */
+    uint8_t rs232_auto; /* RS232 automatic secondary signals: 0 off, 1 on */
     /* mapping */
-    modcp_bitwin_t coils[MODCP_COIL_WINDOWS];   /* FC01/05/15 */
-    modcp_bitwin_t inputs[MODCP_INPUT_WINDOWS]; /* FC02 */
-    uint16_t hr_base_db; /* FC03/06/16, 1 ... 65535 */
-    uint16_t ir_base_db; /* FC04, 1 ... 65535 */
-    uint8_t regs32;      /* 32-bit registers on (replaces the DB offset scheme of FC03/06/16) */
-    modcp_r32range_t r32[3]; /* indexed by modcp_r32_kind_t */
-    /* write limits */
-    modcp_limit_t lim_db; /* resulting DB numbers */
-    modcp_limit_t lim_m;  /* flag bytes */
-    modcp_limit_t lim_q;  /* output bytes */
+    uint8_t regs32; /* 32-bit registers on (replaces the DB offset scheme of FC03/06/16) */
     /* function set and CPU link */
     uint8_t fset;           /* modcp_fset_t */
     uint8_t rs485_sel;      /* 000 Table 5-2 "enable operating-mode selection for RS485":
@@ -123,20 +112,34 @@ typedef struct {
                                1: opmode normal is allowed on RS485 too */
     uint8_t qty_limits;     /* modcp_qty_limits_t */
     uint8_t cpu_model;      /* modcp_cpu_model_t */
-    uint16_t job_limit;     /* bytes per CPU job; 0 = the model's limit (1024 / 450) */
-    uint16_t cpu_timeout_ms; /* CPU job timeout */
-    uint16_t start_time_ms;  /* FB init time (START_TIME) */
-    uint16_t commloss_ms;    /* 0 off, 100 ... 30000 */
-    /* indirection scanner (extended set) */
-    uint16_t scan_start; /* first scanner register address */
-    uint8_t scan_count;  /* 0 = off, 1 ... 16 */
-    /* diagnostics (next to scan_count: no padding) */
+    uint8_t scan_count;     /* indirection scanner: 0 = off, 1 ... 16 */
+    /* diagnostics */
     uint8_t diag_irq; /* diagnostic interrupt records (001 §8.4): 0 off (default), 1 on */
+    /* 16-bit members */
+    uint16_t ascii_timeout_ms; /* protocol: 1 ... 6500 */
+    uint16_t turnaround_ms;    /* interface: RS485 delay before the reply, 0 ... 100 */
+    uint16_t rts_on_delay_ms;  /* data output waiting time (RTS on -> CTS expected) */
+    uint16_t rts_off_delay_ms; /* time to RTS off after the last character */
+    uint16_t hr_base_db;       /* FC03/06/16, 1 ... 65535 */
+    uint16_t ir_base_db;       /* FC04, 1 ... 65535 */
+    uint16_t job_limit;        /* bytes per CPU job; 0 = the model's limit (1024 / 450) */
+    uint16_t cpu_timeout_ms;   /* CPU job timeout */
+    uint16_t start_time_ms;    /* FB init time (START_TIME) */
+    uint16_t commloss_ms;      /* 0 off, 100 ... 30000 */
+    uint16_t scan_start;       /* indirection scanner: first scanner register address */
+    /* mapping */
+    modcp_bitwin_t coils[MODCP_COIL_WINDOWS];   /* FC01/05/15 */
+    modcp_bitwin_t inputs[MODCP_INPUT_WINDOWS]; /* FC02 */
+    modcp_r32range_t r32[3]; /* indexed by modcp_r32_kind_t */
+    /* write limits */
+    modcp_limit_t lim_db; /* resulting DB numbers */
+    modcp_limit_t lim_m;  /* flag bytes */
+    modcp_limit_t lim_q;  /* output bytes */
 #if MODCP_WITH_EXTENDED
     /* Kept only with the extended set (164 bytes): without it the record still carries
      * them (one record for every build), the decoder skips them and scan_count must be
      * 0 (params.c). */
-    modcp_operand_ref_t scan[MODCP_SCANNER_MAX];
+    modcp_operand_ref_t scan[MODCP_SCANNER_MAX]; /* indirection scanner entries */
     /* device identification (extended set), NUL-terminated */
     char vendor[MODCP_ID_STRING_MAX + 1];
     char product[MODCP_ID_STRING_MAX + 1];
