@@ -163,11 +163,14 @@ print("pymodbus bus ok")
 
 def duplicate(t, a, tmp):
     c = make_configs(a.config, tmp, [("d1", 1, {}), ("d2", 2, {}), ("e2", 2, {})])
-    sim = bus(a, c, sets=["serial.baud=19200"], trace=True)
+    # 2400 baud: a reply lasts 41 ms, so the two members' replies overlap unless one of
+    # them is more than that late (at 19200 a host stall of 5 ms under load let one reply
+    # through alone now and then)
+    sim = bus(a, c, sets=["serial.baud=2400"], trace=True)
     try:
         sim.cmd("@d2 set DB800.DBW0 0x1111")
         sim.cmd("@e2 set DB800.DBW0 0x2222")
-        r = subprocess.run([a.master_bus, "--device", sim.device, "--baud", "19200",
+        r = subprocess.run([a.master_bus, "--device", sim.device, "--baud", "2400",
                             "--collide", "2:10", "--timeout-ms", "1000"],
                            capture_output=True, text=True, timeout=120)
         print(r.stdout.strip())
@@ -178,7 +181,10 @@ def duplicate(t, a, tmp):
                                                                fe.get("collisions")))
         t.ok(faults_of(sim, "d1").get("collisions") == "0", "the third member saw no collision")
         tr = "\n".join(sim.trace_lines())
-        t.ok(re.search(r"\] collision @d2 @e2, the line carried 02 03 .* \| CRC error", tr) is not None,
+        # the bytes the line carried depend on how far apart the two replies started (less
+        # than a character apart they mix from the first byte on): not asserted
+        t.ok(re.search(r"\] collision @d2 @e2, the line carried [0-9A-F]{2} .*\| CRC error",
+                       tr) is not None,
              "trace: 'collision @d2 @e2, the line carried ... CRC error'")
         t.ok("@d2 slave 2 02 03 02 11 11" in tr and "@e2 slave 2 02 03 02 22 22" in tr,
              "trace: both replies named by their sender")
