@@ -75,34 +75,69 @@
 /* ---- the rows ------------------------------------------------------------------ */
 
 #define ROW_S(member, width, field, index, min, max, def, ev, flags, ...)                      \
-    {(uint16_t)MODCP_PARAM_OFF(member), (uint16_t)((min) > 0xFFFF ? 0 : (min)),               \
-     (uint16_t)((max) > 0xFFFF ? 0xFFFF : (max)), (uint16_t)(def), (uint8_t)(field),          \
-     MODCP_EVENT_NUMBER(ev), (uint8_t)((width) | ((flags) << 5)), (uint8_t)(index)},
+    {(uint16_t)((max) > 0xFFFF ? 0xFFFF : (max)), (uint8_t)MODCP_PARAM_OFF(member),           \
+     (uint8_t)((width) | ((flags) << 5)), (uint8_t)(field), MODCP_EVENT_NUMBER(ev),           \
+     (uint8_t)((min) > 0xFF ? 0 : (min)), (uint8_t)MODCP_PARAM_DEF_CODE(def)},
 #define ROW_G(member, count, type, members, field)                                           \
-    {(uint16_t)MODCP_PARAM_OFF(member), (uint16_t)sizeof(type), 0u, 0u,                     \
-     (uint8_t)(field), (uint8_t)(members), 0u, (uint8_t)(count)},
+    {(uint16_t)(count), (uint8_t)MODCP_PARAM_OFF(member), 0u, (uint8_t)(field),              \
+     (uint8_t)(members), (uint8_t)sizeof(type), (uint8_t)FIRST_WIDTH_##type},
 #define ROW_M(...)
-#define MEMBER_S(...)
-#define MEMBER_G(...)
-#define MEMBER_M(type, member, width, count) {(uint8_t)offsetof(type, member), (uint8_t)(width)},
+
+/* A group's structs: member j at byte 2 j, 2 bytes wide, the first possibly 1 byte
+ * (FIRST_WIDTH_<type>); test_params checks that the rows list the members in this order. */
+#define FIRST_WIDTH_modcp_bitwin_t 1u
+#define FIRST_WIDTH_modcp_r32range_t 2u
+#define FIRST_WIDTH_modcp_limit_t 2u
+#define FIRST_WIDTH_modcp_operand_ref_t 1u
 
 const modcp_param_row_t modcp_param_rows[] = {MODCP_PARAM_ROWS(ROW_S, ROW_G, ROW_M)};
 const uint8_t modcp_param_row_count = (uint8_t)(sizeof modcp_param_rows / sizeof modcp_param_rows[0]);
-const modcp_param_member_t modcp_param_members[] = {MODCP_PARAM_ROWS(MEMBER_S, MEMBER_G, MEMBER_M)};
 
-/* every event of a row is a parameter event of class 0EH; ranges and defaults of rows up to
- * 16 bits fit the table's u16 (a 32-bit row, the baud rate, is checked by its own rule) */
-#define EV_CLASS_S(member, width, field, index, min, max, def, ev, flags, ...)                 \
+/* Every event of a row is a parameter event of class 0EH; the ranges and defaults of the
+ * rows up to 16 bits fit the table (a 32-bit row, the baud rate, is checked by its own
+ * rule); the issue index of a row is the one run_checks derives (row_index). */
+#define CHECK_S(member, width, field, index, min, max, def, ev, flags, ...)                    \
     _Static_assert(MODCP_EVENT_CLASS(ev) == 0x0Eu, #member ": event class 0EH");             \
-    _Static_assert(((width) > 2 && ((flags) & MODCP_PF_CUSTOM) != 0) || (max) <= 0xFFFF,      \
-                   #member ": range fits u16");                                               \
-    _Static_assert((def) <= 0xFFFF && (flags) < 8, #member ": default fits u16");
-#define EV_CLASS_G(...)
-#define EV_CLASS_M(...)
-MODCP_PARAM_ROWS(EV_CLASS_S, EV_CLASS_G, EV_CLASS_M)
+    _Static_assert(((width) > 2 && ((flags) & MODCP_PF_CUSTOM) != 0) ||                       \
+                       ((max) <= 0xFFFF && (min) <= 0xFF),                                    \
+                   #member ": range fits the row");                                           \
+    _Static_assert(MODCP_PARAM_DEF_CODE(def) <= 0xFFu && (flags) < 8, #member ": default");   \
+    _Static_assert(MODCP_PARAM_OFF(member) <= MODCP_PARAM_ABSENT, #member ": offset");        \
+    _Static_assert((field) == MODCP_PF_SCANNER ? (index) == 0xFF                              \
+                                               : (field) == MODCP_PF_ID_STRING || (index) == 0, \
+                   #member ": index");
+#define CHECK_G(member, count, type, members, field)                                         \
+    _Static_assert(sizeof(type) == 2u * (members) &&                                          \
+                       MODCP_PARAM_OFF(member) <= MODCP_PARAM_ABSENT,                         \
+                   #member ": one 2-byte slot per member");
+#define CHECK_M(type, member, width, count)                                                  \
+    _Static_assert(offsetof(type, member) % 2u == 0u &&                                        \
+                       (width) == (offsetof(type, member) == 0u ? FIRST_WIDTH_##type : 2u),   \
+                   #type "." #member ": slot");
+MODCP_PARAM_ROWS(CHECK_S, CHECK_G, CHECK_M)
+#if MODCP_WITH_EXTENDED
+#define CHECK_ID_S(member, width, field, index, ...)                                          \
+    _Static_assert((field) != MODCP_PF_ID_STRING ||                                            \
+                       (index) == (MODCP_PARAM_OFF(member) - offsetof(modcp_params_t, vendor)) / \
+                                      (MODCP_ID_STRING_MAX + 1u),                             \
+                   #member ": index of an ID string");
+#define CHECK_ID_G(...)
+#define CHECK_ID_M(...)
+MODCP_PARAM_ROWS(CHECK_ID_S, CHECK_ID_G, CHECK_ID_M)
+_Static_assert(offsetof(modcp_params_t, scan) < MODCP_PARAM_ABSENT &&
+                   offsetof(modcp_params_t, app_name) < offsetof(modcp_params_t, scan),
+               "the last row's member starts below MODCP_PARAM_ABSENT");
+#endif
 _Static_assert(offsetof(modcp_params_t, lim_q) ==
                    offsetof(modcp_params_t, lim_db) + 2u * sizeof(modcp_limit_t),
                "lim_db, lim_m, lim_q are one group of three");
+
+static const uint16_t big_defaults[] = {MODCP_PARAM_BIG_DEFAULTS};
+
+static uint32_t row_def(const modcp_param_row_t *r)
+{
+    return r->def < 240u ? r->def : big_defaults[r->def - 240u];
+}
 
 static uint32_t param_get(const modcp_params_t *p, const modcp_param_row_t *r)
 {
@@ -152,7 +187,7 @@ void modcp_params_defaults(modcp_params_t *p)
         const modcp_param_row_t *r = &modcp_param_rows[i];
         uint8_t w = MODCP_PARAM_WIDTH(r);
         if (w != 0u && w != MODCP_PW_STR) {
-            param_put(p, r, r->def);
+            param_put(p, r, row_def(r));
         }
     }
 #if MODCP_WITH_EXTENDED
@@ -164,6 +199,12 @@ void modcp_params_defaults(modcp_params_t *p)
 
 /* ---- validation ----------------------------------------------------------------- */
 
+/* Every function below has one caller and is inlined into it, and run_checks into
+ * modcp_params_validate and modcp_params_apply: in apply's copy, the one the firmware
+ * links, the sink has no issue array and the compiler drops what only the issues need
+ * (their field, index and value), the tools' validate keeps it. */
+#define CHECK_INLINE inline __attribute__((always_inline))
+
 typedef struct {
     modcp_param_issue_t *out;
     size_t max;
@@ -172,10 +213,11 @@ typedef struct {
     modcp_event_t first_warning;
 } issue_sink_t;
 
-/* field and index of an issue in one argument (fewer arguments at every call) */
+/* field and index of an issue in one argument */
 #define FI(field, index) ((uint16_t)(((unsigned)(field) << 8) | (uint8_t)(index)))
 
-static void add_issue(issue_sink_t *s, uint16_t fi, modcp_event_t ev, bool fatal, uint32_t value)
+static CHECK_INLINE void add_issue(issue_sink_t *s, uint16_t fi, modcp_event_t ev, bool fatal,
+                                   uint32_t value)
 {
     if (s->out != NULL && s->n < s->max) {
         modcp_param_issue_t *it = &s->out[s->n];
@@ -195,13 +237,13 @@ static void add_issue(issue_sink_t *s, uint16_t fi, modcp_event_t ev, bool fatal
     }
 }
 
-static void add_fatal(issue_sink_t *s, uint16_t fi, modcp_event_t ev, uint32_t value)
+static CHECK_INLINE void add_fatal(issue_sink_t *s, uint16_t fi, modcp_event_t ev, uint32_t value)
 {
     add_issue(s, fi, ev, true, value);
 }
 
 /* 300, 600, 1200, 2400, 4800, 9600, 19200, 38400, 76800 (300 x 2^k), 57600, 115200 */
-static bool baud_ok(uint32_t baud)
+static CHECK_INLINE bool baud_ok(uint32_t baud)
 {
     uint32_t k = baud / 300u;
     return baud % 300u == 0u && ((k <= 256u && (k & (k - 1u)) == 0u) || k == 192u || k == 384u);
@@ -214,13 +256,13 @@ static uint16_t model_limit(uint8_t cpu_model)
 
 /* scan_count's range is its row (0 .. 16, 0 without the extended set); the entries must
  * also fit the register space. */
-static bool scan_count_ok(const modcp_params_t *p)
+static CHECK_INLINE bool scan_count_ok(const modcp_params_t *p)
 {
     return p->scan_count <= (MODCP_WITH_EXTENDED ? MODCP_SCANNER_MAX : 0u) &&
            (uint32_t)p->scan_start + (uint32_t)p->scan_count <= 0x10000u;
 }
 
-static uint32_t pair(uint16_t hi, uint16_t lo)
+static CHECK_INLINE uint32_t pair(uint16_t hi, uint16_t lo)
 {
     return ((uint32_t)hi << 16) | (uint32_t)lo;
 }
@@ -232,68 +274,10 @@ static uint32_t pair(uint16_t hi, uint16_t lo)
      AREA_BIT(MODCP_AREA_C) | AREA_BIT(MODCP_AREA_DB))
 #define AREAS_INPUTS (AREA_BIT(MODCP_AREA_M) | AREA_BIT(MODCP_AREA_I) | AREA_BIT(MODCP_AREA_DB))
 
-/* Checks one bit window on its own; returns true when it is usable for the
- * overlap check (enabled and without a problem of its own). */
-static bool check_window(issue_sink_t *s, uint16_t fi, modcp_event_t ev, const modcp_bitwin_t *w,
-                         unsigned areas)
-{
-    uint32_t bad;
-    if (w->area == MODCP_AREA_NONE) {
-        return false;
-    }
-    if (w->area > MODCP_AREA_DB || (areas & AREA_BIT(w->area)) == 0u) {
-        bad = w->area;
-    } else if (w->from > w->to) {
-        bad = pair(w->from, w->to);
-    } else if (w->area == MODCP_AREA_DB && w->db == 0u) {
-        bad = w->db;
-    } else {
-        uint32_t bits = (uint32_t)w->to - (uint32_t)w->from + 1u;
-        bool tc = w->area == MODCP_AREA_T || w->area == MODCP_AREA_C; /* 16 bits per element */
-        uint32_t last = (uint32_t)w->start + (tc ? bits / 16u - 1u : (bits - 1u) / 8u);
-        if (tc && bits % 16u != 0u) {
-            bad = bits;
-        } else if (last > 0xFFFFu) {
-            bad = last;
-        } else {
-            return true;
-        }
-    }
-    add_fatal(s, fi, ev, bad);
-    return false;
-}
-
-/* The usable entries (bit k of ok) of count structs, stride bytes apart, whose from and
- * to are the u16 at f[0], f[1] and (same_db) the DB number at f[2]: an entry overlapping
- * an earlier one is reported once, with the earlier one's index as the value; with
- * same_db, one on the same DB as an earlier one with that DB number. */
-static void check_overlaps(issue_sink_t *s, uint8_t field, modcp_event_t ev, const uint8_t *base,
-                           uint8_t stride, uint8_t count, uint32_t ok, bool same_db)
-{
-    for (uint8_t j = 1; j < count; j++) {
-        const uint16_t *b = (const uint16_t *)(const void *)(base + (size_t)j * stride);
-        if ((ok & (1u << j)) == 0u) {
-            continue;
-        }
-        for (uint8_t i = 0; i < j; i++) {
-            const uint16_t *a = (const uint16_t *)(const void *)(base + (size_t)i * stride);
-            uint32_t bad;
-            if ((ok & (1u << i)) == 0u) {
-                continue;
-            }
-            if (a[0] <= b[1] && b[0] <= a[1]) {
-                bad = i;
-            } else if (same_db && a[2] == b[2]) {
-                bad = b[2];
-            } else {
-                continue;
-            }
-            add_fatal(s, FI(field, j), ev, bad);
-            break;
-        }
-    }
-}
-_Static_assert(offsetof(modcp_bitwin_t, to) == offsetof(modcp_bitwin_t, from) + 2u, "from, to");
+_Static_assert(offsetof(modcp_bitwin_t, area) == 0u && offsetof(modcp_bitwin_t, from) == 2u &&
+                   offsetof(modcp_bitwin_t, to) == 4u && offsetof(modcp_bitwin_t, start) == 6u &&
+                   offsetof(modcp_bitwin_t, db) == 8u,
+               "area, from, to, start, db");
 _Static_assert(offsetof(modcp_r32range_t, from) == 0u && offsetof(modcp_r32range_t, to) == 2u &&
                    offsetof(modcp_r32range_t, db) == 4u,
                "from, to, db");
@@ -301,47 +285,91 @@ _Static_assert(MODCP_EV_COIL_OVERLAP == MODCP_EV_COIL_FROMTO + 2 &&
                    MODCP_EV_INPUT_OVERLAP == MODCP_EV_INPUT_FROMTO + 2,
                "the overlap event follows the from/to event by 2");
 
-static void check_windows(issue_sink_t *s, const modcp_bitwin_t *w, uint8_t count, uint8_t field,
-                          modcp_event_t ev, unsigned areas)
+/* The bit windows (coils, inputs) and the 32-bit ranges (only when regs32 != 0): each
+ * entry on its own, then every usable entry against the earlier usable ones. A 32-bit
+ * range is checked as a DB window from byte 0 of 16 (int16) or 32 bits per register; it
+ * is unused when from, to and db are all 0, and its extent is reported in bytes. An
+ * overlap is reported once per entry, with the earlier entry's index as the value; two
+ * 32-bit ranges on the same DB with that DB number. */
+static CHECK_INLINE void check_ranges(issue_sink_t *s, const modcp_params_t *p,
+                                      const modcp_param_row_t *r)
 {
+    const bool r32 = r->field == MODCP_PF_R32;
+    const bool coils = r->field == MODCP_PF_COILS;
+    const modcp_event_t ev = r32     ? MODCP_EV_PARAM_RECORD
+                             : coils ? MODCP_EV_COIL_FROMTO
+                                     : MODCP_EV_INPUT_FROMTO;
+    const unsigned areas = r32 ? AREA_BIT(MODCP_AREA_DB) : coils ? AREAS_COILS : AREAS_INPUTS;
+    const uint8_t *base = (const uint8_t *)p + r->off;
+    const size_t ft = r32 ? 0u : 2u; /* from, to, then start, db (window) or db (range) */
+    const uint8_t count = (uint8_t)r->max;
     uint32_t ok = 0;
-    for (uint8_t i = 0; i < count; i++) {
-        if (check_window(s, FI(field, i), ev, &w[i], areas)) {
-            ok |= 1u << i;
-        }
+    if (r32 && p->regs32 == 0u) {
+        return;
     }
-    check_overlaps(s, field, (modcp_event_t)(ev + 2u), (const uint8_t *)&w->from,
-                   (uint8_t)sizeof *w, count, ok, false);
-}
-
-static void check_r32(issue_sink_t *s, const modcp_params_t *p)
-{
-    uint32_t ok = 0;
-    for (uint8_t k = 0; k < 3u; k++) {
-        const modcp_r32range_t *r = &p->r32[k];
+    for (uint8_t k = 0; k < count; k++) {
+        const uint8_t *e = base + (size_t)k * r->min;
+        const uint16_t *f = (const uint16_t *)(const void *)(e + ft);
+        const uint16_t from = f[0];
+        const uint16_t to = f[1];
+        const uint16_t db = r32 ? f[2] : f[3];
+        const uint8_t area = !r32                        ? e[0]
+                             : (from | to | db) != 0u ? (uint8_t)MODCP_AREA_DB
+                                                      : (uint8_t)MODCP_AREA_NONE;
         uint32_t bad;
-        if (r->from == 0u && r->to == 0u && r->db == 0u) {
-            continue; /* unused */
+        if (area == MODCP_AREA_NONE) {
+            continue;
         }
-        if (r->from > r->to) {
-            bad = pair(r->from, r->to);
-        } else if (r->db == 0u) {
-            bad = 0u;
+        if (area > MODCP_AREA_DB || (areas & AREA_BIT(area)) == 0u) {
+            bad = area;
+        } else if (from > to) {
+            bad = pair(from, to);
+        } else if (area == MODCP_AREA_DB && db == 0u) {
+            bad = db;
         } else {
-            bad = ((uint32_t)r->to - (uint32_t)r->from + 1u) * (k == MODCP_R32_INT16 ? 2u : 4u);
-            if (bad <= 65536u) { /* bytes: one DB */
+            bool tc = area == MODCP_AREA_T || area == MODCP_AREA_C; /* 16 bits per element */
+            uint32_t bits = (uint32_t)to - (uint32_t)from + 1u;
+            if (r32) {
+                bits <<= k == MODCP_R32_INT16 ? 4u : 5u;
+            }
+            uint32_t last = (r32 ? 0u : f[2]) + (tc ? bits / 16u - 1u : (bits - 1u) / 8u);
+            if (tc && bits % 16u != 0u) {
+                bad = bits;
+            } else if (last > 0xFFFFu) {
+                bad = last + (r32 ? 1u : 0u);
+            } else {
                 ok |= 1u << k;
                 continue;
             }
         }
-        add_fatal(s, FI(MODCP_PF_R32, k), MODCP_EV_PARAM_RECORD, bad);
+        add_fatal(s, FI(r->field, k), ev, bad);
     }
-    check_overlaps(s, MODCP_PF_R32, MODCP_EV_PARAM_RECORD, (const uint8_t *)p->r32,
-                   (uint8_t)sizeof p->r32[0], 3u, ok, true);
+    for (uint8_t j = 1; j < count; j++) {
+        const uint16_t *b = (const uint16_t *)(const void *)(base + (size_t)j * r->min + ft);
+        if ((ok & (1u << j)) == 0u) {
+            continue;
+        }
+        for (uint8_t i = 0; i < j; i++) {
+            const uint16_t *a = (const uint16_t *)(const void *)(base + (size_t)i * r->min + ft);
+            uint32_t bad;
+            if ((ok & (1u << i)) == 0u) {
+                continue;
+            }
+            if (a[0] <= b[1] && b[0] <= a[1]) {
+                bad = i;
+            } else if (r32 && a[2] == b[2]) {
+                bad = b[2];
+            } else {
+                continue;
+            }
+            add_fatal(s, FI(r->field, j), r32 ? ev : (modcp_event_t)(ev + 2u), bad);
+            break;
+        }
+    }
 }
 
 /* lim_db, lim_m, lim_q (one group of three): max 0 = not writable, any min is fine */
-static void check_limits(issue_sink_t *s, const modcp_params_t *p)
+static CHECK_INLINE void check_limits(issue_sink_t *s, const modcp_params_t *p)
 {
     for (uint8_t k = 0; k < 3u; k++) {
         const modcp_limit_t *l = (const modcp_limit_t *)(const void *)((const uint8_t *)p +
@@ -357,7 +385,7 @@ _Static_assert(offsetof(modcp_params_t, lim_m) ==
                "lim_db, lim_m, lim_q in a row");
 
 #if MODCP_WITH_EXTENDED
-static bool id_terminated(const char *str)
+static CHECK_INLINE bool id_terminated(const char *str)
 {
     for (size_t i = 0; i <= MODCP_ID_STRING_MAX; i++) {
         if (str[i] == '\0') {
@@ -368,7 +396,7 @@ static bool id_terminated(const char *str)
 }
 
 /* The entries, when the count is usable (its own row reports it otherwise). */
-static void check_scanner(issue_sink_t *s, const modcp_params_t *p)
+static CHECK_INLINE void check_scanner(issue_sink_t *s, const modcp_params_t *p)
 {
     if (!scan_count_ok(p)) {
         return;
@@ -394,7 +422,8 @@ static void check_scanner(issue_sink_t *s, const modcp_params_t *p)
 #endif
 
 /* The rules a row's range cannot say (MODCP_PF_CUSTOM); *v: the value to report. */
-static bool custom_ok(const modcp_params_t *p, const modcp_param_row_t *r, uint32_t *v)
+static CHECK_INLINE bool custom_ok(const modcp_params_t *p, const modcp_param_row_t *r,
+                                   uint32_t *v)
 {
     /* The ASCII character frame (003 §3.1) and the RS485 operating mode (000 Table 5-2);
      * tested before the switch, which then stays a compare chain (no jump table). */
@@ -422,40 +451,44 @@ static bool custom_ok(const modcp_params_t *p, const modcp_param_row_t *r, uint3
     }
 }
 
-static void check_group(const modcp_params_t *p, issue_sink_t *s, uint8_t field)
+/* The index of a row's issue: 0xFF for the scanner's start and count, the string's number
+ * for an ID string (the rows' index column, checked at compile time above). */
+static CHECK_INLINE uint8_t row_index(const modcp_param_row_t *r)
 {
-    switch (field) {
-    case MODCP_PF_COILS:
-        check_windows(s, p->coils, MODCP_COIL_WINDOWS, MODCP_PF_COILS, MODCP_EV_COIL_FROMTO,
-                      AREAS_COILS);
-        break;
-    case MODCP_PF_INPUTS:
-        check_windows(s, p->inputs, MODCP_INPUT_WINDOWS, MODCP_PF_INPUTS, MODCP_EV_INPUT_FROMTO,
-                      AREAS_INPUTS);
-        break;
-    case MODCP_PF_R32:
-        if (p->regs32 != 0u) {
-            check_r32(s, p);
-        }
-        break;
-    case MODCP_PF_LIM_DB: check_limits(s, p); break;
-    default:
+    if (r->field == MODCP_PF_SCANNER) {
+        return 0xFFu;
+    }
+#if MODCP_WITH_EXTENDED
+    if (r->field == MODCP_PF_ID_STRING) {
+        return (uint8_t)((r->off - offsetof(modcp_params_t, vendor)) / (MODCP_ID_STRING_MAX + 1u));
+    }
+#endif
+    return 0u;
+}
+
+static CHECK_INLINE void check_group(const modcp_params_t *p, issue_sink_t *s,
+                                     const modcp_param_row_t *r)
+{
+    if (r->field == MODCP_PF_LIM_DB) {
+        check_limits(s, p);
+    } else if (r->field != MODCP_PF_SCANNER) {
+        check_ranges(s, p, r);
+    } else {
 #if MODCP_WITH_EXTENDED
         check_scanner(s, p); /* without the extended set scan_count is 0 (its row) */
 #endif
-        break;
     }
 }
 
 /* Every row in record order; fix != NULL: a bad MODCP_PF_WARN field gets its default. */
-static void run_checks(const modcp_params_t *p, issue_sink_t *s, modcp_params_t *fix)
+static CHECK_INLINE void run_checks(const modcp_params_t *p, issue_sink_t *s, modcp_params_t *fix)
 {
     for (uint8_t i = 0; i < modcp_param_row_count; i++) {
         const modcp_param_row_t *r = &modcp_param_rows[i];
         uint8_t w = MODCP_PARAM_WIDTH(r);
         uint8_t flags = MODCP_PARAM_FLAGS(r);
         if (w == 0u) {
-            check_group(p, s, r->field);
+            check_group(p, s, r);
             continue;
         }
         uint32_t v = w == MODCP_PW_STR ? 0u : param_get(p, r);
@@ -466,9 +499,10 @@ static void run_checks(const modcp_params_t *p, issue_sink_t *s, modcp_params_t 
         }
         if (!ok) {
             bool warn = (flags & MODCP_PF_WARN) != 0u;
-            add_issue(s, FI(r->field, r->index), (modcp_event_t)(0x0E00u | r->event), !warn, v);
+            add_issue(s, FI(r->field, row_index(r)), (modcp_event_t)(0x0E00u | r->event), !warn,
+                      v);
             if (warn && fix != NULL) {
-                param_put(fix, r, r->def);
+                param_put(fix, r, row_def(r));
             }
         }
     }

@@ -38,26 +38,32 @@ enum {
     MODCP_PF_CUSTOM = 0x04,  /* a further rule in params.c */
 };
 
-/* The rows as the core keeps them (params.c), 12 bytes each:
- *   S: field != 0; wf = width | flags << 5 (width 1, 2, 4 or MODCP_PW_STR); off into
- *      modcp_params_t.
- *   G: wf = 0; index = count, min = size of one struct, event = number of members,
- *      which are the next entries of modcp_param_members[] (off into the struct, width). */
+/* The rows as the core keeps them (params.c), 8 bytes each:
+ *   S: wf = width | flags << 5 (width 1, 2, 4 or MODCP_PW_STR), field != 0, min .. max the
+ *      legal range (min fits a byte; a 4-byte row, the baud rate, has its own rule), def the
+ *      default as MODCP_PARAM_DEF_CODE (below), event its number in class 0EH.
+ *   G: wf = 0; max = count, min = size of one struct, event = number of members, def =
+ *      width of the first member (1 or 2). Member j sits at byte 2 j of the struct and is 2
+ *      bytes wide, except the first, which may be one byte (params.c checks it at compile
+ *      time, test_params the members' order).
+ *   off: offset into modcp_params_t (every row's member starts below byte 255, the record
+ *      struct keeps the long arrays last), MODCP_PARAM_ABSENT for a member this build does
+ *      not keep. */
 typedef struct {
-    uint16_t off;
-    uint16_t min;
     uint16_t max;
-    uint16_t def;
-    uint8_t field;
-    uint8_t event; /* event number, class 0EH */
+    uint8_t off;
     uint8_t wf;
-    uint8_t index;
+    uint8_t field;
+    uint8_t event;
+    uint8_t min;
+    uint8_t def;
 } modcp_param_row_t;
 
-typedef struct {
-    uint8_t off;
-    uint8_t width;
-} modcp_param_member_t;
+/* A default in one byte: values below 240 as they are, the larger ones (the baud rate and
+ * a few times in ms) as 240 + their index in MODCP_PARAM_BIG_DEFAULTS. */
+#define MODCP_PARAM_BIG_DEFAULTS 9600u, 1000u, 5000u
+#define MODCP_PARAM_DEF_CODE(v)                                                                   \
+    ((v) < 240u ? (v) : (v) == 9600u ? 240u : (v) == 1000u ? 241u : (v) == 5000u ? 242u : 0x100u)
 
 /* A row whose member this build does not keep (modcp/params.h: the scanner entries and
  * the ID strings without MODCP_WITH_EXTENDED) has off == MODCP_PARAM_ABSENT: its bytes
@@ -65,7 +71,7 @@ typedef struct {
  * MODCP_PARAM_OFF(member) is the member's offset, or MODCP_PARAM_ABSENT for a member
  * listed as MODCP_PX_ABSENT_<member> below (chosen by the preprocessor, so offsetof never
  * names a missing member). */
-#define MODCP_PARAM_ABSENT 0xFFFFu
+#define MODCP_PARAM_ABSENT 0xFFu
 #if !MODCP_WITH_EXTENDED
 #define MODCP_PX_ABSENT_scan MODCP_PX_PROBE
 #define MODCP_PX_ABSENT_vendor MODCP_PX_PROBE
@@ -89,7 +95,6 @@ typedef struct {
 
 extern const modcp_param_row_t modcp_param_rows[];
 extern const uint8_t modcp_param_row_count;
-extern const modcp_param_member_t modcp_param_members[];
 
 #define MODCP_PARAM_ROWS(S, G, M)                                                                 \
     S(baud, 4, MODCP_PF_BAUD, 0, 300, 115200, 9600, MODCP_EV_PARAM_RECORD, MODCP_PF_CUSTOM,        \

@@ -37,6 +37,14 @@ typedef struct {
  * payload (at) and in modcp_params_t (off). */
 typedef void field_fn(const codec_t *c, size_t at, size_t off, uint8_t width);
 
+/* On a little-endian machine (every target so far) a field's bytes are its record bytes. */
+#if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__) &&                            \
+    __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define RECORD_LE 1
+#else
+#define RECORD_LE 0
+#endif
+
 static void enc_field(const codec_t *c, size_t at, size_t off, uint8_t width)
 {
     uint8_t *r = c->dst + at;
@@ -49,6 +57,9 @@ static void enc_field(const codec_t *c, size_t at, size_t off, uint8_t width)
         }
         return;
     }
+#if RECORD_LE
+    memcpy(r, f, width);
+#else
     uint32_t v = width == 1u ? *f : 0u;
     if (width == 2u) {
         uint16_t x;
@@ -60,12 +71,19 @@ static void enc_field(const codec_t *c, size_t at, size_t off, uint8_t width)
     for (uint8_t i = 0; i < width; i++) {
         r[i] = (uint8_t)(v >> (8u * i));
     }
+#endif
 }
 
 static void dec_field(const codec_t *c, size_t at, size_t off, uint8_t width)
 {
     const uint8_t *r = c->src + at;
     uint8_t *f = c->dst + off;
+#if RECORD_LE
+    memcpy(f, r, width);
+    if (width == MODCP_PW_STR) {
+        f[MODCP_PW_STR] = 0u;
+    }
+#else
     if (width == MODCP_PW_STR) {
         memcpy(f, r, MODCP_PW_STR);
         f[MODCP_PW_STR] = 0u;
@@ -83,35 +101,35 @@ static void dec_field(const codec_t *c, size_t at, size_t off, uint8_t width)
     } else {
         memcpy(f, &v, sizeof v);
     }
+#endif
 }
 
-/* Every field in record order. A member at or above MODCP_PARAM_ABSENT (a row, or a
- * struct of a group, this build does not keep) has only its place in the record (encode
- * leaves the zeros there). */
+/* Every field in record order. A row this build does not keep (off MODCP_PARAM_ABSENT)
+ * has only its place in the record (encode leaves the zeros there). A group is encoded
+ * struct by struct, member j of a struct at its byte 2 j (params_fields.h). */
 static void walk(const codec_t *c, field_fn *fn)
 {
-    const modcp_param_member_t *m = modcp_param_members;
     size_t at = 0;
     for (uint8_t i = 0; i < modcp_param_row_count; i++) {
         const modcp_param_row_t *r = &modcp_param_rows[i];
         uint8_t w = MODCP_PARAM_WIDTH(r);
-        if (w != 0u) {
-            if (r->off != MODCP_PARAM_ABSENT) {
-                fn(c, at, r->off, w);
-            }
-            at += w;
-            continue;
+        size_t off = r->off;
+        size_t n = 1;
+        uint8_t members = 1;
+        if (w == 0u) { /* group: count structs of `members` members */
+            n = r->max;
+            members = r->event;
         }
-        for (uint8_t k = 0; k < r->index; k++) { /* group: struct by struct */
-            size_t base = (size_t)r->off + (size_t)k * r->min;
-            for (uint8_t j = 0; j < r->event; j++) {
+        for (size_t k = 0; k < n; k++) {
+            for (uint8_t j = 0; j < members; j++) {
+                uint8_t mw = w != 0u ? w : j == 0u ? r->def : 2u;
                 if (r->off != MODCP_PARAM_ABSENT) {
-                    fn(c, at, base + m[j].off, m[j].width);
+                    fn(c, at, off + 2u * j, mw);
                 }
-                at += m[j].width;
+                at += mw;
             }
+            off += r->min;
         }
-        m += r->event;
     }
 }
 

@@ -11,6 +11,7 @@
 #include "modcp/events.h"
 #include "modcp/params.h"
 #include "world.h"
+#include "params_fields.h"
 #include "params_internal.h"
 
 #define RECORD_LEN 318u /* 8 header + 308 payload + 2 CRC */
@@ -119,6 +120,33 @@ static void test_defaults(void **state)
     assert_int_equal(modcp_params_apply(&p, &eff, &warn), MODCP_EV_NONE);
     assert_int_equal(warn, MODCP_EV_NONE);
     assert_int_equal(eff.slave_addr, 222);
+}
+
+/* The core walks a group's structs by slot: member j at byte 2 j, 2 bytes wide except a
+ * 1-byte first member (params_fields.h); the rows must list the members in that order. */
+static void test_group_members_in_slot_order(void **state)
+{
+    (void)state;
+#define SLOT_S(...)
+#define SLOT_G(member, count, type, members, field) {0xFFu, (uint8_t)(members)},
+#define SLOT_M(type, member, width, count) {(uint8_t)offsetof(type, member), (uint8_t)(width)},
+    static const struct {
+        uint8_t off;
+        uint8_t width; /* a group's row: the number of members */
+    } slots[] = {MODCP_PARAM_ROWS(SLOT_S, SLOT_G, SLOT_M)};
+    size_t members = 0;
+    size_t j = 0;
+    for (size_t i = 0; i <= sizeof slots / sizeof slots[0]; i++) {
+        if (i == sizeof slots / sizeof slots[0] || slots[i].off == 0xFFu) {
+            assert_int_equal(j, members); /* the previous group's members all listed */
+            members = i < sizeof slots / sizeof slots[0] ? slots[i].width : 0u;
+            j = 0;
+            continue;
+        }
+        assert_int_equal(slots[i].off, 2u * j);
+        assert_true(slots[i].width == 2u || (j == 0u && slots[i].width == 1u));
+        j++;
+    }
 }
 
 static void test_manual_sets_are_valid(void **state)
@@ -1030,6 +1058,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_defaults),
+        cmocka_unit_test(test_group_members_in_slot_order),
         cmocka_unit_test(test_manual_sets_are_valid),
         cmocka_unit_test(test_data_bits),
         cmocka_unit_test(test_003_s3_1_ascii_frame_7e1_7o1_7n2),

@@ -138,13 +138,14 @@ typedef struct {
 #if MODCP_WITH_EXTENDED
     /* Kept only with the extended set (164 bytes): without it the record still carries
      * them (one record for every build), the decoder skips them and scan_count must be
-     * 0 (params.c). */
-    modcp_operand_ref_t scan[MODCP_SCANNER_MAX]; /* indirection scanner entries */
+     * 0 (params.c). The strings come first so that every row's member starts below byte
+     * 255 (params_fields.h: the rows keep one-byte offsets). */
     /* device identification (extended set), NUL-terminated */
     char vendor[MODCP_ID_STRING_MAX + 1];
     char product[MODCP_ID_STRING_MAX + 1];
     char revision[MODCP_ID_STRING_MAX + 1];
     char app_name[MODCP_ID_STRING_MAX + 1];
+    modcp_operand_ref_t scan[MODCP_SCANNER_MAX]; /* indirection scanner entries */
 #endif
 } modcp_params_t;
 
