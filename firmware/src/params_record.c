@@ -25,7 +25,10 @@
 _Static_assert(RECORD_BYTES <= MODCP_PARAMS_RECORD_MAX, "parameter record too large");
 _Static_assert(PAYLOAD_BYTES <= 0xFFFFu, "payload length must fit u16");
 
-static const uint8_t record_magic[4] = {'M', 'C', 'P', 'R'};
+/* "MCPR", read and written as one little-endian word (no memcmp: in the manual's core the
+ * record was its only caller) */
+#define RECORD_MAGIC                                                                              \
+    ((uint32_t)'M' | (uint32_t)'C' << 8 | (uint32_t)'P' << 16 | (uint32_t)'R' << 24)
 
 /* encode: dst = the payload, src = the parameters; decode: the other way round */
 typedef struct {
@@ -105,30 +108,31 @@ static void dec_field(const codec_t *c, size_t at, size_t off, uint8_t width)
 }
 
 /* Every field in record order. A row this build does not keep (off MODCP_PARAM_ABSENT)
- * has only its place in the record (encode leaves the zeros there). A group is encoded
- * struct by struct, member j of a struct at its byte 2 j (params_fields.h). */
+ * has only its place in the record (encode leaves the zeros there). A group's structs are
+ * one run of 2-byte slots (params_fields.h): member j of struct k is slot k * members + j,
+ * 2 bytes wide in the record except a struct's first member, which may be one byte. */
 static void walk(const codec_t *c, field_fn *fn)
 {
     size_t at = 0;
     for (uint8_t i = 0; i < modcp_param_row_count; i++) {
         const modcp_param_row_t *r = &modcp_param_rows[i];
-        uint8_t w = MODCP_PARAM_WIDTH(r);
-        size_t off = r->off;
-        size_t n = 1;
+        uint8_t first = MODCP_PARAM_WIDTH(r);
         uint8_t members = 1;
-        if (w == 0u) { /* group: count structs of `members` members */
-            n = r->max;
+        size_t slots = 1;
+        if (first == 0u) { /* a group: count structs */
+            first = r->def;
             members = r->event;
+            slots = (size_t)r->max * members;
         }
-        for (size_t k = 0; k < n; k++) {
-            for (uint8_t j = 0; j < members; j++) {
-                uint8_t mw = w != 0u ? w : j == 0u ? r->def : 2u;
-                if (r->off != MODCP_PARAM_ABSENT) {
-                    fn(c, at, off + 2u * j, mw);
-                }
-                at += mw;
+        for (size_t k = 0, j = 0; k < slots; k++) {
+            uint8_t w = j == 0u ? first : 2u;
+            if (++j == members) {
+                j = 0;
             }
-            off += r->min;
+            if (r->off != MODCP_PARAM_ABSENT) {
+                fn(c, at, r->off + 2u * k, w);
+            }
+            at += w;
         }
     }
 }
@@ -144,13 +148,19 @@ static uint16_t get16(const uint8_t *b)
     return (uint16_t)(b[0] | (uint16_t)(b[1] << 8));
 }
 
+static uint32_t get32(const uint8_t *b)
+{
+    return (uint32_t)get16(b) | (uint32_t)get16(b + 2) << 16;
+}
+
 size_t modcp_params_encode(const modcp_params_t *p, uint8_t *buf, size_t cap)
 {
     if (buf == NULL || cap < RECORD_BYTES) {
         return 0u;
     }
     memset(buf, 0, RECORD_BYTES); /* the bytes of members this build does not keep */
-    memcpy(buf, record_magic, sizeof record_magic);
+    put16(buf, (uint16_t)RECORD_MAGIC);
+    put16(buf + 2, (uint16_t)(RECORD_MAGIC >> 16));
     put16(buf + 4, (uint16_t)MODCP_PARAMS_VERSION);
     put16(buf + 6, (uint16_t)PAYLOAD_BYTES);
     codec_t c = {buf + HEADER_BYTES, (const uint8_t *)p};
@@ -162,7 +172,7 @@ size_t modcp_params_encode(const modcp_params_t *p, uint8_t *buf, size_t cap)
 modcp_event_t modcp_params_decode(const uint8_t *buf, size_t len, modcp_params_t *p)
 {
     if (buf == NULL || p == NULL || len < RECORD_BYTES ||
-        memcmp(buf, record_magic, sizeof record_magic) != 0 ||
+        get32(buf) != RECORD_MAGIC ||
         get16(buf + 4) != MODCP_PARAMS_VERSION || get16(buf + 6) != PAYLOAD_BYTES ||
         modcp_crc16(buf, HEADER_BYTES + PAYLOAD_BYTES) !=
             get16(buf + HEADER_BYTES + PAYLOAD_BYTES)) {
