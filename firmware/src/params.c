@@ -168,6 +168,12 @@ static void param_put(modcp_params_t *p, const modcp_param_row_t *r, uint32_t v)
     }
 }
 
+/* The row's default into p (modcp_params_defaults, and a corrected field in apply). */
+static void put_default(modcp_params_t *p, const modcp_param_row_t *r)
+{
+    param_put(p, r, row_def(r));
+}
+
 /* ---- defaults ----------------------------------------------------------------- */
 
 #if MODCP_WITH_EXTENDED
@@ -187,7 +193,7 @@ void modcp_params_defaults(modcp_params_t *p)
         const modcp_param_row_t *r = &modcp_param_rows[i];
         uint8_t w = MODCP_PARAM_WIDTH(r);
         if (w != 0u && w != MODCP_PW_STR) {
-            param_put(p, r, row_def(r));
+            put_default(p, r);
         }
     }
 #if MODCP_WITH_EXTENDED
@@ -302,12 +308,12 @@ static CHECK_INLINE void check_ranges(issue_sink_t *s, const modcp_params_t *p,
     const unsigned areas = r32 ? AREA_BIT(MODCP_AREA_DB) : coils ? AREAS_COILS : AREAS_INPUTS;
     const uint8_t *base = (const uint8_t *)p + r->off;
     const size_t ft = r32 ? 0u : 2u; /* from, to, then start, db (window) or db (range) */
-    const uint8_t count = (uint8_t)r->max;
+    const unsigned count = r->max;
     uint32_t ok = 0;
     if (r32 && p->regs32 == 0u) {
         return;
     }
-    for (uint8_t k = 0; k < count; k++) {
+    for (unsigned k = 0; k < count; k++) {
         const uint8_t *e = base + (size_t)k * r->min;
         const uint16_t *f = (const uint16_t *)(const void *)(e + ft);
         const uint16_t from = f[0];
@@ -344,12 +350,12 @@ static CHECK_INLINE void check_ranges(issue_sink_t *s, const modcp_params_t *p,
         }
         add_fatal(s, FI(r->field, k), ev, bad);
     }
-    for (uint8_t j = 1; j < count; j++) {
+    for (unsigned j = 1; j < count; j++) {
         const uint16_t *b = (const uint16_t *)(const void *)(base + (size_t)j * r->min + ft);
         if ((ok & (1u << j)) == 0u) {
             continue;
         }
-        for (uint8_t i = 0; i < j; i++) {
+        for (unsigned i = 0; i < j; i++) {
             const uint16_t *a = (const uint16_t *)(const void *)(base + (size_t)i * r->min + ft);
             uint32_t bad;
             if ((ok & (1u << i)) == 0u) {
@@ -371,7 +377,7 @@ static CHECK_INLINE void check_ranges(issue_sink_t *s, const modcp_params_t *p,
 /* lim_db, lim_m, lim_q (one group of three): max 0 = not writable, any min is fine */
 static CHECK_INLINE void check_limits(issue_sink_t *s, const modcp_params_t *p)
 {
-    for (uint8_t k = 0; k < 3u; k++) {
+    for (unsigned k = 0; k < 3u; k++) {
         const modcp_limit_t *l = (const modcp_limit_t *)(const void *)((const uint8_t *)p +
             offsetof(modcp_params_t, lim_db) + k * sizeof(modcp_limit_t));
         if (l->max != 0u && (l->min > l->max || (k == 0u && l->min == 0u))) {
@@ -502,7 +508,7 @@ static CHECK_INLINE void run_checks(const modcp_params_t *p, issue_sink_t *s, mo
             add_issue(s, FI(r->field, row_index(r)), (modcp_event_t)(0x0E00u | r->event), !warn,
                       v);
             if (warn && fix != NULL) {
-                param_put(fix, r, row_def(r));
+                put_default(fix, r);
             }
         }
     }
