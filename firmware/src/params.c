@@ -176,14 +176,12 @@ static void put_default(modcp_params_t *p, const modcp_param_row_t *r)
 
 /* ---- defaults ----------------------------------------------------------------- */
 
-#if MODCP_WITH_EXTENDED
-static void set_id(char *dst, const char *src)
-{
-    size_t n = strlen(src);
-    memset(dst, 0, MODCP_ID_STRING_MAX + 1u);
-    memcpy(dst, src, n <= MODCP_ID_STRING_MAX ? n : MODCP_ID_STRING_MAX);
-}
-#endif
+/* An ID string's default into the zeroed member (a literal that fits, NUL included). */
+#define SET_ID(dst, lit)                                                                          \
+    do {                                                                                          \
+        _Static_assert(sizeof(lit) <= MODCP_ID_STRING_MAX + 1u, "ID string default too long");    \
+        memcpy((dst), (lit), sizeof(lit));                                                        \
+    } while (0)
 
 void modcp_params_defaults(modcp_params_t *p)
 {
@@ -197,9 +195,9 @@ void modcp_params_defaults(modcp_params_t *p)
         }
     }
 #if MODCP_WITH_EXTENDED
-    set_id(p->vendor, "modcp");
-    set_id(p->product, "modcp-cp");
-    set_id(p->revision, "0.1");
+    SET_ID(p->vendor, "modcp");
+    SET_ID(p->product, "modcp-cp");
+    SET_ID(p->revision, "0.1");
 #endif
 }
 
