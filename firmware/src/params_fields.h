@@ -21,7 +21,8 @@
  *   G(member, count, type, members, field)
  *       count consecutive structs from member on, each encoded as the members rows
  *       that follow (window by window); validated by its own function in params.c.
- *   M(type, member, width, count)   a member of the group above (count = the group's)
+ *   M(type, member, width, count)   a member of the group above (count = the group's), in the
+ *       order of the struct: member j at byte 2 j, 2 bytes wide, the first may be 1 byte
  * The composite keys ([coils], [inputs], [registers] ranges, [limits], [scanner]
  * entries) and the tool's own [cpu] keys are documented by MODCP_PARAM_DOC_ROWS(D). */
 #ifndef MODCP_PARAMS_FIELDS_H
