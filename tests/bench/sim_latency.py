@@ -48,6 +48,7 @@ import os
 import random
 import select
 import sys
+import tempfile
 import time
 import tty
 
@@ -82,8 +83,9 @@ def percentile(sorted_vals, p):
 WRITE_SLOW_US = 100  # a write() that took longer: the master was preempted, not counted
 
 
-def measure(line, n, qty, t35, cycle_us, rng):
-    """n slave times in us; and how many samples were repeated (slow write)."""
+def measure(line, n, qty, t35, cycle_us, rng, samples=None):
+    """n slave times in us; and how many samples were repeated (slow write). samples,
+    if given, gets (t_end_ns, t_first_ns, counted) of every request, in order."""
     req = simlib.with_crc("050300%02X%04X" % (0x50, qty))
     want = 5 + 2 * qty
     times = []
@@ -106,11 +108,63 @@ def measure(line, n, qty, t35, cycle_us, rng):
         if len(rep) != want or rep[:3] != bytes([5, 3, 2 * qty]) or \
                 simlib.crc16(rep[:-2]) != rep[-2:]:
             raise SystemExit("sim_latency: bad reply to request %d: %s" % (i, rep.hex()))
-        if (t_end - t_start) / 1000.0 > WRITE_SLOW_US:
+        slow = (t_end - t_start) / 1000.0 > WRITE_SLOW_US
+        if samples is not None:
+            samples.append((t_end, t_first, not slow))
+        if slow:
             repeated += 1
             continue
         times.append((t_first - t_end) / 1000.0)
     return times, repeated
+
+
+# The simulator's stage log (MODCP_SIM_LATLOG, tools/sim/latlog.h): one line per reply.
+LATLOG_FIELDS = ("seq rx timer_due timer_seen job fb_due fb_start fb_end take tx_t0 "
+                 "first_due first").split()
+# (name, from, to): consecutive stages from the master's write to its poll(); their sum
+# is the slave time. "end" / "poll" are the master's own time stamps.
+STAGES = (("pty hop in (write -> CP read)", "end", "rx"),
+          ("t3.5 (CP read -> timer due)", "rx", "timer_due"),
+          ("timer late", "timer_due", "timer_seen"),
+          ("request onto backplane", "timer_seen", "job"),
+          ("wait for the FB call (cycle phase)", "job", "fb_due"),
+          ("FB call late", "fb_due", "fb_start"),
+          ("FB call runs", "fb_start", "fb_end"),
+          ("CP takes the reply", "fb_end", "take"),
+          ("reply to UART", "take", "tx_t0"),
+          ("1 character", "tx_t0", "first_due"),
+          ("first byte late", "first_due", "first"),
+          ("pty hop out (write -> master poll)", "first", "poll"))
+
+
+def stages_report(samples, log_path):
+    """Median and mean of every stage over the counted samples, as '#' lines."""
+    with open(log_path) as f:
+        rows = [dict(zip(LATLOG_FIELDS, map(int, ln.split()))) for ln in f if ln.strip()]
+    if len(rows) != len(samples):
+        print("# stages: %d log lines for %d requests: not joined" % (len(rows), len(samples)))
+        return
+    per = {name: [] for name, _, _ in STAGES}
+    for (t_end, t_first, counted), r in zip(samples, rows):
+        if not counted:
+            continue
+        r = dict(r)
+        r["end"] = (t_end // 1000) & 0xFFFFFFFF
+        r["poll"] = (t_first // 1000) & 0xFFFFFFFF
+        for name, a, b in STAGES:
+            d = (r[b] - r[a]) & 0xFFFFFFFF
+            if d >= 0x80000000:
+                d -= 0x100000000
+            per[name].append(d)
+    print("# stage                                   p50      mean     p90")
+    tot50 = totm = 0.0
+    for name, _, _ in STAGES:
+        v = sorted(per[name])
+        mean = sum(v) / len(v)
+        tot50 += percentile(v, 50)
+        totm += mean
+        print("# %-38s %6.0f  %8.1f  %6.0f" % (name, percentile(v, 50), mean, percentile(v, 90)))
+    print("# %-38s %6.0f  %8.1f" % ("sum", tot50, totm))
 
 
 def pty_hop_us(n=500):
@@ -147,6 +201,9 @@ def main():
     ap.add_argument("--qty", type=int, default=10)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--hist", action="store_true", help="also print a histogram")
+    ap.add_argument("--stages", action="store_true",
+                    help="also print where the time goes, stage by stage (the simulator's "
+                         "MODCP_SIM_LATLOG)")
     a = ap.parse_args()
     rng = random.Random(a.seed)
     t35 = t35_us(a.baud)
@@ -155,14 +212,25 @@ def main():
     sets = ["serial.baud=%d" % a.baud, "serial.parity=even", "serial.data_bits=8",
             "serial.stop_bits=1", "protocol.framing=rtu", "protocol.eof_timing=manual",
             "protocol.f_mul=1"]
-    with simlib.Sim(a.sim, a.config, sets=sets, cycle_ms=a.cycle_ms, control=False) as sim:
-        line = simlib.RawLine(sim.device)
-        try:
-            measure(line, 20, a.qty, t35, cycle_us, rng)  # warm-up, not counted
-            times, repeated = measure(line, a.n, a.qty, t35, cycle_us, rng)
-            times.sort()
-        finally:
-            line.close()
+    samples = [] if a.stages else None
+    log_path = None
+    if a.stages:
+        fd, log_path = tempfile.mkstemp(prefix="modcp-latlog-")
+        os.close(fd)
+        os.environ["MODCP_SIM_LATLOG"] = log_path
+    try:
+        with simlib.Sim(a.sim, a.config, sets=sets, cycle_ms=a.cycle_ms, control=False) as sim:
+            line = simlib.RawLine(sim.device)
+            try:
+                measure(line, 20, a.qty, t35, cycle_us, rng, samples)  # warm-up, not counted
+                times, repeated = measure(line, a.n, a.qty, t35, cycle_us, rng, samples)
+                times.sort()
+            finally:
+                line.close()
+        if a.stages:
+            stages = (samples, log_path)
+    finally:
+        os.environ.pop("MODCP_SIM_LATLOG", None)
     model = t35 + cycle_us / 2 + ch
     sfx = "_%d" % a.baud
     print("sim_slave_time_p50_us%s=%.0f" % (sfx, percentile(times, 50)))
@@ -175,6 +243,9 @@ def main():
     print("sim_pty_hop_p50_us=%.0f" % pty_hop_us())
     print("# baud %d cycle %d ms: t3.5 %d us + cycle/2 %d us + 1 character %d us"
           % (a.baud, a.cycle_ms, t35, cycle_us // 2, ch))
+    if a.stages:
+        stages_report(*stages)
+        os.unlink(log_path)
     if a.hist:
         lo = times[0]
         step = max(1.0, (times[-1] - lo) / 20)

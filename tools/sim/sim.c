@@ -49,6 +49,7 @@
 #include "modcp/hal_posix.h"
 #include "modcp_conf.h"
 #include "bus.h"
+#include "latlog.h"
 #include "trace.h"
 
 #define MAX_SETS 32
@@ -103,6 +104,7 @@ typedef struct {
     bool cmd_done;
     modcp_posix_thread_t t_cp, t_cpu;
     uint32_t core_t; /* on a bus: the last time passed to the core */
+    sim_latlog_t lat; /* MODCP_SIM_LATLOG: stage time stamps of every reply */
 } member_t;
 
 struct sim {
@@ -241,8 +243,10 @@ static void *cp_thread(void *arg)
         bool idle = modcp_cp_ready(&m->cp) && !modcp_job_busy(&m->cp.job) && !m->cp.request_pending;
         bool tx_done = false, timer = false;
         uint32_t now = 0;
+        sim_latlog_before_wait(&m->lat, &m->port);
         int n = modcp_posix_wait(&m->port, idle ? IDLE_TICK_US : BUSY_TICK_US, rx, RX_CHUNK,
                                  &tx_done, &timer, &now);
+        sim_latlog_after_wait(&m->lat, &m->port, n, timer, now);
         if (n < 0) {
             printf_line(s, "modcp-sim: read error on %s: %s", m->port.path, strerror(-n));
             atomic_store(&s->stop, true);
@@ -333,6 +337,7 @@ static void *cp_thread(void *arg)
             }
         }
         modcp_cp_poll(&m->cp, now);
+        sim_latlog_after_core(&m->lat, &m->cp, &m->port, now);
         if (tr) {
             sim_trace_poll(&m->tr, t);
         }
@@ -435,8 +440,10 @@ static void *cpu_thread(void *arg)
         if (!m->paused) {
             modcp_fb_out_t out;
             uint32_t moved0 = bp_moves(&m->bp);
+            uint32_t fb_t0 = modcp_posix_now_us();
             modcp_fb_call(&m->fb, &m->fb_in, &out, modcp_posix_now_ms());
             if (bp_moves(&m->bp) != moved0) {
+                sim_latlog_fb(&m->lat, next, fb_t0, modcp_posix_now_us());
                 modcp_posix_wake(&m->port); /* the CP has blocks to take or room to put */
             }
             m->cycles++;
@@ -1438,6 +1445,9 @@ int main(int argc, char **argv)
             snprintf(ev, sizeof ev, "@%s ", m->name);
             sim_trace_labels(&m->tr, NULL, NULL, ev);
         }
+        if (s->bus == NULL) {
+            sim_latlog_open(&m->lat);
+        }
         cp_snapshot(m);
     }
     pthread_condattr_destroy(&ca);
@@ -1557,6 +1567,7 @@ int main(int argc, char **argv)
     }
     for (size_t i = 0; i < s->n; i++) {
         modcp_posix_close(&s->m[i].port);
+        sim_latlog_close(&s->m[i].lat);
     }
     if (control_fd >= 0) {
         close(control_fd);
