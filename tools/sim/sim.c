@@ -58,6 +58,9 @@
 /* Supervision ticks of the CP thread; nothing on a request's path waits for them. */
 #define IDLE_TICK_US 5000u
 #define BUSY_TICK_US 1000u
+/* The CPU thread watches the clock for the last CPU_SPIN_US before an FB call that
+ * blocks from the CP wait for (only then). */
+#define CPU_SPIN_US 50u
 
 #define MAX_MEMBERS SIM_BUS_MAX_MEMBERS
 #define MAX_FAULTS 64
@@ -103,6 +106,10 @@ typedef struct {
     bool cmd_pending;
     bool cmd_done;
     modcp_posix_thread_t t_cp, t_cpu;
+    /* the CPU thread's wake-up: a console command, the stop, or the CP side's
+     * "backplane interrupt" (the CP put blocks for the CPU side) */
+    modcp_posix_event_t cpu_irq;
+    uint32_t cp_put_seen; /* CP thread: to_cpu.head when it last interrupted */
     uint32_t core_t; /* on a bus: the last time passed to the core */
     sim_latlog_t lat; /* MODCP_SIM_LATLOG: stage time stamps of every reply */
 } member_t;
@@ -338,6 +345,11 @@ static void *cp_thread(void *arg)
         }
         modcp_cp_poll(&m->cp, now);
         sim_latlog_after_core(&m->lat, &m->cp, &m->port, now);
+        uint32_t put = atomic_load_explicit(&m->bp.to_cpu.head, memory_order_relaxed);
+        if (put != m->cp_put_seen) {
+            m->cp_put_seen = put;
+            modcp_posix_event_signal(&m->cpu_irq); /* the backplane interrupt */
+        }
         if (tr) {
             sim_trace_poll(&m->tr, t);
         }
@@ -386,6 +398,13 @@ static uint32_t bp_moves(const modcp_backplane_t *bp)
            atomic_load_explicit(&bp->to_cpu.tail, memory_order_relaxed);
 }
 
+/* Blocks published on a ring and not yet taken by its consumer. */
+static bool ring_pending(const modcp_ring_t *r)
+{
+    return atomic_load_explicit(&r->head, memory_order_acquire) !=
+           atomic_load_explicit(&r->tail, memory_order_relaxed);
+}
+
 static void timespec_of(uint64_t us, struct timespec *ts)
 {
     ts->tv_sec = (time_t)(us / 1000000u);
@@ -414,26 +433,38 @@ static void *cpu_thread(void *arg)
     char wb[32];
     m->fb_in.cp_start = true; /* OB100: CP_START set at start-up */
     while (!atomic_load(&s->stop)) {
-        pthread_mutex_lock(&m->cmd_mu);
         for (;;) {
             if (atomic_load(&s->stop)) {
                 break;
             }
-            if (m->cmd_pending) {
+            pthread_mutex_lock(&m->cmd_mu);
+            bool cmd = m->cmd_pending;
+            if (cmd) {
                 exec_console(m);
                 m->cmd_pending = false;
                 m->cmd_done = true;
                 pthread_cond_broadcast(&m->cmd_cv);
+            }
+            pthread_mutex_unlock(&m->cmd_mu);
+            if (cmd) {
                 continue;
             }
-            if (modcp_posix_now_us64() >= next) {
+            uint64_t now = modcp_posix_now_us64();
+            if (now >= next) {
                 break;
             }
-            struct timespec ts;
-            timespec_of(next, &ts);
-            (void)pthread_cond_timedwait(&m->cmd_cv, &m->cmd_mu, &ts);
+            /* blocks from the CP wait for this FB call: it starts on time, not a
+             * wake-up late (the last CPU_SPIN_US are spent watching the clock) */
+            if (!m->paused && ring_pending(&m->bp.to_cpu) && next - now <= CPU_SPIN_US) {
+                modcp_posix_spin_until_us64(next);
+                break;
+            }
+            uint64_t at = next;
+            if (!m->paused && ring_pending(&m->bp.to_cpu)) {
+                at = next - CPU_SPIN_US;
+            }
+            (void)modcp_posix_event_wait_until(&m->cpu_irq, at);
         }
-        pthread_mutex_unlock(&m->cmd_mu);
         if (atomic_load(&s->stop)) {
             break;
         }
@@ -497,7 +528,7 @@ static void submit(member_t *m, const char *line, char *out, size_t cap)
     snprintf(m->cmd_line, sizeof m->cmd_line, "%s", line);
     m->cmd_pending = true;
     m->cmd_done = false;
-    pthread_cond_broadcast(&m->cmd_cv);
+    modcp_posix_event_signal(&m->cpu_irq);
     while (!m->cmd_done && !atomic_load(&s->stop)) {
         struct timespec ts;
         timespec_of(modcp_posix_now_us64() + 100000u, &ts);
@@ -1433,6 +1464,10 @@ int main(int argc, char **argv)
         pthread_mutex_init(&m->snap_mu, NULL);
         pthread_mutex_init(&m->cmd_mu, NULL);
         pthread_cond_init(&m->cmd_cv, &ca);
+        if (modcp_posix_event_open(&m->cpu_irq) != 0) {
+            fprintf(stderr, "modcp-sim: cannot make a pipe\n");
+            return 1;
+        }
         modcp_bp_init(&m->bp);
         modcp_cp_init(&m->cp, &m->hal, &m->bp);
         modcp_fb_init(&m->fb, &m->bp, &m->memory.mem, m->record, m->record_len,
@@ -1550,6 +1585,7 @@ int main(int argc, char **argv)
     for (size_t i = 0; i < started; i++) {
         member_t *m = &s->m[i];
         modcp_posix_wake(&m->port);
+        modcp_posix_event_signal(&m->cpu_irq);
         pthread_mutex_lock(&m->cmd_mu);
         pthread_cond_broadcast(&m->cmd_cv);
         pthread_mutex_unlock(&m->cmd_mu);
@@ -1567,6 +1603,7 @@ int main(int argc, char **argv)
     }
     for (size_t i = 0; i < s->n; i++) {
         modcp_posix_close(&s->m[i].port);
+        modcp_posix_event_close(&s->m[i].cpu_irq);
         sim_latlog_close(&s->m[i].lat);
     }
     if (control_fd >= 0) {

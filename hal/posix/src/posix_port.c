@@ -51,6 +51,87 @@ void modcp_posix_sleep_until_us64(uint64_t t_us)
     }
 }
 
+void modcp_posix_spin_until_us64(uint64_t t_us)
+{
+    while (modcp_posix_now_us64() < t_us) {
+    }
+}
+
+/* ---- events (a pipe) ----------------------------------------------------------------- */
+
+static int pipe_nonblock(int fds[2])
+{
+    if (pipe(fds) != 0) {
+        return -errno;
+    }
+    for (int i = 0; i < 2; i++) {
+        int fl = fcntl(fds[i], F_GETFL);
+        (void)fcntl(fds[i], F_SETFL, fl | O_NONBLOCK);
+        (void)fcntl(fds[i], F_SETFD, FD_CLOEXEC);
+    }
+    return 0;
+}
+
+static void pipe_drain(int fd)
+{
+    char drain[64];
+    while (read(fd, drain, sizeof drain) > 0) {
+    }
+}
+
+static void pipe_poke(int fd)
+{
+    if (fd >= 0) {
+        char c = 1;
+        ssize_t r = write(fd, &c, 1); /* EAGAIN: a wake-up is pending already */
+        (void)r;
+    }
+}
+
+int modcp_posix_event_open(modcp_posix_event_t *e)
+{
+    int fds[2];
+    e->rd = -1;
+    e->wr = -1;
+    int rc = pipe_nonblock(fds);
+    if (rc == 0) {
+        e->rd = fds[0];
+        e->wr = fds[1];
+    }
+    return rc;
+}
+
+void modcp_posix_event_close(modcp_posix_event_t *e)
+{
+    if (e->rd >= 0) {
+        close(e->rd);
+    }
+    if (e->wr >= 0) {
+        close(e->wr);
+    }
+    e->rd = -1;
+    e->wr = -1;
+}
+
+void modcp_posix_event_signal(modcp_posix_event_t *e)
+{
+    pipe_poke(e->wr);
+}
+
+bool modcp_posix_event_wait_until(modcp_posix_event_t *e, uint64_t t_us)
+{
+    uint64_t now = modcp_posix_now_us64();
+    uint64_t d = t_us > now ? t_us - now : 0u;
+    struct timespec ts = {(time_t)(d / 1000000u), (long)(d % 1000000u) * 1000L};
+    struct pollfd pf = {e->rd, POLLIN, 0};
+    int pr = ppoll(&pf, 1, &ts, NULL);
+    if (pr > 0) {
+        pipe_drain(e->rd);
+        return true;
+    }
+    return false;
+}
+
 /* ---- threads -------------------------------------------------------------------- */
 
 /* Every thread of the port's owner waits for deadlines of a few hundred microseconds
@@ -94,26 +175,17 @@ static void port_reset(modcp_posix_port_t *p, uint32_t char_us)
 static int wake_open(modcp_posix_port_t *p)
 {
     int fds[2];
-    if (pipe(fds) != 0) {
-        return -errno;
+    int rc = pipe_nonblock(fds);
+    if (rc == 0) {
+        p->wake_rd = fds[0];
+        p->wake_wr = fds[1];
     }
-    for (int i = 0; i < 2; i++) {
-        int fl = fcntl(fds[i], F_GETFL);
-        (void)fcntl(fds[i], F_SETFL, fl | O_NONBLOCK);
-        (void)fcntl(fds[i], F_SETFD, FD_CLOEXEC);
-    }
-    p->wake_rd = fds[0];
-    p->wake_wr = fds[1];
-    return 0;
+    return rc;
 }
 
 void modcp_posix_wake(modcp_posix_port_t *p)
 {
-    if (p->wake_wr >= 0) {
-        char c = 1;
-        ssize_t r = write(p->wake_wr, &c, 1); /* EAGAIN: a wake-up is pending already */
-        (void)r;
-    }
+    pipe_poke(p->wake_wr);
 }
 
 int modcp_posix_open_pty(modcp_posix_port_t *p, const char *link, uint32_t char_us)
@@ -583,9 +655,7 @@ int modcp_posix_wait(modcp_posix_port_t *p, uint32_t max_us, modcp_posix_rx_t *r
         return -errno;
     }
     if (pr > 0 && nfds == 2u && (pfs[1].revents & POLLIN) != 0) {
-        char drain[64];
-        while (read(p->wake_rd, drain, sizeof drain) > 0) {
-        }
+        pipe_drain(p->wake_rd);
     }
     const struct pollfd pf = pfs[0];
     now = modcp_posix_now_us();

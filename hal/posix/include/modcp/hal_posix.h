@@ -122,5 +122,20 @@ void modcp_posix_thread_join(modcp_posix_thread_t *t);
 
 /* Sleep until the absolute CLOCK_MONOTONIC time in microseconds (64-bit). */
 void modcp_posix_sleep_until_us64(uint64_t t_us);
+/* Watch the clock (no sleep) until the absolute time t_us: for the last few tens of
+ * microseconds before a deadline that must not be late; keep it that short. */
+void modcp_posix_spin_until_us64(uint64_t t_us);
+
+/* An event another thread can signal (a non-blocking pipe): e.g. a "backplane
+ * interrupt" from one side to the other. Signals before a wait are not lost; several
+ * give one wake-up. */
+typedef struct {
+    int rd, wr;
+} modcp_posix_event_t;
+int modcp_posix_event_open(modcp_posix_event_t *e); /* 0 or -errno */
+void modcp_posix_event_close(modcp_posix_event_t *e);
+void modcp_posix_event_signal(modcp_posix_event_t *e);
+/* Sleep until the absolute time t_us (64-bit) or a signal; true when signalled. */
+bool modcp_posix_event_wait_until(modcp_posix_event_t *e, uint64_t t_us);
 
 #endif
