@@ -110,6 +110,7 @@ typedef struct {
      * "backplane interrupt" (the CP put blocks for the CPU side) */
     modcp_posix_event_t cpu_irq;
     uint32_t cp_put_seen; /* CP thread: to_cpu.head when it last interrupted */
+    atomic_uint cpu_due; /* CPU thread: when its next FB call is due (us, low 32 bits) */
     uint32_t core_t; /* on a bus: the last time passed to the core */
     sim_latlog_t lat; /* MODCP_SIM_LATLOG: stage time stamps of every reply */
 } member_t;
@@ -233,6 +234,13 @@ static void trace_events(member_t *m)
     }
 }
 
+/* Blocks published on a ring and not yet taken by its consumer. */
+static bool ring_pending(const modcp_ring_t *r)
+{
+    return atomic_load_explicit(&r->head, memory_order_acquire) !=
+           atomic_load_explicit(&r->tail, memory_order_relaxed);
+}
+
 static void *cp_thread(void *arg)
 {
     member_t *m = arg;
@@ -250,6 +258,10 @@ static void *cp_thread(void *arg)
         bool idle = modcp_cp_ready(&m->cp) && !modcp_job_busy(&m->cp.job) && !m->cp.request_pending;
         bool tx_done = false, timer = false;
         uint32_t now = 0;
+        /* a job on the backplane: its reply comes at the CPU side's next FB call,
+         * watched for (the backplane interrupt is immediate on a real CP) */
+        m->port.expect_armed = m->cp.request_pending && !ring_pending(&m->bp.to_cp);
+        m->port.expect_us = atomic_load_explicit(&m->cpu_due, memory_order_relaxed);
         sim_latlog_before_wait(&m->lat, &m->port);
         int n = modcp_posix_wait(&m->port, idle ? IDLE_TICK_US : BUSY_TICK_US, rx, RX_CHUNK,
                                  &tx_done, &timer, &now);
@@ -398,13 +410,6 @@ static uint32_t bp_moves(const modcp_backplane_t *bp)
            atomic_load_explicit(&bp->to_cpu.tail, memory_order_relaxed);
 }
 
-/* Blocks published on a ring and not yet taken by its consumer. */
-static bool ring_pending(const modcp_ring_t *r)
-{
-    return atomic_load_explicit(&r->head, memory_order_acquire) !=
-           atomic_load_explicit(&r->tail, memory_order_relaxed);
-}
-
 static void timespec_of(uint64_t us, struct timespec *ts)
 {
     ts->tv_sec = (time_t)(us / 1000000u);
@@ -432,6 +437,7 @@ static void *cpu_thread(void *arg)
     bool ready_printed = false, counted = false;
     char wb[32];
     m->fb_in.cp_start = true; /* OB100: CP_START set at start-up */
+    atomic_store(&m->cpu_due, (unsigned)(next & 0xFFFFFFFFu));
     while (!atomic_load(&s->stop)) {
         for (;;) {
             if (atomic_load(&s->stop)) {
@@ -515,6 +521,9 @@ static void *cpu_thread(void *arg)
             /* overrun: do not catch up with a burst of cycles; stay in phase */
             next += ((now - next) / period + 1u) * period;
         }
+        /* paused: no FB call is coming; half the clock's range away is never watched */
+        uint64_t due = m->paused ? next + 0x80000000u : next;
+        atomic_store_explicit(&m->cpu_due, (unsigned)(due & 0xFFFFFFFFu), memory_order_relaxed);
     }
     return NULL;
 }

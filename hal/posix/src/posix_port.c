@@ -619,8 +619,12 @@ static size_t decode(modcp_posix_port_t *p, const uint8_t *in, size_t n, modcp_p
  * turnaround, RTS delays) and a reply's first byte — are therefore not slept up to:
  * the wait sleeps until SPIN_US before them and watches the clock (and the
  * descriptors) for the rest. Later reply bytes just sleep (their times are absolute,
- * a late one does not delay the next). */
+ * a late one does not delay the next). An expected wake-up (expect_us) is watched for
+ * from EXPECT_BEFORE_US before until EXPECT_AFTER_US after it; later it is slept for
+ * like any other. */
 #define SPIN_US 50u
+#define EXPECT_BEFORE_US SPIN_US
+#define EXPECT_AFTER_US 50u
 
 int modcp_posix_wait(modcp_posix_port_t *p, uint32_t max_us, modcp_posix_rx_t *rx, size_t cap,
                      bool *tx_done, bool *timer_fired, uint32_t *now_us)
@@ -638,15 +642,30 @@ int modcp_posix_wait(modcp_posix_port_t *p, uint32_t max_us, modcp_posix_rx_t *r
     wait = t < wait ? t : wait;
     wait = exact < wait ? exact : wait;
 
-    struct pollfd pfs[2] = {{p->fd, POLLIN, 0}, {p->wake_rd, POLLIN, 0}};
-    nfds_t nfds = p->wake_rd >= 0 ? 2u : 1u;
+    /* sleep for sleep_us, then (spin) watch until spin_us, all from now */
     bool spin = exact <= wait;
     uint32_t sleep_us = spin ? (exact > SPIN_US ? exact - SPIN_US : 0u) : wait;
+    uint32_t spin_us = wait;
+    if (p->expect_armed) {
+        int32_t rel = (int32_t)(p->expect_us - now);
+        if (rel > -(int32_t)EXPECT_AFTER_US) {
+            uint32_t start = rel > (int32_t)EXPECT_BEFORE_US ? (uint32_t)rel - EXPECT_BEFORE_US : 0u;
+            uint32_t end = (uint32_t)(rel + (int32_t)EXPECT_AFTER_US);
+            if (start < sleep_us) {
+                sleep_us = start;
+                spin_us = end < wait ? end : wait;
+                spin = true;
+            }
+        }
+    }
+
+    struct pollfd pfs[2] = {{p->fd, POLLIN, 0}, {p->wake_rd, POLLIN, 0}};
+    nfds_t nfds = p->wake_rd >= 0 ? 2u : 1u;
     struct timespec ts = {(time_t)(sleep_us / 1000000u), (long)(sleep_us % 1000000u) * 1000L};
     int pr = ppoll(pfs, nfds, &ts, NULL);
     if (pr == 0 && spin) {
         const struct timespec zero = {0, 0};
-        const uint32_t at = now + exact;
+        const uint32_t at = now + spin_us;
         while (pr == 0 && !due(modcp_posix_now_us(), at)) {
             pr = ppoll(pfs, nfds, &zero, NULL);
         }

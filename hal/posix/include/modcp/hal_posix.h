@@ -48,6 +48,10 @@ typedef struct modcp_posix_port {
     /* one-shot timer */
     bool timer_armed;
     uint32_t timer_deadline_us;
+    /* a wake-up (modcp_posix_wake) the owner expects at about expect_us, e.g. the
+     * other side's reply at its next cycle: watched for, not slept through */
+    bool expect_armed;
+    uint32_t expect_us;
     /* transmission */
     uint8_t tx_buf[MODCP_POSIX_TX_MAX];
     uint16_t tx_len;
@@ -96,7 +100,8 @@ void modcp_posix_hal(modcp_posix_port_t *p, modcp_hal_t *hal);
  * first, then the timer, then the characters), and up to cap received characters are
  * in rx[]. Returns the number of characters, or -errno on a read error. The timer's
  * deadline and a reply's first byte are kept to within a few microseconds (the last
- * 50 us before them are spent watching the clock, not asleep). */
+ * 50 us before them are spent watching the clock, not asleep); so is a wake-up the
+ * owner expects (expect_armed: from 50 us before expect_us until 50 us after it). */
 int modcp_posix_wait(modcp_posix_port_t *p, uint32_t max_us, modcp_posix_rx_t *rx, size_t cap,
                      bool *tx_done, bool *timer_fired, uint32_t *now_us);
 
