@@ -156,14 +156,19 @@ def stages_report(samples, log_path):
             if d >= 0x80000000:
                 d -= 0x100000000
             per[name].append(d)
-    print("# stage                                   p50      mean     p90")
+    # late: how many samples this stage delayed by over 100 us more than its median (a
+    # thread that did not get a core in time); each percent of them moves the slave
+    # time's median by about 5 us (the cycle phase spreads the samples over one cycle)
+    print("# stage                                   p50      mean     p90   late")
     tot50 = totm = 0.0
     for name, _, _ in STAGES:
         v = sorted(per[name])
         mean = sum(v) / len(v)
-        tot50 += percentile(v, 50)
+        p50 = percentile(v, 50)
+        tot50 += p50
         totm += mean
-        print("# %-38s %6.0f  %8.1f  %6.0f" % (name, percentile(v, 50), mean, percentile(v, 90)))
+        late = sum(1 for x in v if x > p50 + 100) if "cycle" not in name else 0
+        print("# %-38s %6.0f  %8.1f  %6.0f  %5d" % (name, p50, mean, percentile(v, 90), late))
     print("# %-38s %6.0f  %8.1f" % ("sum", tot50, totm))
 
 
