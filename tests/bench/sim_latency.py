@@ -4,6 +4,7 @@
     tests/bench/sim_latency.py [--sim build/host/tools/sim/modcp-sim]
                                [--config configs/default.ini] [--baud 115200]
                                [--cycle-ms 1] [--n 1000] [--qty 10] [--seed 1]
+                               [--hist] [--stages]
 
 Starts modcp-sim (RTU, the configuration with --set serial.baud=BAUD and --cycle-ms),
 sends N requests FC03 (slave 5, holding register 80, QTY registers) one at a time and
@@ -39,6 +40,12 @@ direction on a loaded machine); sim_pty_hop_p50_us= is one such hop measured on 
 pair of the script's own. A sample whose write() took longer than 100 us (the master was
 preempted between writing and reading the clock) is not counted and the request is
 repeated (sim_slave_time_repeated_BAUD=).
+
+--stages splits the slave time into the simulator's stages (pty hop in, t3.5, timer
+lateness, the wait for the FB call, its lateness, the CP taking the reply, one
+character, the first byte's lateness, pty hop out: p50, mean, p90 and how many samples
+each delayed by over 100 us more than its median), from time stamps the simulator
+writes with MODCP_SIM_LATLOG (tools/sim/latlog.h) joined with the master's own.
 
 Nothing is asserted (the machine is shared): the script fails only when the simulator
 does not start or a reply is wrong or missing.

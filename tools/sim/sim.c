@@ -16,12 +16,17 @@
  *               _on_tx_done / _poll with CLOCK_MONOTONIC microseconds. It sleeps until
  *               one of those events or a wake-up from the CPU thread; a supervision
  *               tick (1 ms while a job runs, else 5 ms) only drives job timeouts,
- *               comm-loss supervision and the LEDs.
+ *               comm-loss supervision and the LEDs. While a job is out it watches
+ *               for the reply around the CPU thread's next FB call (port.expect_us);
+ *               when it put blocks for the CPU side it signals the CPU thread
+ *               (cpu_irq, the "backplane interrupt").
  *   CPU thread  the controller: a cyclic user program that calls modcp_fb_call every
  *               cycle_ms (CP_START set from the first cycle on, like OB100) and executes
- *               queued console commands between two calls. When an FB call moved
- *               blocks on the backplane (a reply or parameters put, job blocks taken)
- *               it wakes the CP thread (modcp_posix_wake).
+ *               queued console commands between two calls; with blocks from the CP
+ *               waiting it watches the clock for the last CPU_SPIN_US before the
+ *               call. When an FB call moved blocks on the backplane (a reply or
+ *               parameters put, job blocks taken) it wakes the CP thread
+ *               (modcp_posix_wake).
  * The parameter record travels from the CPU side to the CP over the backplane (the FB
  * sends it); the main thread reads the console (stdin, --script, --control FIFO). The
  * tool keeps a mutex-protected snapshot of the CP's diagnostics for the console. */
