@@ -36,6 +36,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <pthread.h>
+#include <sched.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdatomic.h>
@@ -116,6 +117,7 @@ typedef struct {
     modcp_posix_event_t cpu_irq;
     uint32_t cp_put_seen; /* CP thread: to_cpu.head when it last interrupted */
     atomic_uint cpu_due; /* CPU thread: when its next FB call is due (us, low 32 bits) */
+    atomic_int cpu_core; /* CPU thread: the processor it last ran on (-1: unknown) */
     uint32_t core_t; /* on a bus: the last time passed to the core */
     sim_latlog_t lat; /* MODCP_SIM_LATLOG: stage time stamps of every reply */
 } member_t;
@@ -239,6 +241,24 @@ static void trace_events(member_t *m)
     }
 }
 
+/* This thread's processor, -1 when unknown. */
+static int this_core(void)
+{
+#ifdef __linux__
+    return sched_getcpu();
+#else
+    return -1;
+#endif
+}
+
+/* The calling thread last ran on processor `core` too. Two threads that watch the
+ * clock on one processor take turns: the CP thread watching for the reply there would
+ * hold off the very FB call that makes it (until the scheduler preempts it, ~50 us). */
+static bool same_core(int core)
+{
+    return core >= 0 && core == this_core();
+}
+
 /* Blocks published on a ring and not yet taken by its consumer. */
 static bool ring_pending(const modcp_ring_t *r)
 {
@@ -265,7 +285,8 @@ static void *cp_thread(void *arg)
         uint32_t now = 0;
         /* a job on the backplane: its reply comes at the CPU side's next FB call,
          * watched for (the backplane interrupt is immediate on a real CP) */
-        m->port.expect_armed = m->cp.request_pending && !ring_pending(&m->bp.to_cp);
+        m->port.expect_armed = m->cp.request_pending && !ring_pending(&m->bp.to_cp) &&
+                               !same_core(atomic_load_explicit(&m->cpu_core, memory_order_relaxed));
         m->port.expect_us = atomic_load_explicit(&m->cpu_due, memory_order_relaxed);
         sim_latlog_before_wait(&m->lat, &m->port);
         int n = modcp_posix_wait(&m->port, idle ? IDLE_TICK_US : BUSY_TICK_US, rx, RX_CHUNK,
@@ -483,6 +504,7 @@ static void *cpu_thread(void *arg)
             modcp_fb_out_t out;
             uint32_t moved0 = bp_moves(&m->bp);
             uint32_t fb_t0 = modcp_posix_now_us();
+            atomic_store_explicit(&m->cpu_core, this_core(), memory_order_relaxed);
             modcp_fb_call(&m->fb, &m->fb_in, &out, modcp_posix_now_ms());
             if (bp_moves(&m->bp) != moved0) {
                 sim_latlog_fb(&m->lat, next, fb_t0, modcp_posix_now_us());
