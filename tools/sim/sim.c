@@ -118,6 +118,7 @@ typedef struct {
     uint32_t cp_put_seen; /* CP thread: to_cpu.head when it last interrupted */
     atomic_uint cpu_due; /* CPU thread: when its next FB call is due (us, low 32 bits) */
     atomic_int cpu_core; /* CPU thread: the processor it last ran on (-1: unknown) */
+    atomic_bool cpu_calls; /* CPU thread: the FB is called (not paused) */
     uint32_t core_t; /* on a bus: the last time passed to the core */
     sim_latlog_t lat; /* MODCP_SIM_LATLOG: stage time stamps of every reply */
 } member_t;
@@ -286,6 +287,7 @@ static void *cp_thread(void *arg)
         /* a job on the backplane: its reply comes at the CPU side's next FB call,
          * watched for (the backplane interrupt is immediate on a real CP) */
         m->port.expect_armed = m->cp.request_pending && !ring_pending(&m->bp.to_cp) &&
+                               atomic_load_explicit(&m->cpu_calls, memory_order_relaxed) &&
                                !same_core(atomic_load_explicit(&m->cpu_core, memory_order_relaxed));
         m->port.expect_us = atomic_load_explicit(&m->cpu_due, memory_order_relaxed);
         sim_latlog_before_wait(&m->lat, &m->port);
@@ -464,6 +466,8 @@ static void *cpu_thread(void *arg)
     char wb[32];
     m->fb_in.cp_start = true; /* OB100: CP_START set at start-up */
     atomic_store(&m->cpu_due, (unsigned)(next & 0xFFFFFFFFu));
+    atomic_store(&m->cpu_core, -1);
+    atomic_store(&m->cpu_calls, true);
     while (!atomic_load(&s->stop)) {
         for (;;) {
             if (atomic_load(&s->stop)) {
@@ -548,9 +552,8 @@ static void *cpu_thread(void *arg)
             /* overrun: do not catch up with a burst of cycles; stay in phase */
             next += ((now - next) / period + 1u) * period;
         }
-        /* paused: no FB call is coming; half the clock's range away is never watched */
-        uint64_t due = m->paused ? next + 0x80000000u : next;
-        atomic_store_explicit(&m->cpu_due, (unsigned)(due & 0xFFFFFFFFu), memory_order_relaxed);
+        atomic_store_explicit(&m->cpu_due, (unsigned)(next & 0xFFFFFFFFu), memory_order_relaxed);
+        atomic_store_explicit(&m->cpu_calls, !m->paused, memory_order_relaxed);
     }
     return NULL;
 }
