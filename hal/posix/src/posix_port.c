@@ -16,10 +16,10 @@
 #include <termios.h>
 #include <time.h>
 #include <unistd.h>
-#include <sys/syscall.h>
 #ifdef __linux__
 #include <linux/serial.h>
 #include <sys/prctl.h>
+#include <sys/syscall.h>
 #endif
 
 #include "posix_baud.h"
@@ -137,10 +137,11 @@ bool modcp_posix_event_wait_until(modcp_posix_event_t *e, uint64_t t_us)
 
 /* The threads run a few microseconds at a time and must run when they wake: ask the
  * scheduler (Linux 6.12+, EEVDF) for a short time slice, 100 us instead of the default
- * (0.7 ms x (1 + log2 CPUs): 1.4 ms on two). A task's virtual deadline is its slice ahead, so a woken thread with a short
- * slice has the earlier deadline and preempts a compiler that is running, instead of
- * waiting for its slice to end; its share of the processor is unchanged. Policy and
- * nice value stay as they are; an older kernel ignores the request. */
+ * (0.7 ms x (1 + log2 CPUs): 1.4 ms on two). A task's virtual deadline is its slice
+ * ahead, so a woken thread with a short slice has the earlier deadline and preempts a
+ * compiler that is running instead of waiting for its slice to end; its share of the
+ * processor is unchanged. Policy and nice value stay as they are; an older kernel
+ * ignores the request. */
 static void short_slice(void)
 {
 #if defined(__linux__) && defined(SYS_sched_setattr) && defined(SYS_sched_getattr)
