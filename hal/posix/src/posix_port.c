@@ -678,7 +678,8 @@ int modcp_posix_wait(modcp_posix_port_t *p, uint32_t max_us, modcp_posix_rx_t *r
     if (p->expect_armed) {
         int32_t rel = (int32_t)(p->expect_us - now);
         if (rel > -(int32_t)EXPECT_AFTER_US) {
-            uint32_t start = rel > (int32_t)EXPECT_BEFORE_US ? (uint32_t)rel - EXPECT_BEFORE_US : 0u;
+            uint32_t start =
+                rel > (int32_t)EXPECT_BEFORE_US ? (uint32_t)rel - EXPECT_BEFORE_US : 0u;
             uint32_t end = (uint32_t)rel + EXPECT_AFTER_US; /* rel > -EXPECT_AFTER_US */
             if (start < sleep_us) {
                 sleep_us = start;
