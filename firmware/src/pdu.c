@@ -30,16 +30,6 @@
 
 /* ---- the function-code table ------------------------------------------------------ */
 
-enum {
-    F_CP341 = 1u << 0, /* in function set cp341 (the manual's, 004 §6) */
-    F_EXT = 1u << 1,   /* in function set extended (SPEC §5.3) */
-    F_BCAST = 1u << 2, /* broadcast may run it (SPEC §5.2: FC 05, 06, 15, 16) */
-    F_ADDR = 1u << 3,  /* start address at pdu[1..2] (s->addr) */
-    F_R32 = 1u << 4,   /* holding registers: width by the start address (003 §4.5) */
-    F_SCAN = 1u << 5,  /* extended: on scanner addresses the scanner's handler runs */
-    F_WRITE = 1u << 6, /* writes controller memory (arms the comm-loss supervision) */
-    F_NOCOUNT = 1u << 7, /* not counted by the FC11 event counter (FC11, FC12) */
-};
 
 /* In fc_row_t.lim next to the limit class: the request PDU has exactly min_len bytes
  * (without it: at least min_len, the handler checks the rest against the byte count). */
@@ -67,14 +57,14 @@ _Static_assert(MODCP_QLIM_COUNT <= L_EXACT, "L_EXACT shares the byte of the limi
  * extended set, row_of() relies on it). */
 static const fc_row_t fc_table[] = {
     /*       {fc,    min, function sets and flags,                        quantity limits | exact length,   handler} */
-             {0x03u, 5u,  BOTH | F_ADDR | F_R32 | F_SCAN,                    MODCP_QLIM_READ_REGS | L_EXACT,  modcp_pdu_read_regs},
-             {0x10u, 6u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_WRITE_REGS,           modcp_pdu_write_regs},
-             {0x06u, 3u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_NONE,                 modcp_pdu_write_reg},
-             {0x01u, 5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS | L_EXACT,  modcp_pdu_read_bits},
-             {0x02u, 5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS | L_EXACT,  modcp_pdu_read_bits},
-             {0x04u, 5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_REGS | L_EXACT,  modcp_pdu_read_regs},
-             {0x05u, 5u,  BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_NONE | L_EXACT,       modcp_pdu_write_coil},
-             {0x0Fu, 6u,  BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_WRITE_BITS,           modcp_pdu_write_coils},
+             {0x03u, 5u,  BOTH | F_ADDR | F_R32 | F_SCAN,                    MODCP_QLIM_READ_REGS | L_EXACT,  modcp_pdu_regs},
+             {0x10u, 6u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_WRITE_REGS,           modcp_pdu_regs},
+             {0x06u, 3u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_NONE,                 modcp_pdu_regs},
+             {0x01u, 5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS | L_EXACT,  modcp_pdu_bits},
+             {0x02u, 5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS | L_EXACT,  modcp_pdu_bits},
+             {0x04u, 5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_REGS | L_EXACT,  modcp_pdu_regs},
+             {0x05u, 5u,  BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_NONE | L_EXACT,       modcp_pdu_bits},
+             {0x0Fu, 6u,  BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_WRITE_BITS,           modcp_pdu_bits},
              {0x08u, 3u,  F_CP341,                                           MODCP_QLIM_NONE,                 modcp_pdu_diag0},
     EXT_ONLY({0x08u, 3u,  F_EXT,                                             MODCP_QLIM_NONE,                 modcp_pdu_fc08})
     EXT_ONLY({0x17u, 10u, F_EXT | F_WRITE,                                   MODCP_QLIM_NONE,                 modcp_pdu_fc23})
@@ -256,11 +246,10 @@ static modcp_pdu_action_t dispatch(modcp_pdu_t *s, const modcp_pdu_env_t *env, u
         return modcp_pdu_err(s, MODCP_EV_FB_NOT_RUNNING, MODCP_EXC_DEVICE_FAILURE);
     }
     const fc_row_t *r = row_of(env->p, s->fc);
-    if (s->broadcast && (r == NULL || (r->flags & F_BCAST) == 0u)) {
-        return modcp_pdu_err(s, MODCP_EV_BCAST_FC, MODCP_EXC_ILLEGAL_FUNCTION); /* silent */
-    }
-    if (r == NULL) {
-        return modcp_pdu_err(s, MODCP_EV_ILLEGAL_FC, MODCP_EXC_ILLEGAL_FUNCTION);
+    if (r == NULL || (s->broadcast && (r->flags & F_BCAST) == 0u)) {
+        /* a broadcast stays silent: (08)30H, else (08)31H */
+        return modcp_pdu_err(s, s->broadcast ? MODCP_EV_BCAST_FC : MODCP_EV_ILLEGAL_FC,
+                             MODCP_EXC_ILLEGAL_FUNCTION);
     }
     s->fcflags = r->flags;
     modcp_pdu_handler_t h = r->run;
@@ -282,9 +271,9 @@ static modcp_pdu_action_t dispatch(modcp_pdu_t *s, const modcp_pdu_env_t *env, u
         if (!scan && (r->flags & F_R32) != 0u && env->p->regs32 != 0u) { /* else 16-bit */
             s->r32_kind = modcp_regs32_kind(env->p, s->fc, s->addr);
         }
+        s->qty = qty; /* 1 for FC05 / FC06 */
         if (lim != (uint8_t)MODCP_QLIM_NONE) {
-            s->qty = qty;
-            if (qty < 1u || qty > modcp_qty_limit(env->p, lim, s->r32_kind)) {
+            if ((uint16_t)(qty - 1u) >= modcp_qty_limit(env->p, lim, s->r32_kind)) { /* 1..max */
                 return modcp_pdu_err(s, MODCP_EV_QUANTITY, MODCP_EXC_ILLEGAL_VALUE);
             }
         }
@@ -296,7 +285,8 @@ modcp_pdu_action_t modcp_pdu_request(modcp_pdu_t *s, const modcp_pdu_env_t *env,
                                      uint8_t *pdu, uint16_t len, uint16_t cap, uint16_t *out_len)
 {
     *out_len = 0;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, MODCP_PDU_CLEARED); /* the request's state; the rest is set before use */
+    s->job.op = 0;
     if (len < 1u) {
         return MODCP_PDU_NO_REPLY;
     }

@@ -218,6 +218,12 @@ static modcp_pdu_action_t start(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint
     return modcp_pdu_seq_next(s, env, pdu);
 }
 
+/* The sequence's state (s->x from phase on: not cleared by pdu.c) starts at zero. */
+static void seq_clear(modcp_pdu_t *s)
+{
+    memset(&s->x.phase, 0, sizeof s->x - offsetof(modcp_pdu_x_t, phase));
+}
+
 /* ---- scanner: FC03, FC06, FC16 on scanner addresses ------------------------------- */
 
 modcp_pdu_action_t modcp_pdu_scan_read(modcp_pdu_t *s, const modcp_pdu_env_t *env,
@@ -226,6 +232,7 @@ modcp_pdu_action_t modcp_pdu_scan_read(modcp_pdu_t *s, const modcp_pdu_env_t *en
 {
     (void)len;
     (void)out_len;
+    seq_clear(s);
     modcp_event_t ev = modcp_scan_check(env->p, env->areas, s->addr, s->qty, false);
     if (ev != MODCP_EV_NONE) {
         return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
@@ -246,6 +253,7 @@ modcp_pdu_action_t modcp_pdu_scan_write(modcp_pdu_t *s, const modcp_pdu_env_t *e
                                         uint16_t *out_len)
 {
     (void)out_len;
+    seq_clear(s);
     if (s->fc == 0x06u) {
         if (len != 5u) {
             return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
@@ -278,6 +286,7 @@ modcp_pdu_action_t modcp_pdu_fc22(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
 {
     (void)len;
     (void)out_len;
+    seq_clear(s);
     s->addr = modcp_get16(pdu + 1);
     s->qty = 1;
     modcp_event_t ev;
@@ -306,6 +315,7 @@ modcp_pdu_action_t modcp_pdu_fc23(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
                                   uint16_t len, uint16_t cap, uint16_t *out_len)
 {
     (void)out_len;
+    seq_clear(s);
     modcp_pdu_x_t *x = &s->x;
     x->rstart = modcp_get16(pdu + 1);
     x->rqty = modcp_get16(pdu + 3);

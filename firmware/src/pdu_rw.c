@@ -80,14 +80,33 @@ void modcp_pdu_align_bits(uint8_t *d, uint8_t shift, uint16_t qty)
     }
 }
 
-/* FC01 / FC02: read bits. */
-modcp_pdu_action_t modcp_pdu_read_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                       uint16_t len, uint16_t cap, uint16_t *out_len)
+/* FC01 / FC02 (read), FC05 / FC15 (write): the bit functions. */
+modcp_pdu_action_t modcp_pdu_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                  uint16_t len, uint16_t cap, uint16_t *out_len)
 {
-    (void)len;
     (void)out_len;
+    if (s->fc == 0x05u) {
+        const uint16_t value = modcp_get16(pdu + 3);
+        if (value != 0xFF00u && value != 0x0000u) {
+            return modcp_pdu_err(s, MODCP_EV_COIL_VALUE, MODCP_EXC_ILLEGAL_VALUE);
+        }
+    } else if (s->fc == 0x0Fu) {
+        const uint8_t bc = pdu[5];
+        if (bc != (s->qty + 7u) / 8u || len != 6u + bc) {
+            return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
+        }
+    }
     if (!map_bits(s, env, s->qty)) {
         return MODCP_PDU_FAIL;
+    }
+    if ((s->fcflags & F_WRITE) != 0u) {
+        s->x.echo = 5; /* FC05: the request (length 5, the table); FC15: fc, start, quantity */
+        if (s->fc == 0x05u) {
+            s->bitval = (uint8_t)(pdu[3] >> 7); /* FF00 -> 1 */
+            s->same = true;
+            return job(s, MODCP_JOB_BITWRITE, 1, &s->bitval, NULL, 0);
+        }
+        return job(s, MODCP_JOB_BITWRITE, pdu[5], pdu + 6, NULL, 0);
     }
     modcp_operand_t *o = &s->job.opnd;
     uint16_t bytes;
@@ -105,97 +124,38 @@ modcp_pdu_action_t modcp_pdu_read_bits(modcp_pdu_t *s, const modcp_pdu_env_t *en
     return read_job(s, bytes, pdu, cap);
 }
 
-/* FC03 / FC04: read registers. */
-modcp_pdu_action_t modcp_pdu_read_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                       uint16_t len, uint16_t cap, uint16_t *out_len)
+/* FC03 / FC04 (read), FC06 / FC16 (write): the register functions. FC06's reply is
+ * the echo: 5 bytes, 7 for an int32 / float register of the 32-bit scheme (003 §4.5). */
+modcp_pdu_action_t modcp_pdu_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                  uint16_t len, uint16_t cap, uint16_t *out_len)
 {
-    (void)len;
     (void)out_len;
+    if (s->fc == 0x06u) {
+        if (len != 3u + reg_bytes(s->r32_kind)) {
+            return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
+        }
+    } else if (s->fc == 0x10u) {
+        const uint8_t bc = pdu[5];
+        if (bc != reg_bytes(s->r32_kind) * s->qty || len != 6u + bc) {
+            return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
+        }
+    }
+    /* the mapping's byte count is the request's: the width comes from the same range */
     if (!map_regs(s, env, s->qty)) {
         return MODCP_PDU_FAIL;
     }
-    s->x.rbytes = s->job.opnd.count;
-    return read_job(s, s->job.opnd.count, pdu, cap);
-}
-
-/* FC05: write single coil (reply: echo of the request). */
-modcp_pdu_action_t modcp_pdu_write_coil(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                        uint8_t *pdu, uint16_t len, uint16_t cap,
-                                        uint16_t *out_len)
-{
-    (void)len;
-    (void)cap;
-    (void)out_len;
-    s->qty = 1;
-    const uint16_t value = modcp_get16(pdu + 3);
-    if (value != 0xFF00u && value != 0x0000u) {
-        return modcp_pdu_err(s, MODCP_EV_COIL_VALUE, MODCP_EXC_ILLEGAL_VALUE);
+    const uint16_t n = s->job.opnd.count;
+    if ((s->fcflags & F_WRITE) != 0u) {
+        if (s->fc == 0x06u) {
+            s->x.echo = (uint16_t)(3u + n);
+            s->same = true;
+            return job(s, MODCP_JOB_WRITE, n, pdu + 3, NULL, 0);
+        }
+        s->x.echo = 5; /* FC16: fc, start, quantity */
+        return job(s, MODCP_JOB_WRITE, n, pdu + 6, NULL, 0);
     }
-    if (!map_bits(s, env, 1)) {
-        return MODCP_PDU_FAIL;
-    }
-    s->bitval = value == 0xFF00u ? 1u : 0u;
-    s->x.echo = 5; /* len 5 (the table) */
-    s->same = true;
-    return job(s, MODCP_JOB_BITWRITE, 1, &s->bitval, NULL, 0);
-}
-
-/* FC06: write single register (reply: echo; 5 bytes, 7 for an int32 / float register
- * of the 32-bit scheme, 003 §4.5). */
-modcp_pdu_action_t modcp_pdu_write_reg(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                       uint16_t len, uint16_t cap, uint16_t *out_len)
-{
-    (void)cap;
-    (void)out_len;
-    s->qty = 1;
-    if (len != 3u + reg_bytes(s->r32_kind)) {
-        return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
-    }
-    if (!map_regs(s, env, 1)) {
-        return MODCP_PDU_FAIL;
-    }
-    s->x.echo = len;
-    s->same = true;
-    return job(s, MODCP_JOB_WRITE, s->job.opnd.count, pdu + 3, NULL, 0);
-}
-
-/* FC15: write multiple coils (reply: fc, start, quantity). */
-modcp_pdu_action_t modcp_pdu_write_coils(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                         uint8_t *pdu, uint16_t len, uint16_t cap,
-                                         uint16_t *out_len)
-{
-    (void)cap;
-    (void)out_len;
-    const uint8_t bc = pdu[5];
-    if (bc != (s->qty + 7u) / 8u || len != 6u + bc) {
-        return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
-    }
-    if (!map_bits(s, env, s->qty)) {
-        return MODCP_PDU_FAIL;
-    }
-    s->x.echo = 5;
-    return job(s, MODCP_JOB_BITWRITE, bc, pdu + 6, NULL, 0);
-}
-
-/* FC16: write multiple registers (reply: fc, start, quantity). */
-modcp_pdu_action_t modcp_pdu_write_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                        uint8_t *pdu, uint16_t len, uint16_t cap,
-                                        uint16_t *out_len)
-{
-    (void)cap;
-    (void)out_len;
-    const uint8_t bc = pdu[5];
-    if (bc != reg_bytes(s->r32_kind) * s->qty || len != 6u + bc) {
-        return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
-    }
-    if (!map_regs(s, env, s->qty)) {
-        return MODCP_PDU_FAIL;
-    }
-    if (s->job.opnd.count != bc) {
-        return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
-    }
-    s->x.echo = 5;
-    return job(s, MODCP_JOB_WRITE, bc, pdu + 6, NULL, 0);
+    s->x.rbytes = n;
+    return read_job(s, n, pdu, cap);
 }
 
 /* FC08 in the manual set: sub-function 0000 (return query data) only. */

@@ -40,9 +40,10 @@ typedef struct {
     bool cpu_stalled;
 } modcp_ext_t;
 
-/* Per-request state of the PDU engine beyond the request itself (modcp_pdu_t.x,
- * cleared for every request): the reply's description and the exception for both
- * sets; the job sequence of the extended set (FC22, FC23, scanner) only with it. */
+/* Per-request state of the PDU engine beyond the request itself (modcp_pdu_t.x): the
+ * reply's description and the exception for both sets, cleared for every request (up
+ * to seq); the job sequence of the extended set (FC22, FC23, scanner) only with it,
+ * its fields after seq cleared by the handlers that start one (pdu_ext.c). */
 typedef struct {
     uint8_t exc;     /* exception code detected for this request (0 = none) */
     uint8_t quiet;   /* listen-only: not processed, nothing more to account */
@@ -53,6 +54,7 @@ typedef struct {
 #if MODCP_WITH_EXTENDED
     /* job sequence (scanner, FC22, FC23); seq 0: a single job (manual set) */
     uint8_t seq;
+    /* from here on: cleared by the handlers of pdu_ext.c */
     uint8_t phase;   /* early reads, check reads, writes, reads (pdu_ext.c) */
     uint8_t idx;
     uint8_t early;   /* FC23: write data moved to the buffer's end, early reads allowed */
