@@ -161,14 +161,14 @@ static modcp_pdu_action_t fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8
         }
         s->x.exc = code;
     }
+#if MODCP_WITH_EXTENDED
     if (ev == MODCP_EV_XFER_TIMEOUT || ev == MODCP_EV_FB_TIMEOUT) {
-        s->x.timeout = 1;
+        s->x.timeout = 1; /* FC12 send event, FC17 run indicator (modcp_pdu_finished) */
     }
-    /* the error counts (out of line in diag.c: one call each) */
+#endif
+    /* the error count (out of line in diag.c). The engine answers 01 .. 04 only, so the
+     * NAK and BUSY counters (Serial Line V1.02 §6.1 counters 10, 11) stay 0 */
     modcp_diag_count_error(d, MODCP_CNT_EXCEPTION);
-    if (code == (uint8_t)MODCP_EXC_BUSY || code == (uint8_t)MODCP_EXC_NAK) {
-        modcp_diag_count_error(d, code == (uint8_t)MODCP_EXC_BUSY ? MODCP_CNT_BUSY : MODCP_CNT_NAK);
-    }
     if (s->broadcast) {
         modcp_diag_count_error(d, MODCP_CNT_NO_RESPONSE);
         return MODCP_PDU_NO_REPLY;
@@ -340,24 +340,10 @@ static bool write_op(uint8_t op)
 static uint8_t send_event(const modcp_pdu_t *s, const modcp_comm_t *c)
 {
     uint8_t ev = MODCP_COMM_TX;
-    switch (s->x.exc) {
-    case MODCP_EXC_NONE:
-        break;
-    case MODCP_EXC_ILLEGAL_FUNCTION:
-    case MODCP_EXC_ILLEGAL_ADDRESS:
-    case MODCP_EXC_ILLEGAL_VALUE:
-        ev |= MODCP_COMM_TX_READ_EXC;
-        break;
-    case MODCP_EXC_DEVICE_FAILURE:
+    if (s->x.exc == (uint8_t)MODCP_EXC_DEVICE_FAILURE) {
         ev |= MODCP_COMM_TX_ABORT_EXC;
-        break;
-    case MODCP_EXC_ACKNOWLEDGE:
-    case MODCP_EXC_BUSY:
-        ev |= MODCP_COMM_TX_BUSY_EXC;
-        break;
-    default:
-        ev |= MODCP_COMM_TX_NAK_EXC;
-        break;
+    } else if (s->x.exc != (uint8_t)MODCP_EXC_NONE) {
+        ev |= MODCP_COMM_TX_READ_EXC; /* 01 .. 03 (the engine answers no 05 .. 07) */
     }
     if (s->x.timeout != 0u && write_op(s->job.op)) {
         ev |= MODCP_COMM_TX_WRITE_TIMEOUT;
