@@ -36,9 +36,12 @@
 #include <string.h>
 
 #include "map_internal.h"
+#include "quantity_internal.h"
 
 #define TC_MAX_CP341 16u   /* 004 §3.3: CP 341 reads at most 16 timers / counters */
 #define WORDS_PER_DB 512u  /* 004 §3.4 */
+/* The function codes on registers: FC03 / 06 / 16 / 22 / 23 holding, FC04 input. */
+#define REG_FCS ((1u << 3) | (1u << 4) | (1u << 6) | (1u << 16) | (1u << 22) | (1u << 23))
 
 /* After the function code was checked (01 / 02 / 05 / 15, 03 / 04 / 06 / 16 / 22 / 23):
  * every one but the reads writes. */
@@ -178,21 +181,15 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
     return MODCP_EV_NONE;
 }
 
+/* The 32-bit scheme: out->bit = the kind + 1 of the range holding reg, 0: none. */
 static modcp_event_t map_regs32(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
                                 uint16_t reg, uint16_t qty, modcp_operand_t *out)
 {
-    size_t kind = 3u;
-    for (size_t k = 0; k < 3u; k++) {
-        const modcp_r32range_t *r = &p->r32[k];
-        bool unused = r->from == 0u && r->to == 0u && r->db == 0u;
-        if (!unused && r->from <= reg && reg <= r->to) {
-            kind = k;
-            break;
-        }
-    }
-    if (kind == 3u || (fc == 22u && kind != MODCP_R32_INT16)) {
+    const unsigned k1 = out->bit;
+    if (k1 == 0u || (fc == 22u && k1 != MODCP_R32_INT16 + 1u)) {
         return MODCP_EV_NO_WINDOW;
     }
+    const unsigned kind = k1 - 1u;
     const modcp_r32range_t *r = &p->r32[kind];
     const uint32_t per = kind == MODCP_R32_INT16 ? 2u : 4u;
     const uint32_t offset = ((uint32_t)reg - (uint32_t)r->from) * per;
@@ -205,7 +202,6 @@ static modcp_event_t map_regs32(const modcp_params_t *p, const modcp_areas_t *a,
         return MODCP_EV_WRITE_DENIED;
     }
     out->area = MODCP_AREA_DB;
-    out->bit = (uint8_t)(kind + 1u);
     out->db = r->db;
     out->offset = (uint16_t)offset;
     out->count = (uint16_t)bytes;
@@ -215,26 +211,25 @@ static modcp_event_t map_regs32(const modcp_params_t *p, const modcp_areas_t *a,
 modcp_event_t modcp_map_regs(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
                              uint16_t reg, uint16_t qty, modcp_operand_t *out)
 {
-    uint16_t base;
-    switch (fc) {
-    case 3u:
-    case 6u:
-    case 16u:
-    case 22u:
-    case 23u:
-        base = p->hr_base_db;
-        break;
-    case 4u:
-        base = p->ir_base_db;
-        break;
-    default:
+    out->bit = modcp_regs32_kind(p, fc, reg);
+    return modcp_map_regs_kind(p, a, fc, reg, qty, out);
+}
+
+modcp_event_t modcp_map_regs_kind(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
+                                  uint16_t reg, uint16_t qty, modcp_operand_t *out)
+{
+    if (fc > 23u || ((1u << fc) & REG_FCS) == 0u) {
         return MODCP_EV_ILLEGAL_FC;
     }
     if (qty == 0u) {
         return MODCP_EV_QUANTITY;
     }
-    if (p->regs32 != 0u && fc != 4u) {
-        return map_regs32(p, a, fc, reg, qty, out);
+    uint16_t base = p->ir_base_db; /* FC04 (never 32-bit, 003 §4.4) */
+    if (fc != 4u) {
+        if (p->regs32 != 0u) {
+            return map_regs32(p, a, fc, reg, qty, out);
+        }
+        base = p->hr_base_db;
     }
     if (base == 0u) {
         return MODCP_EV_NO_WINDOW; /* register functions not configured */

@@ -40,18 +40,19 @@ static modcp_pdu_action_t read_job(modcp_pdu_t *s, uint16_t len, uint8_t *pdu, u
     return job(s, MODCP_JOB_READ, len, NULL, pdu + 2, (uint16_t)(cap > 2u ? cap - 2u : 0u));
 }
 
-/* The registers s->addr .. + qty mapped to their DB bytes (s->job.opnd, width noted in
- * s->r32_kind); false with the request refused (s->err) when they do not map. */
+/* The registers s->addr .. + qty mapped to their DB bytes (s->job.opnd) in the width
+ * s->r32_kind (the table's check); false with the request refused (s->err) when they
+ * do not map. */
 static bool map_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty)
 {
     modcp_operand_t *o = &s->job.opnd;
-    modcp_event_t ev = modcp_map_regs(env->p, env->areas, s->fc, s->addr, qty, o);
+    o->bit = s->r32_kind;
+    modcp_event_t ev = modcp_map_regs_kind(env->p, env->areas, s->fc, s->addr, qty, o);
     if (ev != MODCP_EV_NONE) {
         (void)modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
         return false;
     }
-    s->r32_kind = o->bit;
-    o->bit = 0;
+    o->bit = 0; /* = s->r32_kind */
     return true;
 }
 
