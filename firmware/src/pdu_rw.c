@@ -15,12 +15,6 @@
 #include "map_internal.h"
 #include "quantity_internal.h"
 
-/* Bytes per register: 2 in the 16-bit scheme (r32_kind 0, no call), else by its kind. */
-static unsigned reg_bytes(uint8_t r32_kind)
-{
-    return r32_kind == 0u ? 2u : modcp_reg_bytes(r32_kind);
-}
-
 /* The job of a handler: op on the operand its mapping left in s->job.opnd, len data
  * bytes (written from wdata, or read into rdata with rcap bytes of room). */
 static modcp_pdu_action_t job(modcp_pdu_t *s, uint8_t op, uint16_t len, const uint8_t *wdata,
@@ -132,12 +126,12 @@ modcp_pdu_action_t modcp_pdu_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
 {
     (void)out_len;
     if (s->fc == 0x06u) {
-        if (len != 3u + reg_bytes(s->r32_kind)) {
+        if (len != 3u + modcp_reg_bytes(s->r32_kind)) {
             return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
         }
     } else if (s->fc == 0x10u) {
         const uint8_t bc = pdu[5];
-        if (bc != reg_bytes(s->r32_kind) * s->qty || len != 6u + bc) {
+        if (bc != modcp_reg_bytes(s->r32_kind) * s->qty || len != 6u + bc) {
             return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
         }
     }

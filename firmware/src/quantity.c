@@ -22,24 +22,15 @@ uint8_t modcp_regs32_kind(const modcp_params_t *p, uint8_t fc, uint16_t reg)
     return 0u;
 }
 
-uint8_t modcp_reg_bytes(uint8_t r32_kind)
-{
-    return (r32_kind == (uint8_t)(MODCP_R32_INT32 + 1u) ||
-            r32_kind == (uint8_t)(MODCP_R32_FLOAT + 1u))
-               ? 4u
-               : 2u;
-}
-
 /*                                 RTU    ASCII  spec   RTU32  ASCII32 spec32 */
-const uint16_t modcp_qty_limits[MODCP_QLIM_ROWS][6] = {
-    [MODCP_QLIM_NONE] = {0u, 0u, 0u, 0u, 0u, 0u},
-    [MODCP_QLIM_READ_BITS] = {2040u, 2008u, 2000u, 2040u, 2008u, 2000u},
-    [MODCP_QLIM_WRITE_BITS] = {2040u, 1976u, 1968u, 2040u, 1976u, 1968u},
-    [MODCP_QLIM_READ_REGS] = {127u, 125u, 125u, 63u, 62u, 62u},
-    [MODCP_QLIM_WRITE_REGS] = {127u, 123u, 123u, 63u, 61u, 61u},
+const uint16_t modcp_qty_limits[MODCP_QLIM_ROWS - 1][6] = {
+    [MODCP_QLIM_READ_BITS - 1] = {2040u, 2008u, 2000u, 2040u, 2008u, 2000u},
+    [MODCP_QLIM_WRITE_BITS - 1] = {2040u, 1976u, 1968u, 2040u, 1976u, 1968u},
+    [MODCP_QLIM_READ_REGS - 1] = {127u, 125u, 125u, 63u, 62u, 62u},
+    [MODCP_QLIM_WRITE_REGS - 1] = {127u, 123u, 123u, 63u, 61u, 61u},
 #if MODCP_WITH_EXTENDED
-    [MODCP_QLIM_RW_READ] = {125u, 125u, 125u, 62u, 62u, 62u},
-    [MODCP_QLIM_RW_WRITE] = {121u, 121u, 121u, 60u, 60u, 60u},
+    [MODCP_QLIM_RW_READ - 1] = {125u, 125u, 125u, 62u, 62u, 62u},
+    [MODCP_QLIM_RW_WRITE - 1] = {121u, 121u, 121u, 60u, 60u, 60u},
 #endif
 };
 
