@@ -108,43 +108,34 @@ bool modcp_map_db_write_ok(const modcp_params_t *p, const modcp_areas_t *a, uint
 modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
                              uint16_t addr, uint16_t qty, modcp_operand_t *out)
 {
-    const modcp_bitwin_t *wins;
-    size_t nwin;
-    unsigned usable; /* AREA_BIT set */
-
-    if (fc == 1u || fc == 5u || fc == 15u) {
-        wins = p->coils;
-        nwin = MODCP_COIL_WINDOWS;
-        usable = COIL_AREAS;
-    } else if (fc == 2u) {
-        wins = p->inputs;
-        nwin = MODCP_INPUT_WINDOWS;
+    const modcp_bitwin_t *w = p->coils;
+    unsigned n = MODCP_COIL_WINDOWS;
+    unsigned usable = COIL_AREAS; /* AREA_BIT set */
+    if (fc == 2u) {
+        w = p->inputs;
+        n = MODCP_INPUT_WINDOWS;
         usable = INPUT_AREAS;
-    } else {
+    } else if (fc != 1u && fc != 5u && fc != 15u) {
         return MODCP_EV_ILLEGAL_FC;
     }
     if (qty == 0u) {
         return MODCP_EV_QUANTITY;
     }
-
-    const modcp_bitwin_t *w = NULL;
-    for (size_t i = 0; i < nwin; i++) {
-        const modcp_bitwin_t *c = &wins[i];
-        if (c->area < 8u && (usable & AREA_BIT(c->area)) != 0u && c->from <= addr &&
-            addr <= c->to) {
-            w = c;
+    for (;; w++) { /* the first window holding addr */
+        if (n-- == 0u) {
+            return MODCP_EV_NO_WINDOW;
+        }
+        if (w->area < 8u && (usable & AREA_BIT(w->area)) != 0u && w->from <= addr &&
+            addr <= w->to) {
             break;
         }
     }
-    if (w == NULL) {
-        return MODCP_EV_NO_WINDOW;
-    }
 
-    const bool write = is_write_fc(fc); /* FC05 / FC15 */
-    const bool tc = is_tc(w->area);
+    const bool write = fc >= 5u; /* FC05 / FC15 */
+    const uint8_t area = w->area;
     const uint32_t rel = (uint32_t)addr - (uint32_t)w->from;
-
-    if (tc) {
+    unsigned per = 3u; /* log2 of the bits per byte, or per element for T / C */
+    if (is_tc(area)) {
         if (write) {
             return MODCP_EV_AREA_READONLY;
         }
@@ -155,29 +146,29 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
             (p->cpu_model == MODCP_CPU_CP341 && (uint32_t)qty / 16u > TC_MAX_CP341)) {
             return MODCP_EV_QUANTITY;
         }
+        per = 4u;
     }
     /* first / last byte, or element for T / C (rel and qty then multiples of 16) */
-    const unsigned per = tc ? 4u : 3u; /* log2 of the bits per byte / element */
     const uint32_t first = (uint32_t)w->start + (rel >> per);
     const uint32_t last = (uint32_t)w->start + ((rel + (uint32_t)qty - 1u) >> per);
-    if ((uint32_t)addr + (uint32_t)qty - 1u > w->to || last >= area_size(a, w->area)) {
+    if ((uint32_t)addr + (uint32_t)qty - 1u > w->to || last >= area_size(a, area)) {
         return MODCP_EV_PAST_END;
     }
 
     if (write) { /* a coil window: M, Q or DB (T / C refused above) */
-        const bool ok = w->area == MODCP_AREA_DB
+        const bool ok = area == MODCP_AREA_DB
                             ? modcp_map_db_write_ok(p, a, w->db)
-                            : limit_ok(w->area == MODCP_AREA_M ? &p->lim_m : &p->lim_q, first, last);
+                            : limit_ok(area == MODCP_AREA_M ? &p->lim_m : &p->lim_q, first, last);
         if (!ok) {
             return MODCP_EV_WRITE_DENIED;
         }
     }
 
-    out->area = w->area;
-    out->db = w->area == MODCP_AREA_DB ? w->db : 0u;
+    out->area = area;
+    out->db = area == MODCP_AREA_DB ? w->db : 0u;
     out->offset = (uint16_t)first;
     out->bit = (uint8_t)(rel % 8u); /* 0 for T / C */
-    out->count = tc ? (uint16_t)(qty / 16u) : qty;
+    out->count = (uint16_t)(qty >> (per - 3u) * 4u); /* bits, or elements for T / C */
     return MODCP_EV_NONE;
 }
 
