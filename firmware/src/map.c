@@ -172,33 +172,6 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
     return MODCP_EV_NONE;
 }
 
-/* The 32-bit scheme: out->bit = the kind + 1 of the range holding reg, 0: none. */
-static modcp_event_t map_regs32(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
-                                uint16_t reg, uint16_t qty, modcp_operand_t *out)
-{
-    const unsigned k1 = out->bit;
-    if (k1 == 0u || (fc == 22u && k1 != MODCP_R32_INT16 + 1u)) {
-        return MODCP_EV_NO_WINDOW;
-    }
-    const unsigned kind = k1 - 1u;
-    const modcp_r32range_t *r = &p->r32[kind];
-    const uint32_t per = kind == MODCP_R32_INT16 ? 2u : 4u;
-    const uint32_t offset = ((uint32_t)reg - (uint32_t)r->from) * per;
-    const uint32_t bytes = (uint32_t)qty * per;
-    if ((uint32_t)reg + (uint32_t)qty - 1u > r->to || offset + bytes > 0x10000u ||
-        bytes > 0xFFFFu) {
-        return MODCP_EV_PAST_END;
-    }
-    if (is_write_fc(fc) && !modcp_map_db_write_ok(p, a, r->db)) {
-        return MODCP_EV_WRITE_DENIED;
-    }
-    out->area = MODCP_AREA_DB;
-    out->db = r->db;
-    out->offset = (uint16_t)offset;
-    out->count = (uint16_t)bytes;
-    return MODCP_EV_NONE;
-}
-
 modcp_event_t modcp_map_regs(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
                              uint16_t reg, uint16_t qty, modcp_operand_t *out)
 {
@@ -215,32 +188,47 @@ modcp_event_t modcp_map_regs_kind(const modcp_params_t *p, const modcp_areas_t *
     if (qty == 0u) {
         return MODCP_EV_QUANTITY;
     }
-    uint16_t base = p->ir_base_db; /* FC04 (never 32-bit, 003 §4.4) */
-    if (fc != 4u) {
-        if (p->regs32 != 0u) {
-            return map_regs32(p, a, fc, reg, qty, out);
+    uint32_t db;
+    uint32_t offset;
+    uint32_t bytes;
+    if (fc != 4u && p->regs32 != 0u) { /* the 32-bit scheme (never FC04, 003 §4.4) */
+        const uint8_t k1 = out->bit;    /* the range's kind + 1, 0: none */
+        if (k1 == 0u || (fc == 22u && k1 != MODCP_R32_INT16 + 1u)) {
+            return MODCP_EV_NO_WINDOW;
         }
-        base = p->hr_base_db;
-    }
-    if (base == 0u) {
-        return MODCP_EV_NO_WINDOW; /* register functions not configured */
-    }
-    const uint32_t db = (uint32_t)base + ((uint32_t)reg >> 9);
-    const uint32_t word = (uint32_t)reg & 0x1FFu;
-    if (db > 0xFFFFu) {
-        return MODCP_EV_DB_OVERFLOW;
-    }
-    if (word + (uint32_t)qty > WORDS_PER_DB) {
-        return MODCP_EV_DB_ACCESS; /* would cross into the next DB */
+        const modcp_r32range_t *r = &p->r32[k1 - 1u];
+        const uint32_t per = modcp_reg_bytes(k1);
+        offset = ((uint32_t)reg - (uint32_t)r->from) * per;
+        bytes = (uint32_t)qty * per;
+        if ((uint32_t)reg + (uint32_t)qty - 1u > r->to || offset + bytes > 0x10000u ||
+            bytes > 0xFFFFu) {
+            return MODCP_EV_PAST_END;
+        }
+        db = r->db;
+    } else {
+        const uint16_t base = fc == 4u ? p->ir_base_db : p->hr_base_db;
+        if (base == 0u) {
+            return MODCP_EV_NO_WINDOW; /* register functions not configured */
+        }
+        db = (uint32_t)base + ((uint32_t)reg >> 9);
+        const uint32_t word = (uint32_t)reg & 0x1FFu;
+        if (db > 0xFFFFu) {
+            return MODCP_EV_DB_OVERFLOW;
+        }
+        if (word + (uint32_t)qty > WORDS_PER_DB) {
+            return MODCP_EV_DB_ACCESS; /* would cross into the next DB */
+        }
+        out->bit = 0u;
+        offset = word * 2u;
+        bytes = (uint32_t)qty * 2u;
     }
     if (is_write_fc(fc) && !modcp_map_db_write_ok(p, a, db)) {
         return MODCP_EV_WRITE_DENIED;
     }
     out->area = MODCP_AREA_DB;
-    out->bit = 0u;
     out->db = (uint16_t)db;
-    out->offset = (uint16_t)(word * 2u);
-    out->count = (uint16_t)((uint32_t)qty * 2u);
+    out->offset = (uint16_t)offset;
+    out->count = (uint16_t)bytes;
     return MODCP_EV_NONE;
 }
 
