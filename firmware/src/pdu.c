@@ -285,7 +285,7 @@ static modcp_pdu_action_t dispatch(modcp_pdu_t *s, const modcp_pdu_env_t *env, u
         if ((r->flags & F_SCAN) != 0u && env->p->scan_count != 0u &&
             modcp_scan_touches(env->p, s->addr, qty)) {
             scan = true; /* scanner addresses: 16-bit operands, the scanner's handlers */
-            h = s->fc == 0x03u ? modcp_pdu_scan_read : modcp_pdu_scan_write;
+            h = modcp_pdu_scan;
         }
 #endif
         if (!scan && (r->flags & F_R32) != 0u && env->p->regs32 != 0u) { /* else 16-bit */

@@ -226,56 +226,45 @@ static void seq_clear(modcp_pdu_t *s)
 
 /* ---- scanner: FC03, FC06, FC16 on scanner addresses ------------------------------- */
 
-modcp_pdu_action_t modcp_pdu_scan_read(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                       uint8_t *pdu, uint16_t len, uint16_t cap,
-                                       uint16_t *out_len)
-{
-    (void)len;
-    (void)out_len;
-    seq_clear(s);
-    modcp_event_t ev = modcp_scan_check(env->p, env->areas, s->addr, s->qty, false);
-    if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
-    }
-    s->x.rscan = true;
-    s->x.rstart = s->addr;
-    s->x.rqty = s->qty;
-    s->x.roff = 2;
-    s->x.rbytes = (uint16_t)(2u * s->qty);
-    if (2u + s->x.rbytes > cap) {
-        return modcp_pdu_err(s, MODCP_EV_JOB_LENGTH, MODCP_EXC_DEVICE_FAILURE);
-    }
-    return start(s, env, pdu, cap);
-}
-
-modcp_pdu_action_t modcp_pdu_scan_write(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                        uint8_t *pdu, uint16_t len, uint16_t cap,
-                                        uint16_t *out_len)
+modcp_pdu_action_t modcp_pdu_scan(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                  uint16_t len, uint16_t cap, uint16_t *out_len)
 {
     (void)out_len;
     seq_clear(s);
+    modcp_pdu_x_t *x = &s->x;
+    const bool write = s->fc != 0x03u; /* FC06 / FC16 */
     if (s->fc == 0x06u) {
         if (len != 5u) {
             return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
         }
-        s->qty = 1;
-        s->x.woff = 3;
-    } else {
+        x->woff = 3;
+    } else if (s->fc == 0x10u) {
         const uint8_t bc = pdu[5];
         if (bc != 2u * s->qty || len != 6u + bc) {
             return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
         }
-        s->x.woff = 6;
+        x->woff = 6;
     }
-    modcp_event_t ev = modcp_scan_check(env->p, env->areas, s->addr, s->qty, true);
+    modcp_event_t ev = modcp_scan_check(env->p, env->areas, s->addr, s->qty, write);
     if (ev != MODCP_EV_NONE) {
         return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
     }
-    s->x.wop = MODCP_JOB_WRITE;
-    s->x.wscan = true;
-    s->x.wstart = s->addr;
-    s->x.wqty = s->qty;
-    s->x.echo = 5; /* FC06: the whole request; FC16: fc, start, quantity */
+    if (write) {
+        x->wop = MODCP_JOB_WRITE;
+        x->wscan = true;
+        x->wstart = s->addr;
+        x->wqty = s->qty;
+        x->echo = 5; /* FC06: the whole request; FC16: fc, start, quantity */
+    } else {
+        x->rscan = true;
+        x->rstart = s->addr;
+        x->rqty = s->qty;
+        x->roff = 2;
+        x->rbytes = (uint16_t)(2u * s->qty);
+        if (2u + x->rbytes > cap) {
+            return modcp_pdu_err(s, MODCP_EV_JOB_LENGTH, MODCP_EXC_DEVICE_FAILURE);
+        }
+    }
     return start(s, env, pdu, cap);
 }
 
