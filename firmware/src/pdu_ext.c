@@ -131,47 +131,25 @@ modcp_pdu_action_t modcp_pdu_seq_next(modcp_pdu_t *s, const modcp_pdu_env_t *env
     const uint16_t nr = read_jobs(x);
     modcp_operand_t o;
     for (;;) {
-        if (x->phase == PH_WRITE) {
-            /* DB operands first (in request order), then the others */
-            if (x->idx >= 2u * nw) {
-                x->phase = PH_READ;
-                x->idx = 0;
-                continue;
-            }
-            const bool pass0 = x->idx < nw;
-            const uint16_t k = (uint16_t)(pass0 ? x->idx : x->idx - nw);
-            x->idx++;
-            modcp_event_t ev = operand(s, env, true, k, &o);
-            if (ev != MODCP_EV_NONE) {
-                return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
-            }
-            if (o.area == MODCP_AREA_NONE || (o.area == MODCP_AREA_DB) != pass0) {
-                continue; /* unused scanner entry: the value is discarded */
-            }
-            /* direct: the whole data; scanner: the entry's word, or FC22's masks */
-            uint16_t n = x->wlen;
-            uint16_t off = x->woff;
-            if (x->wscan) {
-                n = x->wop == MODCP_JOB_MASKWRITE ? 4u : 2u;
-                off = (uint16_t)(off + (n == 2u ? 2u * k : 0u));
-            }
-            return modcp_pdu_job(s, x->wop, &o, n, pdu + off, NULL, 0);
-        }
-        const uint16_t n = x->phase == PH_CHECK ? (uint16_t)(nw + nr) : nr;
+        /* the steps of the phase: early / other reads: the read part; check reads: the
+         * write part, then the read part; writes: the write part twice (DB operands
+         * first, in request order, then the others) */
+        const uint16_t n = x->phase == PH_CHECK   ? (uint16_t)(nw + nr)
+                           : x->phase == PH_WRITE ? (uint16_t)(2u * nw)
+                                                  : nr;
         if (x->idx >= n) {
             if (x->phase == PH_READ) {
                 return MODCP_PDU_DONE;
             }
-            x->phase++; /* early reads -> check reads -> writes */
+            /* early reads -> check reads -> writes -> reads */
+            x->phase = nw == 0u ? (uint8_t)PH_READ : (uint8_t)(x->phase + 1u);
             x->idx = 0;
-            if (nw == 0u) {
-                x->phase = PH_READ;
-            }
             continue;
         }
         const uint16_t i = x->idx++;
-        const bool write = x->phase == PH_CHECK && i < nw;
-        const uint16_t k = x->phase == PH_CHECK && !write ? (uint16_t)(i - nw) : i;
+        const bool second = (x->phase == PH_CHECK || x->phase == PH_WRITE) && i >= nw;
+        const bool write = x->phase == PH_WRITE || (x->phase == PH_CHECK && !second);
+        const uint16_t k = second ? (uint16_t)(i - nw) : i;
         modcp_event_t ev = operand(s, env, write, k, &o);
         if (ev != MODCP_EV_NONE) {
             return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
@@ -182,7 +160,20 @@ modcp_pdu_action_t modcp_pdu_seq_next(modcp_pdu_t *s, const modcp_pdu_env_t *env
                 r[0] = 0; /* unused scanner entry: reads 0000 */
                 r[1] = 0;
             }
-            continue;
+            continue; /* (writes: the value is discarded) */
+        }
+        if (x->phase == PH_WRITE) {
+            if ((o.area == MODCP_AREA_DB) == second) {
+                continue; /* not in this pass */
+            }
+            /* direct: the whole data; scanner: the entry's word, or FC22's masks */
+            uint16_t len = x->wlen;
+            uint16_t off = x->woff;
+            if (x->wscan) {
+                len = x->wop == MODCP_JOB_MASKWRITE ? 4u : 2u;
+                off = (uint16_t)(off + (len == 2u ? 2u * k : 0u));
+            }
+            return modcp_pdu_job(s, x->wop, &o, len, pdu + off, NULL, 0);
         }
         const bool early = !write && early_read(s, env, &o);
         if (x->phase == PH_EARLY) {
