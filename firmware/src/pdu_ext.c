@@ -322,10 +322,7 @@ modcp_pdu_action_t modcp_pdu_fc23(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         ev = modcp_scan_check(env->p, env->areas, x->wstart, x->wqty, true);
     } else {
         ev = modcp_map_regs(env->p, env->areas, 23u, x->wstart, x->wqty, &x->wdir);
-        x->wdir.bit = 0;
-        if (ev == MODCP_EV_NONE && x->wdir.count != bc) {
-            ev = MODCP_EV_BYTE_COUNT;
-        }
+        x->wdir.bit = 0; /* its byte count is bc: the width is wk's */
     }
     if (ev != MODCP_EV_NONE) {
         return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
