@@ -46,9 +46,12 @@ typedef struct {
  * its fields after seq cleared by the handlers that start one (pdu_ext.c). */
 typedef struct {
     uint8_t exc;     /* exception code detected for this request (0 = none) */
+#if MODCP_WITH_EXTENDED
+    /* the end-of-request accounting (modcp_pdu_finished) */
     uint8_t quiet;   /* listen-only: not processed, nothing more to account */
     uint8_t timeout; /* a CPU job of this request timed out */
     uint8_t after;   /* action after the reply: MODCP_X_AFTER_* */
+#endif
     uint16_t echo;   /* reply = the first `echo` request bytes; 0: read reply */
     uint16_t rbytes; /* read data bytes in the reply */
 #if MODCP_WITH_EXTENDED
