@@ -211,7 +211,7 @@ static inline modcp_pdu_action_t encode(modcp_pdu_t *s, const modcp_pdu_env_t *e
         return MODCP_PDU_REPLY;
     }
     if (s->bits != 0u) {
-        modcp_pdu_align_bits(pdu + 2, s->shift, s->qty); /* FC01 / FC02 */
+        modcp_pdu_align_bits(pdu + 2, (uint8_t)(s->bits - 1u), s->qty); /* FC01 / FC02 */
     }
     pdu[0] = s->fc;
     pdu[1] = (uint8_t)s->x.rbytes;

@@ -97,9 +97,9 @@ modcp_pdu_action_t modcp_pdu_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     if ((s->fcflags & F_WRITE) != 0u) {
         s->x.echo = 5; /* FC05: the request (length 5, the table); FC15: fc, start, quantity */
         if (s->fc == 0x05u) {
-            s->bitval = (uint8_t)(pdu[3] >> 7); /* FF00 -> 1 */
+            /* the 1-bit job's data: the value's high byte, FF or 00 (its bit 0) */
             s->same = true;
-            return job(s, MODCP_JOB_BITWRITE, 1, &s->bitval, NULL, 0);
+            return job(s, MODCP_JOB_BITWRITE, 1, pdu + 3, NULL, 0);
         }
         return job(s, MODCP_JOB_BITWRITE, pdu[5], pdu + 6, NULL, 0);
     }
@@ -110,8 +110,7 @@ modcp_pdu_action_t modcp_pdu_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         s->x.rbytes = bytes;
     } else {
         bytes = (uint16_t)((o->bit + s->qty + 7u) / 8u);
-        s->shift = o->bit;
-        s->bits = 1; /* pdu.c aligns the bit string */
+        s->bits = (uint8_t)(1u + o->bit); /* pdu.c aligns the bit string */
         s->x.rbytes = (uint16_t)((s->qty + 7u) / 8u);
         o->count = bytes; /* the job reads whole bytes */
         o->bit = 0;
