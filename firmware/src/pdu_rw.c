@@ -1,10 +1,12 @@
-/* modcp — handlers of the manual's function set (004 §6): FC 01, 02, 03, 04, 05, 06,
- * 08 (sub-function 0000), 15, 16. Each maps its request and sets up one CPU job; the
- * reply is encoded by pdu.c from s->x.echo / s->x.rbytes when the job is done.
+/* modcp — handlers of the manual's function set (004 §6), one per class: bits (FC01,
+ * 02, 05, 15), registers (FC03, 04, 06, 16), and FC08 sub-function 0000. Each maps its
+ * request and sets up one CPU job; the reply is encoded by pdu.c from s->x.echo /
+ * s->x.rbytes when the job is done.
  *
  * The function-code table (pdu.c) has already checked the length against its minimum
  * and maximum and, for FC01/02/03/04/15/16, the quantity against the limits of the
- * framing and register width (s->addr, s->qty, s->r32_kind set). What is left here:
+ * framing and register width (s->addr, s->qty (1 for FC05 / 06), s->r32_kind,
+ * s->fcflags set). What is left here:
  * byte counts, values ((08)33H / (08)34H / (08)35H, exception 03), then the address
  * mapping ((0E)5xH, exception 02; map.c). Every field of the request is read before
  * the first reply byte is written. */
