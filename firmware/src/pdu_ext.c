@@ -259,6 +259,24 @@ modcp_pdu_action_t modcp_pdu_scan(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     return start(s, env, pdu, cap);
 }
 
+/* The write part (write) or the read part of s->x checked and mapped: through the
+ * scanner when it touches it (wscan / rscan), else directly with the rules of fc (the
+ * operand's width noted in the mapping cleared: the write data / reply have it). */
+static modcp_event_t map_part(modcp_pdu_t *s, const modcp_pdu_env_t *env, bool write,
+                              uint8_t fc)
+{
+    modcp_pdu_x_t *x = &s->x;
+    const uint16_t start = write ? x->wstart : x->rstart;
+    const uint16_t qty = write ? x->wqty : x->rqty;
+    if (write ? x->wscan : x->rscan) {
+        return modcp_scan_check(env->p, env->areas, start, qty, write);
+    }
+    modcp_operand_t *o = write ? &x->wdir : &x->rdir;
+    const modcp_event_t ev = modcp_map_regs(env->p, env->areas, fc, start, qty, o);
+    o->bit = 0;
+    return ev;
+}
+
 /* ---- FC22 mask write register ----------------------------------------------------- */
 
 modcp_pdu_action_t modcp_pdu_fc22(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
@@ -267,25 +285,20 @@ modcp_pdu_action_t modcp_pdu_fc22(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     (void)len;
     (void)out_len;
     seq_clear(s);
+    modcp_pdu_x_t *x = &s->x;
     s->addr = modcp_get16(pdu + 1);
     s->qty = 1;
-    modcp_event_t ev;
-    if (modcp_scan_touches(env->p, s->addr, 1u)) {
-        ev = modcp_scan_check(env->p, env->areas, s->addr, 1u, true);
-        s->x.wscan = true;
-        s->x.wstart = s->addr;
-        s->x.wqty = 1;
-    } else {
-        ev = modcp_map_regs(env->p, env->areas, s->fc, s->addr, 1u, &s->x.wdir);
-        s->x.wdir.bit = 0;
-        s->x.wlen = 4;
-    }
+    x->wstart = s->addr;
+    x->wqty = 1;
+    x->wscan = modcp_scan_touches(env->p, s->addr, 1u);
+    x->wlen = 4; /* direct: and mask, or mask */
+    modcp_event_t ev = map_part(s, env, true, s->fc);
     if (ev != MODCP_EV_NONE) {
         return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
     }
-    s->x.wop = MODCP_JOB_MASKWRITE;
-    s->x.woff = 3;
-    s->x.echo = 7; /* the request, unchanged */
+    x->wop = MODCP_JOB_MASKWRITE;
+    x->woff = 3;
+    x->echo = 7; /* the request, unchanged */
     return start(s, env, pdu, cap);
 }
 
@@ -316,29 +329,16 @@ modcp_pdu_action_t modcp_pdu_fc23(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     if (bc != (uint32_t)x->wqty * modcp_reg_bytes(wk) || len != 10u + bc) {
         return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
-    /* both ranges are checked before anything is written */
-    modcp_event_t ev;
-    if (x->wscan) {
-        ev = modcp_scan_check(env->p, env->areas, x->wstart, x->wqty, true);
-    } else {
-        ev = modcp_map_regs(env->p, env->areas, 23u, x->wstart, x->wqty, &x->wdir);
-        x->wdir.bit = 0; /* its byte count is bc: the width is wk's */
+    /* both ranges are checked before anything is written; the read range is mapped
+     * like FC03's (read rules, no write limits) */
+    modcp_event_t ev = map_part(s, env, true, 23u);
+    if (ev == MODCP_EV_NONE) {
+        ev = map_part(s, env, false, 3u);
     }
     if (ev != MODCP_EV_NONE) {
         return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
     }
-    if (x->rscan) {
-        ev = modcp_scan_check(env->p, env->areas, x->rstart, x->rqty, false);
-        x->rbytes = (uint16_t)(2u * x->rqty);
-    } else {
-        /* the read range is mapped like FC03: read rules, no write limits */
-        ev = modcp_map_regs(env->p, env->areas, 3u, x->rstart, x->rqty, &x->rdir);
-        x->rdir.bit = 0;
-        x->rbytes = x->rdir.count;
-    }
-    if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
-    }
+    x->rbytes = x->rscan ? (uint16_t)(2u * x->rqty) : x->rdir.count;
     if (x->rbytes > 250u || 2u + (uint32_t)x->rbytes > cap) {
         return modcp_pdu_err(s, MODCP_EV_QUANTITY, MODCP_EXC_ILLEGAL_VALUE);
     }
