@@ -215,6 +215,24 @@ static void seq_clear(modcp_pdu_t *s)
     memset(&s->x.phase, 0, sizeof s->x - offsetof(modcp_pdu_x_t, phase));
 }
 
+/* The write part (write) or the read part of s->x checked and mapped: through the
+ * scanner when it touches it (wscan / rscan), else directly with the rules of fc (the
+ * operand's width noted in the mapping cleared: the write data / reply have it). */
+static modcp_event_t map_part(modcp_pdu_t *s, const modcp_pdu_env_t *env, bool write,
+                              uint8_t fc)
+{
+    modcp_pdu_x_t *x = &s->x;
+    const uint16_t start = write ? x->wstart : x->rstart;
+    const uint16_t qty = write ? x->wqty : x->rqty;
+    if (write ? x->wscan : x->rscan) {
+        return modcp_scan_check(env->p, env->areas, start, qty, write);
+    }
+    modcp_operand_t *o = write ? &x->wdir : &x->rdir;
+    const modcp_event_t ev = modcp_map_regs(env->p, env->areas, fc, start, qty, o);
+    o->bit = 0;
+    return ev;
+}
+
 /* ---- scanner: FC03, FC06, FC16 on scanner addresses ------------------------------- */
 
 modcp_pdu_action_t modcp_pdu_scan(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
@@ -236,10 +254,6 @@ modcp_pdu_action_t modcp_pdu_scan(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         }
         x->woff = 6;
     }
-    modcp_event_t ev = modcp_scan_check(env->p, env->areas, s->addr, s->qty, write);
-    if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
-    }
     if (write) {
         x->wop = MODCP_JOB_WRITE;
         x->wscan = true;
@@ -252,29 +266,15 @@ modcp_pdu_action_t modcp_pdu_scan(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         x->rqty = s->qty;
         x->roff = 2;
         x->rbytes = (uint16_t)(2u * s->qty);
-        if (2u + x->rbytes > cap) {
-            return modcp_pdu_err(s, MODCP_EV_JOB_LENGTH, MODCP_EXC_DEVICE_FAILURE);
-        }
+    }
+    modcp_event_t ev = map_part(s, env, write, s->fc);
+    if (ev != MODCP_EV_NONE) {
+        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+    }
+    if (!write && 2u + x->rbytes > cap) {
+        return modcp_pdu_err(s, MODCP_EV_JOB_LENGTH, MODCP_EXC_DEVICE_FAILURE);
     }
     return start(s, env, pdu, cap);
-}
-
-/* The write part (write) or the read part of s->x checked and mapped: through the
- * scanner when it touches it (wscan / rscan), else directly with the rules of fc (the
- * operand's width noted in the mapping cleared: the write data / reply have it). */
-static modcp_event_t map_part(modcp_pdu_t *s, const modcp_pdu_env_t *env, bool write,
-                              uint8_t fc)
-{
-    modcp_pdu_x_t *x = &s->x;
-    const uint16_t start = write ? x->wstart : x->rstart;
-    const uint16_t qty = write ? x->wqty : x->rqty;
-    if (write ? x->wscan : x->rscan) {
-        return modcp_scan_check(env->p, env->areas, start, qty, write);
-    }
-    modcp_operand_t *o = write ? &x->wdir : &x->rdir;
-    const modcp_event_t ev = modcp_map_regs(env->p, env->areas, fc, start, qty, o);
-    o->bit = 0;
-    return ev;
 }
 
 /* ---- FC22 mask write register ----------------------------------------------------- */
