@@ -684,6 +684,48 @@ static void test_fc_table_lookup(void **state)
     }
 }
 
+/* modcp_pdu_request clears only the request's own state (fc .. x's head, job.op): a
+ * request never inherits the previous one's reply description, echo or job. */
+static void test_pdu_state_per_request(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    world_example_params(&p);
+    p.fset = MODCP_FSET_EXTENDED;
+    modcp_areas_t areas = {.i_bytes = 1024, .q_bytes = 1024, .m_bytes = 4096,
+                           .timers = 256, .counters = 256};
+    modcp_diag_t d;
+    modcp_diag_init(&d);
+    modcp_pdu_env_t env = {&p, &areas, &d, true, NULL};
+    modcp_pdu_t s;
+    memset(&s, 0xA5, sizeof s); /* whatever was there before */
+    uint8_t buf[260];
+    uint16_t out = 0;
+    /* FC01 from coil 3 (M 1000.3): a bit string to align */
+    memcpy(buf, "\x01\x00\x03\x00\x0A", 5);
+    assert_int_equal(modcp_pdu_request(&s, &env, 5, buf, 5, sizeof buf, &out), MODCP_PDU_JOB);
+    assert_int_equal(s.bits, 1u + 3u);
+    assert_int_equal(s.job.op, MODCP_JOB_READ);
+    /* FC05: an echo, the request's frame unchanged */
+    memcpy(buf, "\x05\x00\x03\xFF\x00", 5);
+    assert_int_equal(modcp_pdu_request(&s, &env, 5, buf, 5, sizeof buf, &out), MODCP_PDU_JOB);
+    assert_int_equal(s.bits, 0);
+    assert_true(s.same);
+    assert_int_equal(s.x.echo, 5);
+    assert_int_equal(s.job.op, MODCP_JOB_BITWRITE);
+    assert_ptr_equal(s.wdata, buf + 3); /* bit 0 of FF: the coil's value */
+    /* FC11: a CP-local reply, no job, nothing of the FC05 left */
+    buf[0] = 0x0B;
+    assert_int_equal(modcp_pdu_request(&s, &env, 5, buf, 1, sizeof buf, &out), MODCP_PDU_REPLY);
+    assert_int_equal(out, 5);
+    assert_false(s.same);
+    assert_int_equal(s.x.echo, 0);
+    assert_int_equal(s.x.exc, 0);
+    assert_int_equal(s.x.seq, 0);
+    assert_int_equal(s.job.op, 0);
+    assert_int_equal(s.r32_kind, 0);
+}
+
 /* ---- not initialised, broadcast -------------------------------------------------- */
 
 /* SPEC §6: until the FB's INIT every request gets 04 / (0E)56H, the extended set too. */
@@ -753,6 +795,7 @@ int main(void)
         cmocka_unit_test(test_fc43_exceptions),
         cmocka_unit_test(test_fc43_more_follows),
         cmocka_unit_test(test_fc_table_lookup),
+        cmocka_unit_test(test_pdu_state_per_request),
         cmocka_unit_test(test_extended_not_initialised),
         cmocka_unit_test(test_broadcast_of_extended_fcs),
     };
