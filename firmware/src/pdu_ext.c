@@ -39,6 +39,9 @@
 
 enum { PH_EARLY = 0, PH_CHECK = 1, PH_WRITE = 2, PH_READ = 3 };
 
+/* The read data's place in the reply: after fc and byte count. */
+#define ROFF 2u
+
 /* Operand k of the write part (write) or the read part. */
 /* Out of line (also under LTO): called from five places of the sequence. */
 __attribute__((noinline)) static modcp_event_t operand(const modcp_pdu_t *s,
@@ -114,8 +117,8 @@ static modcp_pdu_action_t read_job(modcp_pdu_t *s, const modcp_operand_t *o, uin
 {
     const modcp_pdu_x_t *x = &s->x;
     uint16_t n = o->count; /* direct: all of it */
-    uint16_t off = x->roff;
-    uint16_t room = (uint16_t)(x->cap - x->roff);
+    uint16_t off = ROFF;
+    uint16_t room = (uint16_t)(x->cap - ROFF);
     if (x->rscan) { /* scanner: the entry's word */
         n = 2u;
         off = (uint16_t)(off + 2u * k);
@@ -156,7 +159,7 @@ modcp_pdu_action_t modcp_pdu_seq_next(modcp_pdu_t *s, const modcp_pdu_env_t *env
         }
         if (o.area == MODCP_AREA_NONE) {
             if (x->phase == PH_READ) {
-                uint8_t *r = pdu + x->roff + 2u * k;
+                uint8_t *r = pdu + ROFF + 2u * k;
                 r[0] = 0; /* unused scanner entry: reads 0000 */
                 r[1] = 0;
             }
@@ -264,7 +267,6 @@ modcp_pdu_action_t modcp_pdu_scan(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         x->rscan = true;
         x->rstart = s->addr;
         x->rqty = s->qty;
-        x->roff = 2;
         x->rbytes = (uint16_t)(2u * s->qty);
     }
     modcp_event_t ev = map_part(s, env, write, s->fc);
@@ -350,7 +352,6 @@ modcp_pdu_action_t modcp_pdu_fc23(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     x->wop = MODCP_JOB_WRITE;
     x->woff = 10;
     x->wlen = bc;
-    x->roff = 2;
     if (2u + (uint32_t)x->rbytes + bc <= cap) {
         /* room for both: the write data move to the buffer's end, so reads that no
          * write touches can land in the reply before the writes run */

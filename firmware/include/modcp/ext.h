@@ -69,7 +69,6 @@ typedef struct {
     uint16_t wstart, wqty, rstart, rqty;
     uint16_t woff;   /* write data: offset in the PDU buffer */
     uint16_t wlen;   /* direct write: data bytes */
-    uint16_t roff;   /* read data: offset in the PDU buffer */
     uint16_t cap;    /* PDU buffer capacity */
     modcp_operand_t wdir; /* write part, direct mapping */
     modcp_operand_t rdir; /* read part, direct mapping */
