@@ -14,8 +14,8 @@ uint8_t modcp_regs32_kind(const modcp_params_t *p, uint8_t fc, uint16_t reg)
     }
     for (size_t k = 0; k < 3u; k++) {
         const modcp_r32range_t *r = &p->r32[k];
-        bool unused = r->from == 0u && r->to == 0u && r->db == 0u;
-        if (!unused && r->from <= reg && reg <= r->to) {
+        /* an all-zero range is unused: inside [from, to] it could only hold register 0 */
+        if (r->from <= reg && reg <= r->to && (r->to != 0u || r->db != 0u)) {
             return (uint8_t)(k + 1u);
         }
     }
