@@ -99,8 +99,9 @@ static bool limit_ok(const modcp_limit_t *l, uint32_t first, uint32_t last)
 
 bool modcp_map_db_write_ok(const modcp_params_t *p, const modcp_areas_t *a, uint32_t db)
 {
-    if (a != NULL && a->work_db != 0u && db == a->work_db) {
-        return false; /* the FB's work area is never writable (004 §3.5) */
+    if (a != NULL && db == a->work_db) {
+        return false; /* the FB's work area is never writable (004 §3.5); work_db 0 (none):
+                         db 0 is refused anyway */
     }
     return db >= 1u && limit_ok(&p->lim_db, db, db);
 }
