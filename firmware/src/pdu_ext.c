@@ -43,7 +43,7 @@ enum { PH_EARLY = 0, PH_CHECK = 1, PH_WRITE = 2, PH_READ = 3 };
 #define ROFF 2u
 
 /* Operand k of the write part (write) or the read part. */
-/* Out of line (also under LTO): called from five places of the sequence. */
+/* Out of line (also under LTO): the sequence's loop and the early-read test call it. */
 __attribute__((noinline)) static modcp_event_t operand(const modcp_pdu_t *s,
                                                        const modcp_pdu_env_t *env, bool write,
                                                        uint16_t k, modcp_operand_t *o)
