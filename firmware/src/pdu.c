@@ -30,7 +30,6 @@
 
 /* ---- the function-code table ------------------------------------------------------ */
 
-
 /* In fc_row_t.lim next to the limit class: the request PDU has exactly min_len bytes
  * (without it: at least min_len, the handler checks the rest against the byte count). */
 #define L_EXACT 0x80u
@@ -84,23 +83,23 @@ _Static_assert(MODCP_QLIM_COUNT <= L_EXACT, "L_EXACT shares the byte of the limi
 /* The function codes, indexed by fc (one row per function set where the handlers
  * differ: FC08). */
 static const fc_row_t fc_table[FC_ROWS] = {
-    /*  fc       {min, function sets and flags,                        quantity limits | exact length,   handler} */
-    [0x01u] =    {5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS | L_EXACT,  H_BITS},
-    [0x02u] =    {5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS | L_EXACT,  H_BITS},
-    [0x03u] =    {5u,  BOTH | F_ADDR | F_R32 | F_SCAN,                    MODCP_QLIM_READ_REGS | L_EXACT,  H_REGS},
-    [0x04u] =    {5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_REGS | L_EXACT,  H_REGS},
-    [0x05u] =    {5u,  BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_NONE | L_EXACT,       H_BITS},
-    [0x06u] =    {3u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_NONE,                 H_REGS},
-    [0x08u] =    {3u,  F_CP341,                                           MODCP_QLIM_NONE,                 H_DIAG0},
-    [0x0Fu] =    {6u,  BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_WRITE_BITS,           H_BITS},
-    [0x10u] =    {6u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_WRITE_REGS,           H_REGS},
-    EXT_ONLY([ROW_FC08_EXT] = {3u,  F_EXT,                               MODCP_QLIM_NONE,                 H_FC08})
-    EXT_ONLY([0x0Bu] =  {1u,  F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE | L_EXACT,       H_FC11})
-    EXT_ONLY([0x0Cu] =  {1u,  F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE | L_EXACT,       H_FC12})
-    EXT_ONLY([0x11u] =  {1u,  F_EXT,                                             MODCP_QLIM_NONE | L_EXACT,       H_FC17})
-    EXT_ONLY([0x16u] =  {7u,  F_EXT | F_WRITE,                                   MODCP_QLIM_NONE | L_EXACT,       H_FC22})
-    EXT_ONLY([0x17u] =  {10u, F_EXT | F_WRITE,                                   MODCP_QLIM_NONE,                 H_FC23})
-    EXT_ONLY([ROW_FC43] = {2u,  F_EXT,                                           MODCP_QLIM_NONE,                 H_FC43}) /* 2BH */
+    /* fc                    {min, function sets and flags,                         quantity limits | exact length,  handler} */
+    [0x01u] =                {5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS | L_EXACT, H_BITS},
+    [0x02u] =                {5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS | L_EXACT, H_BITS},
+    [0x03u] =                {5u,  BOTH | F_ADDR | F_R32 | F_SCAN,                    MODCP_QLIM_READ_REGS | L_EXACT, H_REGS},
+    [0x04u] =                {5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_REGS | L_EXACT, H_REGS},
+    [0x05u] =                {5u,  BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_NONE | L_EXACT,      H_BITS},
+    [0x06u] =                {3u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_NONE,                H_REGS},
+    [0x08u] =                {3u,  F_CP341,                                           MODCP_QLIM_NONE,                H_DIAG0},
+    [0x0Fu] =                {6u,  BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_WRITE_BITS,          H_BITS},
+    [0x10u] =                {6u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_WRITE_REGS,          H_REGS},
+    EXT_ONLY([ROW_FC08_EXT] ={3u,  F_EXT,                                             MODCP_QLIM_NONE,                H_FC08})
+    EXT_ONLY([0x0Bu] =       {1u,  F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE | L_EXACT,      H_FC11})
+    EXT_ONLY([0x0Cu] =       {1u,  F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE | L_EXACT,      H_FC12})
+    EXT_ONLY([0x11u] =       {1u,  F_EXT,                                             MODCP_QLIM_NONE | L_EXACT,      H_FC17})
+    EXT_ONLY([0x16u] =       {7u,  F_EXT | F_WRITE,                                   MODCP_QLIM_NONE | L_EXACT,      H_FC22})
+    EXT_ONLY([0x17u] =       {10u, F_EXT | F_WRITE,                                   MODCP_QLIM_NONE,                H_FC23})
+    EXT_ONLY([ROW_FC43] =    {2u,  F_EXT,                                             MODCP_QLIM_NONE,                H_FC43}) /* 2BH */
 };
 
 /* The row of fc in the function set of p (NULL: not in it). Built without the
