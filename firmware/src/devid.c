@@ -111,23 +111,20 @@ modcp_pdu_action_t modcp_pdu_fc43(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     }
     const modcp_params_t *p = env->p;
     const size_t total = id_len(p->app_name) > 0u ? 4u : 3u;
+    /* one past the last object of the category: basic 00..02; regular / extended and
+     * the individual access: all */
+    size_t last = code == 1u ? 3u : total;
     size_t first = 0;
-    size_t last; /* one past the last object of the category */
+    while (first < last && obj_id(first) != want) {
+        first++;
+    }
     if (code == 4u) {
-        for (first = 0; first < total && obj_id(first) != want; first++) {
-        }
-        if (first == total) {
+        if (first == last) {
             return modcp_pdu_err(s, MODCP_EV_NO_WINDOW, MODCP_EXC_ILLEGAL_ADDRESS);
         }
         last = first + 1u;
-    } else {
-        last = code == 1u ? 3u : total; /* basic: 00..02; regular / extended: all */
-        while (first < last && obj_id(first) != want) {
-            first++;
-        }
-        if (first == last) {
-            first = 0; /* not an object of this category: restart at 00 */
-        }
+    } else if (first == last) {
+        first = 0; /* not an object of this category: restart at 00 */
     }
     const uint16_t limit = cap < PDU_MAX ? cap : (uint16_t)PDU_MAX;
     if (limit < 7u) {

@@ -36,9 +36,12 @@
 #include <string.h>
 
 #include "map_internal.h"
+#include "quantity_internal.h"
 
 #define TC_MAX_CP341 16u   /* 004 §3.3: CP 341 reads at most 16 timers / counters */
 #define WORDS_PER_DB 512u  /* 004 §3.4 */
+/* The function codes on registers: FC03 / 06 / 16 / 22 / 23 holding, FC04 input. */
+#define REG_FCS ((1u << 3) | (1u << 4) | (1u << 6) | (1u << 16) | (1u << 22) | (1u << 23))
 
 /* After the function code was checked (01 / 02 / 05 / 15, 03 / 04 / 06 / 16 / 22 / 23):
  * every one but the reads writes. */
@@ -96,8 +99,9 @@ static bool limit_ok(const modcp_limit_t *l, uint32_t first, uint32_t last)
 
 bool modcp_map_db_write_ok(const modcp_params_t *p, const modcp_areas_t *a, uint32_t db)
 {
-    if (a != NULL && a->work_db != 0u && db == a->work_db) {
-        return false; /* the FB's work area is never writable (004 §3.5) */
+    if (a != NULL && db == a->work_db) {
+        return false; /* the FB's work area is never writable (004 §3.5); work_db 0 (none):
+                         db 0 is refused anyway */
     }
     return db >= 1u && limit_ok(&p->lim_db, db, db);
 }
@@ -105,43 +109,34 @@ bool modcp_map_db_write_ok(const modcp_params_t *p, const modcp_areas_t *a, uint
 modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
                              uint16_t addr, uint16_t qty, modcp_operand_t *out)
 {
-    const modcp_bitwin_t *wins;
-    size_t nwin;
-    unsigned usable; /* AREA_BIT set */
-
-    if (fc == 1u || fc == 5u || fc == 15u) {
-        wins = p->coils;
-        nwin = MODCP_COIL_WINDOWS;
-        usable = COIL_AREAS;
-    } else if (fc == 2u) {
-        wins = p->inputs;
-        nwin = MODCP_INPUT_WINDOWS;
+    const modcp_bitwin_t *w = p->coils;
+    unsigned n = MODCP_COIL_WINDOWS;
+    unsigned usable = COIL_AREAS; /* AREA_BIT set */
+    if (fc == 2u) {
+        w = p->inputs;
+        n = MODCP_INPUT_WINDOWS;
         usable = INPUT_AREAS;
-    } else {
+    } else if (fc != 1u && fc != 5u && fc != 15u) {
         return MODCP_EV_ILLEGAL_FC;
     }
     if (qty == 0u) {
         return MODCP_EV_QUANTITY;
     }
-
-    const modcp_bitwin_t *w = NULL;
-    for (size_t i = 0; i < nwin; i++) {
-        const modcp_bitwin_t *c = &wins[i];
-        if (c->area < 8u && (usable & AREA_BIT(c->area)) != 0u && c->from <= addr &&
-            addr <= c->to) {
-            w = c;
+    for (;; w++) { /* the first window holding addr */
+        if (n-- == 0u) {
+            return MODCP_EV_NO_WINDOW;
+        }
+        if (w->area < 8u && (usable & AREA_BIT(w->area)) != 0u && w->from <= addr &&
+            addr <= w->to) {
             break;
         }
     }
-    if (w == NULL) {
-        return MODCP_EV_NO_WINDOW;
-    }
 
-    const bool write = is_write_fc(fc); /* FC05 / FC15 */
-    const bool tc = is_tc(w->area);
+    const bool write = fc >= 5u; /* FC05 / FC15 */
+    const uint8_t area = w->area;
     const uint32_t rel = (uint32_t)addr - (uint32_t)w->from;
-
-    if (tc) {
+    unsigned per = 3u; /* log2 of the bits per byte, or per element for T / C */
+    if (is_tc(area)) {
         if (write) {
             return MODCP_EV_AREA_READONLY;
         }
@@ -152,109 +147,89 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
             (p->cpu_model == MODCP_CPU_CP341 && (uint32_t)qty / 16u > TC_MAX_CP341)) {
             return MODCP_EV_QUANTITY;
         }
+        per = 4u;
     }
     /* first / last byte, or element for T / C (rel and qty then multiples of 16) */
-    const unsigned per = tc ? 4u : 3u; /* log2 of the bits per byte / element */
     const uint32_t first = (uint32_t)w->start + (rel >> per);
     const uint32_t last = (uint32_t)w->start + ((rel + (uint32_t)qty - 1u) >> per);
-    if ((uint32_t)addr + (uint32_t)qty - 1u > w->to || last >= area_size(a, w->area)) {
+    if ((uint32_t)addr + (uint32_t)qty - 1u > w->to || last >= area_size(a, area)) {
         return MODCP_EV_PAST_END;
     }
 
     if (write) { /* a coil window: M, Q or DB (T / C refused above) */
-        const bool ok = w->area == MODCP_AREA_DB
+        const bool ok = area == MODCP_AREA_DB
                             ? modcp_map_db_write_ok(p, a, w->db)
-                            : limit_ok(w->area == MODCP_AREA_M ? &p->lim_m : &p->lim_q, first, last);
+                            : limit_ok(area == MODCP_AREA_M ? &p->lim_m : &p->lim_q, first, last);
         if (!ok) {
             return MODCP_EV_WRITE_DENIED;
         }
     }
 
-    out->area = w->area;
-    out->db = w->area == MODCP_AREA_DB ? w->db : 0u;
+    out->area = area;
+    out->db = area == MODCP_AREA_DB ? w->db : 0u;
     out->offset = (uint16_t)first;
     out->bit = (uint8_t)(rel % 8u); /* 0 for T / C */
-    out->count = tc ? (uint16_t)(qty / 16u) : qty;
-    return MODCP_EV_NONE;
-}
-
-static modcp_event_t map_regs32(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
-                                uint16_t reg, uint16_t qty, modcp_operand_t *out)
-{
-    size_t kind = 3u;
-    for (size_t k = 0; k < 3u; k++) {
-        const modcp_r32range_t *r = &p->r32[k];
-        bool unused = r->from == 0u && r->to == 0u && r->db == 0u;
-        if (!unused && r->from <= reg && reg <= r->to) {
-            kind = k;
-            break;
-        }
-    }
-    if (kind == 3u || (fc == 22u && kind != MODCP_R32_INT16)) {
-        return MODCP_EV_NO_WINDOW;
-    }
-    const modcp_r32range_t *r = &p->r32[kind];
-    const uint32_t per = kind == MODCP_R32_INT16 ? 2u : 4u;
-    const uint32_t offset = ((uint32_t)reg - (uint32_t)r->from) * per;
-    const uint32_t bytes = (uint32_t)qty * per;
-    if ((uint32_t)reg + (uint32_t)qty - 1u > r->to || offset + bytes > 0x10000u ||
-        bytes > 0xFFFFu) {
-        return MODCP_EV_PAST_END;
-    }
-    if (is_write_fc(fc) && !modcp_map_db_write_ok(p, a, r->db)) {
-        return MODCP_EV_WRITE_DENIED;
-    }
-    out->area = MODCP_AREA_DB;
-    out->bit = (uint8_t)(kind + 1u);
-    out->db = r->db;
-    out->offset = (uint16_t)offset;
-    out->count = (uint16_t)bytes;
+    out->count = (uint16_t)(qty >> (per - 3u) * 4u); /* bits, or elements for T / C */
     return MODCP_EV_NONE;
 }
 
 modcp_event_t modcp_map_regs(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
                              uint16_t reg, uint16_t qty, modcp_operand_t *out)
 {
-    uint16_t base;
-    switch (fc) {
-    case 3u:
-    case 6u:
-    case 16u:
-    case 22u:
-    case 23u:
-        base = p->hr_base_db;
-        break;
-    case 4u:
-        base = p->ir_base_db;
-        break;
-    default:
+    out->bit = modcp_regs32_kind(p, fc, reg);
+    return modcp_map_regs_kind(p, a, fc, reg, qty, out);
+}
+
+modcp_event_t modcp_map_regs_kind(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
+                                  uint16_t reg, uint16_t qty, modcp_operand_t *out)
+{
+    if (fc > 23u || ((1u << fc) & REG_FCS) == 0u) {
         return MODCP_EV_ILLEGAL_FC;
     }
     if (qty == 0u) {
         return MODCP_EV_QUANTITY;
     }
-    if (p->regs32 != 0u && fc != 4u) {
-        return map_regs32(p, a, fc, reg, qty, out);
-    }
-    if (base == 0u) {
-        return MODCP_EV_NO_WINDOW; /* register functions not configured */
-    }
-    const uint32_t db = (uint32_t)base + ((uint32_t)reg >> 9);
-    const uint32_t word = (uint32_t)reg & 0x1FFu;
-    if (db > 0xFFFFu) {
-        return MODCP_EV_DB_OVERFLOW;
-    }
-    if (word + (uint32_t)qty > WORDS_PER_DB) {
-        return MODCP_EV_DB_ACCESS; /* would cross into the next DB */
+    uint32_t db;
+    uint32_t offset;
+    uint32_t bytes;
+    if (fc != 4u && p->regs32 != 0u) { /* the 32-bit scheme (never FC04, 003 §4.4) */
+        const uint8_t k1 = out->bit;    /* the range's kind + 1, 0: none */
+        if (k1 == 0u || (fc == 22u && k1 != MODCP_R32_INT16 + 1u)) {
+            return MODCP_EV_NO_WINDOW;
+        }
+        const modcp_r32range_t *r = &p->r32[k1 - 1u];
+        const uint32_t per = modcp_reg_bytes(k1);
+        offset = ((uint32_t)reg - (uint32_t)r->from) * per;
+        bytes = (uint32_t)qty * per;
+        if ((uint32_t)reg + (uint32_t)qty - 1u > r->to || offset + bytes > 0x10000u ||
+            bytes > 0xFFFFu) {
+            return MODCP_EV_PAST_END;
+        }
+        db = r->db;
+    } else {
+        const uint16_t base = fc == 4u ? p->ir_base_db : p->hr_base_db;
+        if (base == 0u) {
+            return MODCP_EV_NO_WINDOW; /* register functions not configured */
+        }
+        db = (uint32_t)base + ((uint32_t)reg >> 9);
+        const uint32_t word = (uint32_t)reg & 0x1FFu;
+        if (db > 0xFFFFu) {
+            return MODCP_EV_DB_OVERFLOW;
+        }
+        if (word + (uint32_t)qty > WORDS_PER_DB) {
+            return MODCP_EV_DB_ACCESS; /* would cross into the next DB */
+        }
+        out->bit = 0u;
+        offset = word * 2u;
+        bytes = (uint32_t)qty * 2u;
     }
     if (is_write_fc(fc) && !modcp_map_db_write_ok(p, a, db)) {
         return MODCP_EV_WRITE_DENIED;
     }
     out->area = MODCP_AREA_DB;
-    out->bit = 0u;
     out->db = (uint16_t)db;
-    out->offset = (uint16_t)(word * 2u);
-    out->count = (uint16_t)((uint32_t)qty * 2u);
+    out->offset = (uint16_t)offset;
+    out->count = (uint16_t)bytes;
     return MODCP_EV_NONE;
 }
 

@@ -22,6 +22,11 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
  * (0E)53H DB > 65535, (0E)39H request crosses a DB boundary, (0E)51H no 32-bit range. */
 modcp_event_t modcp_map_regs(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
                              uint16_t reg, uint16_t qty, modcp_operand_t *out);
+/* The same with the register kind already known: on entry out->bit holds
+ * modcp_regs32_kind(p, fc, reg) (the PDU engine has it from the function-code
+ * table's check of the quantity). */
+modcp_event_t modcp_map_regs_kind(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
+                                  uint16_t reg, uint16_t qty, modcp_operand_t *out);
 /* Size of a controller area in bytes (M, Q, I) or elements (T, C) as reported at init;
  * DB (and areas == NULL): 65536, since DB sizes are checked by the CPU side. */
 uint32_t modcp_map_area_size(const modcp_areas_t *a, uint8_t area);

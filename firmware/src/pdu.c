@@ -30,73 +30,76 @@
 
 /* ---- the function-code table ------------------------------------------------------ */
 
-enum {
-    F_CP341 = 1u << 0, /* in function set cp341 (the manual's, 004 §6) */
-    F_EXT = 1u << 1,   /* in function set extended (SPEC §5.3) */
-    F_BCAST = 1u << 2, /* broadcast may run it (SPEC §5.2: FC 05, 06, 15, 16) */
-    F_ADDR = 1u << 3,  /* start address at pdu[1..2] (s->addr) */
-    F_R32 = 1u << 4,   /* holding registers: width by the start address (003 §4.5) */
-    F_SCAN = 1u << 5,  /* extended: on scanner addresses the scanner's handler runs */
-    F_WRITE = 1u << 6, /* writes controller memory (arms the comm-loss supervision) */
-    F_NOCOUNT = 1u << 7, /* not counted by the FC11 event counter (FC11, FC12) */
-};
-
 /* In fc_row_t.lim next to the limit class: the request PDU has exactly min_len bytes
  * (without it: at least min_len, the handler checks the rest against the byte count). */
 #define L_EXACT 0x80u
 
-typedef struct { /* 8 bytes on a 32-bit target */
-    uint8_t fc;
+/* The handlers, by index (a row holds the index: 4-byte rows). */
+enum {
+    H_BITS,  /* pdu_rw.c: FC01 / 02 / 05 / 15 */
+    H_REGS,  /* pdu_rw.c: FC03 / 04 / 06 / 16 */
+    H_DIAG0, /* pdu_rw.c: FC08 sub 0000 (cp341 set) */
+#if MODCP_WITH_EXTENDED
+    H_FC08, /* serial_diag.c */
+    H_FC11,
+    H_FC12,
+    H_FC17, /* devid.c */
+    H_FC43,
+    H_FC22, /* pdu_ext.c */
+    H_FC23,
+#endif
+};
+static const modcp_pdu_handler_t handlers[] = {
+    [H_BITS] = modcp_pdu_bits, [H_REGS] = modcp_pdu_regs, [H_DIAG0] = modcp_pdu_diag0,
+#if MODCP_WITH_EXTENDED
+    [H_FC08] = modcp_pdu_fc08, [H_FC11] = modcp_pdu_fc11, [H_FC12] = modcp_pdu_fc12,
+    [H_FC17] = modcp_pdu_fc17, [H_FC43] = modcp_pdu_fc43, [H_FC22] = modcp_pdu_fc22,
+    [H_FC23] = modcp_pdu_fc23,
+#endif
+};
+
+typedef struct { /* 4 bytes */
     uint8_t min_len; /* request PDU length, function code included */
-    uint8_t flags;   /* F_* */
+    uint8_t flags;   /* F_*; 0: no function code */
     uint8_t lim;     /* MODCP_QLIM_*: quantity at pdu[3..4], limits in quantity.c;
                         | L_EXACT: the length is exactly min_len */
-    modcp_pdu_handler_t run;
+    uint8_t run;     /* H_*: the handler */
 } fc_row_t;
 _Static_assert(MODCP_QLIM_COUNT <= L_EXACT, "L_EXACT shares the byte of the limit class");
 
 #if MODCP_WITH_EXTENDED
 #define EXT_ONLY(...) __VA_ARGS__,
+/* Rows past the last fc below 0x18 (row_of): FC43 (2BH) and FC08 of the extended set
+ * (FC08's own row is the cp341 set's). */
+#define ROW_FC43 0x18u
+#define ROW_FC08_EXT 0x19u
+#define FC_ROWS 0x1Au
 #else
 #define EXT_ONLY(...)
+#define FC_ROWS 0x11u
 #endif
 #define BOTH (F_CP341 | F_EXT)
 
-/* The function codes, the most frequent first (one row per function set where the
- * handlers differ: a row of the cp341 set only is followed by the same fc's row of the
- * extended set, row_of() relies on it). */
-static const fc_row_t fc_table[] = {
-    /*       {fc,    min, function sets and flags,                        quantity limits | exact length,   handler} */
-             {0x03u, 5u,  BOTH | F_ADDR | F_R32 | F_SCAN,                    MODCP_QLIM_READ_REGS | L_EXACT,  modcp_pdu_read_regs},
-             {0x10u, 6u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_WRITE_REGS,           modcp_pdu_write_regs},
-             {0x06u, 3u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_NONE,                 modcp_pdu_write_reg},
-             {0x01u, 5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS | L_EXACT,  modcp_pdu_read_bits},
-             {0x02u, 5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS | L_EXACT,  modcp_pdu_read_bits},
-             {0x04u, 5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_REGS | L_EXACT,  modcp_pdu_read_regs},
-             {0x05u, 5u,  BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_NONE | L_EXACT,       modcp_pdu_write_coil},
-             {0x0Fu, 6u,  BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_WRITE_BITS,           modcp_pdu_write_coils},
-             {0x08u, 3u,  F_CP341,                                           MODCP_QLIM_NONE,                 modcp_pdu_diag0},
-    EXT_ONLY({0x08u, 3u,  F_EXT,                                             MODCP_QLIM_NONE,                 modcp_pdu_fc08})
-    EXT_ONLY({0x17u, 10u, F_EXT | F_WRITE,                                   MODCP_QLIM_NONE,                 modcp_pdu_fc23})
-    EXT_ONLY({0x16u, 7u,  F_EXT | F_WRITE,                                   MODCP_QLIM_NONE | L_EXACT,       modcp_pdu_fc22})
-    EXT_ONLY({0x0Bu, 1u,  F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE | L_EXACT,       modcp_pdu_fc11})
-    EXT_ONLY({0x0Cu, 1u,  F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE | L_EXACT,       modcp_pdu_fc12})
-    EXT_ONLY({0x11u, 1u,  F_EXT,                                             MODCP_QLIM_NONE | L_EXACT,       modcp_pdu_fc17})
-    EXT_ONLY({0x2Bu, 2u,  F_EXT,                                             MODCP_QLIM_NONE,                 modcp_pdu_fc43})
-};
-
-_Static_assert(sizeof fc_table / sizeof fc_table[0] == (MODCP_WITH_EXTENDED ? 16u : 9u),
-               "fc_first_row below indexes fc_table: keep both in step");
-
-/* fc -> 1 + the index of its first row in fc_table (0: no row). An fc has at most two
- * rows, adjacent (FC08: cp341, then extended). */
-#define FC_SLOTS 0x2Cu
-static const uint8_t fc_first_row[FC_SLOTS] = {
-    [0x03u] = 1u, [0x10u] = 2u, [0x06u] = 3u, [0x01u] = 4u, [0x02u] = 5u, [0x04u] = 6u,
-    [0x05u] = 7u, [0x0Fu] = 8u, [0x08u] = 9u,
-#if MODCP_WITH_EXTENDED
-    [0x17u] = 11u, [0x16u] = 12u, [0x0Bu] = 13u, [0x0Cu] = 14u, [0x11u] = 15u, [0x2Bu] = 16u,
-#endif
+/* The function codes, indexed by fc (one row per function set where the handlers
+ * differ: FC08). */
+static const fc_row_t fc_table[FC_ROWS] = {
+    /* fc                    {min, function sets and flags,                         quantity limits | exact length,  handler} */
+    [0x01u] =                {5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS | L_EXACT, H_BITS},
+    [0x02u] =                {5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS | L_EXACT, H_BITS},
+    [0x03u] =                {5u,  BOTH | F_ADDR | F_R32 | F_SCAN,                    MODCP_QLIM_READ_REGS | L_EXACT, H_REGS},
+    [0x04u] =                {5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_REGS | L_EXACT, H_REGS},
+    [0x05u] =                {5u,  BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_NONE | L_EXACT,      H_BITS},
+    [0x06u] =                {3u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_NONE,                H_REGS},
+    [0x08u] =                {3u,  F_CP341,                                           MODCP_QLIM_NONE,                H_DIAG0},
+    [0x0Fu] =                {6u,  BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_WRITE_BITS,          H_BITS},
+    [0x10u] =                {6u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_WRITE_REGS,          H_REGS},
+    EXT_ONLY([ROW_FC08_EXT] ={3u,  F_EXT,                                             MODCP_QLIM_NONE,                H_FC08})
+    EXT_ONLY([0x0Bu] =       {1u,  F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE | L_EXACT,      H_FC11})
+    EXT_ONLY([0x0Cu] =       {1u,  F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE | L_EXACT,      H_FC12})
+    EXT_ONLY([0x11u] =       {1u,  F_EXT,                                             MODCP_QLIM_NONE | L_EXACT,      H_FC17})
+    EXT_ONLY([0x16u] =       {7u,  F_EXT | F_WRITE,                                   MODCP_QLIM_NONE | L_EXACT,      H_FC22})
+    EXT_ONLY([0x17u] =       {10u, F_EXT | F_WRITE,                                   MODCP_QLIM_NONE,                H_FC23})
+    EXT_ONLY([ROW_FC43] =    {2u,  F_EXT,                                             MODCP_QLIM_NONE,                H_FC43}) /* 2BH */
 };
 
 /* The row of fc in the function set of p (NULL: not in it). Built without the
@@ -105,24 +108,30 @@ static const fc_row_t *row_of(const modcp_params_t *p, uint8_t fc)
 {
 #if MODCP_WITH_EXTENDED
     const uint8_t set = p->fset == (uint8_t)MODCP_FSET_EXTENDED ? F_EXT : F_CP341;
+    unsigned i = fc;
+    if (fc == 0x2Bu) {
+        i = ROW_FC43;
+    } else if (fc >= ROW_FC43) {
+        return NULL;
+    }
 #else
     (void)p;
     const uint8_t set = F_CP341;
-#endif
-    const unsigned first = fc < FC_SLOTS ? fc_first_row[fc] : 0u;
-    if (first == 0u) {
+    const unsigned i = fc;
+    if (fc >= FC_ROWS) {
         return NULL;
     }
-    const fc_row_t *r = &fc_table[first - 1u];
+#endif
+    const fc_row_t *r = &fc_table[i];
     if ((r->flags & set) != 0u) {
         return r;
     }
 #if MODCP_WITH_EXTENDED
-    if (set == F_EXT) {
-        return r + 1; /* FC08's cp341 row: its extended row follows (the only fc with two) */
+    if (fc == 0x08u && set == F_EXT) {
+        return &fc_table[ROW_FC08_EXT];
     }
 #endif
-    return NULL; /* cp341 set: an fc of the extended set only */
+    return NULL; /* no such fc, or not in this set */
 }
 
 /* ---- exceptions, reply encoding ----------------------------------------------------- */
@@ -171,14 +180,14 @@ static modcp_pdu_action_t fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8
         }
         s->x.exc = code;
     }
+#if MODCP_WITH_EXTENDED
     if (ev == MODCP_EV_XFER_TIMEOUT || ev == MODCP_EV_FB_TIMEOUT) {
-        s->x.timeout = 1;
+        s->x.timeout = 1; /* FC12 send event, FC17 run indicator (modcp_pdu_finished) */
     }
-    /* the error counts (out of line in diag.c: one call each) */
+#endif
+    /* the error count (out of line in diag.c). The engine answers 01 .. 04 only, so the
+     * NAK and BUSY counters (Serial Line V1.02 §6.1 counters 10, 11) stay 0 */
     modcp_diag_count_error(d, MODCP_CNT_EXCEPTION);
-    if (code == (uint8_t)MODCP_EXC_BUSY || code == (uint8_t)MODCP_EXC_NAK) {
-        modcp_diag_count_error(d, code == (uint8_t)MODCP_EXC_BUSY ? MODCP_CNT_BUSY : MODCP_CNT_NAK);
-    }
     if (s->broadcast) {
         modcp_diag_count_error(d, MODCP_CNT_NO_RESPONSE);
         return MODCP_PDU_NO_REPLY;
@@ -201,7 +210,7 @@ static inline modcp_pdu_action_t encode(modcp_pdu_t *s, const modcp_pdu_env_t *e
         return MODCP_PDU_REPLY;
     }
     if (s->bits != 0u) {
-        modcp_pdu_align_bits(pdu + 2, s->shift, s->qty); /* FC01 / FC02 */
+        modcp_pdu_align_bits(pdu + 2, (uint8_t)(s->bits - 1u), s->qty); /* FC01 / FC02 */
     }
     pdu[0] = s->fc;
     pdu[1] = (uint8_t)s->x.rbytes;
@@ -256,14 +265,13 @@ static modcp_pdu_action_t dispatch(modcp_pdu_t *s, const modcp_pdu_env_t *env, u
         return modcp_pdu_err(s, MODCP_EV_FB_NOT_RUNNING, MODCP_EXC_DEVICE_FAILURE);
     }
     const fc_row_t *r = row_of(env->p, s->fc);
-    if (s->broadcast && (r == NULL || (r->flags & F_BCAST) == 0u)) {
-        return modcp_pdu_err(s, MODCP_EV_BCAST_FC, MODCP_EXC_ILLEGAL_FUNCTION); /* silent */
-    }
-    if (r == NULL) {
-        return modcp_pdu_err(s, MODCP_EV_ILLEGAL_FC, MODCP_EXC_ILLEGAL_FUNCTION);
+    if (r == NULL || (s->broadcast && (r->flags & F_BCAST) == 0u)) {
+        /* a broadcast stays silent: (08)30H, else (08)31H */
+        return modcp_pdu_err(s, s->broadcast ? MODCP_EV_BCAST_FC : MODCP_EV_ILLEGAL_FC,
+                             MODCP_EXC_ILLEGAL_FUNCTION);
     }
     s->fcflags = r->flags;
-    modcp_pdu_handler_t h = r->run;
+    modcp_pdu_handler_t h = handlers[r->run];
     if (len < r->min_len || ((r->lim & L_EXACT) != 0u && len != r->min_len)) {
         return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
@@ -276,15 +284,15 @@ static modcp_pdu_action_t dispatch(modcp_pdu_t *s, const modcp_pdu_env_t *env, u
         if ((r->flags & F_SCAN) != 0u && env->p->scan_count != 0u &&
             modcp_scan_touches(env->p, s->addr, qty)) {
             scan = true; /* scanner addresses: 16-bit operands, the scanner's handlers */
-            h = s->fc == 0x03u ? modcp_pdu_scan_read : modcp_pdu_scan_write;
+            h = modcp_pdu_scan;
         }
 #endif
         if (!scan && (r->flags & F_R32) != 0u && env->p->regs32 != 0u) { /* else 16-bit */
             s->r32_kind = modcp_regs32_kind(env->p, s->fc, s->addr);
         }
+        s->qty = qty; /* 1 for FC05 / FC06 */
         if (lim != (uint8_t)MODCP_QLIM_NONE) {
-            s->qty = qty;
-            if (qty < 1u || qty > modcp_qty_limit(env->p, lim, s->r32_kind)) {
+            if ((uint16_t)(qty - 1u) >= modcp_qty_limit(env->p, lim, s->r32_kind)) { /* 1..max */
                 return modcp_pdu_err(s, MODCP_EV_QUANTITY, MODCP_EXC_ILLEGAL_VALUE);
             }
         }
@@ -296,7 +304,8 @@ modcp_pdu_action_t modcp_pdu_request(modcp_pdu_t *s, const modcp_pdu_env_t *env,
                                      uint8_t *pdu, uint16_t len, uint16_t cap, uint16_t *out_len)
 {
     *out_len = 0;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, MODCP_PDU_CLEARED); /* the request's state; the rest is set before use */
+    s->job.op = 0;
     if (len < 1u) {
         return MODCP_PDU_NO_REPLY;
     }
@@ -350,24 +359,10 @@ static bool write_op(uint8_t op)
 static uint8_t send_event(const modcp_pdu_t *s, const modcp_comm_t *c)
 {
     uint8_t ev = MODCP_COMM_TX;
-    switch (s->x.exc) {
-    case MODCP_EXC_NONE:
-        break;
-    case MODCP_EXC_ILLEGAL_FUNCTION:
-    case MODCP_EXC_ILLEGAL_ADDRESS:
-    case MODCP_EXC_ILLEGAL_VALUE:
-        ev |= MODCP_COMM_TX_READ_EXC;
-        break;
-    case MODCP_EXC_DEVICE_FAILURE:
+    if (s->x.exc == (uint8_t)MODCP_EXC_DEVICE_FAILURE) {
         ev |= MODCP_COMM_TX_ABORT_EXC;
-        break;
-    case MODCP_EXC_ACKNOWLEDGE:
-    case MODCP_EXC_BUSY:
-        ev |= MODCP_COMM_TX_BUSY_EXC;
-        break;
-    default:
-        ev |= MODCP_COMM_TX_NAK_EXC;
-        break;
+    } else if (s->x.exc != (uint8_t)MODCP_EXC_NONE) {
+        ev |= MODCP_COMM_TX_READ_EXC; /* 01 .. 03 (the engine answers no 05 .. 07) */
     }
     if (s->x.timeout != 0u && write_op(s->job.op)) {
         ev |= MODCP_COMM_TX_WRITE_TIMEOUT;

@@ -39,8 +39,11 @@
 
 enum { PH_EARLY = 0, PH_CHECK = 1, PH_WRITE = 2, PH_READ = 3 };
 
+/* The read data's place in the reply: after fc and byte count. */
+#define ROFF 2u
+
 /* Operand k of the write part (write) or the read part. */
-/* Out of line (also under LTO): called from five places of the sequence. */
+/* Out of line (also under LTO): the sequence's loop and the early-read test call it. */
 __attribute__((noinline)) static modcp_event_t operand(const modcp_pdu_t *s,
                                                        const modcp_pdu_env_t *env, bool write,
                                                        uint16_t k, modcp_operand_t *o)
@@ -114,8 +117,8 @@ static modcp_pdu_action_t read_job(modcp_pdu_t *s, const modcp_operand_t *o, uin
 {
     const modcp_pdu_x_t *x = &s->x;
     uint16_t n = o->count; /* direct: all of it */
-    uint16_t off = x->roff;
-    uint16_t room = (uint16_t)(x->cap - x->roff);
+    uint16_t off = ROFF;
+    uint16_t room = (uint16_t)(x->cap - ROFF);
     if (x->rscan) { /* scanner: the entry's word */
         n = 2u;
         off = (uint16_t)(off + 2u * k);
@@ -131,58 +134,49 @@ modcp_pdu_action_t modcp_pdu_seq_next(modcp_pdu_t *s, const modcp_pdu_env_t *env
     const uint16_t nr = read_jobs(x);
     modcp_operand_t o;
     for (;;) {
-        if (x->phase == PH_WRITE) {
-            /* DB operands first (in request order), then the others */
-            if (x->idx >= 2u * nw) {
-                x->phase = PH_READ;
-                x->idx = 0;
-                continue;
-            }
-            const bool pass0 = x->idx < nw;
-            const uint16_t k = (uint16_t)(pass0 ? x->idx : x->idx - nw);
-            x->idx++;
-            modcp_event_t ev = operand(s, env, true, k, &o);
-            if (ev != MODCP_EV_NONE) {
-                return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
-            }
-            if (o.area == MODCP_AREA_NONE || (o.area == MODCP_AREA_DB) != pass0) {
-                continue; /* unused scanner entry: the value is discarded */
-            }
-            /* direct: the whole data; scanner: the entry's word, or FC22's masks */
-            uint16_t n = x->wlen;
-            uint16_t off = x->woff;
-            if (x->wscan) {
-                n = x->wop == MODCP_JOB_MASKWRITE ? 4u : 2u;
-                off = (uint16_t)(off + (n == 2u ? 2u * k : 0u));
-            }
-            return modcp_pdu_job(s, x->wop, &o, n, pdu + off, NULL, 0);
-        }
-        const uint16_t n = x->phase == PH_CHECK ? (uint16_t)(nw + nr) : nr;
+        /* the steps of the phase: early / other reads: the read part; check reads: the
+         * write part, then the read part; writes: the write part twice (DB operands
+         * first, in request order, then the others) */
+        const uint16_t n = x->phase == PH_CHECK   ? (uint16_t)(nw + nr)
+                           : x->phase == PH_WRITE ? (uint16_t)(2u * nw)
+                                                  : nr;
         if (x->idx >= n) {
             if (x->phase == PH_READ) {
                 return MODCP_PDU_DONE;
             }
-            x->phase++; /* early reads -> check reads -> writes */
+            /* early reads -> check reads -> writes -> reads */
+            x->phase = nw == 0u ? (uint8_t)PH_READ : (uint8_t)(x->phase + 1u);
             x->idx = 0;
-            if (nw == 0u) {
-                x->phase = PH_READ;
-            }
             continue;
         }
         const uint16_t i = x->idx++;
-        const bool write = x->phase == PH_CHECK && i < nw;
-        const uint16_t k = x->phase == PH_CHECK && !write ? (uint16_t)(i - nw) : i;
+        const bool second = (x->phase == PH_CHECK || x->phase == PH_WRITE) && i >= nw;
+        const bool write = x->phase == PH_WRITE || (x->phase == PH_CHECK && !second);
+        const uint16_t k = second ? (uint16_t)(i - nw) : i;
         modcp_event_t ev = operand(s, env, write, k, &o);
         if (ev != MODCP_EV_NONE) {
             return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
         }
         if (o.area == MODCP_AREA_NONE) {
             if (x->phase == PH_READ) {
-                uint8_t *r = pdu + x->roff + 2u * k;
+                uint8_t *r = pdu + ROFF + 2u * k;
                 r[0] = 0; /* unused scanner entry: reads 0000 */
                 r[1] = 0;
             }
-            continue;
+            continue; /* (writes: the value is discarded) */
+        }
+        if (x->phase == PH_WRITE) {
+            if ((o.area == MODCP_AREA_DB) == second) {
+                continue; /* not in this pass */
+            }
+            /* direct: the whole data; scanner: the entry's word, or FC22's masks */
+            uint16_t len = x->wlen;
+            uint16_t off = x->woff;
+            if (x->wscan) {
+                len = x->wop == MODCP_JOB_MASKWRITE ? 4u : 2u;
+                off = (uint16_t)(off + (len == 2u ? 2u * k : 0u));
+            }
+            return modcp_pdu_job(s, x->wop, &o, len, pdu + off, NULL, 0);
         }
         const bool early = !write && early_read(s, env, &o);
         if (x->phase == PH_EARLY) {
@@ -218,56 +212,70 @@ static modcp_pdu_action_t start(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint
     return modcp_pdu_seq_next(s, env, pdu);
 }
 
-/* ---- scanner: FC03, FC06, FC16 on scanner addresses ------------------------------- */
-
-modcp_pdu_action_t modcp_pdu_scan_read(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                       uint8_t *pdu, uint16_t len, uint16_t cap,
-                                       uint16_t *out_len)
+/* The sequence's state (s->x from phase on: not cleared by pdu.c) starts at zero. */
+static void seq_clear(modcp_pdu_t *s)
 {
-    (void)len;
-    (void)out_len;
-    modcp_event_t ev = modcp_scan_check(env->p, env->areas, s->addr, s->qty, false);
-    if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
-    }
-    s->x.rscan = true;
-    s->x.rstart = s->addr;
-    s->x.rqty = s->qty;
-    s->x.roff = 2;
-    s->x.rbytes = (uint16_t)(2u * s->qty);
-    if (2u + s->x.rbytes > cap) {
-        return modcp_pdu_err(s, MODCP_EV_JOB_LENGTH, MODCP_EXC_DEVICE_FAILURE);
-    }
-    return start(s, env, pdu, cap);
+    memset(&s->x.phase, 0, sizeof s->x - offsetof(modcp_pdu_x_t, phase));
 }
 
-modcp_pdu_action_t modcp_pdu_scan_write(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                        uint8_t *pdu, uint16_t len, uint16_t cap,
-                                        uint16_t *out_len)
+/* The write part (write) or the read part of s->x checked and mapped: through the
+ * scanner when it touches it (wscan / rscan), else directly with the rules of fc (the
+ * operand's width noted in the mapping cleared: the write data / reply have it). */
+static modcp_event_t map_part(modcp_pdu_t *s, const modcp_pdu_env_t *env, bool write,
+                              uint8_t fc)
+{
+    modcp_pdu_x_t *x = &s->x;
+    const uint16_t start = write ? x->wstart : x->rstart;
+    const uint16_t qty = write ? x->wqty : x->rqty;
+    if (write ? x->wscan : x->rscan) {
+        return modcp_scan_check(env->p, env->areas, start, qty, write);
+    }
+    modcp_operand_t *o = write ? &x->wdir : &x->rdir;
+    const modcp_event_t ev = modcp_map_regs(env->p, env->areas, fc, start, qty, o);
+    o->bit = 0;
+    return ev;
+}
+
+/* ---- scanner: FC03, FC06, FC16 on scanner addresses ------------------------------- */
+
+modcp_pdu_action_t modcp_pdu_scan(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                  uint16_t len, uint16_t cap, uint16_t *out_len)
 {
     (void)out_len;
+    seq_clear(s);
+    modcp_pdu_x_t *x = &s->x;
+    const bool write = s->fc != 0x03u; /* FC06 / FC16 */
     if (s->fc == 0x06u) {
         if (len != 5u) {
             return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
         }
-        s->qty = 1;
-        s->x.woff = 3;
-    } else {
+        x->woff = 3;
+    } else if (s->fc == 0x10u) {
         const uint8_t bc = pdu[5];
         if (bc != 2u * s->qty || len != 6u + bc) {
             return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
         }
-        s->x.woff = 6;
+        x->woff = 6;
     }
-    modcp_event_t ev = modcp_scan_check(env->p, env->areas, s->addr, s->qty, true);
+    if (write) {
+        x->wop = MODCP_JOB_WRITE;
+        x->wscan = true;
+        x->wstart = s->addr;
+        x->wqty = s->qty;
+        x->echo = 5; /* FC06: the whole request; FC16: fc, start, quantity */
+    } else {
+        x->rscan = true;
+        x->rstart = s->addr;
+        x->rqty = s->qty;
+        x->rbytes = (uint16_t)(2u * s->qty);
+    }
+    modcp_event_t ev = map_part(s, env, write, s->fc);
     if (ev != MODCP_EV_NONE) {
         return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
     }
-    s->x.wop = MODCP_JOB_WRITE;
-    s->x.wscan = true;
-    s->x.wstart = s->addr;
-    s->x.wqty = s->qty;
-    s->x.echo = 5; /* FC06: the whole request; FC16: fc, start, quantity */
+    if (!write && 2u + x->rbytes > cap) {
+        return modcp_pdu_err(s, MODCP_EV_JOB_LENGTH, MODCP_EXC_DEVICE_FAILURE);
+    }
     return start(s, env, pdu, cap);
 }
 
@@ -278,25 +286,21 @@ modcp_pdu_action_t modcp_pdu_fc22(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
 {
     (void)len;
     (void)out_len;
+    seq_clear(s);
+    modcp_pdu_x_t *x = &s->x;
     s->addr = modcp_get16(pdu + 1);
     s->qty = 1;
-    modcp_event_t ev;
-    if (modcp_scan_touches(env->p, s->addr, 1u)) {
-        ev = modcp_scan_check(env->p, env->areas, s->addr, 1u, true);
-        s->x.wscan = true;
-        s->x.wstart = s->addr;
-        s->x.wqty = 1;
-    } else {
-        ev = modcp_map_regs(env->p, env->areas, s->fc, s->addr, 1u, &s->x.wdir);
-        s->x.wdir.bit = 0;
-        s->x.wlen = 4;
-    }
+    x->wstart = s->addr;
+    x->wqty = 1;
+    x->wscan = modcp_scan_touches(env->p, s->addr, 1u);
+    x->wlen = 4; /* direct: and mask, or mask */
+    modcp_event_t ev = map_part(s, env, true, s->fc);
     if (ev != MODCP_EV_NONE) {
         return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
     }
-    s->x.wop = MODCP_JOB_MASKWRITE;
-    s->x.woff = 3;
-    s->x.echo = 7; /* the request, unchanged */
+    x->wop = MODCP_JOB_MASKWRITE;
+    x->woff = 3;
+    x->echo = 7; /* the request, unchanged */
     return start(s, env, pdu, cap);
 }
 
@@ -306,6 +310,7 @@ modcp_pdu_action_t modcp_pdu_fc23(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
                                   uint16_t len, uint16_t cap, uint16_t *out_len)
 {
     (void)out_len;
+    seq_clear(s);
     modcp_pdu_x_t *x = &s->x;
     x->rstart = modcp_get16(pdu + 1);
     x->rqty = modcp_get16(pdu + 3);
@@ -326,32 +331,16 @@ modcp_pdu_action_t modcp_pdu_fc23(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     if (bc != (uint32_t)x->wqty * modcp_reg_bytes(wk) || len != 10u + bc) {
         return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
-    /* both ranges are checked before anything is written */
-    modcp_event_t ev;
-    if (x->wscan) {
-        ev = modcp_scan_check(env->p, env->areas, x->wstart, x->wqty, true);
-    } else {
-        ev = modcp_map_regs(env->p, env->areas, 23u, x->wstart, x->wqty, &x->wdir);
-        x->wdir.bit = 0;
-        if (ev == MODCP_EV_NONE && x->wdir.count != bc) {
-            ev = MODCP_EV_BYTE_COUNT;
-        }
+    /* both ranges are checked before anything is written; the read range is mapped
+     * like FC03's (read rules, no write limits) */
+    modcp_event_t ev = map_part(s, env, true, 23u);
+    if (ev == MODCP_EV_NONE) {
+        ev = map_part(s, env, false, 3u);
     }
     if (ev != MODCP_EV_NONE) {
         return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
     }
-    if (x->rscan) {
-        ev = modcp_scan_check(env->p, env->areas, x->rstart, x->rqty, false);
-        x->rbytes = (uint16_t)(2u * x->rqty);
-    } else {
-        /* the read range is mapped like FC03: read rules, no write limits */
-        ev = modcp_map_regs(env->p, env->areas, 3u, x->rstart, x->rqty, &x->rdir);
-        x->rdir.bit = 0;
-        x->rbytes = x->rdir.count;
-    }
-    if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
-    }
+    x->rbytes = x->rscan ? (uint16_t)(2u * x->rqty) : x->rdir.count;
     if (x->rbytes > 250u || 2u + (uint32_t)x->rbytes > cap) {
         return modcp_pdu_err(s, MODCP_EV_QUANTITY, MODCP_EXC_ILLEGAL_VALUE);
     }
@@ -363,7 +352,6 @@ modcp_pdu_action_t modcp_pdu_fc23(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     x->wop = MODCP_JOB_WRITE;
     x->woff = 10;
     x->wlen = bc;
-    x->roff = 2;
     if (2u + (uint32_t)x->rbytes + bc <= cap) {
         /* room for both: the write data move to the buffer's end, so reads that no
          * write touches can land in the reply before the writes run */

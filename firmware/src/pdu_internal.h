@@ -16,6 +16,7 @@
 #define MODCP_PDU_INTERNAL_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "modcp/pdu.h"
@@ -34,6 +35,18 @@ enum {
     MODCP_EXC_NAK = 7,
 };
 
+/* Flags of a function-code table row (pdu.c); the handlers see them in s->fcflags. */
+enum {
+    F_CP341 = 1u << 0, /* in function set cp341 (the manual's, 004 §6) */
+    F_EXT = 1u << 1,   /* in function set extended (SPEC §5.3) */
+    F_BCAST = 1u << 2, /* broadcast may run it (SPEC §5.2: FC 05, 06, 15, 16) */
+    F_ADDR = 1u << 3,  /* start address at pdu[1..2] (s->addr) */
+    F_R32 = 1u << 4,   /* holding registers: width by the start address (003 §4.5) */
+    F_SCAN = 1u << 5,  /* extended: on scanner addresses the scanner's handler runs */
+    F_WRITE = 1u << 6, /* writes controller memory (arms the comm-loss supervision) */
+    F_NOCOUNT = 1u << 7, /* not counted by the FC11 event counter (FC11, FC12) */
+};
+
 /* A handler of the function-code table: the request is pdu[0 .. len) (pdu[0] = fc),
  * its length already checked against the table's minimum / maximum, s->addr and
  * s->qty set for function codes with a quantity field (checked against the table's
@@ -41,6 +54,13 @@ enum {
 typedef modcp_pdu_action_t (*modcp_pdu_handler_t)(modcp_pdu_t *s, const modcp_pdu_env_t *env,
                                                   uint8_t *pdu, uint16_t len, uint16_t cap,
                                                   uint16_t *out_len);
+
+/* Bytes of modcp_pdu_t cleared for every request: fc .. x.rbytes (and x.seq). */
+#if MODCP_WITH_EXTENDED
+#define MODCP_PDU_CLEARED (offsetof(modcp_pdu_t, x) + offsetof(modcp_pdu_x_t, phase))
+#else
+#define MODCP_PDU_CLEARED (offsetof(modcp_pdu_t, x) + sizeof(modcp_pdu_x_t))
+#endif
 
 /* Refuse the request with event ev and exception exc (MODCP_EXC_*). */
 static inline modcp_pdu_action_t modcp_pdu_err(modcp_pdu_t *s, modcp_event_t ev, uint8_t exc)
@@ -71,22 +91,12 @@ static inline modcp_pdu_action_t modcp_pdu_job(modcp_pdu_t *s, uint8_t op,
     return MODCP_PDU_JOB;
 }
 
-/* pdu_rw.c: the manual's function set (004 §6). */
-modcp_pdu_action_t modcp_pdu_read_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                       uint16_t len, uint16_t cap, uint16_t *out_len);
-modcp_pdu_action_t modcp_pdu_read_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                       uint16_t len, uint16_t cap, uint16_t *out_len);
-modcp_pdu_action_t modcp_pdu_write_coil(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                        uint8_t *pdu, uint16_t len, uint16_t cap,
-                                        uint16_t *out_len);
-modcp_pdu_action_t modcp_pdu_write_reg(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                       uint16_t len, uint16_t cap, uint16_t *out_len);
-modcp_pdu_action_t modcp_pdu_write_coils(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                         uint8_t *pdu, uint16_t len, uint16_t cap,
-                                         uint16_t *out_len);
-modcp_pdu_action_t modcp_pdu_write_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                        uint8_t *pdu, uint16_t len, uint16_t cap,
-                                        uint16_t *out_len);
+/* pdu_rw.c: the manual's function set (004 §6): FC01 / 02 / 05 / 15, FC03 / 04 / 06 /
+ * 16 (one handler per class, told apart by s->fc and s->fcflags), FC08 sub 0000. */
+modcp_pdu_action_t modcp_pdu_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                  uint16_t len, uint16_t cap, uint16_t *out_len);
+modcp_pdu_action_t modcp_pdu_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                  uint16_t len, uint16_t cap, uint16_t *out_len);
 /* The FC01 / FC02 reply data read from byte boundaries: drop `shift` low bits of the
  * first byte, keep qty bits, clear the unused high bits of the last byte. */
 void modcp_pdu_align_bits(uint8_t *d, uint8_t shift, uint16_t qty);
@@ -94,12 +104,8 @@ modcp_pdu_action_t modcp_pdu_diag0(modcp_pdu_t *s, const modcp_pdu_env_t *env, u
                                    uint16_t len, uint16_t cap, uint16_t *out_len);
 
 /* pdu_ext.c: FC22, FC23 and FC03 / 06 / 16 on scanner addresses (job sequences). */
-modcp_pdu_action_t modcp_pdu_scan_read(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                       uint8_t *pdu, uint16_t len, uint16_t cap,
-                                       uint16_t *out_len);
-modcp_pdu_action_t modcp_pdu_scan_write(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                        uint8_t *pdu, uint16_t len, uint16_t cap,
-                                        uint16_t *out_len);
+modcp_pdu_action_t modcp_pdu_scan(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                  uint16_t len, uint16_t cap, uint16_t *out_len);
 modcp_pdu_action_t modcp_pdu_fc22(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
                                   uint16_t len, uint16_t cap, uint16_t *out_len);
 modcp_pdu_action_t modcp_pdu_fc23(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,

@@ -1,10 +1,12 @@
-/* modcp — handlers of the manual's function set (004 §6): FC 01, 02, 03, 04, 05, 06,
- * 08 (sub-function 0000), 15, 16. Each maps its request and sets up one CPU job; the
- * reply is encoded by pdu.c from s->x.echo / s->x.rbytes when the job is done.
+/* modcp — handlers of the manual's function set (004 §6), one per class: bits (FC01,
+ * 02, 05, 15), registers (FC03, 04, 06, 16), and FC08 sub-function 0000. Each maps its
+ * request and sets up one CPU job; the reply is encoded by pdu.c from s->x.echo /
+ * s->x.rbytes when the job is done.
  *
  * The function-code table (pdu.c) has already checked the length against its minimum
  * and maximum and, for FC01/02/03/04/15/16, the quantity against the limits of the
- * framing and register width (s->addr, s->qty, s->r32_kind set). What is left here:
+ * framing and register width (s->addr, s->qty (1 for FC05 / 06), s->r32_kind,
+ * s->fcflags set). What is left here:
  * byte counts, values ((08)33H / (08)34H / (08)35H, exception 03), then the address
  * mapping ((0E)5xH, exception 02; map.c). Every field of the request is read before
  * the first reply byte is written. */
@@ -14,12 +16,6 @@
 #include "pdu_internal.h"
 #include "map_internal.h"
 #include "quantity_internal.h"
-
-/* Bytes per register: 2 in the 16-bit scheme (r32_kind 0, no call), else by its kind. */
-static unsigned reg_bytes(uint8_t r32_kind)
-{
-    return r32_kind == 0u ? 2u : modcp_reg_bytes(r32_kind);
-}
 
 /* The job of a handler: op on the operand its mapping left in s->job.opnd, len data
  * bytes (written from wdata, or read into rdata with rcap bytes of room). */
@@ -40,18 +36,19 @@ static modcp_pdu_action_t read_job(modcp_pdu_t *s, uint16_t len, uint8_t *pdu, u
     return job(s, MODCP_JOB_READ, len, NULL, pdu + 2, (uint16_t)(cap > 2u ? cap - 2u : 0u));
 }
 
-/* The registers s->addr .. + qty mapped to their DB bytes (s->job.opnd, width noted in
- * s->r32_kind); false with the request refused (s->err) when they do not map. */
+/* The registers s->addr .. + qty mapped to their DB bytes (s->job.opnd) in the width
+ * s->r32_kind (the table's check); false with the request refused (s->err) when they
+ * do not map. */
 static bool map_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty)
 {
     modcp_operand_t *o = &s->job.opnd;
-    modcp_event_t ev = modcp_map_regs(env->p, env->areas, s->fc, s->addr, qty, o);
+    o->bit = s->r32_kind;
+    modcp_event_t ev = modcp_map_regs_kind(env->p, env->areas, s->fc, s->addr, qty, o);
     if (ev != MODCP_EV_NONE) {
         (void)modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
         return false;
     }
-    s->r32_kind = o->bit;
-    o->bit = 0;
+    o->bit = 0; /* = s->r32_kind */
     return true;
 }
 
@@ -80,14 +77,33 @@ void modcp_pdu_align_bits(uint8_t *d, uint8_t shift, uint16_t qty)
     }
 }
 
-/* FC01 / FC02: read bits. */
-modcp_pdu_action_t modcp_pdu_read_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                       uint16_t len, uint16_t cap, uint16_t *out_len)
+/* FC01 / FC02 (read), FC05 / FC15 (write): the bit functions. */
+modcp_pdu_action_t modcp_pdu_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                  uint16_t len, uint16_t cap, uint16_t *out_len)
 {
-    (void)len;
     (void)out_len;
+    if (s->fc == 0x05u) {
+        const uint16_t value = modcp_get16(pdu + 3);
+        if (value != 0xFF00u && value != 0x0000u) {
+            return modcp_pdu_err(s, MODCP_EV_COIL_VALUE, MODCP_EXC_ILLEGAL_VALUE);
+        }
+    } else if (s->fc == 0x0Fu) {
+        const uint8_t bc = pdu[5];
+        if (bc != (s->qty + 7u) / 8u || len != 6u + bc) {
+            return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
+        }
+    }
     if (!map_bits(s, env, s->qty)) {
         return MODCP_PDU_FAIL;
+    }
+    if ((s->fcflags & F_WRITE) != 0u) {
+        s->x.echo = 5; /* FC05: the request (length 5, the table); FC15: fc, start, quantity */
+        if (s->fc == 0x05u) {
+            /* the 1-bit job's data: the value's high byte, FF or 00 (its bit 0) */
+            s->same = true;
+            return job(s, MODCP_JOB_BITWRITE, 1, pdu + 3, NULL, 0);
+        }
+        return job(s, MODCP_JOB_BITWRITE, pdu[5], pdu + 6, NULL, 0);
     }
     modcp_operand_t *o = &s->job.opnd;
     uint16_t bytes;
@@ -96,8 +112,7 @@ modcp_pdu_action_t modcp_pdu_read_bits(modcp_pdu_t *s, const modcp_pdu_env_t *en
         s->x.rbytes = bytes;
     } else {
         bytes = (uint16_t)((o->bit + s->qty + 7u) / 8u);
-        s->shift = o->bit;
-        s->bits = 1; /* pdu.c aligns the bit string */
+        s->bits = (uint8_t)(1u + o->bit); /* pdu.c aligns the bit string */
         s->x.rbytes = (uint16_t)((s->qty + 7u) / 8u);
         o->count = bytes; /* the job reads whole bytes */
         o->bit = 0;
@@ -105,97 +120,38 @@ modcp_pdu_action_t modcp_pdu_read_bits(modcp_pdu_t *s, const modcp_pdu_env_t *en
     return read_job(s, bytes, pdu, cap);
 }
 
-/* FC03 / FC04: read registers. */
-modcp_pdu_action_t modcp_pdu_read_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                       uint16_t len, uint16_t cap, uint16_t *out_len)
+/* FC03 / FC04 (read), FC06 / FC16 (write): the register functions. FC06's reply is
+ * the echo: 5 bytes, 7 for an int32 / float register of the 32-bit scheme (003 §4.5). */
+modcp_pdu_action_t modcp_pdu_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                  uint16_t len, uint16_t cap, uint16_t *out_len)
 {
-    (void)len;
     (void)out_len;
+    if (s->fc == 0x06u) {
+        if (len != 3u + modcp_reg_bytes(s->r32_kind)) {
+            return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
+        }
+    } else if (s->fc == 0x10u) {
+        const uint8_t bc = pdu[5];
+        if (bc != modcp_reg_bytes(s->r32_kind) * s->qty || len != 6u + bc) {
+            return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
+        }
+    }
+    /* the mapping's byte count is the request's: the width comes from the same range */
     if (!map_regs(s, env, s->qty)) {
         return MODCP_PDU_FAIL;
     }
-    s->x.rbytes = s->job.opnd.count;
-    return read_job(s, s->job.opnd.count, pdu, cap);
-}
-
-/* FC05: write single coil (reply: echo of the request). */
-modcp_pdu_action_t modcp_pdu_write_coil(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                        uint8_t *pdu, uint16_t len, uint16_t cap,
-                                        uint16_t *out_len)
-{
-    (void)len;
-    (void)cap;
-    (void)out_len;
-    s->qty = 1;
-    const uint16_t value = modcp_get16(pdu + 3);
-    if (value != 0xFF00u && value != 0x0000u) {
-        return modcp_pdu_err(s, MODCP_EV_COIL_VALUE, MODCP_EXC_ILLEGAL_VALUE);
+    const uint16_t n = s->job.opnd.count;
+    if ((s->fcflags & F_WRITE) != 0u) {
+        if (s->fc == 0x06u) {
+            s->x.echo = (uint16_t)(3u + n);
+            s->same = true;
+            return job(s, MODCP_JOB_WRITE, n, pdu + 3, NULL, 0);
+        }
+        s->x.echo = 5; /* FC16: fc, start, quantity */
+        return job(s, MODCP_JOB_WRITE, n, pdu + 6, NULL, 0);
     }
-    if (!map_bits(s, env, 1)) {
-        return MODCP_PDU_FAIL;
-    }
-    s->bitval = value == 0xFF00u ? 1u : 0u;
-    s->x.echo = 5; /* len 5 (the table) */
-    s->same = true;
-    return job(s, MODCP_JOB_BITWRITE, 1, &s->bitval, NULL, 0);
-}
-
-/* FC06: write single register (reply: echo; 5 bytes, 7 for an int32 / float register
- * of the 32-bit scheme, 003 §4.5). */
-modcp_pdu_action_t modcp_pdu_write_reg(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                       uint16_t len, uint16_t cap, uint16_t *out_len)
-{
-    (void)cap;
-    (void)out_len;
-    s->qty = 1;
-    if (len != 3u + reg_bytes(s->r32_kind)) {
-        return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
-    }
-    if (!map_regs(s, env, 1)) {
-        return MODCP_PDU_FAIL;
-    }
-    s->x.echo = len;
-    s->same = true;
-    return job(s, MODCP_JOB_WRITE, s->job.opnd.count, pdu + 3, NULL, 0);
-}
-
-/* FC15: write multiple coils (reply: fc, start, quantity). */
-modcp_pdu_action_t modcp_pdu_write_coils(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                         uint8_t *pdu, uint16_t len, uint16_t cap,
-                                         uint16_t *out_len)
-{
-    (void)cap;
-    (void)out_len;
-    const uint8_t bc = pdu[5];
-    if (bc != (s->qty + 7u) / 8u || len != 6u + bc) {
-        return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
-    }
-    if (!map_bits(s, env, s->qty)) {
-        return MODCP_PDU_FAIL;
-    }
-    s->x.echo = 5;
-    return job(s, MODCP_JOB_BITWRITE, bc, pdu + 6, NULL, 0);
-}
-
-/* FC16: write multiple registers (reply: fc, start, quantity). */
-modcp_pdu_action_t modcp_pdu_write_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                        uint8_t *pdu, uint16_t len, uint16_t cap,
-                                        uint16_t *out_len)
-{
-    (void)cap;
-    (void)out_len;
-    const uint8_t bc = pdu[5];
-    if (bc != reg_bytes(s->r32_kind) * s->qty || len != 6u + bc) {
-        return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
-    }
-    if (!map_regs(s, env, s->qty)) {
-        return MODCP_PDU_FAIL;
-    }
-    if (s->job.opnd.count != bc) {
-        return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
-    }
-    s->x.echo = 5;
-    return job(s, MODCP_JOB_WRITE, bc, pdu + 6, NULL, 0);
+    s->x.rbytes = n;
+    return read_job(s, n, pdu, cap);
 }
 
 /* FC08 in the manual set: sub-function 0000 (return query data) only. */

@@ -14,32 +14,23 @@ uint8_t modcp_regs32_kind(const modcp_params_t *p, uint8_t fc, uint16_t reg)
     }
     for (size_t k = 0; k < 3u; k++) {
         const modcp_r32range_t *r = &p->r32[k];
-        bool unused = r->from == 0u && r->to == 0u && r->db == 0u;
-        if (!unused && r->from <= reg && reg <= r->to) {
+        /* an all-zero range is unused: inside [from, to] it could only hold register 0 */
+        if (r->from <= reg && reg <= r->to && (r->to != 0u || r->db != 0u)) {
             return (uint8_t)(k + 1u);
         }
     }
     return 0u;
 }
 
-uint8_t modcp_reg_bytes(uint8_t r32_kind)
-{
-    return (r32_kind == (uint8_t)(MODCP_R32_INT32 + 1u) ||
-            r32_kind == (uint8_t)(MODCP_R32_FLOAT + 1u))
-               ? 4u
-               : 2u;
-}
-
 /*                                 RTU    ASCII  spec   RTU32  ASCII32 spec32 */
-const uint16_t modcp_qty_limits[MODCP_QLIM_ROWS][6] = {
-    [MODCP_QLIM_NONE] = {0u, 0u, 0u, 0u, 0u, 0u},
-    [MODCP_QLIM_READ_BITS] = {2040u, 2008u, 2000u, 2040u, 2008u, 2000u},
-    [MODCP_QLIM_WRITE_BITS] = {2040u, 1976u, 1968u, 2040u, 1976u, 1968u},
-    [MODCP_QLIM_READ_REGS] = {127u, 125u, 125u, 63u, 62u, 62u},
-    [MODCP_QLIM_WRITE_REGS] = {127u, 123u, 123u, 63u, 61u, 61u},
+const uint16_t modcp_qty_limits[MODCP_QLIM_ROWS - 1][6] = {
+    [MODCP_QLIM_READ_BITS - 1] = {2040u, 2008u, 2000u, 2040u, 2008u, 2000u},
+    [MODCP_QLIM_WRITE_BITS - 1] = {2040u, 1976u, 1968u, 2040u, 1976u, 1968u},
+    [MODCP_QLIM_READ_REGS - 1] = {127u, 125u, 125u, 63u, 62u, 62u},
+    [MODCP_QLIM_WRITE_REGS - 1] = {127u, 123u, 123u, 63u, 61u, 61u},
 #if MODCP_WITH_EXTENDED
-    [MODCP_QLIM_RW_READ] = {125u, 125u, 125u, 62u, 62u, 62u},
-    [MODCP_QLIM_RW_WRITE] = {121u, 121u, 121u, 60u, 60u, 60u},
+    [MODCP_QLIM_RW_READ - 1] = {125u, 125u, 125u, 62u, 62u, 62u},
+    [MODCP_QLIM_RW_WRITE - 1] = {121u, 121u, 121u, 60u, 60u, 60u},
 #endif
 };
 

@@ -11,7 +11,12 @@
 uint8_t modcp_regs32_kind(const modcp_params_t *p, uint8_t fc, uint16_t reg);
 /* Bytes per register for a kind returned by modcp_regs32_kind(): 4 for int32 and
  * float, else 2. */
-uint8_t modcp_reg_bytes(uint8_t r32_kind);
+static inline uint8_t modcp_reg_bytes(uint8_t r32_kind)
+{
+    return r32_kind >= (uint8_t)(MODCP_R32_INT32 + 1u) ? 4u : 2u;
+}
+_Static_assert(MODCP_R32_INT16 == 0 && MODCP_R32_INT32 == 1 && MODCP_R32_FLOAT == 2,
+               "register kinds: int32 and float last");
 /* Largest quantity of limit class lim (MODCP_QLIM_*, RW_* only with the extended set)
  * for the quantity_limits set and framing of p and the register kind (0 for bits and
  * 16-bit registers); 0 for MODCP_QLIM_NONE. */
@@ -21,10 +26,13 @@ static inline uint16_t modcp_qty_limit(const modcp_params_t *p, uint8_t lim, uin
                        ? MODCP_QCOL_SPEC
                        : (p->framing == (uint8_t)MODCP_FRAMING_ASCII ? MODCP_QCOL_ASCII
                                                                      : MODCP_QCOL_RTU);
-    if (r32_kind == (uint8_t)(MODCP_R32_INT32 + 1u) || r32_kind == (uint8_t)(MODCP_R32_FLOAT + 1u)) {
+    if (lim == (uint8_t)MODCP_QLIM_NONE) {
+        return 0u; /* no row (the callers in the core know better) */
+    }
+    if (modcp_reg_bytes(r32_kind) == 4u) {
         col += MODCP_QCOL_R32; /* 4 bytes per register */
     }
-    return modcp_qty_limits[lim][col];
+    return modcp_qty_limits[lim - 1u][col];
 }
 /* Largest quantity of fc (01, 02, 03, 04, 15, 16) for the quantity_limits set and the
  * framing of p and the register kind (0 for bits and 16-bit registers). 0 for other

@@ -634,6 +634,98 @@ static void test_fc43_more_follows(void **state)
     assert_int_equal(buf[13], 0x06);
 }
 
+/* The function-code table is indexed by fc (pdu.c): every fc without a row in the
+ * function set answers exception 01, (08)31H - also the two rows kept after fc 17H
+ * (FC43 and the extended set's FC08) - and FC08 reaches each set's own handler. */
+static void test_fc_table_lookup(void **state)
+{
+    (void)state;
+    static const uint8_t ext_fcs[] = {0x01, 0x02, 0x03, 0x04, 0x05, 0x06, 0x08, 0x0B,
+                                      0x0C, 0x0F, 0x10, 0x11, 0x16, 0x17, 0x2B};
+    for (int set = 0; set < 2; set++) {
+        modcp_params_t p;
+        world_example_params(&p);
+        p.fset = set ? MODCP_FSET_EXTENDED : MODCP_FSET_CP341;
+        modcp_areas_t areas = {0};
+        modcp_diag_t d;
+        modcp_diag_init(&d);
+        modcp_pdu_env_t env = {&p, &areas, &d, true, NULL};
+        modcp_pdu_t s;
+        uint8_t buf[260];
+        uint16_t out = 0;
+        for (unsigned fc = 0; fc < 256u; fc++) {
+            bool known = false;
+            for (size_t i = 0; i < sizeof ext_fcs; i++) {
+                /* the cp341 set: FC01 .. 06, 08, 0F, 10 */
+                known |= ext_fcs[i] == fc && (set || fc <= 0x08u || fc == 0x0Fu || fc == 0x10u);
+            }
+            memset(buf, 0, sizeof buf);
+            buf[0] = (uint8_t)fc;
+            modcp_pdu_action_t a = modcp_pdu_request(&s, &env, 5, buf, 1, sizeof buf, &out);
+            const bool exc01 = a == MODCP_PDU_REPLY && out == 2u && buf[0] == (uint8_t)(fc | 0x80u) &&
+                               buf[1] == 0x01u;
+            assert_int_equal(exc01, !known);
+            if (!known) {
+                assert_int_equal(d.buffer[0], MODCP_EV_ILLEGAL_FC);
+            }
+        }
+        /* FC08 sub 02 (diagnostic register): the extended set only */
+        memcpy(buf, "\x08\x00\x02\x00\x00", 5);
+        assert_int_equal(modcp_pdu_request(&s, &env, 5, buf, 5, sizeof buf, &out), MODCP_PDU_REPLY);
+        if (set) {
+            assert_int_equal(out, 5);
+            assert_int_equal(buf[0], 0x08);
+        } else {
+            assert_int_equal(out, 2);
+            assert_int_equal(buf[0], 0x88);
+            assert_int_equal(buf[1], 0x03);
+            assert_int_equal(d.buffer[0], MODCP_EV_DIAG_SUBFC);
+        }
+    }
+}
+
+/* modcp_pdu_request clears only the request's own state (fc .. x's head, job.op): a
+ * request never inherits the previous one's reply description, echo or job. */
+static void test_pdu_state_per_request(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    world_example_params(&p);
+    p.fset = MODCP_FSET_EXTENDED;
+    modcp_areas_t areas = {.i_bytes = 1024, .q_bytes = 1024, .m_bytes = 4096,
+                           .timers = 256, .counters = 256};
+    modcp_diag_t d;
+    modcp_diag_init(&d);
+    modcp_pdu_env_t env = {&p, &areas, &d, true, NULL};
+    modcp_pdu_t s;
+    memset(&s, 0xA5, sizeof s); /* whatever was there before */
+    uint8_t buf[260];
+    uint16_t out = 0;
+    /* FC01 from coil 3 (M 1000.3): a bit string to align */
+    memcpy(buf, "\x01\x00\x03\x00\x0A", 5);
+    assert_int_equal(modcp_pdu_request(&s, &env, 5, buf, 5, sizeof buf, &out), MODCP_PDU_JOB);
+    assert_int_equal(s.bits, 1u + 3u);
+    assert_int_equal(s.job.op, MODCP_JOB_READ);
+    /* FC05: an echo, the request's frame unchanged */
+    memcpy(buf, "\x05\x00\x03\xFF\x00", 5);
+    assert_int_equal(modcp_pdu_request(&s, &env, 5, buf, 5, sizeof buf, &out), MODCP_PDU_JOB);
+    assert_int_equal(s.bits, 0);
+    assert_true(s.same);
+    assert_int_equal(s.x.echo, 5);
+    assert_int_equal(s.job.op, MODCP_JOB_BITWRITE);
+    assert_ptr_equal(s.wdata, buf + 3); /* bit 0 of FF: the coil's value */
+    /* FC11: a CP-local reply, no job, nothing of the FC05 left */
+    buf[0] = 0x0B;
+    assert_int_equal(modcp_pdu_request(&s, &env, 5, buf, 1, sizeof buf, &out), MODCP_PDU_REPLY);
+    assert_int_equal(out, 5);
+    assert_false(s.same);
+    assert_int_equal(s.x.echo, 0);
+    assert_int_equal(s.x.exc, 0);
+    assert_int_equal(s.x.seq, 0);
+    assert_int_equal(s.job.op, 0);
+    assert_int_equal(s.r32_kind, 0);
+}
+
 /* ---- not initialised, broadcast -------------------------------------------------- */
 
 /* SPEC §6: until the FB's INIT every request gets 04 / (0E)56H, the extended set too. */
@@ -702,6 +794,8 @@ int main(void)
         cmocka_unit_test(test_fc43_regular_altivar_strings),
         cmocka_unit_test(test_fc43_exceptions),
         cmocka_unit_test(test_fc43_more_follows),
+        cmocka_unit_test(test_fc_table_lookup),
+        cmocka_unit_test(test_pdu_state_per_request),
         cmocka_unit_test(test_extended_not_initialised),
         cmocka_unit_test(test_broadcast_of_extended_fcs),
     };

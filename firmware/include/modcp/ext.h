@@ -40,19 +40,24 @@ typedef struct {
     bool cpu_stalled;
 } modcp_ext_t;
 
-/* Per-request state of the PDU engine beyond the request itself (modcp_pdu_t.x,
- * cleared for every request): the reply's description and the exception for both
- * sets; the job sequence of the extended set (FC22, FC23, scanner) only with it. */
+/* Per-request state of the PDU engine beyond the request itself (modcp_pdu_t.x): the
+ * reply's description and the exception for both sets, cleared for every request (up
+ * to seq); the job sequence of the extended set (FC22, FC23, scanner) only with it,
+ * its fields after seq cleared by the handlers that start one (pdu_ext.c). */
 typedef struct {
     uint8_t exc;     /* exception code detected for this request (0 = none) */
+#if MODCP_WITH_EXTENDED
+    /* the end-of-request accounting (modcp_pdu_finished) */
     uint8_t quiet;   /* listen-only: not processed, nothing more to account */
     uint8_t timeout; /* a CPU job of this request timed out */
     uint8_t after;   /* action after the reply: MODCP_X_AFTER_* */
+#endif
     uint16_t echo;   /* reply = the first `echo` request bytes; 0: read reply */
     uint16_t rbytes; /* read data bytes in the reply */
 #if MODCP_WITH_EXTENDED
     /* job sequence (scanner, FC22, FC23); seq 0: a single job (manual set) */
     uint8_t seq;
+    /* from here on: cleared by the handlers of pdu_ext.c */
     uint8_t phase;   /* early reads, check reads, writes, reads (pdu_ext.c) */
     uint8_t idx;
     uint8_t early;   /* FC23: write data moved to the buffer's end, early reads allowed */
@@ -64,7 +69,6 @@ typedef struct {
     uint16_t wstart, wqty, rstart, rqty;
     uint16_t woff;   /* write data: offset in the PDU buffer */
     uint16_t wlen;   /* direct write: data bytes */
-    uint16_t roff;   /* read data: offset in the PDU buffer */
     uint16_t cap;    /* PDU buffer capacity */
     modcp_operand_t wdir; /* write part, direct mapping */
     modcp_operand_t rdir; /* read part, direct mapping */

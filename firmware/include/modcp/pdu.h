@@ -33,25 +33,26 @@ typedef struct {
 } modcp_pdu_env_t;
 
 typedef struct {
-    /* the request in progress */
+    /* the request in progress; fc .. x's head are cleared for every request
+       (modcp_pdu_request: MODCP_PDU_CLEARED bytes, pdu_internal.h), with job.op */
     uint8_t fc;
     uint8_t fcflags;     /* the function-code table's flags of fc (pdu.c) */
     bool broadcast;
-    uint16_t addr;
-    uint16_t qty;
-    uint8_t shift;       /* FC01/02: bit offset of the first bit in the first byte read */
-    uint8_t bits;        /* FC01/02 on I / Q / M: the read data are a bit string to align */
-    uint8_t r32_kind;    /* 32-bit scheme: modcp_r32_kind_t + 1, 0 = 16-bit */
-    uint8_t bitval;      /* FC05: the coil value as a 1-bit write job */
     bool same;           /* the reply is the request's PDU, unchanged (FC05 / FC06 echo:
                             the job reads nothing into the buffer); cleared by an
                             exception. The link may send the request's frame as it is */
+    uint8_t bits;        /* FC01/02 on I / Q / M: the read data are a bit string to align,
+                            1 + the offset of the first bit in the first byte read; 0: no */
+    uint8_t r32_kind;    /* 32-bit scheme: modcp_r32_kind_t + 1, 0 = 16-bit */
+    modcp_pdu_x_t x;     /* reply description (echo / rbytes), exception, job sequence */
+    /* set before use */
+    uint16_t addr;
+    uint16_t qty;
     modcp_event_t err;   /* the event of a refused request (MODCP_PDU_FAIL) */
-    modcp_bp_job_t job;  /* the job to run for MODCP_PDU_JOB */
+    uint16_t rcap;
+    modcp_bp_job_t job;  /* the job to run for MODCP_PDU_JOB (op: 0 = none yet) */
     const uint8_t *wdata; /* job write data (inside the request) */
     uint8_t *rdata;      /* where the job's read data must land (inside the PDU buffer) */
-    uint16_t rcap;
-    modcp_pdu_x_t x;     /* reply description (echo / rbytes), exception, job sequence */
 } modcp_pdu_t;
 
 #endif

@@ -44,14 +44,15 @@ enum {
     MODCP_QLIM_COUNT
 };
 
-/* The limits: [class][column] (the FC23 rows only with the extended set), columns RTU, ASCII, spec (either framing), then the same
- * three for 32-bit registers. */
+/* The limits: [class - 1][column] (no row for MODCP_QLIM_NONE; the FC23 rows only with
+ * the extended set), columns RTU, ASCII, spec (either framing), then the same three
+ * for 32-bit registers. */
 enum { MODCP_QCOL_RTU = 0, MODCP_QCOL_ASCII = 1, MODCP_QCOL_SPEC = 2, MODCP_QCOL_R32 = 3 };
 #if MODCP_WITH_EXTENDED
 #define MODCP_QLIM_ROWS MODCP_QLIM_COUNT
 #else
 #define MODCP_QLIM_ROWS MODCP_QLIM_RW_READ
 #endif
-extern const uint16_t modcp_qty_limits[MODCP_QLIM_ROWS][6];
+extern const uint16_t modcp_qty_limits[MODCP_QLIM_ROWS - 1][6];
 
 #endif
