@@ -3,6 +3,8 @@
 #ifndef MODCP_BACKPLANE_INTERNAL_H
 #define MODCP_BACKPLANE_INTERNAL_H
 
+#include <stddef.h>
+
 #include "modcp/backplane.h"
 
 /* CP side: publish the status area. */
@@ -97,15 +99,34 @@ static inline uint16_t modcp_bp_get16(const uint8_t *d)
 {
     return (uint16_t)((unsigned)d[0] | ((unsigned)d[1] << 8));
 }
+/* The JOB header's wire layout (backplane.c) is op followed by the operand and len as
+ * modcp_bp_job_t holds them (opnd without gaps, then len), little-endian: on a
+ * little-endian target the codec is the op byte and two copies. */
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define MODCP_BP_JOB_AS_BLOCK 1
+_Static_assert(offsetof(modcp_operand_t, area) == 0u &&
+                   offsetof(modcp_operand_t, bit) == 1u && offsetof(modcp_operand_t, db) == 2u &&
+                   offsetof(modcp_operand_t, offset) == 4u &&
+                   offsetof(modcp_operand_t, count) == 6u && sizeof(modcp_operand_t) == 8u &&
+                   MODCP_BP_JOB_HDR_LEN == 11u,
+               "modcp_operand_t is the JOB header's bytes 1..8");
+#else
+#define MODCP_BP_JOB_AS_BLOCK 0
+#endif
 static inline uint8_t modcp_bp_job_encode(const modcp_bp_job_t *j, uint8_t *d)
 {
     d[0] = j->op;
+#if MODCP_BP_JOB_AS_BLOCK
+    memcpy(d + 1, &j->opnd, sizeof j->opnd);
+    memcpy(d + 9, &j->len, sizeof j->len);
+#else
     d[1] = j->opnd.area;
     d[2] = j->opnd.bit;
     modcp_bp_put16(d + 3, j->opnd.db);
     modcp_bp_put16(d + 5, j->opnd.offset);
     modcp_bp_put16(d + 7, j->opnd.count);
     modcp_bp_put16(d + 9, j->len);
+#endif
     return (uint8_t)MODCP_BP_JOB_HDR_LEN;
 }
 static inline bool modcp_bp_job_decode(const uint8_t *d, uint8_t len, modcp_bp_job_t *j)
@@ -114,12 +135,17 @@ static inline bool modcp_bp_job_decode(const uint8_t *d, uint8_t len, modcp_bp_j
         return false;
     }
     j->op = d[0];
+#if MODCP_BP_JOB_AS_BLOCK
+    memcpy(&j->opnd, d + 1, sizeof j->opnd);
+    memcpy(&j->len, d + 9, sizeof j->len);
+#else
     j->opnd.area = d[1];
     j->opnd.bit = d[2];
     j->opnd.db = modcp_bp_get16(d + 3);
     j->opnd.offset = modcp_bp_get16(d + 5);
     j->opnd.count = modcp_bp_get16(d + 7);
     j->len = modcp_bp_get16(d + 9);
+#endif
     return true;
 }
 static inline uint8_t modcp_bp_reply_encode(const modcp_bp_reply_t *r, uint8_t *d)
