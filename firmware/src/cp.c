@@ -7,6 +7,7 @@
  * acknowledged every request gets exception 04 / (0E)56H. */
 #include "modcp/cp.h"
 
+#include <stddef.h>
 #include <string.h>
 
 #include "modcp/crc.h"
@@ -418,12 +419,12 @@ static void take_init(modcp_cp_t *cp)
  * is compared with the published values, a few words: LEDs (time), comm-loss /
  * listen-only flags (time), the event count (an event logged by a poll: comm loss,
  * backplane errors) and the SYSTAT answer / diagnostic interrupt count.
- * A publication writes only the parts that can have changed: the flags, counters, LEDs
- * and line error counts always (what a request changes); the diagnostic buffer, STATUS
- * word, parameter event, SYSTAT image and diagnostic interrupt record when the event
- * count, the SYSTAT answer or the interrupt count moved (nothing else changes them) or
- * after PARAMS (cp->publish_all: the buffer cleared, a new parameter event); the RS232
- * signals while the automatic signals run or after PARAMS / an input change. */
+ * A publication is a few copies: the flags and LEDs, the diagnostics' run (event count,
+ * counters, line error counts, STATUS word, diagnostic buffer) and the CP diagnostics'
+ * run (diagnostic interrupt record, SYSTAT answer and image) each as one copy — the
+ * status area holds them in their owners' order (modcp/backplane.h) —, the parameter
+ * event; the RS232 signals while the automatic signals run or after PARAMS / an input
+ * change (cp->publish_all). */
 /* MODCP_CPST_COMMLOSS / LISTEN_ONLY straight from their owners: the comm-loss
  * supervision (commloss.c, ext.cl_lost) and the FC08 listen-only mode (diag). */
 static uint32_t ext_flags(const modcp_cp_t *cp)
@@ -437,18 +438,34 @@ static uint32_t ext_flags(const modcp_cp_t *cp)
 #endif
 }
 
+/* The two runs of the status area laid out as their owners hold them. */
+#define ST_AT(f) offsetof(modcp_cp_status_t, f)
+#define ST_SAME(first, f, T, tfirst, tf) (ST_AT(f) - ST_AT(first) == offsetof(T, tf) - offsetof(T, tfirst))
+#define ST_DIAG(f) ST_SAME(events_total, f, modcp_diag_t, events_total, f)
+#define ST_CPDIAG(f, tf) ST_SAME(diag_irq, f, modcp_cpdiag_t, irq, tf)
+#define ST_DIAG_RUN (ST_AT(buffer_len) + 1u - ST_AT(events_total))
+#define ST_CPDIAG_RUN (ST_AT(systat) + 16u - ST_AT(diag_irq))
+_Static_assert(ST_DIAG(counters) && ST_DIAG(frames_too_long) && ST_DIAG(char_errors) &&
+                   ST_DIAG(breaks) && ST_DIAG(t15_discards) && ST_DIAG(status) &&
+                   ST_DIAG(buffer) && ST_DIAG(buffer_len) &&
+                   sizeof(((modcp_cp_status_t *)0)->counters) == sizeof(((modcp_diag_t *)0)->counters) &&
+                   sizeof(((modcp_cp_status_t *)0)->buffer) == sizeof(((modcp_diag_t *)0)->buffer),
+               "status area: events_total ... buffer_len as in modcp_diag_t");
+_Static_assert(ST_CPDIAG(diag_irq_count, irq_count) && ST_CPDIAG(systat_ack, systat_ack) &&
+                   ST_CPDIAG(systat, systat) &&
+                   sizeof(((modcp_cp_status_t *)0)->diag_irq) == MODCP_DIAG_IRQ_BYTES &&
+                   sizeof(((modcp_cpdiag_t *)0)->systat) == 16u,
+               "status area: diag_irq ... systat as in modcp_cpdiag_t");
+
 /* Publish the status area, written in place under the seqlock (no copy of it). */
 static void publish(modcp_cp_t *cp)
 {
     modcp_cp_status_t *st = &cp->bp->status; /* only the CP writes it */
     uint32_t ext = ext_flags(cp);
     uint8_t leds = modcp_leds_bits(&cp->leds);
-    /* the rarely changing parts: with an event, a SYSTAT answer, an interrupt, PARAMS */
-    bool rare = cp->publish_all || st->events_total != cp->diag.events_total ||
-                st->systat_ack != cp->cpdiag.systat_ack ||
-                st->diag_irq_count != cp->cpdiag.irq_count;
-    if (cp->published && !rare && st->leds == leds &&
-        (st->flags & (MODCP_CPST_COMMLOSS | MODCP_CPST_LISTEN_ONLY)) == ext) {
+    if (cp->published && st->events_total == cp->diag.events_total &&
+        st->systat_ack == cp->cpdiag.systat_ack && st->diag_irq_count == cp->cpdiag.irq_count &&
+        st->leds == leds && (st->flags & (MODCP_CPST_COMMLOSS | MODCP_CPST_LISTEN_ONLY)) == ext) {
         return;
     }
     (void)modcp_bp_status_begin(cp->bp);
@@ -457,23 +474,10 @@ static void publish(modcp_cp_t *cp)
                 (sf_on(cp) ? MODCP_CPST_SF : 0u) | ext |
                 (cp->cpdiag.wire_break ? MODCP_CPST_WIRE_BREAK : 0u) |
                 (cp->cpdiag.param_error ? MODCP_CPST_PARAM_ERROR : 0u);
-    memcpy(st->counters, cp->diag.counters, sizeof st->counters);
     st->leds = leds;
-    st->char_errors = cp->diag.char_errors;
-    st->breaks = cp->diag.breaks;
-    st->t15_discards = cp->diag.t15_discards;
-    st->frames_too_long = cp->diag.frames_too_long;
-    if (rare) {
-        st->events_total = cp->diag.events_total;
-        memcpy(st->buffer, cp->diag.buffer, sizeof st->buffer);
-        st->buffer_len = cp->diag.buffer_len;
-        st->status = cp->diag.status;
-        st->param_event = cp->param_event;
-        st->systat_ack = cp->cpdiag.systat_ack;
-        memcpy(st->systat, cp->cpdiag.systat, sizeof st->systat);
-        memcpy(st->diag_irq, cp->cpdiag.irq, sizeof st->diag_irq);
-        st->diag_irq_count = cp->cpdiag.irq_count;
-    }
+    memcpy((uint8_t *)st + ST_AT(events_total), &cp->diag.events_total, ST_DIAG_RUN);
+    memcpy((uint8_t *)st + ST_AT(diag_irq), cp->cpdiag.irq, ST_CPDIAG_RUN);
+    st->param_event = cp->param_event;
 #if MODCP_WITH_RS232_SIGNALS
     if (cp->publish_all || cp->sig.enabled) {
         st->signals = modcp_sig_bits(&cp->sig);
