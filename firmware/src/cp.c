@@ -192,32 +192,23 @@ bool modcp_cp_ready(const modcp_cp_t *cp)
     return cp->configured && cp->fb_ready;
 }
 
-/* Finish the current request with the PDU engine's decision. */
-static void finish(modcp_cp_t *cp, const modcp_pdu_env_t *env, modcp_pdu_action_t a,
-                   uint16_t out_len, uint32_t now_us)
+/* Carry the request on: the PDU engine's decision on the frame that has just ended
+ * (start) or on the result of its job, then its next job (a request of the extended set
+ * may need several in sequence: modcp_pdu_complete() then returns the next) or the end
+ * of the request. Kept out of its callers (modcp_cp_on_timer, modcp_cp_poll), so that
+ * their other paths do not pay for its stack frame. */
+static MODCP_CP_NOINLINE void advance(modcp_cp_t *cp, bool start, uint32_t now_us)
 {
-#if MODCP_WITH_EXTENDED
-    modcp_pdu_finished(&cp->pdu, env, a, now_us); /* FC11/12 accounting, comm loss */
-    if (cp->ext.delimiter_changed) { /* FC08 sub 03 / 01: the ASCII input delimiter */
-        cp->link.ascii_delim = cp->ext.ascii_delimiter;
-        cp->ext.delimiter_changed = false;
-    }
-#else
-    (void)env;
-#endif
-    if (a == MODCP_PDU_REPLY) {
-        line_reply(cp, out_len, now_us);
+    modcp_pdu_env_t env = env_of(cp);
+    uint16_t out_len = 0;
+    modcp_pdu_action_t a;
+    if (start) {
+        const modcp_frame_t *f = &cp->frame;
+        a = modcp_pdu_request(&cp->pdu, &env, f->addr, f->pdu, f->pdu_len, f->pdu_cap, &out_len);
     } else {
-        modcp_link_done(&cp->link);
+        a = modcp_pdu_complete(&cp->pdu, &env, cp->job.event, cp->frame.pdu, &out_len);
     }
-}
-
-/* Start the PDU engine's job, or finish the request. A request of the extended set
- * may need several jobs in sequence: modcp_pdu_complete() then returns the next. */
-static void run_action(modcp_cp_t *cp, const modcp_pdu_env_t *env, modcp_pdu_action_t a,
-                       uint16_t out_len, uint32_t now_us)
-{
-    while (a == MODCP_PDU_JOB) {
+    while (a == MODCP_PDU_JOB) { /* a job's first blocks go out at once */
         uint32_t timeout_us = (uint32_t)cp->params.cpu_timeout_ms * 1000u;
         modcp_event_t ev = modcp_job_start(&cp->job, &cp->pdu.job, cp->pdu.wdata, cp->pdu.rdata,
                                            cp->pdu.rcap, modcp_params_job_limit(&cp->params),
@@ -226,19 +217,20 @@ static void run_action(modcp_cp_t *cp, const modcp_pdu_env_t *env, modcp_pdu_act
             cp->request_pending = true;
             return;
         }
-        a = modcp_pdu_complete(&cp->pdu, env, ev, cp->frame.pdu, &out_len);
+        a = modcp_pdu_complete(&cp->pdu, &env, ev, cp->frame.pdu, &out_len);
     }
-    finish(cp, env, a, out_len, now_us);
-}
-
-static void process_request(modcp_cp_t *cp, uint32_t now_us)
-{
-    modcp_pdu_env_t env = env_of(cp);
-    modcp_frame_t *f = &cp->frame;
-    uint16_t out_len = 0;
-    modcp_pdu_action_t a =
-        modcp_pdu_request(&cp->pdu, &env, f->addr, f->pdu, f->pdu_len, f->pdu_cap, &out_len);
-    run_action(cp, &env, a, out_len, now_us); /* a job's first blocks go out at once */
+#if MODCP_WITH_EXTENDED
+    modcp_pdu_finished(&cp->pdu, &env, a, now_us); /* FC11/12 accounting, comm loss */
+    if (cp->ext.delimiter_changed) { /* FC08 sub 03 / 01: the ASCII input delimiter */
+        cp->link.ascii_delim = cp->ext.ascii_delimiter;
+        cp->ext.delimiter_changed = false;
+    }
+#endif
+    if (a == MODCP_PDU_REPLY) {
+        line_reply(cp, out_len, now_us);
+    } else {
+        modcp_link_done(&cp->link);
+    }
 }
 
 /* Cold part of modcp_cp_on_rx: RS232 automatic signals configured (DSR gates the
@@ -295,13 +287,6 @@ void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us
     cp->published = false;
 }
 
-/* A frame for us has ended: kept out of modcp_cp_on_timer, so that its other expiries
- * do not pay for process_request's stack frame. */
-static MODCP_CP_NOINLINE void frame_ready(modcp_cp_t *cp, uint32_t now_us)
-{
-    process_request(cp, now_us);
-}
-
 void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
 {
     /* the common expiry while a frame arrives (armed at its first character, bytes
@@ -316,7 +301,7 @@ void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
         return; /* data output waiting time / time to RTS off */
     }
     if (modcp_link_on_timer(&cp->link, now_us, &cp->frame)) {
-        frame_ready(cp, now_us);
+        advance(cp, true, now_us); /* a frame for us has ended */
     }
 }
 
@@ -505,15 +490,7 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
                 continue;
             }
             cp->request_pending = false;
-            modcp_pdu_env_t env = env_of(cp);
-            uint16_t out_len = 0;
-            modcp_event_t ev = cp->job.event;
-            modcp_pdu_action_t a = modcp_pdu_complete(&cp->pdu, &env, ev, cp->frame.pdu, &out_len);
-            if (a == MODCP_PDU_JOB) {
-                run_action(cp, &env, a, out_len, now_us); /* the next job */
-            } else {
-                finish(cp, &env, a, out_len, now_us); /* the reply */
-            }
+            advance(cp, false, now_us); /* the next job, or the reply */
             if (cp->job.state == MODCP_JOBST_IDLE && modcp_ring_peek(&cp->bp->to_cp) == NULL) {
                 break; /* what another modcp_job_poll would find: nothing */
             }
