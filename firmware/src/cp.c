@@ -111,7 +111,9 @@ static void line_reply(modcp_cp_t *cp, uint16_t out_len, uint32_t now_us)
     cp->link.reply_same = cp->pdu.same;
     modcp_link_reply(&cp->link, out_len, now_us);
 #if MODCP_WITH_RS232_SIGNALS
-    modcp_sig_on_reply(&cp->sig, &cp->link, now_us);
+    if (cp->sig.enabled) { /* disabled signals are idle (see sig_on_timer) */
+        modcp_sig_on_reply(&cp->sig, &cp->link, now_us);
+    }
 #endif
 }
 
