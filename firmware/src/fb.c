@@ -323,10 +323,8 @@ static FB_INLINE void exec_data(modcp_fb_t *fb, const uint8_t *d, uint32_t n, bo
     modcp_event_t ev = MODCP_EV_NONE;
     switch (jb->op) {
     case MODCP_JOB_WRITE:
-        if (n <= 4u) { /* a register or two (FC06, FC16): no call for them */
-            for (uint32_t k = 0; k < n; k++) {
-                dst[k] = d[k];
-            }
+        if (n == 2u) { /* one register (FC06, FC16): no call */
+            memcpy(dst, d, 2);
         } else {
             modcp_block_copy(dst, d, n);
         }
