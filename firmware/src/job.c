@@ -120,56 +120,78 @@ bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev)
     return true;
 }
 
-/* Push as many of the job's blocks as there are free slots; each block is written
- * straight into its slot (the write data: one copy from the request) and published at
- * once. A job whose header and write data fit one block (up to MODCP_BP_JOB_INLINE data
- * bytes: every FC05 / FC06 / FC22, FC15 up to 168 coils, FC16 up to 10 registers) and
- * every read job cross as that one block, flagged FIRST and LAST. */
-static void push_blocks(modcp_job_t *j)
+/* A job crosses as its header block — with the write data after the header when it
+ * fits (up to MODCP_BP_JOB_INLINE bytes: every FC05 / FC06 / FC22, FC15 up to 168
+ * coils, FC16 up to 10 registers) and for every read job: then that one block is the
+ * whole job, flagged FIRST and LAST — and else as many 32-byte data blocks as there are
+ * free slots. Each block is written straight into its slot (the write data: one copy
+ * from the request) and published at once. */
+
+/* Stamp block b, the free slot at the head of the ring towards the CPU side, and hand it
+ * over. One copy of it when built for size (-Os: the MCU builds), inlined else. */
+#if defined(__OPTIMIZE_SIZE__) && defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void hand_over(modcp_job_t *j, modcp_block_t *b, uint32_t n, uint8_t flags)
 {
     modcp_ring_t *r = &j->bp->to_cpu;
     uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
+    b->len = (uint8_t)n;
+    b->kind = MODCP_BP_JOB;
+    b->flags = flags;
+    b->tag = j->tag;
+    b->seq = j->tx_seq++;
+    atomic_store_explicit(&r->head, head + 1u, memory_order_release);
+}
+
+/* The data blocks of a job whose header is out. */
+static void push_data(modcp_job_t *j)
+{
+    modcp_ring_t *r = &j->bp->to_cpu;
+    modcp_block_t *b;
+    while (j->state == MODCP_JOBST_SENDING && (b = modcp_ring_slot(r)) != NULL) {
+        uint32_t rest = (uint32_t)j->hdr.len - j->wpos;
+        uint32_t n = rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest;
+        uint8_t flags = 0;
+        modcp_block_copy(b->data, j->wdata + j->wpos, n);
+        j->wpos = (uint16_t)(j->wpos + n);
+        if (n == rest) {
+            flags = MODCP_BLK_LAST; /* nothing more to send */
+            j->state = MODCP_JOBST_WAITING;
+        }
+        hand_over(j, b, n, flags);
+    }
+}
+
+/* The header block, once the ring is empty (see the top of this file), then the data. */
+static void push_blocks(modcp_job_t *j)
+{
+    modcp_ring_t *r = &j->bp->to_cpu;
     if (!j->hdr_sent) {
+        uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
         if (atomic_load_explicit(&r->tail, memory_order_acquire) != head) {
-            return; /* previous blocks not consumed yet (see the top of this file) */
+            return; /* previous blocks not consumed yet */
         }
         if (atomic_load_explicit(&j->bp->abort_tag, memory_order_acquire) == (uint32_t)j->tag) {
             atomic_store_explicit(&j->bp->abort_tag, JOB_NO_ABORT, memory_order_release);
         }
-    }
-    while (j->state == MODCP_JOBST_SENDING &&
-           head - atomic_load_explicit(&r->tail, memory_order_acquire) < MODCP_BP_DEPTH) {
         modcp_block_t *b = &r->slot[head & (MODCP_BP_DEPTH - 1u)];
-        uint8_t flags = 0;
-        uint32_t n;
-        if (!j->hdr_sent) {
-            n = modcp_bp_job_encode(&j->hdr, b->data);
-            flags = MODCP_BLK_FIRST;
-            j->hdr_sent = true;
-            if (j->hdr.op != MODCP_JOB_READ && j->hdr.len <= MODCP_BP_JOB_INLINE) {
-                uint32_t len = j->hdr.len; /* the data with the header */
+        uint32_t n = modcp_bp_job_encode(&j->hdr, b->data);
+        uint32_t len = j->hdr.len;
+        uint8_t flags = MODCP_BLK_FIRST;
+        j->hdr_sent = true;
+        if (j->hdr.op == MODCP_JOB_READ || len <= MODCP_BP_JOB_INLINE) {
+            if (j->hdr.op != MODCP_JOB_READ) { /* the write data with the header */
                 for (const uint8_t *w = j->wdata; n < MODCP_BP_JOB_HDR_LEN + len; n++) {
                     b->data[n] = *w++;
                 }
-                j->wpos = (uint16_t)len;
             }
-        } else {
-            uint32_t rest = (uint32_t)j->hdr.len - j->wpos;
-            n = rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest;
-            modcp_block_copy(b->data, j->wdata + j->wpos, n);
-            j->wpos = (uint16_t)(j->wpos + n);
-        }
-        if (j->hdr.op == MODCP_JOB_READ || j->wpos >= j->hdr.len) {
-            flags |= MODCP_BLK_LAST; /* nothing (more) to send */
+            flags = MODCP_BLK_FIRST | MODCP_BLK_LAST; /* the whole job */
             j->state = MODCP_JOBST_WAITING;
         }
-        b->len = (uint8_t)n;
-        b->kind = MODCP_BP_JOB;
-        b->flags = flags;
-        b->tag = j->tag;
-        b->seq = j->tx_seq++;
-        atomic_store_explicit(&r->head, ++head, memory_order_release); /* hand it over */
+        hand_over(j, b, n, flags);
     }
+    push_data(j);
 }
 
 static modcp_jobp_t finish(modcp_job_t *j, modcp_event_t ev, uint16_t error_nr)
