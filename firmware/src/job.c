@@ -64,7 +64,8 @@ modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const u
     } else if (wdata == NULL && hdr->len > 0u) {
         return MODCP_EV_INTERNAL_SEND; /* nothing to send: the caller's mistake */
     }
-    j->tag = (uint8_t)(j->tag >= 255u ? 1u : j->tag + 1u);
+    uint32_t tag = j->tag + 1u; /* 1 ... 255, then 1 again (0 is no job's) */
+    j->tag = (uint8_t)(tag + (tag >> 8));
     j->hdr = *hdr;
     j->hdr_sent = false;
     j->wdata = wdata;
