@@ -61,6 +61,27 @@ static inline void modcp_block_copy(uint8_t *dst, const uint8_t *src, uint32_t n
         memcpy(dst, src, n);
     }
 }
+/* A block's len, kind, flags and tag as one word (modcp_block_word), written by
+ * modcp_block_stamp: one store on a little-endian target. */
+_Static_assert(offsetof(modcp_block_t, kind) == offsetof(modcp_block_t, len) + 1u &&
+                   offsetof(modcp_block_t, flags) == offsetof(modcp_block_t, len) + 2u &&
+                   offsetof(modcp_block_t, tag) == offsetof(modcp_block_t, len) + 3u,
+               "modcp_block_t: len, kind, flags, tag in a row");
+static inline uint32_t modcp_block_word(uint32_t len, uint32_t kind, uint32_t flags, uint32_t tag)
+{
+    return len | kind << 8 | flags << 16 | tag << 24;
+}
+static inline void modcp_block_stamp(modcp_block_t *b, uint32_t word)
+{
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    memcpy((uint8_t *)b + offsetof(modcp_block_t, len), &word, 4);
+#else
+    b->len = (uint8_t)word;
+    b->kind = (uint8_t)(word >> 8);
+    b->flags = (uint8_t)(word >> 16);
+    b->tag = (uint8_t)(word >> 24);
+#endif
+}
 /* Copying forms (tests, and messages built elsewhere). Producer side: publish one
  * block (seq is filled in from *seq, which is then incremented). Returns false (nothing
  * written) when the ring is full. */

@@ -98,15 +98,26 @@ void modcp_job_abort(modcp_job_t *j)
     j->state = MODCP_JOBST_IDLE;
 }
 
-/* Stamp the block filled in slot b and hand it to the CPU side. */
-static void send(modcp_job_t *j, modcp_block_t *b, uint8_t len, uint8_t kind, uint8_t flags,
-                 uint8_t tag)
+/* A job crosses as its header block — with the write data after the header when it
+ * fits (up to MODCP_BP_JOB_INLINE bytes: every FC05 / FC06 / FC22, FC15 up to 168
+ * coils, FC16 up to 10 registers) and for every read job: then that one block is the
+ * whole job, flagged FIRST and LAST — and else as many 32-byte data blocks as there are
+ * free slots. Each block is written straight into its slot (the write data: one copy
+ * from the request) and published at once. */
+
+/* Stamp block b, the free slot at the head of the ring towards the CPU side (word:
+ * modcp_block_word), and hand it over. One copy of it when built for size (-Os: the MCU
+ * builds), inlined else. */
+#if defined(__OPTIMIZE_SIZE__) && defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void hand_over(modcp_job_t *j, modcp_block_t *b, uint32_t word)
 {
-    b->len = len;
-    b->kind = kind;
-    b->flags = flags;
-    b->tag = tag;
-    modcp_ring_publish(&j->bp->to_cpu, &j->tx_seq);
+    modcp_ring_t *r = &j->bp->to_cpu;
+    uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
+    modcp_block_stamp(b, word);
+    b->seq = j->tx_seq++;
+    atomic_store_explicit(&r->head, head + 1u, memory_order_release);
 }
 
 bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev)
@@ -117,32 +128,8 @@ bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev)
     }
     b->data[0] = (uint8_t)(ev & 0xFFu);
     b->data[1] = (uint8_t)(ev >> 8);
-    send(j, b, 2, MODCP_BP_INIT_ACK, MODCP_BLK_FIRST | MODCP_BLK_LAST, 0);
+    hand_over(j, b, modcp_block_word(2, MODCP_BP_INIT_ACK, MODCP_BLK_FIRST | MODCP_BLK_LAST, 0));
     return true;
-}
-
-/* A job crosses as its header block — with the write data after the header when it
- * fits (up to MODCP_BP_JOB_INLINE bytes: every FC05 / FC06 / FC22, FC15 up to 168
- * coils, FC16 up to 10 registers) and for every read job: then that one block is the
- * whole job, flagged FIRST and LAST — and else as many 32-byte data blocks as there are
- * free slots. Each block is written straight into its slot (the write data: one copy
- * from the request) and published at once. */
-
-/* Stamp block b, the free slot at the head of the ring towards the CPU side, and hand it
- * over. One copy of it when built for size (-Os: the MCU builds), inlined else. */
-#if defined(__OPTIMIZE_SIZE__) && defined(__GNUC__)
-__attribute__((noinline))
-#endif
-static void hand_over(modcp_job_t *j, modcp_block_t *b, uint32_t n, uint8_t flags)
-{
-    modcp_ring_t *r = &j->bp->to_cpu;
-    uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
-    b->len = (uint8_t)n;
-    b->kind = MODCP_BP_JOB;
-    b->flags = flags;
-    b->tag = j->tag;
-    b->seq = j->tx_seq++;
-    atomic_store_explicit(&r->head, head + 1u, memory_order_release);
 }
 
 /* The data blocks of a job whose header is out. */
@@ -160,7 +147,7 @@ static void push_data(modcp_job_t *j)
             flags = MODCP_BLK_LAST; /* nothing more to send */
             j->state = MODCP_JOBST_WAITING;
         }
-        hand_over(j, b, n, flags);
+        hand_over(j, b, modcp_block_word(n, MODCP_BP_JOB, flags, j->tag));
     }
 }
 
@@ -190,7 +177,7 @@ static void push_blocks(modcp_job_t *j)
             flags = MODCP_BLK_FIRST | MODCP_BLK_LAST; /* the whole job */
             j->state = MODCP_JOBST_WAITING;
         }
-        hand_over(j, b, n, flags);
+        hand_over(j, b, modcp_block_word(n, MODCP_BP_JOB, flags, j->tag));
     }
     push_data(j);
 }
