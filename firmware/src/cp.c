@@ -166,10 +166,9 @@ void modcp_cp_on_signals(modcp_cp_t *cp, bool cts, bool dsr, uint32_t now_us)
 
 void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp)
 {
-    memset(cp, 0, sizeof *cp);
+    memset(cp, 0, sizeof *cp); /* diagnostics and CP diagnostics empty (no _init of their own) */
     cp->hal = hal;
     cp->bp = bp;
-    modcp_diag_init(&cp->diag);
     modcp_params_defaults(&cp->params);
     modcp_link_init(&cp->link, hal, &cp->diag, cp->buf, (uint16_t)MODCP_LINK_BUF_MAX);
 #if MODCP_SHARED_PARAMS_BUFFER
@@ -183,7 +182,6 @@ void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp
     modcp_sig_init(&cp->sig, hal, &cp->diag);   /* RTS, DTR OFF */
 #endif
     modcp_leds_init(&cp->leds, hal);            /* SF on, TXD, RXD off */
-    modcp_cpdiag_init(&cp->cpdiag);
 #if MODCP_WITH_EXTENDED
     modcp_ext_init(&cp->ext);
 #endif

@@ -27,13 +27,10 @@ void modcp_leds_init(modcp_leds_t *x, const modcp_hal_t *hal)
 {
     memset(x, 0, sizeof *x);
     x->hal = hal;
-    /* set every LED explicitly at power-on: SF on, TXD / RXD off */
-    x->on[MODCP_LED_TXD] = true;
-    x->on[MODCP_LED_RXD] = true;
-    x->bits = (uint8_t)((1u << MODCP_LED_TXD) | (1u << MODCP_LED_RXD));
-    set(x, MODCP_LED_SF, true, 0);
-    set(x, MODCP_LED_TXD, false, 0);
-    set(x, MODCP_LED_RXD, false, 0);
+    /* set every LED explicitly at power-on, in order: SF on, TXD / RXD off */
+    for (unsigned led = MODCP_LED_SF; led < MODCP_LED_COUNT; led++) {
+        change(x, (modcp_led_t)led, led == MODCP_LED_SF, 0);
+    }
 }
 
 void modcp_leds_configure(modcp_leds_t *x, uint32_t quiet_us)
