@@ -68,8 +68,7 @@ bool modcp_ring_get(modcp_ring_t *r, modcp_block_t *b)
 
 /* The INIT payload is modcp_bp_init_t as it lies in memory on a little-endian target:
  * seven 16-bit fields in wire order, no gaps. */
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-#define BP_INIT_AS_BLOCK 1
+#if MODCP_BP_LE
 _Static_assert(sizeof(modcp_bp_init_t) == BP_INIT_LEN &&
                    offsetof(modcp_bp_init_t, areas) == 0u &&
                    offsetof(modcp_areas_t, i_bytes) == 0u && offsetof(modcp_areas_t, q_bytes) == 2u &&
@@ -78,13 +77,11 @@ _Static_assert(sizeof(modcp_bp_init_t) == BP_INIT_LEN &&
                    offsetof(modcp_areas_t, work_db) == 10u &&
                    offsetof(modcp_bp_init_t, record_crc) == 12u,
                "modcp_bp_init_t is the INIT payload's layout");
-#else
-#define BP_INIT_AS_BLOCK 0
 #endif
 
 uint8_t modcp_bp_init_encode(const modcp_bp_init_t *i, uint8_t *d)
 {
-#if BP_INIT_AS_BLOCK
+#if MODCP_BP_LE
     memcpy(d, i, BP_INIT_LEN);
 #else
     put16(d, i->areas.i_bytes);
@@ -103,7 +100,7 @@ bool modcp_bp_init_decode(const uint8_t *d, uint8_t len, modcp_bp_init_t *i)
     if (len < BP_INIT_LEN) {
         return false;
     }
-#if BP_INIT_AS_BLOCK
+#if MODCP_BP_LE
     memcpy(i, d, BP_INIT_LEN);
 #else
     i->areas.i_bytes = get16(d);

@@ -7,6 +7,14 @@
 
 #include "modcp/backplane.h"
 
+/* On a little-endian target the backplane's headers are laid out as their structs lie
+ * in memory (static asserts at each codec): encoding and decoding them are copies. */
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define MODCP_BP_LE 1
+#else
+#define MODCP_BP_LE 0
+#endif
+
 /* CP side: publish the status area. */
 void modcp_bp_publish_status(modcp_backplane_t *bp, const modcp_cp_status_t *st);
 /* CP side: write the status area in place — begin (the seqlock turns odd) returns it,
@@ -73,7 +81,7 @@ static inline uint32_t modcp_block_word(uint32_t len, uint32_t kind, uint32_t fl
 }
 static inline void modcp_block_stamp(modcp_block_t *b, uint32_t word)
 {
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#if MODCP_BP_LE
     memcpy((uint8_t *)b + offsetof(modcp_block_t, len), &word, 4);
 #else
     b->len = (uint8_t)word;
@@ -123,21 +131,18 @@ static inline uint16_t modcp_bp_get16(const uint8_t *d)
 /* The JOB header's wire layout (backplane.c) is op followed by the operand and len as
  * modcp_bp_job_t holds them (opnd without gaps, then len), little-endian: on a
  * little-endian target the codec is the op byte and two copies. */
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-#define MODCP_BP_JOB_AS_BLOCK 1
+#if MODCP_BP_LE
 _Static_assert(offsetof(modcp_operand_t, area) == 0u &&
                    offsetof(modcp_operand_t, bit) == 1u && offsetof(modcp_operand_t, db) == 2u &&
                    offsetof(modcp_operand_t, offset) == 4u &&
                    offsetof(modcp_operand_t, count) == 6u && sizeof(modcp_operand_t) == 8u &&
                    MODCP_BP_JOB_HDR_LEN == 11u,
                "modcp_operand_t is the JOB header's bytes 1..8");
-#else
-#define MODCP_BP_JOB_AS_BLOCK 0
 #endif
 static inline uint8_t modcp_bp_job_encode(const modcp_bp_job_t *j, uint8_t *d)
 {
     d[0] = j->op;
-#if MODCP_BP_JOB_AS_BLOCK
+#if MODCP_BP_LE
     memcpy(d + 1, &j->opnd, sizeof j->opnd);
     memcpy(d + 9, &j->len, sizeof j->len);
 #else
@@ -156,7 +161,7 @@ static inline bool modcp_bp_job_decode(const uint8_t *d, uint8_t len, modcp_bp_j
         return false;
     }
     j->op = d[0];
-#if MODCP_BP_JOB_AS_BLOCK
+#if MODCP_BP_LE
     memcpy(&j->opnd, d + 1, sizeof j->opnd);
     memcpy(&j->len, d + 9, sizeof j->len);
 #else
@@ -169,11 +174,23 @@ static inline bool modcp_bp_job_decode(const uint8_t *d, uint8_t len, modcp_bp_j
 #endif
     return true;
 }
+/* The REPLY header is modcp_bp_reply_t as it lies in memory on a little-endian target. */
+#if MODCP_BP_LE
+_Static_assert(sizeof(modcp_event_t) == 2u && offsetof(modcp_bp_reply_t, event) == 0u &&
+                   offsetof(modcp_bp_reply_t, error_nr) == 2u &&
+                   offsetof(modcp_bp_reply_t, len) == 4u &&
+                   sizeof(modcp_bp_reply_t) == MODCP_BP_REPLY_HDR_LEN,
+               "modcp_bp_reply_t is the REPLY header's layout");
+#endif
 static inline uint8_t modcp_bp_reply_encode(const modcp_bp_reply_t *r, uint8_t *d)
 {
+#if MODCP_BP_LE
+    memcpy(d, r, MODCP_BP_REPLY_HDR_LEN);
+#else
     modcp_bp_put16(d, r->event);
     modcp_bp_put16(d + 2, r->error_nr);
     modcp_bp_put16(d + 4, r->len);
+#endif
     return (uint8_t)MODCP_BP_REPLY_HDR_LEN;
 }
 static inline bool modcp_bp_reply_decode(const uint8_t *d, uint8_t len, modcp_bp_reply_t *r)

@@ -444,10 +444,10 @@ static void rx_blocks(modcp_fb_t *fb)
             modcp_block_t *rb;
             if (fb->reply.len == 0u && (rb = modcp_ring_slot(&fb->bp->to_cp)) != NULL) {
                 /* a write's or an error's reply: its header alone, at once */
-                rb->len = modcp_bp_reply_encode(&fb->reply, rb->data);
-                rb->kind = MODCP_BP_REPLY;
-                rb->flags = MODCP_BLK_FIRST | MODCP_BLK_LAST;
-                rb->tag = fb->job_tag;
+                modcp_block_stamp(rb, modcp_block_word(modcp_bp_reply_encode(&fb->reply, rb->data),
+                                                       MODCP_BP_REPLY,
+                                                       MODCP_BLK_FIRST | MODCP_BLK_LAST,
+                                                       fb->job_tag));
                 fb->reply_hdr_sent = true;
                 fb->reply_pending = false;
                 modcp_ring_publish(&fb->bp->to_cp, &fb->tx_seq);
