@@ -261,14 +261,20 @@ void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
 
 /* Characters back to back (DMA, FIFO): the link's block path; with RS232 automatic
  * signals each goes through the per-character entry at its own time. */
+static MODCP_CP_NOINLINE void rx_block_signals(modcp_cp_t *cp, const uint8_t *b, uint16_t n,
+                                               uint32_t end_us)
+{
+    uint32_t t = end_us - (uint32_t)(n - 1u) * cp->link.char_us;
+    for (uint16_t k = 0; k < n; k++) {
+        rx_signals(cp, b[k], t);
+        t += cp->link.char_us;
+    }
+}
+
 void modcp_cp_on_rx_block(modcp_cp_t *cp, const uint8_t *b, uint16_t n, uint32_t end_us)
 {
     if (sig_enabled(cp)) {
-        uint32_t t = end_us - (uint32_t)(n - 1u) * cp->link.char_us;
-        for (uint16_t k = 0; k < n; k++) {
-            rx_signals(cp, b[k], t);
-            t += cp->link.char_us;
-        }
+        rx_block_signals(cp, b, n, end_us); /* kept out: no stack frame on the plain path */
         return;
     }
     cp->published = false; /* see publish() */
