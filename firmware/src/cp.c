@@ -311,14 +311,24 @@ void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
     }
 }
 
-void modcp_cp_on_tx_done(modcp_cp_t *cp, uint32_t now_us)
+/* Transmission complete with RS232 automatic signals: RTS OFF after its delay, then
+ * receive (the signals' timer), unless they leave it to the link. */
+static MODCP_CP_NOINLINE void tx_done_signals(modcp_cp_t *cp, uint32_t now_us)
 {
     modcp_link_tx_complete(&cp->link); /* TXD: the last stop bit is out */
-    cp->published = false;
-    if (sig_on_tx_done(cp, now_us)) {
-        return; /* RS232 automatic signals: RTS OFF after its delay, then receive */
+    if (!sig_on_tx_done(cp, now_us)) {
+        modcp_link_on_tx_done(&cp->link, now_us);
     }
-    modcp_link_on_tx_done(&cp->link, now_us);
+}
+
+void modcp_cp_on_tx_done(modcp_cp_t *cp, uint32_t now_us)
+{
+    cp->published = false;
+    if (sig_enabled(cp)) {
+        tx_done_signals(cp, now_us);
+        return;
+    }
+    modcp_link_on_tx_done(&cp->link, now_us); /* TXD off (the last stop bit is out) too */
 }
 
 /* Drop the request in progress, stop the line: the CP is not ready. */
