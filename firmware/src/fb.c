@@ -188,14 +188,25 @@ static bool check_bitwrite(modcp_fb_t *fb)
         return false;
     }
     uint32_t end = (uint32_t)o->offset + ((uint32_t)o->bit + o->count - 1u) / 8u;
-    if (o->area == MODCP_AREA_M && end >= fb->mem->m_size) {
-        reply_fb_error(fb, MODCP_FB_ERR_M_END, end);
-        return false;
+    uint8_t *base = NULL;
+    if (o->area == MODCP_AREA_M) {
+        if (end >= fb->mem->m_size) {
+            reply_fb_error(fb, MODCP_FB_ERR_M_END, end);
+            return false;
+        }
+        base = fb->mem->m;
+    } else if (o->area == MODCP_AREA_Q) {
+        if (end >= fb->mem->q_size) {
+            reply_fb_error(fb, MODCP_FB_ERR_Q_END, end);
+            return false;
+        }
+        base = fb->mem->q;
     }
-    if (o->area == MODCP_AREA_Q && end >= fb->mem->q_size) {
-        reply_fb_error(fb, MODCP_FB_ERR_Q_END, end);
-        return false;
+    if (base != NULL) { /* M / Q: every byte addressed is inside (end checked above) */
+        fb->job_mem = base + o->offset;
+        return true;
     }
+    /* a DB, or M / Q without storage: plcmem checks it (and says why not) */
     modcp_event_t ev = modcp_plcmem_locate_bits(fb->mem, o, &fb->job_mem);
     if (ev != MODCP_EV_NONE) {
         reply(fb, ev, 0, 0);
