@@ -223,6 +223,17 @@ static bool check_bitwrite(modcp_fb_t *fb)
 
 static FB_INLINE void exec_data(modcp_fb_t *fb, const uint8_t *d, uint32_t n, bool last);
 
+/* modcp_plcmem_locate into job_mem, its byte areas' lookup inline (plcmem_internal.h). */
+static FB_INLINE modcp_event_t locate(modcp_fb_t *fb, const modcp_operand_t *o, uint32_t len)
+{
+    if (o->area == MODCP_AREA_T || o->area == MODCP_AREA_C) { /* elements: read / write */
+        return modcp_plcmem_locate(fb->mem, o, (uint16_t)len, &fb->job_mem);
+    }
+    modcp_event_t ev;
+    fb->job_mem = modcp_plcmem_byte_area(fb->mem, o, len, &ev);
+    return ev;
+}
+
 /* A job's FIRST block b arrived, its header decoded into job (its tag in job_tag): check
  * everything that can be checked before the data — nothing is written by a job that
  * is refused. A READ is answered at once (its data follows from memory, pump_reply); a
@@ -270,28 +281,25 @@ static void start_job(modcp_fb_t *fb, const modcp_block_t *b)
         reply_fb_error(fb, MODCP_FB_ERR_AREA, 0);
         return;
     }
-    modcp_event_t ev;
-    switch (op) {
-    case MODCP_JOB_READ:
-        ev = modcp_plcmem_locate(fb->mem, &jb->opnd, jb->len, &fb->job_mem);
-        reply(fb, ev, 0, jb->len);
-        return;
-    case MODCP_JOB_MASKWRITE:
-        if (jb->len != 4u || jb->opnd.count != 2u) {
-            reply_fb_error(fb, MODCP_FB_ERR_AMOUNT, jb->len);
-            return;
-        }
-        ev = modcp_plcmem_locate(fb->mem, &jb->opnd, 2, &fb->job_mem);
-        break;
-    case MODCP_JOB_WRITE:
-        ev = modcp_plcmem_locate(fb->mem, &jb->opnd, jb->len, &fb->job_mem);
-        break;
-    default:
+    modcp_event_t ev = MODCP_EV_NONE;
+    if (op == MODCP_JOB_BITWRITE) {
         if (!check_bitwrite(fb)) {
             return;
         }
-        ev = MODCP_EV_NONE;
-        break;
+    } else {
+        uint32_t n = jb->len;
+        if (op == MODCP_JOB_MASKWRITE) {
+            if (jb->len != 4u || jb->opnd.count != 2u) {
+                reply_fb_error(fb, MODCP_FB_ERR_AMOUNT, jb->len);
+                return;
+            }
+            n = 2u; /* the word the masks apply to */
+        }
+        ev = locate(fb, &jb->opnd, n);
+        if (op == MODCP_JOB_READ) {
+            reply(fb, ev, 0, jb->len); /* the data follows from memory (pump_reply) */
+            return;
+        }
     }
     if (ev != MODCP_EV_NONE) {
         reply(fb, ev, 0, 0);
