@@ -209,10 +209,8 @@ static MODCP_CP_NOINLINE void advance(modcp_cp_t *cp, bool start, uint32_t now_u
         a = modcp_pdu_complete(&cp->pdu, &env, cp->job.event, cp->frame.pdu, &out_len);
     }
     while (a == MODCP_PDU_JOB) { /* a job's first blocks go out at once */
-        uint32_t timeout_us = (uint32_t)cp->params.cpu_timeout_ms * 1000u;
         modcp_event_t ev = modcp_job_start(&cp->job, &cp->pdu.job, cp->pdu.wdata, cp->pdu.rdata,
-                                           cp->pdu.rcap, modcp_params_job_limit(&cp->params),
-                                           timeout_us, now_us);
+                                           cp->pdu.rcap, now_us);
         if (ev == MODCP_EV_NONE) {
             cp->request_pending = true;
             return;
@@ -389,6 +387,8 @@ static void take_params(modcp_cp_t *cp)
     }
     cp->record_crc = modcp_crc16(record, cp->job.msglen);
     cp->configured = true;
+    modcp_job_configure(&cp->job, modcp_params_job_limit(&cp->params),
+                        (uint32_t)cp->params.cpu_timeout_ms * 1000u);
     modcp_link_configure(&cp->link, &cp->params);
     line_params(cp, true, irq);
 }

@@ -47,14 +47,19 @@ bool modcp_job_busy(const modcp_job_t *j)
 
 static void push_blocks(modcp_job_t *j);
 
+void modcp_job_configure(modcp_job_t *j, uint16_t limit, uint32_t timeout_us)
+{
+    j->limit = limit;
+    j->timeout_us = timeout_us;
+}
+
 modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const uint8_t *wdata,
-                              uint8_t *rbuf, uint16_t rcap, uint16_t limit, uint32_t timeout_us,
-                              uint32_t now_us)
+                              uint8_t *rbuf, uint16_t rcap, uint32_t now_us)
 {
     if (modcp_job_busy(j)) {
         return MODCP_EV_INTERNAL_SEND;
     }
-    if (hdr->len > limit) {
+    if (hdr->len > j->limit) {
         return MODCP_EV_JOB_LENGTH;
     }
     if (hdr->op == MODCP_JOB_READ) {
@@ -73,7 +78,6 @@ modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const u
     j->rbuf = rbuf;
     j->rcap = rbuf != NULL ? rcap : 0u;
     j->t0_us = now_us;
-    j->timeout_us = timeout_us;
     j->state = MODCP_JOBST_SENDING; /* rlen / rexpect: on the REPLY header; event /
                                        error_nr: when the job finishes */
     push_blocks(j); /* the first blocks go out at once */
