@@ -261,12 +261,12 @@ static void start_job(modcp_fb_t *fb, const modcp_block_t *b)
         reply(fb, MODCP_EV_WORK_DB, 0, 0); /* the job cannot be placed in the work area */
         return;
     }
-    if (jb->opnd.count == 0u || jb->len == 0u) {
-        reply_fb_error(fb, MODCP_FB_ERR_AMOUNT0, jb->opnd.count);
-        return;
-    }
-    if (jb->len > MODCP_FB_JOB_MAX) {
-        reply_fb_error(fb, MODCP_FB_ERR_AMOUNT, jb->len);
+    if (jb->opnd.count == 0u || (uint32_t)jb->len - 1u >= MODCP_FB_JOB_MAX) {
+        if (jb->opnd.count == 0u || jb->len == 0u) {
+            reply_fb_error(fb, MODCP_FB_ERR_AMOUNT0, jb->opnd.count);
+        } else { /* len above MODCP_FB_JOB_MAX */
+            reply_fb_error(fb, MODCP_FB_ERR_AMOUNT, jb->len);
+        }
         return;
     }
     /* a READ is its header alone (LAST); a write's header is LAST exactly when all of
