@@ -272,8 +272,8 @@ static void start_job(modcp_fb_t *fb, const modcp_block_t *b)
     /* a READ is its header alone (LAST); a write's header is LAST exactly when all of
      * its data follows it in the block */
     bool last = (b->flags & MODCP_BLK_LAST) != 0u;
-    if (op == MODCP_JOB_READ ? !last
-                             : last && (uint32_t)b->len != MODCP_BP_JOB_HDR_LEN + jb->len) {
+    if (last ? op != MODCP_JOB_READ && (uint32_t)b->len != MODCP_BP_JOB_HDR_LEN + jb->len
+             : op == MODCP_JOB_READ) {
         reply(fb, MODCP_EV_XFER_STATE, 0, 0); /* data not as announced: execute nothing */
         return;
     }
