@@ -133,11 +133,10 @@ static void line_params(modcp_cp_t *cp, bool ok, int irq)
  * record: no hook per byte or per transmission). */
 static void line_poll(modcp_cp_t *cp, uint32_t now_us)
 {
-    if (cp->bp != NULL) {
-        uint32_t req = atomic_load_explicit(&cp->bp->systat_req, memory_order_acquire);
-        if (req != cp->cpdiag.systat_ack) { /* a new SYSTAT request */
-            modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, modcp_cp_ready(cp));
-        }
+    /* (the poll always has its backplane: modcp_job_poll and publish() use it too) */
+    uint32_t req = atomic_load_explicit(&cp->bp->systat_req, memory_order_acquire);
+    if (req != cp->cpdiag.systat_ack) { /* a new SYSTAT request */
+        modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, modcp_cp_ready(cp));
     }
     if (cp->job.proto_errors != cp->cpdiag.proto_seen ||
         cp->job.illegal_msgs != cp->cpdiag.illegal_seen) { /* new backplane errors */
