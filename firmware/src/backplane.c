@@ -71,8 +71,10 @@ bool modcp_ring_get(modcp_ring_t *r, modcp_block_t *b)
 #if MODCP_BP_LE
 _Static_assert(sizeof(modcp_bp_init_t) == BP_INIT_LEN &&
                    offsetof(modcp_bp_init_t, areas) == 0u &&
-                   offsetof(modcp_areas_t, i_bytes) == 0u && offsetof(modcp_areas_t, q_bytes) == 2u &&
-                   offsetof(modcp_areas_t, m_bytes) == 4u && offsetof(modcp_areas_t, timers) == 6u &&
+                   offsetof(modcp_areas_t, i_bytes) == 0u &&
+                   offsetof(modcp_areas_t, q_bytes) == 2u &&
+                   offsetof(modcp_areas_t, m_bytes) == 4u &&
+                   offsetof(modcp_areas_t, timers) == 6u &&
                    offsetof(modcp_areas_t, counters) == 8u &&
                    offsetof(modcp_areas_t, work_db) == 10u &&
                    offsetof(modcp_bp_init_t, record_crc) == 12u,

@@ -440,21 +440,23 @@ static uint32_t ext_flags(const modcp_cp_t *cp)
 
 /* The two runs of the status area laid out as their owners hold them. */
 #define ST_AT(f) offsetof(modcp_cp_status_t, f)
-#define ST_SAME(first, f, T, tfirst, tf) (ST_AT(f) - ST_AT(first) == offsetof(T, tf) - offsetof(T, tfirst))
+#define ST_SAME(first, f, T, tfirst, tf)                                                          \
+    (ST_AT(f) - ST_AT(first) == offsetof(T, tf) - offsetof(T, tfirst))
 #define ST_DIAG(f) ST_SAME(events_total, f, modcp_diag_t, events_total, f)
 #define ST_CPDIAG(f, tf) ST_SAME(diag_irq, f, modcp_cpdiag_t, irq, tf)
 #define ST_DIAG_RUN (ST_AT(buffer_len) + 1u - ST_AT(events_total))
 #define ST_CPDIAG_RUN (ST_AT(systat) + 16u - ST_AT(diag_irq))
+#define ST_SIZE(T, f) sizeof(((T *)0)->f)
 _Static_assert(ST_DIAG(counters) && ST_DIAG(frames_too_long) && ST_DIAG(char_errors) &&
                    ST_DIAG(breaks) && ST_DIAG(t15_discards) && ST_DIAG(status) &&
                    ST_DIAG(buffer) && ST_DIAG(buffer_len) &&
-                   sizeof(((modcp_cp_status_t *)0)->counters) == sizeof(((modcp_diag_t *)0)->counters) &&
-                   sizeof(((modcp_cp_status_t *)0)->buffer) == sizeof(((modcp_diag_t *)0)->buffer),
+                   ST_SIZE(modcp_cp_status_t, counters) == ST_SIZE(modcp_diag_t, counters) &&
+                   ST_SIZE(modcp_cp_status_t, buffer) == ST_SIZE(modcp_diag_t, buffer),
                "status area: events_total ... buffer_len as in modcp_diag_t");
 _Static_assert(ST_CPDIAG(diag_irq_count, irq_count) && ST_CPDIAG(systat_ack, systat_ack) &&
                    ST_CPDIAG(systat, systat) &&
-                   sizeof(((modcp_cp_status_t *)0)->diag_irq) == MODCP_DIAG_IRQ_BYTES &&
-                   sizeof(((modcp_cpdiag_t *)0)->systat) == 16u,
+                   ST_SIZE(modcp_cp_status_t, diag_irq) == MODCP_DIAG_IRQ_BYTES &&
+                   ST_SIZE(modcp_cpdiag_t, systat) == 16u,
                "status area: diag_irq ... systat as in modcp_cpdiag_t");
 
 /* Publish the status area, written in place under the seqlock (no copy of it). */

@@ -430,27 +430,28 @@ static void rx_blocks(modcp_fb_t *fb)
     while (!fb->reply_pending && (b = modcp_ring_peek(r)) != NULL) {
         uint8_t kind = b->kind;
         uint8_t flags = b->flags;
-        bool first = kind == MODCP_BP_JOB && (flags & MODCP_BLK_FIRST) != 0u;
-        bool hdr = first && b->len >= MODCP_BP_JOB_HDR_LEN;
-        if (hdr && (flags & MODCP_BLK_LAST) == 0u && !job_in_ring(fb, b)) {
-            break; /* not all of its blocks in yet */
+        uint8_t len = b->len;
+        if (kind == MODCP_BP_JOB &&
+            (flags & (MODCP_BLK_FIRST | MODCP_BLK_LAST)) == MODCP_BLK_FIRST &&
+            len >= MODCP_BP_JOB_HDR_LEN && !job_in_ring(fb, b)) {
+            break; /* a job header whose blocks are not all in yet */
         }
         if (fb->rx_synced && b->seq != fb->rx_seq) {
             fb->job_active = false; /* a block went missing: nothing more of that job */
         }
         fb->rx_synced = true;
         fb->rx_seq = (uint8_t)(b->seq + 1u);
-        if (b->len > MODCP_BLOCK_SIZE) {
+        if (len > MODCP_BLOCK_SIZE) {
             fb->job_active = false;
-        } else if (first) {
-            fb->job_active = false; /* a new FIRST abandons an unfinished job */
-            if (hdr) {
-                (void)modcp_bp_job_decode(b->data, b->len, &fb->job);
-                fb->job_tag = b->tag;
-                start_job(fb, b);
-            }
         } else if (kind == MODCP_BP_JOB) {
-            if (fb->job_active && b->tag == fb->job_tag) {
+            if ((flags & MODCP_BLK_FIRST) != 0u) {
+                fb->job_active = false; /* a new FIRST abandons an unfinished job */
+                if (len >= MODCP_BP_JOB_HDR_LEN) {
+                    (void)modcp_bp_job_decode(b->data, len, &fb->job);
+                    fb->job_tag = b->tag;
+                    start_job(fb, b);
+                }
+            } else if (fb->job_active && b->tag == fb->job_tag) {
                 rx_data(fb, b);
             }
             /* else: remainder of a job we never saw the start of, or that was answered */
