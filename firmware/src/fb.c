@@ -423,6 +423,26 @@ static void rx_ack(modcp_fb_t *fb, const modcp_block_t *b)
     }
 }
 
+/* A reply without data (a write's, an error's): its header alone, at once, when the
+ * ring has room; false when it has none. */
+static FB_INLINE bool reply_header(modcp_fb_t *fb)
+{
+    modcp_ring_t *out = &fb->bp->to_cp;
+    uint32_t head = atomic_load_explicit(&out->head, memory_order_relaxed);
+    if (head - atomic_load_explicit(&out->tail, memory_order_acquire) >= MODCP_BP_DEPTH) {
+        return false;
+    }
+    modcp_block_t *rb = &out->slot[head & (MODCP_BP_DEPTH - 1u)];
+    modcp_block_stamp(rb, modcp_block_word(modcp_bp_reply_encode(&fb->reply, rb->data),
+                                           MODCP_BP_REPLY, MODCP_BLK_FIRST | MODCP_BLK_LAST,
+                                           fb->job_tag));
+    rb->seq = fb->tx_seq++;
+    fb->reply_hdr_sent = true;
+    fb->reply_pending = false;
+    atomic_store_explicit(&out->head, head + 1u, memory_order_release);
+    return true;
+}
+
 static void rx_blocks(modcp_fb_t *fb)
 {
     modcp_ring_t *r = &fb->bp->to_cpu;
@@ -460,20 +480,8 @@ static void rx_blocks(modcp_fb_t *fb)
         }
         /* PARAMS / INIT / REPLY travel the other way: ignored */
         modcp_ring_release(r);
-        if (fb->reply_pending) {
-            modcp_block_t *rb;
-            if (fb->reply.len == 0u && (rb = modcp_ring_slot(&fb->bp->to_cp)) != NULL) {
-                /* a write's or an error's reply: its header alone, at once */
-                modcp_block_stamp(rb, modcp_block_word(modcp_bp_reply_encode(&fb->reply, rb->data),
-                                                       MODCP_BP_REPLY,
-                                                       MODCP_BLK_FIRST | MODCP_BLK_LAST,
-                                                       fb->job_tag));
-                fb->reply_hdr_sent = true;
-                fb->reply_pending = false;
-                modcp_ring_publish(&fb->bp->to_cp, &fb->tx_seq);
-            } else {
-                pump_reply(fb);
-            }
+        if (fb->reply_pending && (fb->reply.len != 0u || !reply_header(fb))) {
+            pump_reply(fb);
         }
     }
 }
