@@ -22,16 +22,6 @@
 #include "pdu_internal.h"
 #include "signals_internal.h"
 
-static modcp_pdu_env_t env_of(modcp_cp_t *cp)
-{
-#if MODCP_WITH_EXTENDED
-    modcp_pdu_env_t e = {&cp->params, &cp->areas, &cp->diag, cp->fb_ready, &cp->ext};
-#else
-    modcp_pdu_env_t e = {&cp->params, &cp->areas, &cp->diag, cp->fb_ready, NULL};
-#endif
-    return e;
-}
-
 /* ---- RS232 automatic secondary signals (signals.c), or none in this build ------ */
 
 #if defined(__GNUC__)
@@ -176,6 +166,12 @@ void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp
     modcp_job_init(&cp->job, bp, cp->record, (uint16_t)sizeof cp->record);
 #endif
     cp->param_event = MODCP_EV_PARAM_RECORD; /* nothing received yet */
+    cp->env.p = &cp->params; /* env.fb_ready false: no INIT yet */
+    cp->env.areas = &cp->areas;
+    cp->env.diag = &cp->diag;
+#if MODCP_WITH_EXTENDED
+    cp->env.ext = &cp->ext;
+#endif
     cp->publish_all = true;
 #if MODCP_WITH_RS232_SIGNALS
     modcp_sig_init(&cp->sig, hal, &cp->diag);   /* RTS, DTR OFF */
@@ -188,7 +184,7 @@ void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp
 
 bool modcp_cp_ready(const modcp_cp_t *cp)
 {
-    return cp->configured && cp->fb_ready;
+    return cp->configured && cp->env.fb_ready;
 }
 
 /* Carry the request on: the PDU engine's decision on the frame that has just ended
@@ -198,14 +194,14 @@ bool modcp_cp_ready(const modcp_cp_t *cp)
  * their other paths do not pay for its stack frame. */
 static MODCP_CP_NOINLINE void advance(modcp_cp_t *cp, bool start, uint32_t now_us)
 {
-    modcp_pdu_env_t env = env_of(cp);
+    const modcp_pdu_env_t *env = &cp->env;
     uint16_t out_len = 0;
     modcp_pdu_action_t a;
     if (start) {
         const modcp_frame_t *f = &cp->frame;
-        a = modcp_pdu_request(&cp->pdu, &env, f->addr, f->pdu, f->pdu_len, f->pdu_cap, &out_len);
+        a = modcp_pdu_request(&cp->pdu, env, f->addr, f->pdu, f->pdu_len, f->pdu_cap, &out_len);
     } else {
-        a = modcp_pdu_complete(&cp->pdu, &env, cp->job.event, cp->frame.pdu, &out_len);
+        a = modcp_pdu_complete(&cp->pdu, env, cp->job.event, cp->frame.pdu, &out_len);
     }
     while (a == MODCP_PDU_JOB) { /* a job's first blocks go out at once */
         modcp_event_t ev = modcp_job_start(&cp->job, &cp->pdu.job, cp->pdu.wdata, cp->pdu.rdata,
@@ -214,10 +210,10 @@ static MODCP_CP_NOINLINE void advance(modcp_cp_t *cp, bool start, uint32_t now_u
             cp->request_pending = true;
             return;
         }
-        a = modcp_pdu_complete(&cp->pdu, &env, ev, cp->frame.pdu, &out_len);
+        a = modcp_pdu_complete(&cp->pdu, env, ev, cp->frame.pdu, &out_len);
     }
 #if MODCP_WITH_EXTENDED
-    modcp_pdu_finished(&cp->pdu, &env, a, now_us); /* FC11/12 accounting, comm loss */
+    modcp_pdu_finished(&cp->pdu, env, a, now_us); /* FC11/12 accounting, comm loss */
     if (cp->ext.delimiter_changed) { /* FC08 sub 03 / 01: the ASCII input delimiter */
         cp->link.ascii_delim = cp->ext.ascii_delimiter;
         cp->ext.delimiter_changed = false;
@@ -340,7 +336,7 @@ static void unconfigure(modcp_cp_t *cp)
     modcp_sig_disable(&cp->sig);
 #endif
     cp->configured = false;
-    cp->fb_ready = false;
+    cp->env.fb_ready = false;
     cp->publish_all = true; /* signals off; PARAMS clears the buffer, sets param_event */
 }
 
@@ -403,9 +399,9 @@ static void take_init(modcp_cp_t *cp)
     }
     if (ev == MODCP_EV_NONE) {
         cp->areas = cp->job.init.areas;
-        cp->fb_ready = true;
+        cp->env.fb_ready = true;
     } else {
-        cp->fb_ready = false;
+        cp->env.fb_ready = false;
     }
     cp->ack_event = ev;
     cp->ack_pending = !modcp_job_send_ack(&cp->job, ev);

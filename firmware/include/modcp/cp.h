@@ -40,13 +40,16 @@ typedef struct modcp_cp {
     modcp_backplane_t *bp;
     modcp_params_t params;
     bool configured;   /* valid PARAMS applied */
-    bool fb_ready;     /* INIT received and acknowledged */
     uint16_t record_crc;
     modcp_event_t param_event; /* first fatal parameter event, NONE if configured */
     modcp_areas_t areas;
     modcp_diag_t diag;
     modcp_link_t link;
     modcp_pdu_t pdu;
+    /* what the PDU engine works with, set up once (cp_init): the parameters, areas,
+     * diagnostics and extended state, and env.fb_ready: INIT received and acknowledged
+     * (stored here only) */
+    modcp_pdu_env_t env;
     modcp_job_t job;
     modcp_frame_t frame; /* request being processed */
     bool request_pending; /* a request waits for its job */
