@@ -156,7 +156,6 @@ void modcp_cp_on_signals(modcp_cp_t *cp, bool cts, bool dsr, uint32_t now_us)
 void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp)
 {
     memset(cp, 0, sizeof *cp); /* diagnostics and CP diagnostics empty (no _init of their own) */
-    cp->hal = hal;
     cp->bp = bp;
     modcp_params_defaults(&cp->params);
     modcp_link_init(&cp->link, hal, &cp->diag, cp->buf, (uint16_t)MODCP_LINK_BUF_MAX);

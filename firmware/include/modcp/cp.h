@@ -36,8 +36,7 @@
 #endif
 
 typedef struct modcp_cp {
-    const modcp_hal_t *hal;
-    modcp_backplane_t *bp;
+    modcp_backplane_t *bp; /* (the HAL is kept by the link, the LEDs and the signals) */
     modcp_params_t params;
     bool configured;   /* valid PARAMS applied */
     uint16_t record_crc;
