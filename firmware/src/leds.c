@@ -9,7 +9,9 @@ void modcp_leds_change(modcp_leds_t *x, modcp_led_t led, bool on, uint32_t now_u
 {
     x->on[led] = on;
     x->bits = (uint8_t)((x->bits & ~(1u << led)) | ((unsigned)on << led));
-    x->on_us[led] = now_us;
+    if (led != MODCP_LED_SF) {
+        x->on_us[led - 1u] = now_us; /* SF has no minimum on-time */
+    }
     if (x->hal != NULL && x->hal->set_led != NULL) {
         x->hal->set_led(x->hal->ctx, led, on);
     }

@@ -21,7 +21,7 @@ static inline void modcp_leds_set(modcp_leds_t *x, modcp_led_t led, bool on, uin
 static inline bool modcp_leds_min_on_elapsed(const modcp_leds_t *x, modcp_led_t led,
                                              uint32_t now_us)
 {
-    return now_us - x->on_us[led] >= MODCP_LED_MIN_ON_US;
+    return now_us - x->on_us[led - 1u] >= MODCP_LED_MIN_ON_US; /* TXD / RXD */
 }
 /* Drive the LEDs at now_us from the link's receive / transmit record; sf: the group
  * error is present. Inline: a few compares once per poll (the CP's only caller); a
