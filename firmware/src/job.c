@@ -286,9 +286,10 @@ static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b)
         j->proto_errors++;
         return MODCP_JOBP_NOTHING;
     }
-    switch (b->kind) {
-    case MODCP_BP_REPLY:
+    if (b->kind == MODCP_BP_REPLY) { /* the common one: first */
         return rx_reply(j, b);
+    }
+    switch (b->kind) {
     case MODCP_BP_PARAMS:
         return rx_params(j, b);
     case MODCP_BP_INIT:
