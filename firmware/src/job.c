@@ -273,14 +273,13 @@ static modcp_jobp_t rx_params(modcp_job_t *j, const modcp_block_t *b)
 
 static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b)
 {
-    if (!j->rx_synced) {
-        j->rx_synced = true;
-    } else if (b->seq != j->rx_seq) {
+    if (b->seq != j->rx_seq && j->rx_synced) { /* (the first block seen syncs) */
         j->proto_errors++;
         if (j->msgkind != 0u) {
             j->msg_overflow = true; /* a message lost a block: report it empty */
         }
     }
+    j->rx_synced = true;
     j->rx_seq = (uint8_t)(b->seq + 1u);
     if (b->len > MODCP_BLOCK_SIZE) {
         j->proto_errors++;
