@@ -456,7 +456,7 @@ static void rx_blocks(modcp_fb_t *fb)
             len >= MODCP_BP_JOB_HDR_LEN && !job_in_ring(fb, b)) {
             break; /* a job header whose blocks are not all in yet */
         }
-        if (fb->rx_synced && b->seq != fb->rx_seq) {
+        if (b->seq != fb->rx_seq && fb->rx_synced) {
             fb->job_active = false; /* a block went missing: nothing more of that job */
         }
         fb->rx_synced = true;
