@@ -355,11 +355,11 @@ static FB_INLINE void exec_data(modcp_fb_t *fb, const uint8_t *d, uint32_t n, bo
         uint32_t done = (uint32_t)fb->job_pos * 8u;
         if (done < jb->opnd.count) {
             uint32_t k = jb->opnd.count - done;
-            if (jb->opnd.bit == 0u && k >= n * 8u) {
-                modcp_block_copy(dst, d, n); /* whole bytes of the area */
-            } else if (k == 1u) { /* one coil (FC05): bit 0 of the data, start bit <= 7 */
+            if (k == 1u) { /* one coil (FC05): bit 0 of the data, start bit <= 7 */
                 unsigned m = 1u << jb->opnd.bit;
                 dst[0] = (uint8_t)((dst[0] & ~m) | (((unsigned)d[0] << jb->opnd.bit) & m));
+            } else if (jb->opnd.bit == 0u && k >= n * 8u) {
+                modcp_block_copy(dst, d, n); /* whole bytes of the area */
             } else {
                 modcp_bits_put(dst, jb->opnd.bit, k > n * 8u ? n * 8u : k, d);
             }
