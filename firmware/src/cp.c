@@ -189,9 +189,13 @@ bool modcp_cp_ready(const modcp_cp_t *cp)
 /* Carry the request on: the PDU engine's decision on the frame that has just ended
  * (start) or on the result of its job, then its next job (a request of the extended set
  * may need several in sequence: modcp_pdu_complete() then returns the next) or the end
- * of the request. Kept out of its callers (modcp_cp_on_timer, modcp_cp_poll), so that
- * their other paths do not pay for its stack frame. */
-static MODCP_CP_NOINLINE void advance(modcp_cp_t *cp, bool start, uint32_t now_us)
+ * of the request. */
+#if defined(__GNUC__)
+#define CP_INLINE inline __attribute__((always_inline))
+#else
+#define CP_INLINE inline
+#endif
+static CP_INLINE void advance_here(modcp_cp_t *cp, bool start, uint32_t now_us)
 {
     const modcp_pdu_env_t *env = &cp->env;
     uint16_t out_len = 0;
@@ -224,6 +228,20 @@ static MODCP_CP_NOINLINE void advance(modcp_cp_t *cp, bool start, uint32_t now_u
         modcp_link_done(&cp->link);
     }
 }
+
+/* advance() out of line: the end of a frame (modcp_cp_on_timer), so that the timer's
+ * other expiries do not pay for its stack frame; built for size (-Os: the MCU builds)
+ * the poll's one too (one copy). Built for speed the poll has it inline: no call and no
+ * frame of its own per request. */
+static MODCP_CP_NOINLINE void advance(modcp_cp_t *cp, bool start, uint32_t now_us)
+{
+    advance_here(cp, start, now_us);
+}
+#if defined(__OPTIMIZE_SIZE__)
+#define advance_poll advance
+#else
+#define advance_poll advance_here
+#endif
 
 /* Cold part of modcp_cp_on_rx: RS232 automatic signals configured (DSR gates the
  * reception, a character ends the time to RTS off). */
@@ -502,7 +520,7 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
                 continue;
             }
             cp->request_pending = false;
-            advance(cp, false, now_us); /* the next job, or the reply */
+            advance_poll(cp, false, now_us); /* the next job, or the reply */
             if (cp->job.state == MODCP_JOBST_IDLE && modcp_ring_peek(&cp->bp->to_cp) == NULL) {
                 break; /* what another modcp_job_poll would find: nothing */
             }
