@@ -229,18 +229,16 @@ static CP_INLINE void advance_here(modcp_cp_t *cp, bool start, uint32_t now_us)
     }
 }
 
-/* advance() out of line: the end of a frame (modcp_cp_on_timer), so that the timer's
- * other expiries do not pay for its stack frame; built for size (-Os: the MCU builds)
- * the poll's one too (one copy). Built for speed the poll has it inline: no call and no
- * frame of its own per request. */
+/* Built for size (-Os: the MCU builds) advance_here is one copy out of line, shared by
+ * the end of a frame and the poll; built for speed each has it inline (no call and no
+ * stack frame of its own per request). */
+#if defined(__OPTIMIZE_SIZE__)
 static MODCP_CP_NOINLINE void advance(modcp_cp_t *cp, bool start, uint32_t now_us)
 {
     advance_here(cp, start, now_us);
 }
-#if defined(__OPTIMIZE_SIZE__)
-#define advance_poll advance
 #else
-#define advance_poll advance_here
+#define advance advance_here
 #endif
 
 /* Cold part of modcp_cp_on_rx: RS232 automatic signals configured (DSR gates the
@@ -303,6 +301,25 @@ void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us
     cp->published = false;
 }
 
+/* An expiry that is more than a re-arm: the RS232 signals' times, or the end of a frame
+ * (the link decides) and, for a frame for us, the request carried on. Built for speed
+ * out of line (with advance inline), so that the re-arms (modcp_cp_on_timer) pay for no
+ * stack frame; built for size, in modcp_cp_on_timer (advance is out of line then). */
+#if defined(__OPTIMIZE_SIZE__)
+static void timer_expired(modcp_cp_t *cp, uint32_t now_us)
+#else
+static MODCP_CP_NOINLINE void timer_expired(modcp_cp_t *cp, uint32_t now_us)
+#endif
+{
+    cp->published = false;
+    if (sig_on_timer(cp, now_us)) {
+        return; /* data output waiting time / time to RTS off */
+    }
+    if (modcp_link_on_timer(&cp->link, now_us, &cp->frame)) {
+        advance(cp, true, now_us); /* a frame for us has ended */
+    }
+}
+
 void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
 {
     /* the common expiry while a frame arrives (armed at its first character, bytes
@@ -312,13 +329,7 @@ void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
     if (!sig_enabled(cp) && link_timer_rearm(&cp->link, now_us)) {
         return;
     }
-    cp->published = false;
-    if (sig_on_timer(cp, now_us)) {
-        return; /* data output waiting time / time to RTS off */
-    }
-    if (modcp_link_on_timer(&cp->link, now_us, &cp->frame)) {
-        advance(cp, true, now_us); /* a frame for us has ended */
-    }
+    timer_expired(cp, now_us);
 }
 
 /* Transmission complete with RS232 automatic signals: RTS OFF after its delay, then
@@ -520,7 +531,7 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
                 continue;
             }
             cp->request_pending = false;
-            advance_poll(cp, false, now_us); /* the next job, or the reply */
+            advance(cp, false, now_us); /* the next job, or the reply */
             if (cp->job.state == MODCP_JOBST_IDLE && modcp_ring_peek(&cp->bp->to_cp) == NULL) {
                 break; /* what another modcp_job_poll would find: nothing */
             }
