@@ -501,8 +501,10 @@ static void publish(modcp_cp_t *cp)
                 (cp->cpdiag.wire_break ? MODCP_CPST_WIRE_BREAK : 0u) |
                 (cp->cpdiag.param_error ? MODCP_CPST_PARAM_ERROR : 0u);
     st->leds = leds;
-    memcpy((uint8_t *)st + ST_AT(events_total), &cp->diag.events_total, ST_DIAG_RUN);
-    memcpy((uint8_t *)st + ST_AT(diag_irq), cp->cpdiag.irq, ST_CPDIAG_RUN);
+    memcpy((uint8_t *)st + ST_AT(events_total),
+           (const uint8_t *)&cp->diag + offsetof(modcp_diag_t, events_total), ST_DIAG_RUN);
+    memcpy((uint8_t *)st + ST_AT(diag_irq),
+           (const uint8_t *)&cp->cpdiag + offsetof(modcp_cpdiag_t, irq), ST_CPDIAG_RUN);
     st->param_event = cp->param_event;
 #if MODCP_WITH_RS232_SIGNALS
     if (cp->publish_all || cp->sig.enabled) {

@@ -54,7 +54,7 @@ typedef struct modcp_cp {
     bool request_pending; /* a request waits for its job */
     bool ack_pending;     /* an INIT_ACK could not be sent yet */
     bool published;       /* the status area shows the CP's state (cp.c publish()) */
-    bool publish_all;     /* ... and its rarely changing parts are to be rewritten too */
+    bool publish_all;     /* ... and the RS232 signals are to be rewritten too */
     uint32_t err_mark_us; /* link.last_us after the last line error: when it moves on, a
                              character was received (the end of a wire break) */
     modcp_event_t ack_event;
