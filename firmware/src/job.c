@@ -174,8 +174,18 @@ static void push_blocks(modcp_job_t *j)
         j->hdr_sent = true;
         if (j->hdr.op == MODCP_JOB_READ || len <= MODCP_BP_JOB_INLINE) {
             if (j->hdr.op != MODCP_JOB_READ) { /* the write data with the header */
-                for (const uint8_t *w = j->wdata; n < MODCP_BP_JOB_HDR_LEN + len; n++) {
-                    b->data[n] = *w++;
+                const uint8_t *w = j->wdata;
+#if !defined(__OPTIMIZE_SIZE__) /* built for speed: a coil or a register without a loop */
+                if (len - 1u < 2u) { /* FC05: 1 byte, FC06: 2 */
+                    b->data[MODCP_BP_JOB_HDR_LEN] = w[0];
+                    b->data[MODCP_BP_JOB_HDR_LEN + 1u] = w[len - 1u];
+                    n += len;
+                } else
+#endif
+                {
+                    for (; n < MODCP_BP_JOB_HDR_LEN + len; n++) {
+                        b->data[n] = *w++;
+                    }
                 }
             }
             flags = MODCP_BLK_FIRST | MODCP_BLK_LAST; /* the whole job */
