@@ -66,8 +66,26 @@ bool modcp_ring_get(modcp_ring_t *r, modcp_block_t *b)
 #define put16 modcp_bp_put16
 #define get16 modcp_bp_get16
 
+/* The INIT payload is modcp_bp_init_t as it lies in memory on a little-endian target:
+ * seven 16-bit fields in wire order, no gaps. */
+#if MODCP_BP_LE
+_Static_assert(sizeof(modcp_bp_init_t) == BP_INIT_LEN &&
+                   offsetof(modcp_bp_init_t, areas) == 0u &&
+                   offsetof(modcp_areas_t, i_bytes) == 0u &&
+                   offsetof(modcp_areas_t, q_bytes) == 2u &&
+                   offsetof(modcp_areas_t, m_bytes) == 4u &&
+                   offsetof(modcp_areas_t, timers) == 6u &&
+                   offsetof(modcp_areas_t, counters) == 8u &&
+                   offsetof(modcp_areas_t, work_db) == 10u &&
+                   offsetof(modcp_bp_init_t, record_crc) == 12u,
+               "modcp_bp_init_t is the INIT payload's layout");
+#endif
+
 uint8_t modcp_bp_init_encode(const modcp_bp_init_t *i, uint8_t *d)
 {
+#if MODCP_BP_LE
+    memcpy(d, i, BP_INIT_LEN);
+#else
     put16(d, i->areas.i_bytes);
     put16(d + 2, i->areas.q_bytes);
     put16(d + 4, i->areas.m_bytes);
@@ -75,6 +93,7 @@ uint8_t modcp_bp_init_encode(const modcp_bp_init_t *i, uint8_t *d)
     put16(d + 8, i->areas.counters);
     put16(d + 10, i->areas.work_db);
     put16(d + 12, i->record_crc);
+#endif
     return (uint8_t)BP_INIT_LEN;
 }
 
@@ -83,6 +102,9 @@ bool modcp_bp_init_decode(const uint8_t *d, uint8_t len, modcp_bp_init_t *i)
     if (len < BP_INIT_LEN) {
         return false;
     }
+#if MODCP_BP_LE
+    memcpy(i, d, BP_INIT_LEN);
+#else
     i->areas.i_bytes = get16(d);
     i->areas.q_bytes = get16(d + 2);
     i->areas.m_bytes = get16(d + 4);
@@ -90,6 +112,7 @@ bool modcp_bp_init_decode(const uint8_t *d, uint8_t len, modcp_bp_init_t *i)
     i->areas.counters = get16(d + 8);
     i->areas.work_db = get16(d + 10);
     i->record_crc = get16(d + 12);
+#endif
     return true;
 }
 

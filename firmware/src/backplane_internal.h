@@ -3,7 +3,17 @@
 #ifndef MODCP_BACKPLANE_INTERNAL_H
 #define MODCP_BACKPLANE_INTERNAL_H
 
+#include <stddef.h>
+
 #include "modcp/backplane.h"
+
+/* On a little-endian target the backplane's headers are laid out as their structs lie
+ * in memory (static asserts at each codec): encoding and decoding them are copies. */
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define MODCP_BP_LE 1
+#else
+#define MODCP_BP_LE 0
+#endif
 
 /* CP side: publish the status area. */
 void modcp_bp_publish_status(modcp_backplane_t *bp, const modcp_cp_status_t *st);
@@ -59,6 +69,27 @@ static inline void modcp_block_copy(uint8_t *dst, const uint8_t *src, uint32_t n
         memcpy(dst, src, n);
     }
 }
+/* A block's len, kind, flags and tag as one word (modcp_block_word), written by
+ * modcp_block_stamp: one store on a little-endian target. */
+_Static_assert(offsetof(modcp_block_t, kind) == offsetof(modcp_block_t, len) + 1u &&
+                   offsetof(modcp_block_t, flags) == offsetof(modcp_block_t, len) + 2u &&
+                   offsetof(modcp_block_t, tag) == offsetof(modcp_block_t, len) + 3u,
+               "modcp_block_t: len, kind, flags, tag in a row");
+static inline uint32_t modcp_block_word(uint32_t len, uint32_t kind, uint32_t flags, uint32_t tag)
+{
+    return len | kind << 8 | flags << 16 | tag << 24;
+}
+static inline void modcp_block_stamp(modcp_block_t *b, uint32_t word)
+{
+#if MODCP_BP_LE
+    memcpy((uint8_t *)b + offsetof(modcp_block_t, len), &word, 4);
+#else
+    b->len = (uint8_t)word;
+    b->kind = (uint8_t)(word >> 8);
+    b->flags = (uint8_t)(word >> 16);
+    b->tag = (uint8_t)(word >> 24);
+#endif
+}
 /* Copying forms (tests, and messages built elsewhere). Producer side: publish one
  * block (seq is filled in from *seq, which is then incremented). Returns false (nothing
  * written) when the ring is full. */
@@ -97,15 +128,31 @@ static inline uint16_t modcp_bp_get16(const uint8_t *d)
 {
     return (uint16_t)((unsigned)d[0] | ((unsigned)d[1] << 8));
 }
+/* The JOB header's wire layout (backplane.c) is op followed by the operand and len as
+ * modcp_bp_job_t holds them (opnd without gaps, then len), little-endian: on a
+ * little-endian target the codec is the op byte and two copies. */
+#if MODCP_BP_LE
+_Static_assert(offsetof(modcp_operand_t, area) == 0u &&
+                   offsetof(modcp_operand_t, bit) == 1u && offsetof(modcp_operand_t, db) == 2u &&
+                   offsetof(modcp_operand_t, offset) == 4u &&
+                   offsetof(modcp_operand_t, count) == 6u && sizeof(modcp_operand_t) == 8u &&
+                   MODCP_BP_JOB_HDR_LEN == 11u,
+               "modcp_operand_t is the JOB header's bytes 1..8");
+#endif
 static inline uint8_t modcp_bp_job_encode(const modcp_bp_job_t *j, uint8_t *d)
 {
     d[0] = j->op;
+#if MODCP_BP_LE
+    memcpy(d + 1, &j->opnd, sizeof j->opnd);
+    memcpy(d + 9, &j->len, sizeof j->len);
+#else
     d[1] = j->opnd.area;
     d[2] = j->opnd.bit;
     modcp_bp_put16(d + 3, j->opnd.db);
     modcp_bp_put16(d + 5, j->opnd.offset);
     modcp_bp_put16(d + 7, j->opnd.count);
     modcp_bp_put16(d + 9, j->len);
+#endif
     return (uint8_t)MODCP_BP_JOB_HDR_LEN;
 }
 static inline bool modcp_bp_job_decode(const uint8_t *d, uint8_t len, modcp_bp_job_t *j)
@@ -114,19 +161,36 @@ static inline bool modcp_bp_job_decode(const uint8_t *d, uint8_t len, modcp_bp_j
         return false;
     }
     j->op = d[0];
+#if MODCP_BP_LE
+    memcpy(&j->opnd, d + 1, sizeof j->opnd);
+    memcpy(&j->len, d + 9, sizeof j->len);
+#else
     j->opnd.area = d[1];
     j->opnd.bit = d[2];
     j->opnd.db = modcp_bp_get16(d + 3);
     j->opnd.offset = modcp_bp_get16(d + 5);
     j->opnd.count = modcp_bp_get16(d + 7);
     j->len = modcp_bp_get16(d + 9);
+#endif
     return true;
 }
+/* The REPLY header is modcp_bp_reply_t as it lies in memory on a little-endian target. */
+#if MODCP_BP_LE
+_Static_assert(sizeof(modcp_event_t) == 2u && offsetof(modcp_bp_reply_t, event) == 0u &&
+                   offsetof(modcp_bp_reply_t, error_nr) == 2u &&
+                   offsetof(modcp_bp_reply_t, len) == 4u &&
+                   sizeof(modcp_bp_reply_t) == MODCP_BP_REPLY_HDR_LEN,
+               "modcp_bp_reply_t is the REPLY header's layout");
+#endif
 static inline uint8_t modcp_bp_reply_encode(const modcp_bp_reply_t *r, uint8_t *d)
 {
+#if MODCP_BP_LE
+    memcpy(d, r, MODCP_BP_REPLY_HDR_LEN);
+#else
     modcp_bp_put16(d, r->event);
     modcp_bp_put16(d + 2, r->error_nr);
     modcp_bp_put16(d + 4, r->len);
+#endif
     return (uint8_t)MODCP_BP_REPLY_HDR_LEN;
 }
 static inline bool modcp_bp_reply_decode(const uint8_t *d, uint8_t len, modcp_bp_reply_t *r)

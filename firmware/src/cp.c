@@ -7,6 +7,7 @@
  * acknowledged every request gets exception 04 / (0E)56H. */
 #include "modcp/cp.h"
 
+#include <stddef.h>
 #include <string.h>
 
 #include "modcp/crc.h"
@@ -20,16 +21,6 @@
 #include "params_internal.h"
 #include "pdu_internal.h"
 #include "signals_internal.h"
-
-static modcp_pdu_env_t env_of(modcp_cp_t *cp)
-{
-#if MODCP_WITH_EXTENDED
-    modcp_pdu_env_t e = {&cp->params, &cp->areas, &cp->diag, cp->fb_ready, &cp->ext};
-#else
-    modcp_pdu_env_t e = {&cp->params, &cp->areas, &cp->diag, cp->fb_ready, NULL};
-#endif
-    return e;
-}
 
 /* ---- RS232 automatic secondary signals (signals.c), or none in this build ------ */
 
@@ -110,7 +101,9 @@ static void line_reply(modcp_cp_t *cp, uint16_t out_len, uint32_t now_us)
     cp->link.reply_same = cp->pdu.same;
     modcp_link_reply(&cp->link, out_len, now_us);
 #if MODCP_WITH_RS232_SIGNALS
-    modcp_sig_on_reply(&cp->sig, &cp->link, now_us);
+    if (cp->sig.enabled) { /* disabled signals are idle (see sig_on_timer) */
+        modcp_sig_on_reply(&cp->sig, &cp->link, now_us);
+    }
 #endif
 }
 
@@ -130,11 +123,10 @@ static void line_params(modcp_cp_t *cp, bool ok, int irq)
  * record: no hook per byte or per transmission). */
 static void line_poll(modcp_cp_t *cp, uint32_t now_us)
 {
-    if (cp->bp != NULL) {
-        uint32_t req = atomic_load_explicit(&cp->bp->systat_req, memory_order_acquire);
-        if (req != cp->cpdiag.systat_ack) { /* a new SYSTAT request */
-            modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, modcp_cp_ready(cp));
-        }
+    /* (the poll always has its backplane: modcp_job_poll and publish() use it too) */
+    uint32_t req = atomic_load_explicit(&cp->bp->systat_req, memory_order_acquire);
+    if (req != cp->cpdiag.systat_ack) { /* a new SYSTAT request */
+        modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, modcp_cp_ready(cp));
     }
     if (cp->job.proto_errors != cp->cpdiag.proto_seen ||
         cp->job.illegal_msgs != cp->cpdiag.illegal_seen) { /* new backplane errors */
@@ -163,10 +155,8 @@ void modcp_cp_on_signals(modcp_cp_t *cp, bool cts, bool dsr, uint32_t now_us)
 
 void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp)
 {
-    memset(cp, 0, sizeof *cp);
-    cp->hal = hal;
+    memset(cp, 0, sizeof *cp); /* diagnostics and CP diagnostics empty (no _init of their own) */
     cp->bp = bp;
-    modcp_diag_init(&cp->diag);
     modcp_params_defaults(&cp->params);
     modcp_link_init(&cp->link, hal, &cp->diag, cp->buf, (uint16_t)MODCP_LINK_BUF_MAX);
 #if MODCP_SHARED_PARAMS_BUFFER
@@ -175,12 +165,17 @@ void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp
     modcp_job_init(&cp->job, bp, cp->record, (uint16_t)sizeof cp->record);
 #endif
     cp->param_event = MODCP_EV_PARAM_RECORD; /* nothing received yet */
+    cp->env.p = &cp->params; /* env.fb_ready false: no INIT yet */
+    cp->env.areas = &cp->areas;
+    cp->env.diag = &cp->diag;
+#if MODCP_WITH_EXTENDED
+    cp->env.ext = &cp->ext;
+#endif
     cp->publish_all = true;
 #if MODCP_WITH_RS232_SIGNALS
     modcp_sig_init(&cp->sig, hal, &cp->diag);   /* RTS, DTR OFF */
 #endif
     modcp_leds_init(&cp->leds, hal);            /* SF on, TXD, RXD off */
-    modcp_cpdiag_init(&cp->cpdiag);
 #if MODCP_WITH_EXTENDED
     modcp_ext_init(&cp->ext);
 #endif
@@ -188,21 +183,44 @@ void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp
 
 bool modcp_cp_ready(const modcp_cp_t *cp)
 {
-    return cp->configured && cp->fb_ready;
+    return cp->configured && cp->env.fb_ready;
 }
 
-/* Finish the current request with the PDU engine's decision. */
-static void finish(modcp_cp_t *cp, const modcp_pdu_env_t *env, modcp_pdu_action_t a,
-                   uint16_t out_len, uint32_t now_us)
+/* Carry the request on: the PDU engine's decision on the frame that has just ended
+ * (start) or on the result of its job, then its next job (a request of the extended set
+ * may need several in sequence: modcp_pdu_complete() then returns the next) or the end
+ * of the request. */
+#if defined(__GNUC__)
+#define CP_INLINE inline __attribute__((always_inline))
+#else
+#define CP_INLINE inline
+#endif
+static CP_INLINE void advance_here(modcp_cp_t *cp, bool start, uint32_t now_us)
 {
+    const modcp_pdu_env_t *env = &cp->env;
+    uint16_t out_len = 0;
+    modcp_pdu_action_t a;
+    if (start) {
+        const modcp_frame_t *f = &cp->frame;
+        a = modcp_pdu_request(&cp->pdu, env, f->addr, f->pdu, f->pdu_len, f->pdu_cap, &out_len);
+    } else {
+        a = modcp_pdu_complete(&cp->pdu, env, cp->job.event, cp->frame.pdu, &out_len);
+    }
+    while (a == MODCP_PDU_JOB) { /* a job's first blocks go out at once */
+        modcp_event_t ev = modcp_job_start(&cp->job, &cp->pdu.job, cp->pdu.wdata, cp->pdu.rdata,
+                                           cp->pdu.rcap, now_us);
+        if (ev == MODCP_EV_NONE) {
+            cp->request_pending = true;
+            return;
+        }
+        a = modcp_pdu_complete(&cp->pdu, env, ev, cp->frame.pdu, &out_len);
+    }
 #if MODCP_WITH_EXTENDED
     modcp_pdu_finished(&cp->pdu, env, a, now_us); /* FC11/12 accounting, comm loss */
     if (cp->ext.delimiter_changed) { /* FC08 sub 03 / 01: the ASCII input delimiter */
         cp->link.ascii_delim = cp->ext.ascii_delimiter;
         cp->ext.delimiter_changed = false;
     }
-#else
-    (void)env;
 #endif
     if (a == MODCP_PDU_REPLY) {
         line_reply(cp, out_len, now_us);
@@ -211,34 +229,17 @@ static void finish(modcp_cp_t *cp, const modcp_pdu_env_t *env, modcp_pdu_action_
     }
 }
 
-/* Start the PDU engine's job, or finish the request. A request of the extended set
- * may need several jobs in sequence: modcp_pdu_complete() then returns the next. */
-static void run_action(modcp_cp_t *cp, const modcp_pdu_env_t *env, modcp_pdu_action_t a,
-                       uint16_t out_len, uint32_t now_us)
+/* Built for size (-Os: the MCU builds) advance_here is one copy out of line, shared by
+ * the end of a frame and the poll; built for speed each has it inline (no call and no
+ * stack frame of its own per request). */
+#if defined(__OPTIMIZE_SIZE__)
+static MODCP_CP_NOINLINE void advance(modcp_cp_t *cp, bool start, uint32_t now_us)
 {
-    while (a == MODCP_PDU_JOB) {
-        uint32_t timeout_us = (uint32_t)cp->params.cpu_timeout_ms * 1000u;
-        modcp_event_t ev = modcp_job_start(&cp->job, &cp->pdu.job, cp->pdu.wdata, cp->pdu.rdata,
-                                           cp->pdu.rcap, modcp_params_job_limit(&cp->params),
-                                           timeout_us, now_us);
-        if (ev == MODCP_EV_NONE) {
-            cp->request_pending = true;
-            return;
-        }
-        a = modcp_pdu_complete(&cp->pdu, env, ev, cp->frame.pdu, &out_len);
-    }
-    finish(cp, env, a, out_len, now_us);
+    advance_here(cp, start, now_us);
 }
-
-static void process_request(modcp_cp_t *cp, uint32_t now_us)
-{
-    modcp_pdu_env_t env = env_of(cp);
-    modcp_frame_t *f = &cp->frame;
-    uint16_t out_len = 0;
-    modcp_pdu_action_t a =
-        modcp_pdu_request(&cp->pdu, &env, f->addr, f->pdu, f->pdu_len, f->pdu_cap, &out_len);
-    run_action(cp, &env, a, out_len, now_us); /* a job's first blocks go out at once */
-}
+#else
+#define advance advance_here
+#endif
 
 /* Cold part of modcp_cp_on_rx: RS232 automatic signals configured (DSR gates the
  * reception, a character ends the time to RTS off). */
@@ -268,14 +269,20 @@ void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
 
 /* Characters back to back (DMA, FIFO): the link's block path; with RS232 automatic
  * signals each goes through the per-character entry at its own time. */
+static MODCP_CP_NOINLINE void rx_block_signals(modcp_cp_t *cp, const uint8_t *b, uint16_t n,
+                                               uint32_t end_us)
+{
+    uint32_t t = end_us - (uint32_t)(n - 1u) * cp->link.char_us;
+    for (uint16_t k = 0; k < n; k++) {
+        rx_signals(cp, b[k], t);
+        t += cp->link.char_us;
+    }
+}
+
 void modcp_cp_on_rx_block(modcp_cp_t *cp, const uint8_t *b, uint16_t n, uint32_t end_us)
 {
     if (sig_enabled(cp)) {
-        uint32_t t = end_us - (uint32_t)(n - 1u) * cp->link.char_us;
-        for (uint16_t k = 0; k < n; k++) {
-            rx_signals(cp, b[k], t);
-            t += cp->link.char_us;
-        }
+        rx_block_signals(cp, b, n, end_us); /* kept out: no stack frame on the plain path */
         return;
     }
     cp->published = false; /* see publish() */
@@ -294,11 +301,23 @@ void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us
     cp->published = false;
 }
 
-/* A frame for us has ended: kept out of modcp_cp_on_timer, so that its other expiries
- * do not pay for process_request's stack frame. */
-static MODCP_CP_NOINLINE void frame_ready(modcp_cp_t *cp, uint32_t now_us)
+/* An expiry that is more than a re-arm: the RS232 signals' times, or the end of a frame
+ * (the link decides) and, for a frame for us, the request carried on. Built for speed
+ * out of line (with advance inline), so that the re-arms (modcp_cp_on_timer) pay for no
+ * stack frame; built for size, in modcp_cp_on_timer (advance is out of line then). */
+#if defined(__OPTIMIZE_SIZE__)
+static void timer_expired(modcp_cp_t *cp, uint32_t now_us)
+#else
+static MODCP_CP_NOINLINE void timer_expired(modcp_cp_t *cp, uint32_t now_us)
+#endif
 {
-    process_request(cp, now_us);
+    cp->published = false;
+    if (sig_on_timer(cp, now_us)) {
+        return; /* data output waiting time / time to RTS off */
+    }
+    if (modcp_link_on_timer(&cp->link, now_us, &cp->frame)) {
+        advance(cp, true, now_us); /* a frame for us has ended */
+    }
 }
 
 void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
@@ -310,23 +329,27 @@ void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
     if (!sig_enabled(cp) && link_timer_rearm(&cp->link, now_us)) {
         return;
     }
-    cp->published = false;
-    if (sig_on_timer(cp, now_us)) {
-        return; /* data output waiting time / time to RTS off */
-    }
-    if (modcp_link_on_timer(&cp->link, now_us, &cp->frame)) {
-        frame_ready(cp, now_us);
+    timer_expired(cp, now_us);
+}
+
+/* Transmission complete with RS232 automatic signals: RTS OFF after its delay, then
+ * receive (the signals' timer), unless they leave it to the link. */
+static MODCP_CP_NOINLINE void tx_done_signals(modcp_cp_t *cp, uint32_t now_us)
+{
+    modcp_link_tx_complete(&cp->link); /* TXD: the last stop bit is out */
+    if (!sig_on_tx_done(cp, now_us)) {
+        modcp_link_on_tx_done(&cp->link, now_us);
     }
 }
 
 void modcp_cp_on_tx_done(modcp_cp_t *cp, uint32_t now_us)
 {
-    modcp_link_tx_complete(&cp->link); /* TXD: the last stop bit is out */
     cp->published = false;
-    if (sig_on_tx_done(cp, now_us)) {
-        return; /* RS232 automatic signals: RTS OFF after its delay, then receive */
+    if (sig_enabled(cp)) {
+        tx_done_signals(cp, now_us);
+        return;
     }
-    modcp_link_on_tx_done(&cp->link, now_us);
+    modcp_link_on_tx_done(&cp->link, now_us); /* TXD off (the last stop bit is out) too */
 }
 
 /* Drop the request in progress, stop the line: the CP is not ready. */
@@ -341,7 +364,7 @@ static void unconfigure(modcp_cp_t *cp)
     modcp_sig_disable(&cp->sig);
 #endif
     cp->configured = false;
-    cp->fb_ready = false;
+    cp->env.fb_ready = false;
     cp->publish_all = true; /* signals off; PARAMS clears the buffer, sets param_event */
 }
 
@@ -387,6 +410,8 @@ static void take_params(modcp_cp_t *cp)
     }
     cp->record_crc = modcp_crc16(record, cp->job.msglen);
     cp->configured = true;
+    modcp_job_configure(&cp->job, modcp_params_job_limit(&cp->params),
+                        (uint32_t)cp->params.cpu_timeout_ms * 1000u);
     modcp_link_configure(&cp->link, &cp->params);
     line_params(cp, true, irq);
 }
@@ -402,9 +427,9 @@ static void take_init(modcp_cp_t *cp)
     }
     if (ev == MODCP_EV_NONE) {
         cp->areas = cp->job.init.areas;
-        cp->fb_ready = true;
+        cp->env.fb_ready = true;
     } else {
-        cp->fb_ready = false;
+        cp->env.fb_ready = false;
     }
     cp->ack_event = ev;
     cp->ack_pending = !modcp_job_send_ack(&cp->job, ev);
@@ -418,12 +443,12 @@ static void take_init(modcp_cp_t *cp)
  * is compared with the published values, a few words: LEDs (time), comm-loss /
  * listen-only flags (time), the event count (an event logged by a poll: comm loss,
  * backplane errors) and the SYSTAT answer / diagnostic interrupt count.
- * A publication writes only the parts that can have changed: the flags, counters, LEDs
- * and line error counts always (what a request changes); the diagnostic buffer, STATUS
- * word, parameter event, SYSTAT image and diagnostic interrupt record when the event
- * count, the SYSTAT answer or the interrupt count moved (nothing else changes them) or
- * after PARAMS (cp->publish_all: the buffer cleared, a new parameter event); the RS232
- * signals while the automatic signals run or after PARAMS / an input change. */
+ * A publication is a few copies: the flags and LEDs, the diagnostics' run (event count,
+ * counters, line error counts, STATUS word, diagnostic buffer) and the CP diagnostics'
+ * run (diagnostic interrupt record, SYSTAT answer and image) each as one copy — the
+ * status area holds them in their owners' order (modcp/backplane.h) —, the parameter
+ * event; the RS232 signals while the automatic signals run or after PARAMS / an input
+ * change (cp->publish_all). */
 /* MODCP_CPST_COMMLOSS / LISTEN_ONLY straight from their owners: the comm-loss
  * supervision (commloss.c, ext.cl_lost) and the FC08 listen-only mode (diag). */
 static uint32_t ext_flags(const modcp_cp_t *cp)
@@ -437,18 +462,36 @@ static uint32_t ext_flags(const modcp_cp_t *cp)
 #endif
 }
 
+/* The two runs of the status area laid out as their owners hold them. */
+#define ST_AT(f) offsetof(modcp_cp_status_t, f)
+#define ST_SAME(first, f, T, tfirst, tf)                                                          \
+    (ST_AT(f) - ST_AT(first) == offsetof(T, tf) - offsetof(T, tfirst))
+#define ST_DIAG(f) ST_SAME(events_total, f, modcp_diag_t, events_total, f)
+#define ST_CPDIAG(f, tf) ST_SAME(diag_irq, f, modcp_cpdiag_t, irq, tf)
+#define ST_DIAG_RUN (ST_AT(buffer_len) + 1u - ST_AT(events_total))
+#define ST_CPDIAG_RUN (ST_AT(systat) + 16u - ST_AT(diag_irq))
+#define ST_SIZE(T, f) sizeof(((T *)0)->f)
+_Static_assert(ST_DIAG(counters) && ST_DIAG(frames_too_long) && ST_DIAG(char_errors) &&
+                   ST_DIAG(breaks) && ST_DIAG(t15_discards) && ST_DIAG(status) &&
+                   ST_DIAG(buffer) && ST_DIAG(buffer_len) &&
+                   ST_SIZE(modcp_cp_status_t, counters) == ST_SIZE(modcp_diag_t, counters) &&
+                   ST_SIZE(modcp_cp_status_t, buffer) == ST_SIZE(modcp_diag_t, buffer),
+               "status area: events_total ... buffer_len as in modcp_diag_t");
+_Static_assert(ST_CPDIAG(diag_irq_count, irq_count) && ST_CPDIAG(systat_ack, systat_ack) &&
+                   ST_CPDIAG(systat, systat) &&
+                   ST_SIZE(modcp_cp_status_t, diag_irq) == MODCP_DIAG_IRQ_BYTES &&
+                   ST_SIZE(modcp_cpdiag_t, systat) == 16u,
+               "status area: diag_irq ... systat as in modcp_cpdiag_t");
+
 /* Publish the status area, written in place under the seqlock (no copy of it). */
 static void publish(modcp_cp_t *cp)
 {
     modcp_cp_status_t *st = &cp->bp->status; /* only the CP writes it */
     uint32_t ext = ext_flags(cp);
     uint8_t leds = modcp_leds_bits(&cp->leds);
-    /* the rarely changing parts: with an event, a SYSTAT answer, an interrupt, PARAMS */
-    bool rare = cp->publish_all || st->events_total != cp->diag.events_total ||
-                st->systat_ack != cp->cpdiag.systat_ack ||
-                st->diag_irq_count != cp->cpdiag.irq_count;
-    if (cp->published && !rare && st->leds == leds &&
-        (st->flags & (MODCP_CPST_COMMLOSS | MODCP_CPST_LISTEN_ONLY)) == ext) {
+    if (cp->published && st->events_total == cp->diag.events_total &&
+        st->systat_ack == cp->cpdiag.systat_ack && st->diag_irq_count == cp->cpdiag.irq_count &&
+        st->leds == leds && (st->flags & (MODCP_CPST_COMMLOSS | MODCP_CPST_LISTEN_ONLY)) == ext) {
         return;
     }
     (void)modcp_bp_status_begin(cp->bp);
@@ -457,23 +500,12 @@ static void publish(modcp_cp_t *cp)
                 (sf_on(cp) ? MODCP_CPST_SF : 0u) | ext |
                 (cp->cpdiag.wire_break ? MODCP_CPST_WIRE_BREAK : 0u) |
                 (cp->cpdiag.param_error ? MODCP_CPST_PARAM_ERROR : 0u);
-    memcpy(st->counters, cp->diag.counters, sizeof st->counters);
     st->leds = leds;
-    st->char_errors = cp->diag.char_errors;
-    st->breaks = cp->diag.breaks;
-    st->t15_discards = cp->diag.t15_discards;
-    st->frames_too_long = cp->diag.frames_too_long;
-    if (rare) {
-        st->events_total = cp->diag.events_total;
-        memcpy(st->buffer, cp->diag.buffer, sizeof st->buffer);
-        st->buffer_len = cp->diag.buffer_len;
-        st->status = cp->diag.status;
-        st->param_event = cp->param_event;
-        st->systat_ack = cp->cpdiag.systat_ack;
-        memcpy(st->systat, cp->cpdiag.systat, sizeof st->systat);
-        memcpy(st->diag_irq, cp->cpdiag.irq, sizeof st->diag_irq);
-        st->diag_irq_count = cp->cpdiag.irq_count;
-    }
+    memcpy((uint8_t *)st + ST_AT(events_total),
+           (const uint8_t *)&cp->diag + offsetof(modcp_diag_t, events_total), ST_DIAG_RUN);
+    memcpy((uint8_t *)st + ST_AT(diag_irq),
+           (const uint8_t *)&cp->cpdiag + offsetof(modcp_cpdiag_t, irq), ST_CPDIAG_RUN);
+    st->param_event = cp->param_event;
 #if MODCP_WITH_RS232_SIGNALS
     if (cp->publish_all || cp->sig.enabled) {
         st->signals = modcp_sig_bits(&cp->sig);
@@ -501,15 +533,7 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
                 continue;
             }
             cp->request_pending = false;
-            modcp_pdu_env_t env = env_of(cp);
-            uint16_t out_len = 0;
-            modcp_event_t ev = cp->job.event;
-            modcp_pdu_action_t a = modcp_pdu_complete(&cp->pdu, &env, ev, cp->frame.pdu, &out_len);
-            if (a == MODCP_PDU_JOB) {
-                run_action(cp, &env, a, out_len, now_us); /* the next job */
-            } else {
-                finish(cp, &env, a, out_len, now_us); /* the reply */
-            }
+            advance(cp, false, now_us); /* the next job, or the reply */
             if (cp->job.state == MODCP_JOBST_IDLE && modcp_ring_peek(&cp->bp->to_cp) == NULL) {
                 break; /* what another modcp_job_poll would find: nothing */
             }

@@ -188,14 +188,25 @@ static bool check_bitwrite(modcp_fb_t *fb)
         return false;
     }
     uint32_t end = (uint32_t)o->offset + ((uint32_t)o->bit + o->count - 1u) / 8u;
-    if (o->area == MODCP_AREA_M && end >= fb->mem->m_size) {
-        reply_fb_error(fb, MODCP_FB_ERR_M_END, end);
-        return false;
+    uint8_t *base = NULL;
+    if (o->area == MODCP_AREA_M) {
+        if (end >= fb->mem->m_size) {
+            reply_fb_error(fb, MODCP_FB_ERR_M_END, end);
+            return false;
+        }
+        base = fb->mem->m;
+    } else if (o->area == MODCP_AREA_Q) {
+        if (end >= fb->mem->q_size) {
+            reply_fb_error(fb, MODCP_FB_ERR_Q_END, end);
+            return false;
+        }
+        base = fb->mem->q;
     }
-    if (o->area == MODCP_AREA_Q && end >= fb->mem->q_size) {
-        reply_fb_error(fb, MODCP_FB_ERR_Q_END, end);
-        return false;
+    if (base != NULL) { /* M / Q: every byte addressed is inside (end checked above) */
+        fb->job_mem = base + o->offset;
+        return true;
     }
+    /* a DB, or M / Q without storage: plcmem checks it (and says why not) */
     modcp_event_t ev = modcp_plcmem_locate_bits(fb->mem, o, &fb->job_mem);
     if (ev != MODCP_EV_NONE) {
         reply(fb, ev, 0, 0);
@@ -211,6 +222,17 @@ static bool check_bitwrite(modcp_fb_t *fb)
 #endif
 
 static FB_INLINE void exec_data(modcp_fb_t *fb, const uint8_t *d, uint32_t n, bool last);
+
+/* modcp_plcmem_locate into job_mem, its byte areas' lookup inline (plcmem_internal.h). */
+static FB_INLINE modcp_event_t locate(modcp_fb_t *fb, const modcp_operand_t *o, uint32_t len)
+{
+    if (o->area == MODCP_AREA_T || o->area == MODCP_AREA_C) { /* elements: read / write */
+        return modcp_plcmem_locate(fb->mem, o, (uint16_t)len, &fb->job_mem);
+    }
+    modcp_event_t ev;
+    fb->job_mem = modcp_plcmem_byte_area(fb->mem, o, len, &ev);
+    return ev;
+}
 
 /* A job's FIRST block b arrived, its header decoded into job (its tag in job_tag): check
  * everything that can be checked before the data — nothing is written by a job that
@@ -239,19 +261,19 @@ static void start_job(modcp_fb_t *fb, const modcp_block_t *b)
         reply(fb, MODCP_EV_WORK_DB, 0, 0); /* the job cannot be placed in the work area */
         return;
     }
-    if (jb->opnd.count == 0u || jb->len == 0u) {
-        reply_fb_error(fb, MODCP_FB_ERR_AMOUNT0, jb->opnd.count);
-        return;
-    }
-    if (jb->len > MODCP_FB_JOB_MAX) {
-        reply_fb_error(fb, MODCP_FB_ERR_AMOUNT, jb->len);
+    if (jb->opnd.count == 0u || (uint32_t)jb->len - 1u >= MODCP_FB_JOB_MAX) {
+        if (jb->opnd.count == 0u || jb->len == 0u) {
+            reply_fb_error(fb, MODCP_FB_ERR_AMOUNT0, jb->opnd.count);
+        } else { /* len above MODCP_FB_JOB_MAX */
+            reply_fb_error(fb, MODCP_FB_ERR_AMOUNT, jb->len);
+        }
         return;
     }
     /* a READ is its header alone (LAST); a write's header is LAST exactly when all of
      * its data follows it in the block */
     bool last = (b->flags & MODCP_BLK_LAST) != 0u;
-    if (op == MODCP_JOB_READ ? !last
-                             : last && (uint32_t)b->len != MODCP_BP_JOB_HDR_LEN + jb->len) {
+    if (last ? op != MODCP_JOB_READ && (uint32_t)b->len != MODCP_BP_JOB_HDR_LEN + jb->len
+             : op == MODCP_JOB_READ) {
         reply(fb, MODCP_EV_XFER_STATE, 0, 0); /* data not as announced: execute nothing */
         return;
     }
@@ -259,28 +281,25 @@ static void start_job(modcp_fb_t *fb, const modcp_block_t *b)
         reply_fb_error(fb, MODCP_FB_ERR_AREA, 0);
         return;
     }
-    modcp_event_t ev;
-    switch (op) {
-    case MODCP_JOB_READ:
-        ev = modcp_plcmem_locate(fb->mem, &jb->opnd, jb->len, &fb->job_mem);
-        reply(fb, ev, 0, jb->len);
-        return;
-    case MODCP_JOB_MASKWRITE:
-        if (jb->len != 4u || jb->opnd.count != 2u) {
-            reply_fb_error(fb, MODCP_FB_ERR_AMOUNT, jb->len);
-            return;
-        }
-        ev = modcp_plcmem_locate(fb->mem, &jb->opnd, 2, &fb->job_mem);
-        break;
-    case MODCP_JOB_WRITE:
-        ev = modcp_plcmem_locate(fb->mem, &jb->opnd, jb->len, &fb->job_mem);
-        break;
-    default:
+    modcp_event_t ev = MODCP_EV_NONE;
+    if (op == MODCP_JOB_BITWRITE) {
         if (!check_bitwrite(fb)) {
             return;
         }
-        ev = MODCP_EV_NONE;
-        break;
+    } else {
+        uint32_t n = jb->len;
+        if (op == MODCP_JOB_MASKWRITE) {
+            if (jb->len != 4u || jb->opnd.count != 2u) {
+                reply_fb_error(fb, MODCP_FB_ERR_AMOUNT, jb->len);
+                return;
+            }
+            n = 2u; /* the word the masks apply to */
+        }
+        ev = locate(fb, &jb->opnd, n);
+        if (op == MODCP_JOB_READ) {
+            reply(fb, ev, 0, jb->len); /* the data follows from memory (pump_reply) */
+            return;
+        }
     }
     if (ev != MODCP_EV_NONE) {
         reply(fb, ev, 0, 0);
@@ -323,10 +342,8 @@ static FB_INLINE void exec_data(modcp_fb_t *fb, const uint8_t *d, uint32_t n, bo
     modcp_event_t ev = MODCP_EV_NONE;
     switch (jb->op) {
     case MODCP_JOB_WRITE:
-        if (n <= 4u) { /* a register or two (FC06, FC16): no call for them */
-            for (uint32_t k = 0; k < n; k++) {
-                dst[k] = d[k];
-            }
+        if (n == 2u) { /* one register (FC06, FC16): no call */
+            memcpy(dst, d, 2);
         } else {
             modcp_block_copy(dst, d, n);
         }
@@ -338,11 +355,11 @@ static FB_INLINE void exec_data(modcp_fb_t *fb, const uint8_t *d, uint32_t n, bo
         uint32_t done = (uint32_t)fb->job_pos * 8u;
         if (done < jb->opnd.count) {
             uint32_t k = jb->opnd.count - done;
-            if (jb->opnd.bit == 0u && k >= n * 8u) {
-                modcp_block_copy(dst, d, n); /* whole bytes of the area */
-            } else if (k == 1u) { /* one coil (FC05): bit 0 of the data, start bit <= 7 */
+            if (k == 1u) { /* one coil (FC05): bit 0 of the data, start bit <= 7 */
                 unsigned m = 1u << jb->opnd.bit;
                 dst[0] = (uint8_t)((dst[0] & ~m) | (((unsigned)d[0] << jb->opnd.bit) & m));
+            } else if (jb->opnd.bit == 0u && k >= n * 8u) {
+                modcp_block_copy(dst, d, n); /* whole bytes of the area */
             } else {
                 modcp_bits_put(dst, jb->opnd.bit, k > n * 8u ? n * 8u : k, d);
             }
@@ -406,6 +423,26 @@ static void rx_ack(modcp_fb_t *fb, const modcp_block_t *b)
     }
 }
 
+/* A reply without data (a write's, an error's): its header alone, at once, when the
+ * ring has room; false when it has none. */
+static FB_INLINE bool reply_header(modcp_fb_t *fb)
+{
+    modcp_ring_t *out = &fb->bp->to_cp;
+    uint32_t head = atomic_load_explicit(&out->head, memory_order_relaxed);
+    if (head - atomic_load_explicit(&out->tail, memory_order_acquire) >= MODCP_BP_DEPTH) {
+        return false;
+    }
+    modcp_block_t *rb = &out->slot[head & (MODCP_BP_DEPTH - 1u)];
+    modcp_block_stamp(rb, modcp_block_word(modcp_bp_reply_encode(&fb->reply, rb->data),
+                                           MODCP_BP_REPLY, MODCP_BLK_FIRST | MODCP_BLK_LAST,
+                                           fb->job_tag));
+    rb->seq = fb->tx_seq++;
+    fb->reply_hdr_sent = true;
+    fb->reply_pending = false;
+    atomic_store_explicit(&out->head, head + 1u, memory_order_release);
+    return true;
+}
+
 static void rx_blocks(modcp_fb_t *fb)
 {
     modcp_ring_t *r = &fb->bp->to_cpu;
@@ -413,27 +450,28 @@ static void rx_blocks(modcp_fb_t *fb)
     while (!fb->reply_pending && (b = modcp_ring_peek(r)) != NULL) {
         uint8_t kind = b->kind;
         uint8_t flags = b->flags;
-        bool first = kind == MODCP_BP_JOB && (flags & MODCP_BLK_FIRST) != 0u;
-        bool hdr = first && b->len >= MODCP_BP_JOB_HDR_LEN;
-        if (hdr && (flags & MODCP_BLK_LAST) == 0u && !job_in_ring(fb, b)) {
-            break; /* not all of its blocks in yet */
+        uint8_t len = b->len;
+        if (kind == MODCP_BP_JOB &&
+            (flags & (MODCP_BLK_FIRST | MODCP_BLK_LAST)) == MODCP_BLK_FIRST &&
+            len >= MODCP_BP_JOB_HDR_LEN && !job_in_ring(fb, b)) {
+            break; /* a job header whose blocks are not all in yet */
         }
-        if (fb->rx_synced && b->seq != fb->rx_seq) {
+        if (b->seq != fb->rx_seq && fb->rx_synced) {
             fb->job_active = false; /* a block went missing: nothing more of that job */
         }
         fb->rx_synced = true;
         fb->rx_seq = (uint8_t)(b->seq + 1u);
-        if (b->len > MODCP_BLOCK_SIZE) {
+        if (len > MODCP_BLOCK_SIZE) {
             fb->job_active = false;
-        } else if (first) {
-            fb->job_active = false; /* a new FIRST abandons an unfinished job */
-            if (hdr) {
-                (void)modcp_bp_job_decode(b->data, b->len, &fb->job);
-                fb->job_tag = b->tag;
-                start_job(fb, b);
-            }
         } else if (kind == MODCP_BP_JOB) {
-            if (fb->job_active && b->tag == fb->job_tag) {
+            if ((flags & MODCP_BLK_FIRST) != 0u) {
+                fb->job_active = false; /* a new FIRST abandons an unfinished job */
+                if (len >= MODCP_BP_JOB_HDR_LEN) {
+                    (void)modcp_bp_job_decode(b->data, len, &fb->job);
+                    fb->job_tag = b->tag;
+                    start_job(fb, b);
+                }
+            } else if (fb->job_active && b->tag == fb->job_tag) {
                 rx_data(fb, b);
             }
             /* else: remainder of a job we never saw the start of, or that was answered */
@@ -442,20 +480,8 @@ static void rx_blocks(modcp_fb_t *fb)
         }
         /* PARAMS / INIT / REPLY travel the other way: ignored */
         modcp_ring_release(r);
-        if (fb->reply_pending) {
-            modcp_block_t *rb;
-            if (fb->reply.len == 0u && (rb = modcp_ring_slot(&fb->bp->to_cp)) != NULL) {
-                /* a write's or an error's reply: its header alone, at once */
-                rb->len = modcp_bp_reply_encode(&fb->reply, rb->data);
-                rb->kind = MODCP_BP_REPLY;
-                rb->flags = MODCP_BLK_FIRST | MODCP_BLK_LAST;
-                rb->tag = fb->job_tag;
-                fb->reply_hdr_sent = true;
-                fb->reply_pending = false;
-                modcp_ring_publish(&fb->bp->to_cp, &fb->tx_seq);
-            } else {
-                pump_reply(fb);
-            }
+        if (fb->reply_pending && (fb->reply.len != 0u || !reply_header(fb))) {
+            pump_reply(fb);
         }
     }
 }

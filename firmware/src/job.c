@@ -47,14 +47,19 @@ bool modcp_job_busy(const modcp_job_t *j)
 
 static void push_blocks(modcp_job_t *j);
 
+void modcp_job_configure(modcp_job_t *j, uint16_t limit, uint32_t timeout_us)
+{
+    j->limit = limit;
+    j->timeout_us = timeout_us;
+}
+
 modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const uint8_t *wdata,
-                              uint8_t *rbuf, uint16_t rcap, uint16_t limit, uint32_t timeout_us,
-                              uint32_t now_us)
+                              uint8_t *rbuf, uint16_t rcap, uint32_t now_us)
 {
     if (modcp_job_busy(j)) {
         return MODCP_EV_INTERNAL_SEND;
     }
-    if (hdr->len > limit) {
+    if (hdr->len > j->limit) {
         return MODCP_EV_JOB_LENGTH;
     }
     if (hdr->op == MODCP_JOB_READ) {
@@ -64,7 +69,8 @@ modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const u
     } else if (wdata == NULL && hdr->len > 0u) {
         return MODCP_EV_INTERNAL_SEND; /* nothing to send: the caller's mistake */
     }
-    j->tag = (uint8_t)(j->tag >= 255u ? 1u : j->tag + 1u);
+    uint32_t tag = j->tag + 1u; /* 1 ... 255, then 1 again (0 is no job's) */
+    j->tag = (uint8_t)(tag + (tag >> 8));
     j->hdr = *hdr;
     j->hdr_sent = false;
     j->wdata = wdata;
@@ -72,7 +78,6 @@ modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const u
     j->rbuf = rbuf;
     j->rcap = rbuf != NULL ? rcap : 0u;
     j->t0_us = now_us;
-    j->timeout_us = timeout_us;
     j->state = MODCP_JOBST_SENDING; /* rlen / rexpect: on the REPLY header; event /
                                        error_nr: when the job finishes */
     push_blocks(j); /* the first blocks go out at once */
@@ -97,15 +102,26 @@ void modcp_job_abort(modcp_job_t *j)
     j->state = MODCP_JOBST_IDLE;
 }
 
-/* Stamp the block filled in slot b and hand it to the CPU side. */
-static void send(modcp_job_t *j, modcp_block_t *b, uint8_t len, uint8_t kind, uint8_t flags,
-                 uint8_t tag)
+/* A job crosses as its header block — with the write data after the header when it
+ * fits (up to MODCP_BP_JOB_INLINE bytes: every FC05 / FC06 / FC22, FC15 up to 168
+ * coils, FC16 up to 10 registers) and for every read job: then that one block is the
+ * whole job, flagged FIRST and LAST — and else as many 32-byte data blocks as there are
+ * free slots. Each block is written straight into its slot (the write data: one copy
+ * from the request) and published at once. */
+
+/* Stamp block b, the free slot at the head of the ring towards the CPU side (word:
+ * modcp_block_word), and hand it over. One copy of it when built for size (-Os: the MCU
+ * builds), inlined else. */
+#if defined(__OPTIMIZE_SIZE__) && defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void hand_over(modcp_job_t *j, modcp_block_t *b, uint32_t word)
 {
-    b->len = len;
-    b->kind = kind;
-    b->flags = flags;
-    b->tag = tag;
-    modcp_ring_publish(&j->bp->to_cpu, &j->tx_seq);
+    modcp_ring_t *r = &j->bp->to_cpu;
+    uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
+    modcp_block_stamp(b, word);
+    b->seq = j->tx_seq++;
+    atomic_store_explicit(&r->head, head + 1u, memory_order_release);
 }
 
 bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev)
@@ -116,60 +132,68 @@ bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev)
     }
     b->data[0] = (uint8_t)(ev & 0xFFu);
     b->data[1] = (uint8_t)(ev >> 8);
-    send(j, b, 2, MODCP_BP_INIT_ACK, MODCP_BLK_FIRST | MODCP_BLK_LAST, 0);
+    hand_over(j, b, modcp_block_word(2, MODCP_BP_INIT_ACK, MODCP_BLK_FIRST | MODCP_BLK_LAST, 0));
     return true;
 }
 
-/* Push as many of the job's blocks as there are free slots; each block is written
- * straight into its slot (the write data: one copy from the request) and published at
- * once. A job whose header and write data fit one block (up to MODCP_BP_JOB_INLINE data
- * bytes: every FC05 / FC06 / FC22, FC15 up to 168 coils, FC16 up to 10 registers) and
- * every read job cross as that one block, flagged FIRST and LAST. */
+/* The data blocks of a job whose header is out. */
+static void push_data(modcp_job_t *j)
+{
+    modcp_ring_t *r = &j->bp->to_cpu;
+    modcp_block_t *b;
+    while (j->state == MODCP_JOBST_SENDING && (b = modcp_ring_slot(r)) != NULL) {
+        uint32_t rest = (uint32_t)j->hdr.len - j->wpos;
+        uint32_t n = rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest;
+        uint8_t flags = 0;
+        modcp_block_copy(b->data, j->wdata + j->wpos, n);
+        j->wpos = (uint16_t)(j->wpos + n);
+        if (n == rest) {
+            flags = MODCP_BLK_LAST; /* nothing more to send */
+            j->state = MODCP_JOBST_WAITING;
+        }
+        hand_over(j, b, modcp_block_word(n, MODCP_BP_JOB, flags, j->tag));
+    }
+}
+
+/* The header block, once the ring is empty (see the top of this file), then the data. */
 static void push_blocks(modcp_job_t *j)
 {
     modcp_ring_t *r = &j->bp->to_cpu;
-    uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
     if (!j->hdr_sent) {
+        uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
         if (atomic_load_explicit(&r->tail, memory_order_acquire) != head) {
-            return; /* previous blocks not consumed yet (see the top of this file) */
+            return; /* previous blocks not consumed yet */
         }
         if (atomic_load_explicit(&j->bp->abort_tag, memory_order_acquire) == (uint32_t)j->tag) {
             atomic_store_explicit(&j->bp->abort_tag, JOB_NO_ABORT, memory_order_release);
         }
-    }
-    while (j->state == MODCP_JOBST_SENDING &&
-           head - atomic_load_explicit(&r->tail, memory_order_acquire) < MODCP_BP_DEPTH) {
         modcp_block_t *b = &r->slot[head & (MODCP_BP_DEPTH - 1u)];
-        uint8_t flags = 0;
-        uint32_t n;
-        if (!j->hdr_sent) {
-            n = modcp_bp_job_encode(&j->hdr, b->data);
-            flags = MODCP_BLK_FIRST;
-            j->hdr_sent = true;
-            if (j->hdr.op != MODCP_JOB_READ && j->hdr.len <= MODCP_BP_JOB_INLINE) {
-                uint32_t len = j->hdr.len; /* the data with the header */
-                for (const uint8_t *w = j->wdata; n < MODCP_BP_JOB_HDR_LEN + len; n++) {
-                    b->data[n] = *w++;
+        uint32_t n = modcp_bp_job_encode(&j->hdr, b->data);
+        uint32_t len = j->hdr.len;
+        uint8_t flags = MODCP_BLK_FIRST;
+        j->hdr_sent = true;
+        if (j->hdr.op == MODCP_JOB_READ || len <= MODCP_BP_JOB_INLINE) {
+            if (j->hdr.op != MODCP_JOB_READ) { /* the write data with the header */
+                const uint8_t *w = j->wdata;
+#if !defined(__OPTIMIZE_SIZE__) /* built for speed: a coil or a register without a loop */
+                if (len - 1u < 2u) { /* FC05: 1 byte, FC06: 2 */
+                    b->data[MODCP_BP_JOB_HDR_LEN] = w[0];
+                    b->data[MODCP_BP_JOB_HDR_LEN + 1u] = w[len - 1u];
+                    n += len;
+                } else
+#endif
+                {
+                    for (; n < MODCP_BP_JOB_HDR_LEN + len; n++) {
+                        b->data[n] = *w++;
+                    }
                 }
-                j->wpos = (uint16_t)len;
             }
-        } else {
-            uint32_t rest = (uint32_t)j->hdr.len - j->wpos;
-            n = rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest;
-            modcp_block_copy(b->data, j->wdata + j->wpos, n);
-            j->wpos = (uint16_t)(j->wpos + n);
-        }
-        if (j->hdr.op == MODCP_JOB_READ || j->wpos >= j->hdr.len) {
-            flags |= MODCP_BLK_LAST; /* nothing (more) to send */
+            flags = MODCP_BLK_FIRST | MODCP_BLK_LAST; /* the whole job */
             j->state = MODCP_JOBST_WAITING;
         }
-        b->len = (uint8_t)n;
-        b->kind = MODCP_BP_JOB;
-        b->flags = flags;
-        b->tag = j->tag;
-        b->seq = j->tx_seq++;
-        atomic_store_explicit(&r->head, ++head, memory_order_release); /* hand it over */
+        hand_over(j, b, modcp_block_word(n, MODCP_BP_JOB, flags, j->tag));
     }
+    push_data(j);
 }
 
 static modcp_jobp_t finish(modcp_job_t *j, modcp_event_t ev, uint16_t error_nr)
@@ -259,22 +283,22 @@ static modcp_jobp_t rx_params(modcp_job_t *j, const modcp_block_t *b)
 
 static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b)
 {
-    if (!j->rx_synced) {
-        j->rx_synced = true;
-    } else if (b->seq != j->rx_seq) {
+    if (b->seq != j->rx_seq && j->rx_synced) { /* (the first block seen syncs) */
         j->proto_errors++;
         if (j->msgkind != 0u) {
             j->msg_overflow = true; /* a message lost a block: report it empty */
         }
     }
+    j->rx_synced = true;
     j->rx_seq = (uint8_t)(b->seq + 1u);
     if (b->len > MODCP_BLOCK_SIZE) {
         j->proto_errors++;
         return MODCP_JOBP_NOTHING;
     }
-    switch (b->kind) {
-    case MODCP_BP_REPLY:
+    if (b->kind == MODCP_BP_REPLY) { /* the common one: first */
         return rx_reply(j, b);
+    }
+    switch (b->kind) {
     case MODCP_BP_PARAMS:
         return rx_params(j, b);
     case MODCP_BP_INIT:

@@ -6,13 +6,15 @@
 #include "modcp/job.h"
 
 void modcp_job_init(modcp_job_t *j, modcp_backplane_t *bp, uint8_t *msgbuf, uint16_t msgcap);
+/* The CPU transfer limit in bytes and the CPU side's time to answer, for every job
+ * from now on (the CP's parameters: set when they are taken). */
+void modcp_job_configure(modcp_job_t *j, uint16_t limit, uint32_t timeout_us);
 /* Start a job and push its first blocks at once. hdr->len bytes of wdata are sent for
  * WRITE / BITWRITE; for READ, hdr->len bytes are expected back into rbuf (rcap >=
- * hdr->len). limit is the CPU transfer limit in bytes. Returns MODCP_EV_JOB_LENGTH when
- * hdr->len > limit, MODCP_EV_INTERNAL_SEND if a job is already running; else NONE. */
+ * hdr->len). Returns MODCP_EV_JOB_LENGTH when hdr->len is above the limit
+ * (modcp_job_configure), MODCP_EV_INTERNAL_SEND if a job is already running; else NONE. */
 modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const uint8_t *wdata,
-                              uint8_t *rbuf, uint16_t rcap, uint16_t limit, uint32_t timeout_us,
-                              uint32_t now_us);
+                              uint8_t *rbuf, uint16_t rcap, uint32_t now_us);
 /* Move blocks; detect completion and timeout ((0E)31H for READ/WRITE, (0E)3BH for
  * BITWRITE; the job's tag is then written to abort_tag). */
 modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us);

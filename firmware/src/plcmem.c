@@ -9,46 +9,9 @@
 #include <string.h>
 #include "plcmem_internal.h"
 
-#if defined(__GNUC__)
-#define PLCMEM_INLINE inline __attribute__((always_inline))
-#else
-#define PLCMEM_INLINE inline
-#endif
-
-/* The DB lookup, inlined into byte_area (every DB job) and behind modcp_plcmem_db. */
-static PLCMEM_INLINE modcp_db_t *find_db(const modcp_plcmem_t *mem, uint16_t number)
-{
-    if (mem->dbs == NULL) {
-        return NULL;
-    }
-    if (mem->db_count <= 4u) { /* a few DBs: in order, no halving */
-        for (uint32_t k = 0; k < mem->db_count; k++) {
-            if (mem->dbs[k].number == number) {
-                return &mem->dbs[k];
-            }
-        }
-        return NULL;
-    }
-    uint32_t lo = 0;
-    uint32_t hi = mem->db_count; /* search [lo, hi) */
-    while (lo < hi) {
-        uint32_t mid = lo + (hi - lo) / 2u;
-        uint16_t n = mem->dbs[mid].number;
-        if (n == number) {
-            return &mem->dbs[mid];
-        }
-        if (n < number) {
-            lo = mid + 1u;
-        } else {
-            hi = mid;
-        }
-    }
-    return NULL;
-}
-
 modcp_db_t *modcp_plcmem_db(const modcp_plcmem_t *mem, uint16_t number)
 {
-    return find_db(mem, number);
+    return modcp_plcmem_find_db(mem, number);
 }
 
 void modcp_plcmem_areas(const modcp_plcmem_t *mem, modcp_areas_t *out)
@@ -59,47 +22,6 @@ void modcp_plcmem_areas(const modcp_plcmem_t *mem, modcp_areas_t *out)
     out->timers = mem->t_count;
     out->counters = mem->c_count;
     out->work_db = 0;
-}
-
-/* The byte storage of an I / Q / M / DB operand covering [offset, offset + len), or
- * NULL with *ev set. */
-static PLCMEM_INLINE uint8_t *byte_area(const modcp_plcmem_t *mem, const modcp_operand_t *op,
-                                        uint32_t len, modcp_event_t *ev)
-{
-    uint8_t *base = NULL;
-    uint32_t size = 0;
-    modcp_event_t err = MODCP_EV_AREA_ACCESS;
-    switch (op->area) {
-    case MODCP_AREA_I:
-        base = mem->i;
-        size = mem->i_size;
-        break;
-    case MODCP_AREA_Q:
-        base = mem->q;
-        size = mem->q_size;
-        break;
-    case MODCP_AREA_M:
-        base = mem->m;
-        size = mem->m_size;
-        break;
-    case MODCP_AREA_DB: {
-        const modcp_db_t *db = find_db(mem, op->db);
-        err = MODCP_EV_DB_ACCESS;
-        if (db != NULL) {
-            base = db->data;
-            size = db->size;
-        }
-        break;
-    }
-    default:
-        break;
-    }
-    if (base == NULL || (uint32_t)op->offset + len > size) {
-        *ev = err;
-        return NULL;
-    }
-    *ev = MODCP_EV_NONE;
-    return base + op->offset;
 }
 
 /* The element storage of a T / C operand covering n elements, or NULL. */
@@ -144,7 +66,7 @@ modcp_event_t modcp_plcmem_read(const modcp_plcmem_t *mem, const modcp_operand_t
         return MODCP_EV_NONE;
     }
     modcp_event_t ev;
-    const uint8_t *src = byte_area(mem, op, len, &ev);
+    const uint8_t *src = modcp_plcmem_byte_area(mem, op, len, &ev);
     if (src == NULL) {
         return ev;
     }
@@ -172,7 +94,7 @@ modcp_event_t modcp_plcmem_write(modcp_plcmem_t *mem, const modcp_operand_t *op,
         return MODCP_EV_NONE;
     }
     modcp_event_t ev;
-    uint8_t *dst = byte_area(mem, op, len, &ev);
+    uint8_t *dst = modcp_plcmem_byte_area(mem, op, len, &ev);
     if (dst == NULL) {
         return ev;
     }
@@ -192,7 +114,7 @@ modcp_event_t modcp_plcmem_locate(const modcp_plcmem_t *mem, const modcp_operand
                    : MODCP_EV_AREA_ACCESS;
     }
     modcp_event_t ev;
-    *bytes = byte_area(mem, op, len, &ev);
+    *bytes = modcp_plcmem_byte_area(mem, op, len, &ev);
     return ev;
 }
 
@@ -210,7 +132,7 @@ modcp_event_t modcp_plcmem_locate_bits(const modcp_plcmem_t *mem, const modcp_op
         return MODCP_EV_AREA_ACCESS; /* T / C are words, never bit-written */
     }
     modcp_event_t ev;
-    *bytes = byte_area(mem, op, bit_span(op), &ev);
+    *bytes = modcp_plcmem_byte_area(mem, op, bit_span(op), &ev);
     return ev;
 }
 

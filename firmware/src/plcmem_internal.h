@@ -3,7 +3,91 @@
 #ifndef MODCP_PLCMEM_INTERNAL_H
 #define MODCP_PLCMEM_INTERNAL_H
 
+#include <stddef.h>
+
 #include "modcp/plcmem.h"
+
+#if defined(__GNUC__)
+#define PLCMEM_INLINE inline __attribute__((always_inline))
+#else
+#define PLCMEM_INLINE inline
+#endif
+
+/* The DB lookup, inlined into modcp_plcmem_byte_area (every DB job) and behind
+ * modcp_plcmem_db. */
+static PLCMEM_INLINE modcp_db_t *modcp_plcmem_find_db(const modcp_plcmem_t *mem,
+                                                      uint16_t number)
+{
+    if (mem->dbs == NULL) {
+        return NULL;
+    }
+    if (mem->db_count <= 4u) { /* a few DBs: in order, no halving */
+        for (uint32_t k = 0; k < mem->db_count; k++) {
+            if (mem->dbs[k].number == number) {
+                return &mem->dbs[k];
+            }
+        }
+        return NULL;
+    }
+    uint32_t lo = 0;
+    uint32_t hi = mem->db_count; /* search [lo, hi) */
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2u;
+        uint16_t n = mem->dbs[mid].number;
+        if (n == number) {
+            return &mem->dbs[mid];
+        }
+        if (n < number) {
+            lo = mid + 1u;
+        } else {
+            hi = mid;
+        }
+    }
+    return NULL;
+}
+
+/* The byte storage of an I / Q / M / DB operand covering [offset, offset + len), or
+ * NULL with *ev set. Inline: the FB locates every job's bytes with it (fb.c), plcmem.c
+ * every access. */
+static PLCMEM_INLINE uint8_t *modcp_plcmem_byte_area(const modcp_plcmem_t *mem,
+                                                     const modcp_operand_t *op, uint32_t len,
+                                                     modcp_event_t *ev)
+{
+    uint8_t *base = NULL;
+    uint32_t size = 0;
+    modcp_event_t err = MODCP_EV_AREA_ACCESS;
+    switch (op->area) {
+    case MODCP_AREA_I:
+        base = mem->i;
+        size = mem->i_size;
+        break;
+    case MODCP_AREA_Q:
+        base = mem->q;
+        size = mem->q_size;
+        break;
+    case MODCP_AREA_M:
+        base = mem->m;
+        size = mem->m_size;
+        break;
+    case MODCP_AREA_DB: {
+        const modcp_db_t *db = modcp_plcmem_find_db(mem, op->db);
+        err = MODCP_EV_DB_ACCESS;
+        if (db != NULL) {
+            base = db->data;
+            size = db->size;
+        }
+        break;
+    }
+    default:
+        break;
+    }
+    if (base == NULL || (uint32_t)op->offset + len > size) {
+        *ev = err;
+        return NULL;
+    }
+    *ev = MODCP_EV_NONE;
+    return base + op->offset;
+}
 
 /* Area sizes as the CPU side reports them at init (work_db left 0). */
 void modcp_plcmem_areas(const modcp_plcmem_t *mem, modcp_areas_t *out);

@@ -315,7 +315,7 @@ static void test_exception_04_not_initialised(void **state)
         w->now_us += 1000;
     }
     assert_true(w->cp.configured);
-    assert_false(w->cp.fb_ready);
+    assert_false(w->cp.env.fb_ready);
     w->fb_paused = true;
     uint8_t fc03[] = {5, 0x03, 0x00, 0x50, 0x00, 0x02};
     expect_exception(w, fc03, sizeof fc03, 4, MODCP_EV_FB_NOT_RUNNING);
@@ -662,7 +662,7 @@ static void test_shared_record_during_reply(void **state)
     push_rest(w, &k);
     assert_true(w->cp.configured); /* the record was taken */
     assert_int_equal(w->cp.param_event, MODCP_EV_NONE);
-    assert_false(w->cp.fb_ready);  /* and waits for the FB's INIT */
+    assert_false(w->cp.env.fb_ready);  /* and waits for the FB's INIT */
     assert_int_equal(w->fake.tx_count, sent + 1);
     restart(w);
     expect_reply(w, "05 08 00 00 A5 C3 DA 8E", "05 08 00 00 A5 C3 DA 8E");

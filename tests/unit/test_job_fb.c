@@ -128,8 +128,8 @@ static modcp_event_t start(fx_t *f, uint8_t op, uint8_t area, uint16_t db, uint1
     modcp_bp_job_t h = {.op = op,
                         .opnd = {.area = area, .bit = bit, .db = db, .offset = offset, .count = count},
                         .len = len};
-    return modcp_job_start(&f->job, &h, f->wbuf, f->rbuf, sizeof f->rbuf, limit, TIMEOUT_US,
-                           f->now_us);
+    modcp_job_configure(&f->job, limit, TIMEOUT_US);
+    return modcp_job_start(&f->job, &h, f->wbuf, f->rbuf, sizeof f->rbuf, f->now_us);
 }
 
 /* ---- initialisation (004 §4.2) ------------------------------------------------------ */
@@ -461,7 +461,8 @@ static void test_job_limit_450(void **state)
     assert_false(modcp_job_busy(&f->job));
     /* a read that does not fit the caller's buffer */
     modcp_bp_job_t h = {.op = MODCP_JOB_READ, .opnd = {.area = MODCP_AREA_DB, .db = 800, .count = 8}, .len = 8};
-    assert_int_equal(modcp_job_start(&f->job, &h, NULL, f->rbuf, 7, 450, TIMEOUT_US, f->now_us),
+    modcp_job_configure(&f->job, 450, TIMEOUT_US);
+    assert_int_equal(modcp_job_start(&f->job, &h, NULL, f->rbuf, 7, f->now_us),
                      MODCP_EV_JOB_LENGTH);
     /* 450 is fine */
     memset(f->wbuf, 0x3C, 450);

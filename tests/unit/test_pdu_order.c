@@ -26,7 +26,7 @@ static world_t *not_initialised(modcp_fset_t fset)
         w->now_us += 1000;
     }
     assert_true(w->cp.configured);
-    assert_false(w->cp.fb_ready);
+    assert_false(w->cp.env.fb_ready);
     w->fb_paused = true;
     return w;
 }

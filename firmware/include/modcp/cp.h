@@ -36,23 +36,25 @@
 #endif
 
 typedef struct modcp_cp {
-    const modcp_hal_t *hal;
-    modcp_backplane_t *bp;
+    modcp_backplane_t *bp; /* (the HAL is kept by the link, the LEDs and the signals) */
     modcp_params_t params;
     bool configured;   /* valid PARAMS applied */
-    bool fb_ready;     /* INIT received and acknowledged */
     uint16_t record_crc;
     modcp_event_t param_event; /* first fatal parameter event, NONE if configured */
     modcp_areas_t areas;
     modcp_diag_t diag;
     modcp_link_t link;
     modcp_pdu_t pdu;
+    /* what the PDU engine works with, set up once (cp_init): the parameters, areas,
+     * diagnostics and extended state, and env.fb_ready: INIT received and acknowledged
+     * (stored here only) */
+    modcp_pdu_env_t env;
     modcp_job_t job;
     modcp_frame_t frame; /* request being processed */
     bool request_pending; /* a request waits for its job */
     bool ack_pending;     /* an INIT_ACK could not be sent yet */
     bool published;       /* the status area shows the CP's state (cp.c publish()) */
-    bool publish_all;     /* ... and its rarely changing parts are to be rewritten too */
+    bool publish_all;     /* ... and the RS232 signals are to be rewritten too */
     uint32_t err_mark_us; /* link.last_us after the last line error: when it moves on, a
                              character was received (the end of a wire break) */
     modcp_event_t ack_event;

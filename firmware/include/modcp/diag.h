@@ -34,19 +34,21 @@ typedef enum {
     MODCP_CNT_COUNT
 } modcp_counter_t;
 
+/* From events_total to buffer_len the fields are in the order of the CP status area
+ * (modcp/backplane.h): cp.c publishes them as one copy (static asserts in cp.c). */
 typedef struct {
-    modcp_event_t buffer[MODCP_DIAG_BUFFER]; /* newest first */
-    uint8_t buffer_len;
-    modcp_event_t systat[MODCP_SYSTAT_EVENTS];
-    uint8_t systat_len;
-    uint8_t systat_flags; /* MODCP_SYSTAT_F | U | B */
-    uint16_t status;      /* last event as STATUS word */
-    uint16_t counters[MODCP_CNT_COUNT];
     uint32_t events_total;
+    uint16_t counters[MODCP_CNT_COUNT];
     uint16_t frames_too_long;
     uint16_t char_errors;
     uint16_t breaks;
     uint16_t t15_discards;
+    uint16_t status;      /* last event as STATUS word */
+    modcp_event_t buffer[MODCP_DIAG_BUFFER]; /* newest first */
+    uint8_t buffer_len;
+    uint8_t systat_len;
+    uint8_t systat_flags; /* MODCP_SYSTAT_F | U | B */
+    modcp_event_t systat[MODCP_SYSTAT_EVENTS];
 #if MODCP_WITH_EXTENDED
     modcp_comm_t comm; /* FC11 / FC12 event counter and log, listen-only (commlog.h) */
 #endif

@@ -48,8 +48,9 @@ typedef struct {
     uint16_t rcap;
     uint16_t rlen;      /* read data received so far / in total */
     uint16_t rexpect;   /* data bytes announced by the REPLY header */
+    uint16_t limit;     /* CPU transfer limit in bytes (modcp_job_configure) */
     uint32_t t0_us;
-    uint32_t timeout_us;
+    uint32_t timeout_us; /* the CPU side's time to answer a job (modcp_job_configure) */
     modcp_event_t event; /* result of the last finished job */
     uint16_t error_nr;   /* FB ERROR_NR for (0E)57H */
     /* incoming PARAMS / INIT */

@@ -32,7 +32,7 @@ typedef struct {
     const modcp_hal_t *hal;
     bool on[MODCP_LED_COUNT];       /* levels as last set, indexed by modcp_led_t */
     uint8_t bits;                   /* the same levels as bits (1 << modcp_led_t) */
-    uint32_t on_us[MODCP_LED_COUNT]; /* when TXD / RXD went on */
+    uint32_t on_us[MODCP_LED_COUNT - 1u]; /* when TXD / RXD (index led - 1) went on */
     uint32_t quiet_us;  /* silence that ends a received frame */
     uint32_t rx_seen_us; /* the link's last_us at the last poll */
     uint16_t tx_seen;    /* the link's tx_starts at the last poll */
