@@ -228,25 +228,13 @@ static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
     const uint32_t c = l->char_us;
     const uint8_t *const e = b + n;
     uint32_t t = end_us - (uint32_t)(n - 1u) * c; /* end of the character at b */
-    if (l->state == MODCP_LINK_IDLE) {
-        if (*b == l->own_addr || *b == 0u) {
-            /* frame_start() of our frame, its first character left to the run below
-             * (a store and a CRC step from the initial value: the same effect) */
-            l->fr.rtu.count = 1;
-            l->fr.rtu.crc = MODCP_CRC_INIT;
-            l->rx_bad = false;
-            l->rx_overflow = false;
-            l->len = 0;
-            l->state = MODCP_LINK_RX;
-            link_arm(l, l->t35_us);
-        }
-    } else if (l->t15_us != 0u && l->state == MODCP_LINK_RX && t - l->last_us > l->t15_us + c) {
+    if (l->t15_us != 0u && l->state == MODCP_LINK_RX && t - l->last_us > l->t15_us + c) {
         t15_violated(l, *b++, t);
         t += c;
     }
     while (b < e) {
         if (l->state != MODCP_LINK_RX || l->len >= l->cap) {
-            byte_other(l, *b++, t); /* a frame's start included: frame_start() */
+            byte_other(l, *b++, t); /* a frame's start included */
             t += c;
             continue;
         }
