@@ -43,10 +43,8 @@ typedef struct modcp_framing_ops {
     void (*on_block)(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us);
 } modcp_framing_ops_t;
 
-extern const modcp_framing_ops_t modcp_rtu_ops;   /* rtu.c */
-/* RTU in interference suppression = modem mode, without / with the t1.5 check */
-extern const modcp_framing_ops_t modcp_rtu_modem_ops;     /* rtu_modem.c */
-extern const modcp_framing_ops_t modcp_rtu_modem_t15_ops; /* rtu_modem.c */
+/* RTU (rtu.c), normal operation and interference suppression = modem mode alike */
+extern const modcp_framing_ops_t modcp_rtu_ops;
 #if MODCP_WITH_ASCII
 extern const modcp_framing_ops_t modcp_ascii_ops; /* ascii.c */
 #endif
@@ -129,6 +127,7 @@ void rtu_m_stretch_end(modcp_link_t *l);                               /* t3.5 p
 void rtu_m_push(modcp_link_t *l, uint8_t b);   /* a character of the stretch / candidate */
 void rtu_m_cand_bad(modcp_link_t *l);          /* a line error in the candidate */
 void rtu_m_t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us);
+bool rtu_m_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f); /* ops on_timer */
 uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len);
 
 /* Moved from modcp/link.h: the core's own interface. */

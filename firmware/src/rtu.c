@@ -233,14 +233,15 @@ static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
         t += c;
     }
     while (b < e) {
-        if (l->state != MODCP_LINK_RX || l->len >= l->cap) {
+        const uint16_t stop = l->fr.rtu.stop;
+        if (l->state != MODCP_LINK_RX || l->len >= stop) {
             byte_other(l, *b++, t); /* a frame's start included */
             t += c;
             continue;
         }
         unsigned m = (unsigned)(e - b); /* a run of our frame: as many as fit */
-        if (m > (unsigned)(l->cap - l->len)) {
-            m = (unsigned)(l->cap - l->len);
+        if (m > (unsigned)(stop - l->len)) {
+            m = (unsigned)(stop - l->len);
         }
         uint8_t *d = &l->buf[l->len];
         uint16_t crc = l->fr.rtu.crc;
@@ -346,7 +347,9 @@ bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f)
 /* t3.5 has passed since the last character of the frame (link.c checked it). */
 static bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
-    (void)now_us;
+    if (l->modem) {
+        return rtu_m_on_timer(l, now_us, f);
+    }
     if (l->state != MODCP_LINK_RX) {
         if (l->state == MODCP_LINK_SKIP) {
             skip_end(l);
@@ -386,8 +389,8 @@ uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
 
 static const modcp_framing_ops_t rtu_t15_ops;
 
-/* The variant: normal operation or interference suppression (modem mode, the operating
- * mode parameter), each with and without the t1.5 check. */
+/* Normal operation or interference suppression (modem mode, the operating mode
+ * parameter: l->modem, one ops table for both); the variant is the t1.5 check. */
 const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
 {
     l->silence_us = l->t35_us;
@@ -395,9 +398,6 @@ const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *
     l->modem = p->opmode == (uint8_t)MODCP_OPMODE_SUPPRESS;
     if (l->cap < RTU_MIN_FRAME) {
         return NULL;
-    }
-    if (l->modem) {
-        return l->t15_us != 0u ? &modcp_rtu_modem_t15_ops : &modcp_rtu_modem_ops;
     }
     return l->t15_us != 0u ? &rtu_t15_ops : &modcp_rtu_ops;
 }

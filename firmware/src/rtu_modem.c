@@ -1,8 +1,9 @@
 /* modcp — RTU framing in interference suppression = modem mode (000 §5.6.1, §8;
- * 004 §2.2): the variant of the RTU backend (rtu.c) that modcp_link_configure selects
- * for the operating mode `suppression` (l->modem). It shares rtu.c's receive automaton
- * and hot path (a character below r->stop: a store and a CRC step); rtu.c calls the
- * rtu_m_* hooks below where modem mode differs, and its end of frame is rtu_m_on_timer.
+ * 004 §2.2): the part of the RTU backend (rtu.c, modcp_rtu_ops) that runs for the
+ * operating mode `suppression` (l->modem, set by rtu_configure). It shares rtu.c's ops
+ * table, receive automaton, block path and hot path (a character below r->stop: a store
+ * and a CRC step); rtu.c calls the rtu_m_* hooks below where modem mode differs, its end
+ * of frame included (rtu_m_on_timer, from rtu_on_timer).
  *
  * "The start of a message is recognised by a correctly received slave address"; "the
  * end of the message by a formally correct message with a correct CRC". The line is
@@ -285,7 +286,7 @@ void rtu_m_t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
 }
 
 /* EOF: hand the frame over. RX / SKIP: t3.5 has passed since the last character. */
-static bool rtu_m_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
+bool rtu_m_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
     (void)now_us;
     modcp_rtu_t *r = &l->fr.rtu;
@@ -310,11 +311,3 @@ static bool rtu_m_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
     }
     return false;
 }
-
-/* The receive automaton (rtu_on_byte, rtu_on_byte_t15, rtu_on_error) is normal
- * operation's (rtu.c): where modem mode differs, it comes here by l->modem. */
-const modcp_framing_ops_t modcp_rtu_modem_ops = {rtu_configure, rtu_on_byte, rtu_on_error,
-                                                 rtu_m_on_timer, rtu_encode, NULL};
-const modcp_framing_ops_t modcp_rtu_modem_t15_ops = {rtu_configure, rtu_on_byte_t15,
-                                                     rtu_on_error, rtu_m_on_timer,
-                                                     rtu_encode, NULL};
