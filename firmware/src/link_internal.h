@@ -106,7 +106,18 @@ void link_frame_too_long(modcp_link_t *l);
 
 /* ---- shared by the RTU variants (rtu.c, rtu_modem.c) ---- */
 #define RTU_MIN_FRAME 4u /* address, function, CRC */
+/* modcp_rtu_t.flags (modem mode) */
+#define RTU_M_LEAD 0x01u  /* the stretch began with our address or 0 */
+#define RTU_M_FIRST 0x02u /* the candidate is the stretch's first character */
+#define RTU_M_OPEN 0x04u  /* a wrong CRC at the length: continue to t3.5 (FC08, FC43) */
+#define RTU_M_SBAD 0x08u  /* the stretch around the candidate had a line error */
 void rtu_count_char(modcp_rtu_t *r);
+/* A character of the stretch that is not part of our frame (bus counters only). */
+void rtu_fold(modcp_link_t *l, uint8_t b);
+/* Our address (or 0) starts our frame (modem mode: a candidate) at buf[0]. */
+void rtu_cand_start(modcp_link_t *l, uint8_t b);
+/* t3.5 after a frame followed in SKIP (modem mode: a stretch without a frame). */
+void rtu_stretch_end(modcp_link_t *l);
 /* A character (or line error) while a request is processed or its reply pending. */
 void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us);
 /* A state RTU never uses: (0E)11H, back to idle. */
@@ -122,8 +133,6 @@ void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
 void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us);
 void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
 /* Modem mode's part of that automaton (rtu_modem.c). */
-void rtu_m_stretch_begin(modcp_link_t *l, uint8_t b, uint32_t now_us); /* after t3.5 */
-void rtu_m_stretch_end(modcp_link_t *l);                               /* t3.5 passed */
 void rtu_m_push(modcp_link_t *l, uint8_t b);   /* a character of the stretch / candidate */
 void rtu_m_cand_bad(modcp_link_t *l);          /* a line error in the candidate */
 void rtu_m_t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us);

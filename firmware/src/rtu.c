@@ -57,43 +57,81 @@ void rtu_count_char(modcp_rtu_t *r)
     }
 }
 
-/* A frame starts with b (or with a line error in place of the first character): the
- * end-of-frame timer is armed here, once per frame. */
-static void frame_start(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
+/* A character of the stretch that is not (or no longer) part of our frame (modem
+ * mode: of a candidate): only for the bus counters. */
+void rtu_fold(modcp_link_t *l, uint8_t b)
 {
     modcp_rtu_t *r = &l->fr.rtu;
-    r->count = 1;
+    r->skip_crc = modcp_crc16_byte(r->skip_crc, b);
+    rtu_count_char(r);
+}
+
+/* Our address (or 0) starts our frame (modem mode: a candidate) at buf[0]. */
+MODCP_NOINLINE void rtu_cand_start(modcp_link_t *l, uint8_t b)
+{
+    modcp_rtu_t *r = &l->fr.rtu;
+    r->flags = (uint8_t)((r->flags & ~RTU_M_SBAD) | (l->rx_bad ? RTU_M_SBAD : 0u));
     l->rx_bad = false;
-    if (error) {
-        link_mark_bad(l);
+    l->rx_overflow = false;
+    l->buf[0] = b; /* configured: cap >= RTU_MIN_FRAME */
+    l->len = 1;
+    r->crc = modcp_crc16_byte(MODCP_CRC_INIT, b);
+    r->stop = l->cap; /* normal operation: the hot path runs up to the capacity */
+    if (l->modem) {
+        r->stop = 1; /* the function code is looked at */
+        r->total = 0;
+        r->bc = 0;
     }
+    l->state = MODCP_LINK_RX;
+}
+
+/* A frame (modem mode: a stretch) starts after t3.5 with b, or with a line error in
+ * place of the first character (normal operation only): the end-of-frame timer is
+ * armed here, once per frame. */
+static MODCP_NOINLINE void frame_start(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
+{
+    modcp_rtu_t *r = &l->fr.rtu;
+    r->skip_crc = MODCP_CRC_INIT;
+    r->count = 0;
+    r->flags = 0;
+    l->rx_bad = false;
     l->rx_overflow = false;
     l->len = 0;
     l->last_us = now_us;
-    if (error) {
-        r->crc = MODCP_CRC_INIT;
-        l->state = MODCP_LINK_SKIP;
-    } else {
-        r->crc = modcp_crc16_byte(MODCP_CRC_INIT, b);
-        if (b == l->own_addr || b == 0u) {
-            l->buf[0] = b; /* configured: cap >= RTU_MIN_FRAME */
-            l->len = 1;
-            l->state = MODCP_LINK_RX;
-        } else {
-            l->state = MODCP_LINK_SKIP; /* not checked, not answered */
-        }
-    }
+    l->state = MODCP_LINK_SKIP; /* not ours: not checked, not answered */
     link_arm(l, l->t35_us);
+    if (error) {
+        link_mark_bad(l);
+        rtu_count_char(r);
+    } else if (b == l->own_addr || b == 0u) {
+        rtu_cand_start(l, b);
+        if (l->modem) {
+            r->flags = RTU_M_LEAD | RTU_M_FIRST;
+        }
+    } else {
+        rtu_fold(l, b);
+    }
 }
 
-/* End of a frame for another address: only the serial-line bus counters. */
-static void skip_end(modcp_link_t *l)
+/* t3.5 after a frame we followed in SKIP (modem mode: a stretch without a frame): only
+ * the serial-line bus counters (modem mode: other stretches than another slave's frame
+ * are not counted, one that began with our address reports (08)36H as normal operation
+ * does for its frame). */
+void rtu_stretch_end(modcp_link_t *l)
 {
     const modcp_rtu_t *r = &l->fr.rtu;
-    if (!l->rx_bad) {
-        link_count(l, (r->count >= RTU_MIN_FRAME && r->crc == 0u) ? MODCP_CNT_BUS_MSG : MODCP_CNT_BUS_CRC);
-    }
     l->state = MODCP_LINK_IDLE;
+    if (l->rx_bad) {
+        return; /* damaged: counted once already (modem mode: if a candidate was) */
+    }
+    if (r->count >= RTU_MIN_FRAME && r->skip_crc == 0u) {
+        link_count(l, MODCP_CNT_BUS_MSG);
+    } else if (!l->modem || (r->flags & RTU_M_LEAD) != 0u) {
+        if ((r->flags & RTU_M_LEAD) != 0u) {
+            link_event(l, MODCP_EV_CRC);
+        }
+        link_count(l, MODCP_CNT_BUS_CRC);
+    }
 }
 
 /* Default branch of the receive automaton (a state RTU never uses, i.e. corrupted):
@@ -126,7 +164,6 @@ void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
  * out of line so the hot path stays a leaf. */
 static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
-    modcp_rtu_t *r = &l->fr.rtu;
     switch (l->state) {
     case MODCP_LINK_SKIP:
         if (now_us - l->last_us < l->t35_us) {
@@ -134,16 +171,11 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
             if (l->modem) {
                 rtu_m_push(l, b);
             } else {
-                rtu_count_char(r);
-                r->crc = modcp_crc16_byte(r->crc, b);
+                rtu_fold(l, b);
             }
             break;
         }
-        if (l->modem) {
-            rtu_m_stretch_end(l);
-        } else {
-            skip_end(l);
-        }
+        rtu_stretch_end(l);
         goto start; /* the skipped frame ended: b starts a new one */
     case MODCP_LINK_RX: /* normal: the buffer is full, the frame is too long; modem mode:
                            function code, byte count, last character, or a full buffer */
@@ -165,11 +197,7 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
             rtu_internal_error(l);
         }
     start:
-        if (l->modem) {
-            rtu_m_stretch_begin(l, b, now_us);
-        } else {
-            frame_start(l, b, false, now_us);
-        }
+        frame_start(l, b, false, now_us);
         break;
     }
 }
@@ -273,12 +301,6 @@ void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
     (void)line_errors; /* every kind of error has the same effect on framing */
     modcp_rtu_t *r = &l->fr.rtu;
     switch (l->state) {
-    case MODCP_LINK_IDLE:
-        if (l->suppress) {
-            break; /* between messages: ignored, a frame starts only with a good character */
-        }
-        frame_start(l, 0, true, now_us);
-        break;
     case MODCP_LINK_RX:
         if (l->modem) {
             rtu_m_cand_bad(l);
@@ -291,24 +313,22 @@ void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
         l->last_us = now_us;
         break;
     case MODCP_LINK_SKIP:
-        if (now_us - l->last_us >= l->t35_us) {
+        if (now_us - l->last_us < l->t35_us) {
             if (l->modem) {
-                rtu_m_stretch_end(l); /* a new stretch would begin: ignored as on an idle line */
+                l->rx_bad = true; /* among stray characters / another frame: not counted */
             } else {
-                skip_end(l);
+                link_mark_bad(l);
+                rtu_count_char(r);
             }
-            if (!l->suppress) {
-                frame_start(l, 0, true, now_us);
-            }
+            l->last_us = now_us;
             break;
         }
-        if (l->modem) {
-            l->rx_bad = true; /* among stray characters / another frame: not counted */
-        } else {
-            link_mark_bad(l);
-            rtu_count_char(r);
+        rtu_stretch_end(l); /* modem mode: a new stretch would begin, ignored as on an idle line */
+        /* fall through */
+    case MODCP_LINK_IDLE:
+        if (!l->suppress) { /* else between messages: ignored, a frame starts only with a good character */
+            frame_start(l, 0, true, now_us);
         }
-        l->last_us = now_us;
         break;
     case MODCP_LINK_EOF:
     case MODCP_LINK_BUSY:
@@ -352,7 +372,7 @@ static bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
     }
     if (l->state != MODCP_LINK_RX) {
         if (l->state == MODCP_LINK_SKIP) {
-            skip_end(l);
+            rtu_stretch_end(l);
         }
         return false; /* else a stale or spurious expiry */
     }

@@ -40,11 +40,6 @@
 #include "link_internal.h"
 #include "crc_internal.h"
 
-#define RTU_M_LEAD 0x01u  /* the stretch began with our address or 0 */
-#define RTU_M_FIRST 0x02u /* the candidate is the stretch's first character */
-#define RTU_M_OPEN 0x04u  /* a wrong CRC at the length: continue to t3.5 (FC08, FC43) */
-#define RTU_M_SBAD 0x08u  /* the stretch around the candidate had a line error */
-
 enum { M_CONT, M_FAIL, M_DONE };
 
 #define RQ_BC 0x80u   /* length by the byte count at index (code & 0x1F) */
@@ -73,36 +68,13 @@ static bool m_addr(const modcp_link_t *l, uint8_t b)
     return b == l->own_addr || b == 0u;
 }
 
-/* A character of the stretch that is not (or no longer) part of a candidate. */
-static void m_fold(modcp_link_t *l, uint8_t b)
-{
-    modcp_rtu_t *r = &l->fr.rtu;
-    r->skip_crc = modcp_crc16_byte(r->skip_crc, b);
-    rtu_count_char(r);
-}
-
-static MODCP_NOINLINE void m_cand_start(modcp_link_t *l, uint8_t b)
-{
-    modcp_rtu_t *r = &l->fr.rtu;
-    r->flags = (uint8_t)((r->flags & ~RTU_M_SBAD) | (l->rx_bad ? RTU_M_SBAD : 0u));
-    l->rx_bad = false;
-    l->rx_overflow = false;
-    l->buf[0] = b; /* configured: cap >= RTU_MIN_FRAME */
-    l->len = 1;
-    r->crc = modcp_crc16_byte(MODCP_CRC_INIT, b);
-    r->stop = 1; /* the function code is looked at */
-    r->total = 0;
-    r->bc = 0;
-    l->state = MODCP_LINK_RX;
-}
-
 /* The candidate is given up: its first n characters belong to the stretch again (the
  * rest, if any, stays in the buffer for m_resync), the line is followed in SKIP. */
 static MODCP_NOINLINE void m_unclaim(modcp_link_t *l, uint16_t n)
 {
     modcp_rtu_t *r = &l->fr.rtu;
     for (uint16_t i = 0; i < n; i++) {
-        m_fold(l, l->buf[i]);
+        rtu_fold(l, l->buf[i]);
     }
     l->rx_bad = l->rx_bad || (r->flags & RTU_M_SBAD) != 0u;
     r->flags = (uint8_t)(r->flags & ~(RTU_M_FIRST | RTU_M_OPEN));
@@ -180,9 +152,9 @@ static int m_feed(modcp_link_t *l, uint8_t b)
     if (l->state == MODCP_LINK_SKIP) {
         if (m_addr(l, b)) {
             r->flags = (uint8_t)(r->flags & ~RTU_M_FIRST);
-            m_cand_start(l, b);
+            rtu_cand_start(l, b);
         } else {
-            m_fold(l, b);
+            rtu_fold(l, b);
         }
         return M_CONT;
     }
@@ -223,44 +195,6 @@ void rtu_m_push(modcp_link_t *l, uint8_t b)
 {
     if (m_feed(l, b) == M_FAIL) {
         m_resync(l);
-    }
-}
-
-/* A stretch begins after t3.5 of silence; the timer is armed here, once. */
-void rtu_m_stretch_begin(modcp_link_t *l, uint8_t b, uint32_t now_us)
-{
-    modcp_rtu_t *r = &l->fr.rtu;
-    r->skip_crc = MODCP_CRC_INIT;
-    r->count = 0;
-    r->flags = 0;
-    l->rx_bad = false;
-    l->rx_overflow = false;
-    l->len = 0;
-    l->last_us = now_us;
-    link_arm(l, l->t35_us);
-    if (m_addr(l, b)) {
-        m_cand_start(l, b);
-        r->flags |= RTU_M_LEAD | RTU_M_FIRST;
-    } else {
-        l->state = MODCP_LINK_SKIP;
-        m_fold(l, b);
-    }
-}
-
-/* t3.5 after a stretch without a frame. */
-void rtu_m_stretch_end(modcp_link_t *l)
-{
-    const modcp_rtu_t *r = &l->fr.rtu;
-    l->state = MODCP_LINK_IDLE;
-    if (l->rx_bad) {
-        return; /* damaged: counted once if a candidate was, else ignored */
-    }
-    bool ok = r->count >= RTU_MIN_FRAME && r->skip_crc == 0u;
-    if ((r->flags & RTU_M_LEAD) != 0u && !ok) {
-        link_event(l, MODCP_EV_CRC); /* began with our address: (08)36H as in normal mode */
-        link_count(l, MODCP_CNT_BUS_CRC);
-    } else if (ok) {
-        link_count(l, MODCP_CNT_BUS_MSG);
     }
 }
 
@@ -307,7 +241,7 @@ bool rtu_m_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         m_drop(l);
     }
     if (l->state == MODCP_LINK_SKIP) {
-        rtu_m_stretch_end(l);
+        rtu_stretch_end(l);
     }
     return false;
 }
