@@ -127,8 +127,9 @@ bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f);
 const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p);
 /* The receive automaton of both variants (rtu.c). The hot path: a character of the
  * frame (modem mode: the candidate) below r->stop (normal operation: the capacity) is
- * stored and goes through one CRC step. Where modem mode differs (frame start and end,
- * the characters it looks at, line errors, t1.5) it calls rtu_m_* by l->modem. */
+ * stored and goes through one CRC step. Where modem mode differs (the characters of a
+ * stretch it looks at, line errors, t1.5, the end of our frame) it calls rtu_m_* by
+ * l->modem. */
 void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
 void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us);
 void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);

@@ -1,8 +1,9 @@
 /* modcp — RTU framing (004 §5, SPEC §3.1): frame boundaries by the t3.5 gap, address
  * filter, running CRC, t1.5 check, frames that arrive while a request is in progress;
- * one receive automaton (rtu_on_byte, byte_other, rtu_on_error) for normal operation
- * and interference suppression = modem mode, whose differences (frame start and end,
- * the characters it looks at, line errors inside a frame) are the rtu_m_* hooks of
+ * one receive automaton (rtu_on_byte, byte_other, rtu_on_error, rtu_on_block) with
+ * one frame start and one end of a skipped frame for normal operation and interference
+ * suppression = modem mode, whose differences (the characters of a stretch it looks
+ * at, line errors inside a frame, the end of our frame) are the rtu_m_* hooks of
  * rtu_modem.c, called by l->modem off the hot path.
  *
  * The backend behind modcp_rtu_ops (link_internal.h), its state in l->fr.rtu. A
