@@ -137,7 +137,7 @@ void rtu_stretch_end(modcp_link_t *l)
 
 /* Default branch of the receive automaton (a state RTU never uses, i.e. corrupted):
  * (0E)11H, back to idle; the character that found it starts a new frame. */
-void rtu_internal_error(modcp_link_t *l)
+MODCP_NOINLINE void rtu_internal_error(modcp_link_t *l)
 {
     link_event(l, MODCP_EV_INTERNAL_RECEIVE);
     l->state = MODCP_LINK_IDLE;
@@ -146,17 +146,23 @@ void rtu_internal_error(modcp_link_t *l)
 }
 
 /* A character (or line error) while a request is processed or its reply is pending:
- * not stored; only frame starts are followed, for (08)37H and for the return to idle. */
-void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
+ * not stored; only frame starts are followed, for (08)37H and for the return to idle.
+ * A line error that is not inside a frame (modem mode: after the CRC) with
+ * interference suppression (or RS485) is ignored, as between messages. */
+MODCP_NOINLINE void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
 {
     if (l->rs485 && l->state == MODCP_LINK_TX) {
         return; /* echo of our own transmission */
     }
     if (!l->busy_rx || now_us - l->last_us >= l->t35_us) {
-        l->busy_rx = true;
-        if (!error && b == l->own_addr) {
+        if (error) {
+            if (l->suppress) {
+                return;
+            }
+        } else if (b == l->own_addr) {
             link_event(l, MODCP_EV_SEQUENCE);
         }
+        l->busy_rx = true;
     }
     l->last_us = now_us;
 }
@@ -335,9 +341,6 @@ void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
     case MODCP_LINK_BUSY:
     case MODCP_LINK_TURNAROUND:
     case MODCP_LINK_TX:
-        if (l->suppress && (!l->busy_rx || now_us - l->last_us >= l->t35_us)) {
-            break; /* not inside a frame (modem mode: after the CRC): ignored, as between messages */
-        }
         rtu_busy_track(l, 0, true, now_us);
         break;
     default:
