@@ -81,7 +81,6 @@ MODCP_NOINLINE void rtu_cand_start(modcp_link_t *l, uint8_t b)
     if (l->modem) {
         r->stop = 1; /* the function code is looked at */
         r->total = 0;
-        r->bc = 0;
     }
     l->state = MODCP_LINK_RX;
 }

@@ -42,15 +42,17 @@
 
 enum { M_CONT, M_FAIL, M_DONE };
 
-#define RQ_BC 0x80u   /* length by the byte count at index (code & 0x1F) */
-#define RQ_OPEN 0x40u /* the usual length; longer requests end by t3.5 */
+#define RQ_BC 0x80u    /* length by the byte count at index (code & RQ_N) */
+#define RQ_OPEN 0x40u  /* the usual length; longer requests end by t3.5 */
+#define RQ_BCAST 0x20u /* broadcast may use it: 00 starts a candidate anywhere */
+#define RQ_N 0x1Fu     /* the length, or the byte count's index */
 
 /* Request lengths (address and CRC included) by function code. */
 static const uint8_t req_len_tab[][2] = {
-    {0x03u, 8u}, {0x10u, RQ_BC | 6u}, {0x06u, 8u}, {0x01u, 8u}, {0x02u, 8u},
-    {0x04u, 8u}, {0x05u, 8u}, {0x0Fu, RQ_BC | 6u}, {0x08u, RQ_OPEN | 8u},
-    {0x17u, RQ_BC | 10u}, {0x16u, 10u}, {0x0Bu, 4u}, {0x0Cu, 4u}, {0x11u, 4u},
-    {0x2Bu, RQ_OPEN | 7u},
+    {0x03u, 8u}, {0x10u, RQ_BCAST | RQ_BC | 6u}, {0x06u, RQ_BCAST | 8u}, {0x01u, 8u},
+    {0x02u, 8u}, {0x04u, 8u}, {0x05u, RQ_BCAST | 8u}, {0x0Fu, RQ_BCAST | RQ_BC | 6u},
+    {0x08u, RQ_OPEN | 8u}, {0x17u, RQ_BC | 10u}, {0x16u, 10u}, {0x0Bu, 4u}, {0x0Cu, 4u},
+    {0x11u, 4u}, {0x2Bu, RQ_OPEN | 7u},
 };
 
 static uint8_t req_len(uint8_t fc)
@@ -60,7 +62,7 @@ static uint8_t req_len(uint8_t fc)
             return req_len_tab[i][1];
         }
     }
-    return 0u; /* unknown: t3.5 */
+    return 0u; /* unknown: t3.5 (and no broadcast) */
 }
 
 static bool m_addr(const modcp_link_t *l, uint8_t b)
@@ -96,8 +98,7 @@ static int m_check(modcp_link_t *l)
     if (n == 2u) {
         uint8_t fc = l->buf[1];
         uint8_t code = req_len(fc);
-        if (l->buf[0] == 0u && (r->flags & RTU_M_FIRST) == 0u && fc != 0x05u && fc != 0x06u &&
-            fc != 0x0Fu && fc != 0x10u) {
+        if (l->buf[0] == 0u && (r->flags & RTU_M_FIRST) == 0u && (code & RQ_BCAST) == 0u) {
             return M_FAIL; /* no broadcast request */
         }
         if (fc == 0u || fc >= 0x80u) {
@@ -108,11 +109,10 @@ static int m_check(modcp_link_t *l)
             return M_CONT;
         }
         if ((code & RQ_BC) != 0u) {
-            r->bc = (uint8_t)(code & 0x1Fu);
-            r->stop = r->bc;
+            r->stop = code & RQ_N; /* the byte count */
             return M_CONT;
         }
-        r->total = (uint16_t)(code & 0x3Fu);
+        r->total = code & RQ_N;
         if ((code & RQ_OPEN) != 0u) {
             r->flags |= RTU_M_OPEN;
         }

@@ -76,7 +76,6 @@ typedef struct {
                        code, byte count, last character); the hot path runs below it */
     uint16_t total; /* the candidate's length by its function code, 0: by t3.5 */
     uint16_t skip_crc; /* CRC over the stretch (stray characters, other frames) */
-    uint8_t bc;     /* index of the byte count, 0: none */
     uint8_t flags;  /* RTU_M_* (rtu.c) */
 } modcp_rtu_t;
 
