@@ -116,6 +116,9 @@ void rtu_count_char(modcp_rtu_t *r);
 void rtu_fold(modcp_link_t *l, uint8_t b);
 /* Our address (or 0) starts our frame (modem mode: a candidate) at buf[0]. */
 void rtu_cand_start(modcp_link_t *l, uint8_t b);
+/* Our frame (modem mode: the candidate) given up: its first n characters folded into
+ * the stretch, state SKIP. */
+void rtu_unclaim(modcp_link_t *l, uint16_t n);
 /* t3.5 after a frame followed in SKIP (modem mode: a stretch without a frame). */
 void rtu_stretch_end(modcp_link_t *l);
 /* A character (or line error) while a request is processed or its reply pending. */
@@ -137,7 +140,6 @@ void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
 void rtu_m_push(modcp_link_t *l, uint8_t b);   /* a character of the stretch / candidate */
 void rtu_m_cand_bad(modcp_link_t *l);          /* a line error in the candidate */
 void rtu_m_t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us);
-bool rtu_m_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f); /* ops on_timer */
 uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len);
 
 /* Moved from modcp/link.h: the core's own interface. */

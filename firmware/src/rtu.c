@@ -78,11 +78,26 @@ MODCP_NOINLINE void rtu_cand_start(modcp_link_t *l, uint8_t b)
     l->len = 1;
     r->crc = modcp_crc16_byte(MODCP_CRC_INIT, b);
     r->stop = l->cap; /* normal operation: the hot path runs up to the capacity */
+    r->total = 0;     /* normal operation: always (the length by t3.5) */
     if (l->modem) {
         r->stop = 1; /* the function code is looked at */
-        r->total = 0;
     }
     l->state = MODCP_LINK_RX;
+}
+
+/* Our frame (modem mode: the candidate) is given up: its first n characters belong to
+ * the stretch again (modem mode: the rest, if any, stays in the buffer for its resync),
+ * the line is followed in SKIP. */
+MODCP_NOINLINE void rtu_unclaim(modcp_link_t *l, uint16_t n)
+{
+    modcp_rtu_t *r = &l->fr.rtu;
+    for (uint16_t i = 0; i < n; i++) {
+        rtu_fold(l, l->buf[i]);
+    }
+    l->rx_bad = l->rx_bad || (r->flags & RTU_M_SBAD) != 0u;
+    r->flags = (uint8_t)(r->flags & ~(RTU_M_FIRST | RTU_M_OPEN));
+    l->len = 0;
+    l->state = MODCP_LINK_SKIP;
 }
 
 /* A frame (modem mode: a stretch) starts after t3.5 with b, or with a line error in
@@ -105,18 +120,16 @@ static MODCP_NOINLINE void frame_start(modcp_link_t *l, uint8_t b, bool error, u
         rtu_count_char(r);
     } else if (b == l->own_addr || b == 0u) {
         rtu_cand_start(l, b);
-        if (l->modem) {
-            r->flags = RTU_M_LEAD | RTU_M_FIRST;
-        }
+        r->flags = RTU_M_LEAD | RTU_M_FIRST;
     } else {
         rtu_fold(l, b);
     }
 }
 
-/* t3.5 after a frame we followed in SKIP (modem mode: a stretch without a frame): only
- * the serial-line bus counters (modem mode: other stretches than another slave's frame
- * are not counted, one that began with our address reports (08)36H as normal operation
- * does for its frame). */
+/* t3.5 after a frame followed in SKIP (modem mode: a stretch without a frame), or
+ * after our frame that was not formally correct (rtu_on_timer): a frame that began
+ * with our address reports (08)36H and counts in BUS_CRC; another slave's frame counts
+ * in BUS_MSG or BUS_CRC (modem mode: only in BUS_MSG, other stretches not at all). */
 void rtu_stretch_end(modcp_link_t *l)
 {
     const modcp_rtu_t *r = &l->fr.rtu;
@@ -367,32 +380,35 @@ bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f)
     return true;
 }
 
-/* t3.5 has passed since the last character of the frame (link.c checked it). */
+/* Modem mode: EOF, hand the frame over. RX / SKIP: t3.5 has passed since the last
+ * character (link.c checked it). Our frame (modem mode: a candidate whose length is
+ * known only by t3.5) is delivered if it is formally correct; else its characters
+ * belong to the stretch again and its end is the stretch's (rtu_stretch_end): (08)36H
+ * for a frame that began with our address, (08)16H once for one too long. */
 static bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
-    if (l->modem) {
-        return rtu_m_on_timer(l, now_us, f);
+    (void)now_us;
+    modcp_rtu_t *r = &l->fr.rtu;
+    if (l->state == MODCP_LINK_EOF) {
+        return rtu_deliver(l, f);
     }
-    if (l->state != MODCP_LINK_RX) {
-        if (l->state == MODCP_LINK_SKIP) {
-            rtu_stretch_end(l);
+    if (l->state == MODCP_LINK_RX) {
+        if (!l->rx_bad && !l->rx_overflow && r->total == 0u && l->len >= RTU_MIN_FRAME &&
+            r->crc == 0u) {
+            return rtu_deliver(l, f); /* modem mode: length by t3.5 (unknown function code) */
         }
-        return false; /* else a stale or spurious expiry */
+        if (l->rx_overflow) {
+            if (!l->rx_bad && (r->flags & RTU_M_FIRST) != 0u) {
+                link_frame_too_long(l);
+            }
+            l->rx_bad = true; /* the stretch is not complete in the buffer */
+        }
+        rtu_unclaim(l, l->len);
     }
-    l->state = MODCP_LINK_IDLE;
-    if (l->rx_bad) {
-        return false; /* already reported (normal mode) or silently discarded */
+    if (l->state == MODCP_LINK_SKIP) {
+        rtu_stretch_end(l);
     }
-    if (l->rx_overflow) {
-        link_frame_too_long(l);
-        return false;
-    }
-    if (l->len < RTU_MIN_FRAME || l->fr.rtu.crc != 0u) {
-        link_event(l, MODCP_EV_CRC);
-        link_count(l, MODCP_CNT_BUS_CRC);
-        return false;
-    }
-    return rtu_deliver(l, f);
+    return false; /* else a stale or spurious expiry */
 }
 
 uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)

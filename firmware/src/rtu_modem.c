@@ -70,26 +70,6 @@ static bool m_addr(const modcp_link_t *l, uint8_t b)
     return b == l->own_addr || b == 0u;
 }
 
-/* The candidate is given up: its first n characters belong to the stretch again (the
- * rest, if any, stays in the buffer for m_resync), the line is followed in SKIP. */
-static MODCP_NOINLINE void m_unclaim(modcp_link_t *l, uint16_t n)
-{
-    modcp_rtu_t *r = &l->fr.rtu;
-    for (uint16_t i = 0; i < n; i++) {
-        rtu_fold(l, l->buf[i]);
-    }
-    l->rx_bad = l->rx_bad || (r->flags & RTU_M_SBAD) != 0u;
-    r->flags = (uint8_t)(r->flags & ~(RTU_M_FIRST | RTU_M_OPEN));
-    l->len = 0;
-    l->state = MODCP_LINK_SKIP;
-}
-
-/* The candidate is no frame: its characters belong to the stretch again. */
-static void m_drop(modcp_link_t *l)
-{
-    m_unclaim(l, l->len);
-}
-
 /* The character at index r->stop was stored: function code, byte count or the last. */
 static int m_check(modcp_link_t *l)
 {
@@ -129,7 +109,7 @@ static int m_check(modcp_link_t *l)
         return M_CONT;
     }
     if (l->rx_bad) { /* dropped by the link (DSR OFF) */
-        m_drop(l);
+        rtu_unclaim(l, l->len);
         return M_CONT;
     }
     if (r->crc == 0u) {
@@ -175,7 +155,7 @@ static MODCP_NOINLINE void m_resync(modcp_link_t *l)
 {
     uint16_t n = l->len;
     for (;;) {
-        m_unclaim(l, 1u);
+        rtu_unclaim(l, 1u);
         int res = M_CONT;
         uint16_t k = 1;
         while (k < n && res == M_CONT) {
@@ -206,7 +186,7 @@ void rtu_m_cand_bad(modcp_link_t *l)
     } else {
         l->rx_bad = true; /* a lone address character: before the frame, not counted */
     }
-    m_drop(l);
+    rtu_unclaim(l, l->len);
 }
 
 /* The t1.5 check (rtu_on_byte_t15, rtu.c) found a silence too long in the candidate. */
@@ -217,31 +197,4 @@ void rtu_m_t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
     }
     rtu_m_cand_bad(l);
     rtu_on_byte(l, b, now_us); /* it may start the next candidate */
-}
-
-/* EOF: hand the frame over. RX / SKIP: t3.5 has passed since the last character. */
-bool rtu_m_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
-{
-    (void)now_us;
-    modcp_rtu_t *r = &l->fr.rtu;
-    if (l->state == MODCP_LINK_EOF) {
-        return rtu_deliver(l, f);
-    }
-    if (l->state == MODCP_LINK_RX) {
-        if (!l->rx_bad && !l->rx_overflow && r->total == 0u && l->len >= RTU_MIN_FRAME &&
-            r->crc == 0u) {
-            return rtu_deliver(l, f); /* length by t3.5 (unknown function code) */
-        }
-        if (l->rx_overflow) {
-            if (!l->rx_bad && (r->flags & RTU_M_FIRST) != 0u) {
-                link_frame_too_long(l);
-            }
-            l->rx_bad = true; /* the stretch is not complete in the buffer */
-        }
-        m_drop(l);
-    }
-    if (l->state == MODCP_LINK_SKIP) {
-        rtu_stretch_end(l);
-    }
-    return false;
 }
