@@ -139,7 +139,6 @@ void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
 /* Modem mode's part of that automaton (rtu_modem.c). */
 void rtu_m_push(modcp_link_t *l, uint8_t b);   /* a character of the stretch / candidate */
 void rtu_m_cand_bad(modcp_link_t *l);          /* a line error in the candidate */
-void rtu_m_t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us);
 uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len);
 
 /* Moved from modcp/link.h: the core's own interface. */

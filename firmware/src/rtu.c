@@ -240,12 +240,13 @@ void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
  * so that the check costs nothing when it is off. */
 static MODCP_NOINLINE void t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
+    const bool first = !l->rx_bad;
     if (l->modem) {
-        rtu_m_t15_violated(l, b, now_us);
-        return;
-    }
-    if (!l->rx_bad) {
+        rtu_m_cand_bad(l); /* the candidate is dropped; b may start the next one */
+    } else {
         link_mark_bad(l);
+    }
+    if (first) {
         if (l->diag != NULL) {
             l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
         }

@@ -188,13 +188,3 @@ void rtu_m_cand_bad(modcp_link_t *l)
     }
     rtu_unclaim(l, l->len);
 }
-
-/* The t1.5 check (rtu_on_byte_t15, rtu.c) found a silence too long in the candidate. */
-void rtu_m_t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
-{
-    if (!l->rx_bad && l->diag != NULL) {
-        l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
-    }
-    rtu_m_cand_bad(l);
-    rtu_on_byte(l, b, now_us); /* it may start the next candidate */
-}
