@@ -65,21 +65,39 @@ static const char hex_digits[16] = {'0', '1', '2', '3', '4', '5', '6', '7',
 
 static uint8_t hexval(uint8_t c)
 {
-    if (c >= (uint8_t)'0' && c <= (uint8_t)'9') {
+    if ((uint8_t)(c - (uint8_t)'0') <= 9u) {
         return (uint8_t)(c - (uint8_t)'0');
     }
-    if (c >= (uint8_t)'A' && c <= (uint8_t)'F') {
-        return (uint8_t)(c - (uint8_t)'A' + 10u);
-    }
-    if (c >= (uint8_t)'a' && c <= (uint8_t)'f') {
+    c |= 0x20u; /* 'A' ... 'F' -> 'a' ... 'f' (nothing else lands there) */
+    if ((uint8_t)(c - (uint8_t)'a') <= 5u) {
         return (uint8_t)(c - (uint8_t)'a' + 10u);
     }
     return HEX_BAD;
 }
 
+#define PAIR_BAD (-1)  /* hex_pair: not a hex digit (the pair is not touched) */
+#define PAIR_HALF (-2) /* hex_pair: the first digit of a pair, kept */
+
+/* A character into the hex pair being received: PAIR_BAD, PAIR_HALF, or the byte
+ * (0 ... 255) the pair makes. */
+static MODCP_NOINLINE int hex_pair(modcp_ascii_t *a, uint8_t c)
+{
+    uint8_t v = hexval(c);
+    if (v == HEX_BAD) {
+        return PAIR_BAD;
+    }
+    if (!a->hex_half) {
+        a->hex_hi = v;
+        a->hex_half = true;
+        return PAIR_HALF;
+    }
+    a->hex_half = false;
+    return (int)((unsigned)a->hex_hi << 4 | v);
+}
+
 /* A ':' starts a frame (in_frame; false: a run of stray characters); the timer is
  * armed here, once per frame. */
-static void frame_start(modcp_link_t *l, uint32_t now_us)
+static MODCP_NOINLINE void frame_start(modcp_link_t *l, uint32_t now_us)
 {
     modcp_ascii_t *a = &l->fr.ascii;
     l->state = MODCP_LINK_RX;
@@ -194,18 +212,12 @@ static void frame_char(modcp_link_t *l, uint8_t c, uint32_t now_us)
         }
         return;
     }
-    uint8_t v = hexval(c);
-    if (v == HEX_BAD) {
+    int v = hex_pair(a, c);
+    if (v == PAIR_BAD) {
         discard(l, MODCP_EV_ASCII_NOT_HEX);
-        return;
+    } else if (v >= 0) {
+        frame_byte(l, (uint8_t)v);
     }
-    if (!a->hex_half) {
-        a->hex_hi = v;
-        a->hex_half = true;
-        return;
-    }
-    a->hex_half = false;
-    frame_byte(l, (uint8_t)((unsigned)a->hex_hi << 4 | v));
 }
 
 /* A character while a request is processed or its reply pending. */
@@ -232,18 +244,15 @@ static void busy_track(modcp_link_t *l, uint8_t c, uint32_t now_us)
         return;
     }
     a->got_cr = c == ASCII_CR;
-    uint8_t v = hexval(c);
-    if (v == HEX_BAD || a->count != 0u) {
-        return;
+    if (a->count != 0u) {
+        return; /* the address is decoded */
     }
-    if (!a->hex_half) {
-        a->hex_hi = v;
-        a->hex_half = true;
-        return;
+    int v = hex_pair(a, c);
+    if (v < 0) {
+        return; /* not a hex digit, or half a pair */
     }
-    a->hex_half = false;
     a->count = 1;
-    if ((uint8_t)((unsigned)a->hex_hi << 4 | v) == l->own_addr) {
+    if ((uint8_t)v == l->own_addr) {
         link_event(l, MODCP_EV_SEQUENCE);
     }
 }
