@@ -268,18 +268,16 @@ void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
 
 /* Characters back to back (the k-th of n ended at end_us - (n-1-k) * char_us): runs of
  * our frame with room in the buffer are stored and CRC'd in one loop, every other
- * character goes through byte_other() at its own time, exactly as one by one. With the
- * t1.5 check on (both variants share this entry) only the block's first character can
- * follow a silence: the others come one character time after the one before. */
+ * character goes through byte_other() at its own time, exactly as one by one. Only the
+ * block's first character can follow a silence (the others come one character time
+ * after the one before): it goes through the ops' on_byte, with the t1.5 check if on. */
 static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us)
 {
     const uint32_t c = l->char_us;
     const uint8_t *const e = b + n;
     uint32_t t = end_us - (uint32_t)(n - 1u) * c; /* end of the character at b */
-    if (l->t15_us != 0u && l->state == MODCP_LINK_RX && t - l->last_us > l->t15_us + c) {
-        t15_violated(l, *b++, t);
-        t += c;
-    }
+    l->ops->on_byte(l, *b++, t); /* the only one that may follow a silence: t1.5 */
+    t += c;
     while (b < e) {
         const uint16_t stop = l->fr.rtu.stop;
         if (l->state != MODCP_LINK_RX || l->len >= stop) {
