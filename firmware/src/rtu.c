@@ -100,10 +100,9 @@ MODCP_NOINLINE void rtu_unclaim(modcp_link_t *l, uint16_t n)
     l->state = MODCP_LINK_SKIP;
 }
 
-/* A frame (modem mode: a stretch) starts after t3.5 with b, or with a line error in
- * place of the first character (normal operation only): the end-of-frame timer is
- * armed here, once per frame. */
-static MODCP_NOINLINE void frame_start(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
+/* A frame (modem mode: a stretch) starts after t3.5, in SKIP until its first character
+ * (or line error) is looked at: the end-of-frame timer is armed here, once per frame. */
+static MODCP_NOINLINE void frame_start(modcp_link_t *l, uint32_t now_us)
 {
     modcp_rtu_t *r = &l->fr.rtu;
     r->skip_crc = MODCP_CRC_INIT;
@@ -115,15 +114,6 @@ static MODCP_NOINLINE void frame_start(modcp_link_t *l, uint8_t b, bool error, u
     l->last_us = now_us;
     l->state = MODCP_LINK_SKIP; /* not ours: not checked, not answered */
     link_arm(l, l->t35_us);
-    if (error) {
-        link_mark_bad(l);
-        rtu_count_char(r);
-    } else if (b == l->own_addr || b == 0u) {
-        rtu_cand_start(l, b);
-        r->flags = RTU_M_LEAD | RTU_M_FIRST;
-    } else {
-        rtu_fold(l, b);
-    }
 }
 
 /* t3.5 after a frame followed in SKIP (modem mode: a stretch without a frame), or
@@ -216,7 +206,13 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
             rtu_internal_error(l);
         }
     start:
-        frame_start(l, b, false, now_us);
+        frame_start(l, now_us);
+        if (b == l->own_addr || b == 0u) {
+            rtu_cand_start(l, b);
+            l->fr.rtu.flags = RTU_M_LEAD | RTU_M_FIRST;
+        } else {
+            rtu_fold(l, b);
+        }
         break;
     }
 }
@@ -322,42 +318,42 @@ void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
     case MODCP_LINK_RX:
         if (l->modem) {
             rtu_m_cand_bad(l);
-        } else {
-            if (!l->rx_bad && !l->rx_overflow && l->len >= RTU_MIN_FRAME && r->crc == 0u) {
-                return; /* after the CRC: not part of the frame */
-            }
-            link_mark_bad(l);
+            break;
         }
-        l->last_us = now_us;
-        break;
+        if (!l->rx_bad && !l->rx_overflow && l->len >= RTU_MIN_FRAME && r->crc == 0u) {
+            return; /* after the CRC: not part of the frame */
+        }
+        goto bad; /* (its count is not looked at: the frame is bad) */
     case MODCP_LINK_SKIP:
         if (now_us - l->last_us < l->t35_us) {
             if (l->modem) {
                 l->rx_bad = true; /* among stray characters / another frame: not counted */
-            } else {
-                link_mark_bad(l);
-                rtu_count_char(r);
+                break;
             }
-            l->last_us = now_us;
-            break;
+            goto bad;
         }
         rtu_stretch_end(l); /* modem mode: a new stretch would begin, ignored as on an idle line */
         /* fall through */
     case MODCP_LINK_IDLE:
-        if (!l->suppress) { /* else between messages: ignored, a frame starts only with a good character */
-            frame_start(l, 0, true, now_us);
+        if (l->suppress) {
+            return; /* between messages: ignored, a frame starts only with a good character */
         }
+        frame_start(l, now_us); /* an erroneous frame, skipped to its t3.5 */
+    bad:
+        link_mark_bad(l);
+        rtu_count_char(r);
         break;
     case MODCP_LINK_EOF:
     case MODCP_LINK_BUSY:
     case MODCP_LINK_TURNAROUND:
     case MODCP_LINK_TX:
         rtu_busy_track(l, 0, true, now_us);
-        break;
+        return;
     default:
         rtu_internal_error(l);
-        break;
+        return;
     }
+    l->last_us = now_us;
 }
 
 /* A formally correct frame for us (or broadcast) in buf[0 .. len): counted and handed
