@@ -72,9 +72,7 @@ static const modcp_framing_ops_t *framing_ops(uint8_t framing)
 
 void link_frame_too_long(modcp_link_t *l)
 {
-    if (l->diag != NULL) {
-        l->diag->frames_too_long = (uint16_t)(l->diag->frames_too_long + 1u);
-    }
+    l->diag->frames_too_long = (uint16_t)(l->diag->frames_too_long + 1u);
     link_event(l, MODCP_EV_FRAME_TOO_LONG);
 }
 
@@ -183,21 +181,19 @@ void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
     if (!l->enabled || line_errors == 0u) {
         return;
     }
-    if (l->diag != NULL) {
-        if ((line_errors & MODCP_LINE_BREAK) != 0u) {
-            l->diag->breaks = (uint16_t)(l->diag->breaks + 1u);
-            if (!l->suppress) {
-                modcp_diag_event(l->diag, MODCP_EV_BREAK);
-            }
-        } else {
-            l->diag->char_errors = (uint16_t)(l->diag->char_errors + 1u);
-            if (!l->suppress) {
-                modcp_diag_event(l->diag, MODCP_EV_CHAR_ERROR);
-            }
+    if ((line_errors & MODCP_LINE_BREAK) != 0u) {
+        l->diag->breaks = (uint16_t)(l->diag->breaks + 1u);
+        if (!l->suppress) {
+            link_event(l, MODCP_EV_BREAK);
         }
-        if ((line_errors & MODCP_LINE_OVERRUN) != 0u) {
-            modcp_diag_count(l->diag, MODCP_CNT_CHAR_OVERRUN);
+    } else {
+        l->diag->char_errors = (uint16_t)(l->diag->char_errors + 1u);
+        if (!l->suppress) {
+            link_event(l, MODCP_EV_CHAR_ERROR);
         }
+    }
+    if ((line_errors & MODCP_LINE_OVERRUN) != 0u) {
+        link_count(l, MODCP_CNT_CHAR_OVERRUN);
     }
     l->ops->on_error(l, line_errors, now_us);
 }
@@ -233,9 +229,7 @@ void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us)
     l->tx_at_us = now_us;
     l->tx_len = l->ops->encode(l, pdu_len);
     if (l->tx_len == 0u) {
-        if (l->diag != NULL) {
-            modcp_diag_event(l->diag, MODCP_EV_INTERNAL_SEND); /* reply does not fit */
-        }
+        link_event(l, MODCP_EV_INTERNAL_SEND); /* reply does not fit */
         modcp_link_done(l);
         return;
     }

@@ -75,18 +75,15 @@ static inline bool link_timer_rearm(const modcp_link_t *l, uint32_t now_us)
     return true;
 }
 
+/* The link's diagnostics (l->diag, never NULL: modcp_link_init). */
 static inline void link_event(const modcp_link_t *l, modcp_event_t ev)
 {
-    if (l->diag != NULL) {
-        modcp_diag_event(l->diag, ev);
-    }
+    modcp_diag_event(l->diag, ev);
 }
 
 static inline void link_count(const modcp_link_t *l, modcp_counter_t c)
 {
-    if (l->diag != NULL) {
-        modcp_diag_count(l->diag, c);
-    }
+    modcp_diag_count(l->diag, c);
 }
 
 /* The current frame is damaged (character error, BREAK, t1.5, bad character): it is
@@ -142,6 +139,7 @@ void rtu_m_cand_bad(modcp_link_t *l);          /* a line error in the candidate 
 uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len);
 
 /* Moved from modcp/link.h: the core's own interface. */
+/* diag: where the link counts and reports, never NULL. */
 void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag, uint8_t *buf,
                      uint16_t cap);
 /* Apply parameters (framing, address, timing, interface) and enable. */

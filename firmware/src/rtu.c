@@ -243,9 +243,7 @@ static MODCP_NOINLINE void t15_violated(modcp_link_t *l, uint8_t b, uint32_t now
         link_mark_bad(l);
     }
     if (first) {
-        if (l->diag != NULL) {
-            l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
-        }
+        l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
         if (!l->suppress) {
             link_event(l, MODCP_EV_ZVZ);
         }
@@ -358,7 +356,7 @@ void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 
 /* A formally correct frame for us (or broadcast) in buf[0 .. len): counted and handed
  * to the CP (state BUSY), or dropped without a frame to fill (f NULL). */
-bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f)
+MODCP_NOINLINE bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f)
 {
     link_count(l, MODCP_CNT_BUS_MSG);
     link_count(l, MODCP_CNT_SLAVE_MSG);
@@ -384,14 +382,12 @@ static bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
     (void)now_us;
     modcp_rtu_t *r = &l->fr.rtu;
-    if (l->state == MODCP_LINK_EOF) {
+    if (l->state == MODCP_LINK_EOF ||
+        (l->state == MODCP_LINK_RX && !l->rx_bad && !l->rx_overflow && r->total == 0u &&
+         l->len >= RTU_MIN_FRAME && r->crc == 0u)) { /* modem mode: also by t3.5 (unknown FC) */
         return rtu_deliver(l, f);
     }
     if (l->state == MODCP_LINK_RX) {
-        if (!l->rx_bad && !l->rx_overflow && r->total == 0u && l->len >= RTU_MIN_FRAME &&
-            r->crc == 0u) {
-            return rtu_deliver(l, f); /* modem mode: length by t3.5 (unknown function code) */
-        }
         if (l->rx_overflow) {
             if (!l->rx_bad && (r->flags & RTU_M_FIRST) != 0u) {
                 link_frame_too_long(l);
