@@ -12,6 +12,14 @@
 #else
 #define MODCP_NOINLINE
 #endif
+/* One copy where it is called from several places, in the builds for size (-Os: the MCU
+ * builds); the compiler decides elsewhere (-O2: the host, where inlining saves the
+ * calls). */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+#define MODCP_SIZE_NOINLINE __attribute__((noinline))
+#else
+#define MODCP_SIZE_NOINLINE
+#endif
 
 /* A framing backend. The link calls it and never asks which one it runs; the backend
  * keeps its own state in l->fr and uses the link's shared fields (state, buffer, len,

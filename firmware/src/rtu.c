@@ -68,10 +68,9 @@ void rtu_fold(modcp_link_t *l, uint8_t b)
 }
 
 /* Our address (or 0) starts our frame (modem mode: a candidate) at buf[0]. */
-MODCP_NOINLINE void rtu_cand_start(modcp_link_t *l, uint8_t b)
+MODCP_SIZE_NOINLINE void rtu_cand_start(modcp_link_t *l, uint8_t b)
 {
     modcp_rtu_t *r = &l->fr.rtu;
-    r->flags = (uint8_t)((r->flags & ~RTU_M_SBAD) | (l->rx_bad ? RTU_M_SBAD : 0u));
     l->rx_bad = false;
     l->rx_overflow = false;
     l->buf[0] = b; /* configured: cap >= RTU_MIN_FRAME */
@@ -102,7 +101,7 @@ MODCP_NOINLINE void rtu_unclaim(modcp_link_t *l, uint16_t n)
 
 /* A frame (modem mode: a stretch) starts after t3.5, in SKIP until its first character
  * (or line error) is looked at: the end-of-frame timer is armed here, once per frame. */
-static MODCP_NOINLINE void frame_start(modcp_link_t *l, uint32_t now_us)
+static MODCP_SIZE_NOINLINE void frame_start(modcp_link_t *l, uint32_t now_us)
 {
     modcp_rtu_t *r = &l->fr.rtu;
     r->skip_crc = MODCP_CRC_INIT;
@@ -139,7 +138,7 @@ void rtu_stretch_end(modcp_link_t *l)
 
 /* Default branch of the receive automaton (a state RTU never uses, i.e. corrupted):
  * (0E)11H, back to idle; the character that found it starts a new frame. */
-MODCP_NOINLINE void rtu_internal_error(modcp_link_t *l)
+MODCP_SIZE_NOINLINE void rtu_internal_error(modcp_link_t *l)
 {
     link_event(l, MODCP_EV_INTERNAL_RECEIVE);
     l->state = MODCP_LINK_IDLE;
@@ -151,7 +150,7 @@ MODCP_NOINLINE void rtu_internal_error(modcp_link_t *l)
  * not stored; only frame starts are followed, for (08)37H and for the return to idle.
  * A line error that is not inside a frame (modem mode: after the CRC) with
  * interference suppression (or RS485) is ignored, as between messages. */
-MODCP_NOINLINE void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
+MODCP_SIZE_NOINLINE void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
 {
     if (l->rs485 && l->state == MODCP_LINK_TX) {
         return; /* echo of our own transmission */
@@ -356,7 +355,7 @@ void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 
 /* A formally correct frame for us (or broadcast) in buf[0 .. len): counted and handed
  * to the CP (state BUSY), or dropped without a frame to fill (f NULL). */
-MODCP_NOINLINE bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f)
+MODCP_SIZE_NOINLINE bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f)
 {
     link_count(l, MODCP_CNT_BUS_MSG);
     link_count(l, MODCP_CNT_SLAVE_MSG);

@@ -131,7 +131,9 @@ static int m_feed(modcp_link_t *l, uint8_t b)
     modcp_rtu_t *r = &l->fr.rtu;
     if (l->state == MODCP_LINK_SKIP) {
         if (m_addr(l, b)) {
-            r->flags = (uint8_t)(r->flags & ~RTU_M_FIRST);
+            /* a candidate inside the stretch: whether the stretch had a line error */
+            r->flags = (uint8_t)((r->flags & ~(RTU_M_FIRST | RTU_M_SBAD)) |
+                                 (l->rx_bad ? RTU_M_SBAD : 0u));
             rtu_cand_start(l, b);
         } else {
             rtu_fold(l, b);
