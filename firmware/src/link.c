@@ -240,7 +240,7 @@ void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us)
         l->state = MODCP_LINK_TURNAROUND; /* signals.c: RTS, data output waiting time, CTS */
         return;
     }
-    if (l->rs485 && l->turnaround_us > 0u) {
+    if (l->turnaround_us > 0u) { /* RS485 only (modcp_link_configure) */
         l->state = MODCP_LINK_TURNAROUND;
         link_arm(l, l->turnaround_us);
         return;
