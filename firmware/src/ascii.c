@@ -171,7 +171,7 @@ static void frame_byte(modcp_link_t *l, uint8_t b)
         l->state = MODCP_LINK_SKIP; /* another slave's frame: not checked, not answered */
         return;
     }
-    if (l->buf != NULL && l->len < l->cap) {
+    if (l->len < l->cap) { /* no buffer: cap 0 */
         l->buf[l->len] = b;
         l->len++;
     } else {
@@ -307,7 +307,7 @@ static bool ascii_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
     (void)now_us;
     if (l->state == MODCP_LINK_EOF) {
-        if (f == NULL || l->buf == NULL) {
+        if (f == NULL) {
             l->state = MODCP_LINK_IDLE;
             return false;
         }
@@ -337,7 +337,7 @@ static uint16_t ascii_encode(modcp_link_t *l, uint16_t pdu_len)
 {
     const uint32_t n = 1u + (uint32_t)pdu_len;    /* address + PDU */
     const uint32_t out = 1u + 2u * (n + 1u) + 2u; /* ':' hex(address PDU LRC) CR LF */
-    if (l->buf == NULL || out > (uint32_t)l->size) {
+    if (out > (uint32_t)l->size) { /* no buffer: size 0 */
         return 0;
     }
     l->buf[n] = modcp_lrc(l->buf, n);

@@ -407,7 +407,7 @@ uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
     if (l->reply_same && n + 2u == (uint32_t)l->len) {
         return l->len; /* the request's frame, unchanged: its CRC is in place (len <= cap) */
     }
-    if (l->buf == NULL || n + 2u > (uint32_t)l->cap) {
+    if (n + 2u > (uint32_t)l->cap) { /* no buffer: cap 0 */
         return 0;
     }
     uint16_t crc = modcp_crc16(l->buf, n);
