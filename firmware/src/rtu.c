@@ -168,52 +168,81 @@ MODCP_SIZE_NOINLINE void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, 
     l->last_us = now_us;
 }
 
-/* Every case but the plain one of rtu_on_byte(): another state or a full buffer. Kept
- * out of line so the hot path stays a leaf. */
-static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us)
+/* Every case but the plain one of rtu_on_byte() (another state or a full buffer), and
+ * a line error in place of a character (err, b 0): the one receive automaton of both
+ * modes. Kept out of line so that the hot path stays a leaf. Modem mode implies
+ * l->suppress. */
+static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
 {
+    modcp_rtu_t *r = &l->fr.rtu;
     switch (l->state) {
     case MODCP_LINK_SKIP:
-        if (now_us - l->last_us < l->t35_us) {
-            l->last_us = now_us;
-            if (l->modem) {
-                rtu_m_push(l, b);
-            } else {
-                rtu_fold(l, b);
-            }
-            break;
+        if (now_us - l->last_us >= l->t35_us) {
+            rtu_stretch_end(l); /* modem mode: a line error would begin a stretch, ignored */
+            goto start;         /* the skipped frame ended: b starts a new one */
         }
-        rtu_stretch_end(l);
-        goto start; /* the skipped frame ended: b starts a new one */
+        if (l->modem) {
+            if (err) {
+                l->rx_bad = true; /* among stray characters / another frame: not counted */
+            } else {
+                rtu_m_push(l, b);
+            }
+        } else if (err) {
+            goto bad;
+        } else {
+            rtu_fold(l, b);
+        }
+        break;
     case MODCP_LINK_RX: /* normal: the buffer is full, the frame is too long; modem mode:
                            function code, byte count, last character, or a full buffer */
-        l->last_us = now_us;
         if (l->modem) {
-            rtu_m_push(l, b);
-        } else {
+            if (err) {
+                rtu_m_cand_bad(l);
+            } else {
+                rtu_m_push(l, b);
+            }
+        } else if (!err) {
             l->rx_overflow = true;
+        } else if (!l->rx_bad && !l->rx_overflow && l->len >= RTU_MIN_FRAME && r->crc == 0u) {
+            return; /* after the CRC: not part of the frame */
+        } else {
+            goto bad; /* (its count is not looked at: the frame is bad) */
         }
         break;
     case MODCP_LINK_EOF:
     case MODCP_LINK_BUSY:
     case MODCP_LINK_TURNAROUND:
     case MODCP_LINK_TX:
-        rtu_busy_track(l, b, false, now_us);
-        break;
+        rtu_busy_track(l, b, err, now_us);
+        return;
     default:
         if (l->state != MODCP_LINK_IDLE) {
             rtu_internal_error(l);
+            if (err) {
+                return;
+            }
         }
     start:
+        if (err && l->suppress) {
+            return; /* between messages: ignored, a frame starts only with a good character */
+        }
         frame_start(l, now_us);
+        if (err) {
+            goto bad; /* an erroneous frame, skipped to its t3.5 */
+        }
         if (b == l->own_addr || b == 0u) {
             rtu_cand_start(l, b);
-            l->fr.rtu.flags = RTU_M_LEAD | RTU_M_FIRST;
+            r->flags = RTU_M_LEAD | RTU_M_FIRST;
         } else {
             rtu_fold(l, b);
         }
         break;
+    bad:
+        link_mark_bad(l);
+        rtu_count_char(r);
+        break;
     }
+    l->last_us = now_us;
 }
 
 /* The hot path: a character of our frame, with room in the buffer (r->stop is the
@@ -222,7 +251,7 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
 void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     if (l->state != MODCP_LINK_RX || l->len >= l->fr.rtu.stop) {
-        byte_other(l, b, now_us);
+        byte_other(l, b, now_us, false);
         return;
     }
     l->last_us = now_us;
@@ -274,7 +303,7 @@ static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
     while (b < e) {
         const uint16_t stop = l->fr.rtu.stop;
         if (l->state != MODCP_LINK_RX || l->len >= stop) {
-            byte_other(l, *b++, t); /* a frame's start included */
+            byte_other(l, *b++, t, false); /* a frame's start included */
             t += c;
             continue;
         }
@@ -306,51 +335,10 @@ static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
     }
 }
 
-/* Modem mode implies l->suppress. */
 void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
     (void)line_errors; /* every kind of error has the same effect on framing */
-    modcp_rtu_t *r = &l->fr.rtu;
-    switch (l->state) {
-    case MODCP_LINK_RX:
-        if (l->modem) {
-            rtu_m_cand_bad(l);
-            break;
-        }
-        if (!l->rx_bad && !l->rx_overflow && l->len >= RTU_MIN_FRAME && r->crc == 0u) {
-            return; /* after the CRC: not part of the frame */
-        }
-        goto bad; /* (its count is not looked at: the frame is bad) */
-    case MODCP_LINK_SKIP:
-        if (now_us - l->last_us < l->t35_us) {
-            if (l->modem) {
-                l->rx_bad = true; /* among stray characters / another frame: not counted */
-                break;
-            }
-            goto bad;
-        }
-        rtu_stretch_end(l); /* modem mode: a new stretch would begin, ignored as on an idle line */
-        /* fall through */
-    case MODCP_LINK_IDLE:
-        if (l->suppress) {
-            return; /* between messages: ignored, a frame starts only with a good character */
-        }
-        frame_start(l, now_us); /* an erroneous frame, skipped to its t3.5 */
-    bad:
-        link_mark_bad(l);
-        rtu_count_char(r);
-        break;
-    case MODCP_LINK_EOF:
-    case MODCP_LINK_BUSY:
-    case MODCP_LINK_TURNAROUND:
-    case MODCP_LINK_TX:
-        rtu_busy_track(l, 0, true, now_us);
-        return;
-    default:
-        rtu_internal_error(l);
-        return;
-    }
-    l->last_us = now_us;
+    byte_other(l, 0, now_us, true);
 }
 
 /* A formally correct frame for us (or broadcast) in buf[0 .. len): counted and handed
