@@ -53,8 +53,8 @@
 
 void rtu_count_char(modcp_rtu_t *r)
 {
-    if (r->count < UINT16_MAX) {
-        r->count++;
+    if (r->count < RTU_MIN_FRAME) {
+        r->count++; /* only ">= RTU_MIN_FRAME" is looked at */
     }
 }
 

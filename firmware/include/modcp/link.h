@@ -68,15 +68,16 @@ typedef struct {
 
 /* RTU receive state (rtu.c). */
 typedef struct {
-    uint16_t crc;   /* running CRC over the current frame (modem mode: the candidate) */
-    uint16_t count; /* characters of a skipped frame (bus counters); modem mode: of the
-                       stretch being followed */
-    /* interference suppression (modem mode) only: */
-    uint16_t stop;  /* buffer index of the next character that needs a look (function
-                       code, byte count, last character); the hot path runs below it */
-    uint16_t total; /* the candidate's length by its function code, 0: by t3.5 */
-    uint16_t skip_crc; /* CRC over the stretch (stray characters, other frames) */
-    uint8_t flags;  /* RTU_M_* (rtu.c) */
+    uint16_t crc;   /* running CRC over our frame (modem mode: the candidate) */
+    uint16_t count; /* characters of the stretch that is not our frame (a skipped frame;
+                       modem mode: the stretch being followed), counted up to 4 */
+    uint16_t stop;  /* buffer index of the next character that needs a look; the hot
+                       path runs below it (normal operation: the capacity; modem mode:
+                       function code, byte count, last character) */
+    uint16_t total; /* modem mode: the candidate's length by its function code, 0: by
+                       t3.5 (normal operation: always 0) */
+    uint16_t skip_crc; /* CRC over the stretch that is not our frame (bus counters) */
+    uint8_t flags;  /* RTU_M_* (link_internal.h) */
 } modcp_rtu_t;
 
 /* ASCII receive state (ascii.c). */
