@@ -161,8 +161,8 @@ static void frame_byte(modcp_link_t *l, uint8_t b)
 {
     modcp_ascii_t *a = &l->fr.ascii;
     a->lrc = (uint8_t)(a->lrc + b);
-    if (a->count < UINT16_MAX) {
-        a->count++;
+    if (a->count < ASCII_MIN_FRAME) {
+        a->count++; /* only the first byte and ">= ASCII_MIN_FRAME" are looked at */
     }
     if (l->state != MODCP_LINK_RX) {
         return;

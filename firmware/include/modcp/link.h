@@ -82,7 +82,8 @@ typedef struct {
 
 /* ASCII receive state (ascii.c). */
 typedef struct {
-    uint16_t count;  /* bytes decoded in the current frame (busy: address decoded) */
+    uint16_t count;  /* bytes decoded in the current frame, up to 3 (busy: address
+                        decoded) */
     uint8_t lrc;     /* running byte sum */
     uint8_t hex_hi;  /* first hex character of a pair */
     bool hex_half;   /* a pair is half received */
