@@ -60,8 +60,11 @@
 #define ASCII_MIN_FRAME 3u /* address, function, LRC */
 #define HEX_BAD 0xFFu
 
-static const char hex_digits[16] = {'0', '1', '2', '3', '4', '5', '6', '7',
-                                    '8', '9', 'A', 'B', 'C', 'D', 'E', 'F'};
+/* The upper-case hex digit of d (0 ... 15). */
+static uint8_t hex_digit(unsigned d)
+{
+    return (uint8_t)(d + (d < 10u ? (unsigned)'0' : (unsigned)'A' - 10u));
+}
 
 static uint8_t hexval(uint8_t c)
 {
@@ -344,8 +347,8 @@ static uint16_t ascii_encode(modcp_link_t *l, uint16_t pdu_len)
     /* in place from the back: byte i goes to 1 + 2i and 2 + 2i, both beyond i */
     for (uint32_t i = n + 1u; i-- > 0u;) {
         uint8_t b = l->buf[i];
-        l->buf[1u + 2u * i] = (uint8_t)hex_digits[b >> 4];
-        l->buf[2u + 2u * i] = (uint8_t)hex_digits[b & 0x0Fu];
+        l->buf[1u + 2u * i] = hex_digit(b >> 4);
+        l->buf[2u + 2u * i] = hex_digit(b & 0x0Fu);
     }
     l->buf[0] = (uint8_t)ASCII_COLON;
     l->buf[out - 2u] = (uint8_t)ASCII_CR;
