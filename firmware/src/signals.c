@@ -52,22 +52,26 @@ void modcp_sig_init(modcp_sig_t *s, const modcp_hal_t *hal, modcp_diag_t *diag)
     out(s, MODCP_SIG_DTR, false);
 }
 
+/* Nothing in progress: RTS OFF, DTR ON in automatic mode, else OFF. */
+static void reset(modcp_sig_t *s)
+{
+    s->state = MODCP_SIGST_IDLE;
+    out(s, MODCP_SIG_RTS, false);
+    out(s, MODCP_SIG_DTR, s->enabled);
+}
+
 void modcp_sig_disable(modcp_sig_t *s)
 {
     s->enabled = false;
-    s->state = MODCP_SIGST_IDLE;
-    out(s, MODCP_SIG_RTS, false);
-    out(s, MODCP_SIG_DTR, false);
+    reset(s);
 }
 
 void modcp_sig_configure(modcp_sig_t *s, const modcp_params_t *p)
 {
-    s->state = MODCP_SIGST_IDLE;
     s->enabled = p->rs232_auto != 0u && p->iface == (uint8_t)MODCP_IFACE_RS232;
     s->on_delay_us = (uint32_t)p->rts_on_delay_ms * 1000u;
     s->off_delay_us = (uint32_t)p->rts_off_delay_ms * 1000u;
-    out(s, MODCP_SIG_RTS, false);
-    out(s, MODCP_SIG_DTR, s->enabled);
+    reset(s);
 }
 
 bool modcp_sig_rx_allowed(const modcp_sig_t *s)
