@@ -40,6 +40,14 @@ static void count_abort(modcp_sig_t *s)
     }
 }
 
+/* Nothing in progress: RTS OFF, DTR ON in automatic mode, else OFF. */
+static void reset(modcp_sig_t *s)
+{
+    s->state = MODCP_SIGST_IDLE;
+    out(s, MODCP_SIG_RTS, false);
+    out(s, MODCP_SIG_DTR, s->enabled);
+}
+
 void modcp_sig_init(modcp_sig_t *s, const modcp_hal_t *hal, modcp_diag_t *diag)
 {
     memset(s, 0, sizeof *s);
@@ -48,16 +56,7 @@ void modcp_sig_init(modcp_sig_t *s, const modcp_hal_t *hal, modcp_diag_t *diag)
     /* power-on: outputs OFF (set explicitly, whatever the pins did before) */
     s->rts = true;
     s->dtr = true;
-    out(s, MODCP_SIG_RTS, false);
-    out(s, MODCP_SIG_DTR, false);
-}
-
-/* Nothing in progress: RTS OFF, DTR ON in automatic mode, else OFF. */
-static void reset(modcp_sig_t *s)
-{
-    s->state = MODCP_SIGST_IDLE;
-    out(s, MODCP_SIG_RTS, false);
-    out(s, MODCP_SIG_DTR, s->enabled);
+    reset(s); /* not enabled: both OFF */
 }
 
 void modcp_sig_disable(modcp_sig_t *s)
