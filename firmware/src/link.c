@@ -18,7 +18,7 @@
 
 static void set_de(const modcp_link_t *l, bool on)
 {
-    if (l->hal != NULL && l->hal->set_de != NULL) {
+    if (l->hal->set_de != NULL) {
         l->hal->set_de(l->hal->ctx, on);
     }
 }
@@ -28,9 +28,7 @@ static void start_tx(modcp_link_t *l)
     l->state = MODCP_LINK_TX;
     l->tx_starts++;
     l->tx_on = true;
-    if (l->hal != NULL && l->hal->uart_tx != NULL) {
-        l->hal->uart_tx(l->hal->ctx, l->buf, l->tx_len);
-    }
+    l->hal->uart_tx(l->hal->ctx, l->buf, l->tx_len); /* never NULL (modcp/hal.h) */
 }
 
 static void reset_rx(modcp_link_t *l)

@@ -57,12 +57,11 @@ extern const modcp_framing_ops_t modcp_rtu_ops;
 extern const modcp_framing_ops_t modcp_ascii_ops; /* ascii.c */
 #endif
 
-/* Arm the one-shot timer (0 disarms). */
+/* Arm the one-shot timer (0 disarms): hal, its uart_tx and timer_arm are never NULL
+ * (modcp/hal.h: the callbacks that "may be NULL" are the others). */
 static inline void link_arm(const modcp_link_t *l, uint32_t us)
 {
-    if (l->hal != NULL && l->hal->timer_arm != NULL) {
-        l->hal->timer_arm(l->hal->ctx, us);
-    }
+    l->hal->timer_arm(l->hal->ctx, us);
 }
 
 /* The common timer expiry while a frame arrives: armed once at its first character,
@@ -147,7 +146,8 @@ void rtu_m_cand_bad(modcp_link_t *l);          /* a line error in the candidate 
 uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len);
 
 /* Moved from modcp/link.h: the core's own interface. */
-/* diag: where the link counts and reports, never NULL. */
+/* hal: the port's (never NULL, see link_arm); diag: where the link counts and reports,
+ * never NULL. */
 void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag, uint8_t *buf,
                      uint16_t cap);
 /* Apply parameters (framing, address, timing, interface) and enable. */

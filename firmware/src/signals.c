@@ -14,16 +14,14 @@ static void out(modcp_sig_t *s, modcp_signal_t sig, bool on)
         return;
     }
     *cur = on;
-    if (s->hal != NULL && s->hal->set_signal != NULL) {
+    if (s->hal->set_signal != NULL) {
         s->hal->set_signal(s->hal->ctx, sig, on);
     }
 }
 
 static void arm(const modcp_sig_t *s, uint32_t us)
 {
-    if (s->hal != NULL && s->hal->timer_arm != NULL) {
-        s->hal->timer_arm(s->hal->ctx, us);
-    }
+    s->hal->timer_arm(s->hal->ctx, us); /* never NULL (modcp/hal.h) */
 }
 
 static void event(modcp_sig_t *s, modcp_event_t ev)
@@ -187,7 +185,7 @@ static void abort_send(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us)
         modcp_link_tx_release(l, false, now_us);
     } else if (s->state == MODCP_SIGST_SENDING) {
         count_abort(s);
-        if (s->hal != NULL && s->hal->uart_tx_abort != NULL) {
+        if (s->hal->uart_tx_abort != NULL) {
             s->hal->uart_tx_abort(s->hal->ctx);
         }
         s->state = MODCP_SIGST_IDLE;
