@@ -179,16 +179,11 @@ void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
     if (!l->enabled || line_errors == 0u) {
         return;
     }
-    if ((line_errors & MODCP_LINE_BREAK) != 0u) {
-        l->diag->breaks = (uint16_t)(l->diag->breaks + 1u);
-        if (!l->suppress) {
-            link_event(l, MODCP_EV_BREAK);
-        }
-    } else {
-        l->diag->char_errors = (uint16_t)(l->diag->char_errors + 1u);
-        if (!l->suppress) {
-            link_event(l, MODCP_EV_CHAR_ERROR);
-        }
+    const bool brk = (line_errors & MODCP_LINE_BREAK) != 0u;
+    uint16_t *n = brk ? &l->diag->breaks : &l->diag->char_errors;
+    *n = (uint16_t)(*n + 1u);
+    if (!l->suppress) {
+        link_event(l, brk ? MODCP_EV_BREAK : MODCP_EV_CHAR_ERROR);
     }
     if ((line_errors & MODCP_LINE_OVERRUN) != 0u) {
         link_count(l, MODCP_CNT_CHAR_OVERRUN);
