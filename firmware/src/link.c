@@ -216,8 +216,8 @@ bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 
 void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us)
 {
-    if (!l->enabled || l->state != MODCP_LINK_BUSY) {
-        return;
+    if (l->state != MODCP_LINK_BUSY) {
+        return; /* (a disabled link is IDLE) */
     }
     l->tx_at_us = now_us;
     l->tx_len = l->ops->encode(l, pdu_len);
