@@ -42,16 +42,23 @@ static void reset_rx(modcp_link_t *l)
     l->tx_len = 0;
 }
 
-/* A disabled (or not yet configured) link: the line is ignored. Only on_byte is ever
- * reached through it (modcp_link_on_byte / _on_block): every other entry point checks
- * l->enabled first. */
+/* A disabled (or not yet configured) link, state IDLE: the line and the timer are
+ * ignored. Only on_byte (modcp_link_on_byte / _on_block) and on_timer are ever reached
+ * through it: the other entry points check l->enabled or the state first. */
 static void off_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     (void)l;
     (void)b;
     (void)now_us;
 }
-static const modcp_framing_ops_t off_ops = {NULL, off_byte, NULL, NULL, NULL, NULL};
+static bool off_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
+{
+    (void)l;
+    (void)now_us;
+    (void)f;
+    return false;
+}
+static const modcp_framing_ops_t off_ops = {NULL, off_byte, NULL, off_timer, NULL, NULL};
 
 /* The backend for the framing parameter (the only place that names the framings). */
 static const modcp_framing_ops_t *framing_ops(uint8_t framing)
@@ -193,9 +200,6 @@ void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 
 bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
-    if (!l->enabled) {
-        return false;
-    }
     if (l->state == MODCP_LINK_TURNAROUND) {
         uint32_t waited = now_us - l->tx_at_us;
         if (l->tx_hold) {
