@@ -2,8 +2,10 @@
  * 004 §2.2): the part of the RTU backend (rtu.c, modcp_rtu_ops) that runs for the
  * operating mode `suppression` (l->modem, set by rtu_configure). It shares rtu.c's ops
  * table, receive automaton, block path and hot path (a character below r->stop: a store
- * and a CRC step); rtu.c calls the rtu_m_* hooks below where modem mode differs, its end
- * of frame included (rtu_m_on_timer, from rtu_on_timer).
+ * and a CRC step), its frame and stretch starts and ends (frame_start, rtu_cand_start,
+ * rtu_unclaim, rtu_stretch_end, rtu_on_timer); rtu.c calls the rtu_m_* hooks below
+ * where modem mode differs: a character of a stretch or candidate that needs a look
+ * (rtu_m_push), a line error in a candidate (rtu_m_cand_bad).
  *
  * "The start of a message is recognised by a correctly received slave address"; "the
  * end of the message by a formally correct message with a correct CRC". The line is
