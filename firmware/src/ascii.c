@@ -3,7 +3,8 @@
  * buf + 1, LRC last) while the characters arrive; the PDU engine and the mapping are
  * the ones RTU uses.
  *
- * The backend behind modcp_ascii_ops (link_internal.h), its state in l->fr.ascii.
+ * The backend behind ascii_ops (modcp_framing_ops_t, link_internal.h; chosen by
+ * ascii_configure), its state in l->fr.ascii.
  *
  * Receive, by link state:
  *   IDLE  waiting for ':'. Any other character: wrong start character, event (08)38H
@@ -356,12 +357,12 @@ static uint16_t ascii_encode(modcp_link_t *l, uint16_t pdu_len)
     return (uint16_t)out;
 }
 
-static const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p)
+static const modcp_framing_ops_t ascii_ops = {ascii_on_byte, ascii_on_error, ascii_on_timer,
+                                              ascii_encode, NULL};
+
+const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p)
 {
     l->fr.ascii.seven_bit = p->data_bits == 7u;
     l->silence_us = l->ascii_timeout_us; /* the character delay time plays t3.5's part */
-    return l->cap >= ASCII_MIN_FRAME && l->size >= 11u ? &modcp_ascii_ops : NULL;
+    return l->cap >= ASCII_MIN_FRAME && l->size >= 11u ? &ascii_ops : NULL;
 }
-
-const modcp_framing_ops_t modcp_ascii_ops = {ascii_configure, ascii_on_byte, ascii_on_error,
-                                             ascii_on_timer, ascii_encode, NULL};

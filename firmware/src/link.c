@@ -58,17 +58,18 @@ static bool off_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
     (void)f;
     return false;
 }
-static const modcp_framing_ops_t off_ops = {NULL, off_byte, NULL, off_timer, NULL, NULL};
+static const modcp_framing_ops_t off_ops = {off_byte, NULL, off_timer, NULL, NULL};
 
-/* The backend for the framing parameter (the only place that names the framings). */
-static const modcp_framing_ops_t *framing_ops(uint8_t framing)
+/* The backend for the framing parameter (the only place that names the framings),
+ * configured: the ops to run, NULL if it cannot. */
+static const modcp_framing_ops_t *framing_configure(modcp_link_t *l, const modcp_params_t *p)
 {
-    switch (framing) {
+    switch (p->framing) {
     case MODCP_FRAMING_RTU:
-        return &modcp_rtu_ops;
+        return rtu_configure(l, p);
 #if MODCP_WITH_ASCII
     case MODCP_FRAMING_ASCII:
-        return &modcp_ascii_ops;
+        return ascii_configure(l, p);
 #endif
     default:
         return NULL;
@@ -139,10 +140,7 @@ void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
     l->tx_hold = p->rs232_auto != 0u && p->iface == (uint8_t)MODCP_IFACE_RS232;
     l->ascii_timeout_us = (uint32_t)p->ascii_timeout_ms * 1000u;
     l->ascii_delim = 0x0Au; /* LF until FC08 sub-function 03 changes it */
-    const modcp_framing_ops_t *ops = framing_ops(p->framing);
-    if (ops != NULL) {
-        ops = ops->configure(l, p); /* the variant to run (sets silence_us), NULL if it cannot */
-    }
+    const modcp_framing_ops_t *ops = framing_configure(l, p); /* sets silence_us */
     if (ops != NULL) {
         l->ops = ops;
         l->enabled = true;

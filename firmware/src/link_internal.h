@@ -30,10 +30,6 @@
  * end of the last character of the frame. The link handles every expiry in RX / SKIP
  * that comes before l->silence_us has passed since l->last_us by re-arming the rest. */
 typedef struct modcp_framing_ops {
-    /* The framing's part of modcp_link_configure(): its state (already zeroed), and
-     * l->silence_us. Returns the ops to run (the backend may have variants, e.g. RTU
-     * with and without the t1.5 check), NULL if the buffer is too small. */
-    const struct modcp_framing_ops *(*configure)(modcp_link_t *l, const modcp_params_t *p);
     /* A received character (the hot path: per byte a store and a check step). */
     void (*on_byte)(modcp_link_t *l, uint8_t b, uint32_t now_us);
     /* A line error in place of a character (counted and reported by link.c). */
@@ -51,10 +47,13 @@ typedef struct modcp_framing_ops {
     void (*on_block)(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us);
 } modcp_framing_ops_t;
 
-/* RTU (rtu.c), normal operation and interference suppression = modem mode alike */
-extern const modcp_framing_ops_t modcp_rtu_ops;
+/* A framing's part of modcp_link_configure() (rtu_configure, ascii_configure; the link
+ * calls the one of the framing parameter): its state (already zeroed), and
+ * l->silence_us. Returns the ops to run (the backend may have variants, e.g. RTU with
+ * and without the t1.5 check), NULL if the buffer is too small. */
+const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p);
 #if MODCP_WITH_ASCII
-extern const modcp_framing_ops_t modcp_ascii_ops; /* ascii.c */
+const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p);
 #endif
 
 /* Arm the one-shot timer (0 disarms): hal, its uart_tx and timer_arm are never NULL
@@ -131,7 +130,6 @@ void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us);
 void rtu_internal_error(modcp_link_t *l);
 /* A formally correct frame in the buffer: counted, handed over (BUSY). */
 bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f);
-const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p);
 /* The receive automaton of both variants (rtu.c). The hot path: a character of the
  * frame (modem mode: the candidate) below r->stop (normal operation: the capacity) is
  * stored and goes through one CRC step. Where modem mode differs (the characters of a

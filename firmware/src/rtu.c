@@ -6,7 +6,8 @@
  * at, line errors inside a frame, the end of our frame) are the rtu_m_* hooks of
  * rtu_modem.c, called by l->modem off the hot path.
  *
- * The backend behind modcp_rtu_ops (link_internal.h), its state in l->fr.rtu. A
+ * The backend behind rtu_ops (modcp_framing_ops_t, link_internal.h; chosen by
+ * rtu_configure), its state in l->fr.rtu. A
  * character of our frame costs a store and one table-CRC step (plus one comparison with
  * the t1.5 check on: a second entry, rtu_t15_ops, chosen at configuration); the
  * end-of-frame timer is armed once, by the frame's first character (or line error
@@ -404,11 +405,11 @@ uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
     return (uint16_t)(n + 2u);
 }
 
-static const modcp_framing_ops_t rtu_t15_ops;
+static const modcp_framing_ops_t rtu_ops, rtu_t15_ops;
 
 /* Normal operation or interference suppression (modem mode, the operating mode
  * parameter: l->modem, one ops table for both); the variant is the t1.5 check. */
-const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
+MODCP_SIZE_NOINLINE const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
 {
     l->silence_us = l->t35_us;
     l->fr.rtu.stop = l->cap; /* normal operation: the hot path runs up to the capacity */
@@ -416,10 +417,10 @@ const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *
     if (l->cap < RTU_MIN_FRAME) {
         return NULL;
     }
-    return l->t15_us != 0u ? &rtu_t15_ops : &modcp_rtu_ops;
+    return l->t15_us != 0u ? &rtu_t15_ops : &rtu_ops;
 }
 
-const modcp_framing_ops_t modcp_rtu_ops = {rtu_configure, rtu_on_byte, rtu_on_error,
-                                           rtu_on_timer, rtu_encode, rtu_on_block};
-static const modcp_framing_ops_t rtu_t15_ops = {rtu_configure, rtu_on_byte_t15, rtu_on_error,
-                                                rtu_on_timer, rtu_encode, rtu_on_block};
+static const modcp_framing_ops_t rtu_ops = {rtu_on_byte, rtu_on_error, rtu_on_timer, rtu_encode,
+                                            rtu_on_block};
+static const modcp_framing_ops_t rtu_t15_ops = {rtu_on_byte_t15, rtu_on_error, rtu_on_timer,
+                                                rtu_encode, rtu_on_block};
