@@ -129,10 +129,10 @@ void rtu_stretch_end(modcp_link_t *l)
     }
     if (r->count >= RTU_MIN_FRAME && r->skip_crc == 0u) {
         link_count(l, MODCP_CNT_BUS_MSG);
-    } else if (!l->modem || (r->flags & RTU_M_LEAD) != 0u) {
-        if ((r->flags & RTU_M_LEAD) != 0u) {
-            link_event(l, MODCP_EV_CRC);
-        }
+    } else if ((r->flags & RTU_M_LEAD) != 0u) {
+        link_event(l, MODCP_EV_CRC);
+        link_count(l, MODCP_CNT_BUS_CRC);
+    } else if (!l->modem) {
         link_count(l, MODCP_CNT_BUS_CRC);
     }
 }
