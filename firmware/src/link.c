@@ -138,8 +138,10 @@ void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
     l->char_us = modcp_params_char_us(p);
     l->turnaround_us = l->rs485 ? (uint32_t)p->turnaround_ms * 1000u : 0u;
     l->tx_hold = p->rs232_auto != 0u && p->iface == (uint8_t)MODCP_IFACE_RS232;
+#if MODCP_WITH_ASCII
     l->ascii_timeout_us = (uint32_t)p->ascii_timeout_ms * 1000u;
     l->ascii_delim = 0x0Au; /* LF until FC08 sub-function 03 changes it */
+#endif
     const modcp_framing_ops_t *ops = framing_configure(l, p); /* sets silence_us */
     if (ops != NULL) {
         l->ops = ops;
