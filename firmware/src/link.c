@@ -16,6 +16,9 @@
 #include "diag_internal.h"
 #include "params_internal.h"
 
+/* A reply waits for the RS232 automatic signals (signals.c); never without them. */
+#define TX_HOLD(l) (MODCP_WITH_RS232_SIGNALS && (l)->tx_hold)
+
 static void set_de(const modcp_link_t *l, bool on)
 {
     if (l->hal->set_de != NULL) {
@@ -137,7 +140,9 @@ void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
     l->t15_us = p->t15_check != 0u ? modcp_params_t15_us(p) : 0u;
     l->char_us = modcp_params_char_us(p);
     l->turnaround_us = l->rs485 ? (uint32_t)p->turnaround_ms * 1000u : 0u;
+#if MODCP_WITH_RS232_SIGNALS /* else rs232_auto is refused (params.c): never held */
     l->tx_hold = p->rs232_auto != 0u && p->iface == (uint8_t)MODCP_IFACE_RS232;
+#endif
 #if MODCP_WITH_ASCII
     l->ascii_timeout_us = (uint32_t)p->ascii_timeout_ms * 1000u;
     l->ascii_delim = 0x0Au; /* LF until FC08 sub-function 03 changes it */
@@ -202,7 +207,7 @@ bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
     if (l->state == MODCP_LINK_TURNAROUND) {
         uint32_t waited = now_us - l->tx_at_us;
-        if (l->tx_hold) {
+        if (TX_HOLD(l)) {
             return false; /* RS232 automatic signals: signals.c releases the reply */
         }
         if (waited < l->turnaround_us) {
@@ -233,7 +238,7 @@ void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us)
     if (l->rs485) {
         set_de(l, true);
     }
-    if (l->tx_hold) {
+    if (TX_HOLD(l)) {
         l->state = MODCP_LINK_TURNAROUND; /* signals.c: RTS, data output waiting time, CTS */
         return;
     }
