@@ -132,32 +132,29 @@ static void discard(modcp_link_t *l, modcp_event_t ev)
 /* CR + delimiter: the end of the frame in RX or SKIP. */
 static void frame_end(modcp_link_t *l)
 {
-    const bool lrc_ok = l->fr.ascii.count >= ASCII_MIN_FRAME && l->fr.ascii.lrc == 0u;
+    const bool ours = l->state == MODCP_LINK_RX; /* else SKIP: another slave's frame */
     link_arm(l, 0);
-    if (l->state == MODCP_LINK_SKIP) {
-        if (!l->rx_bad) {
-            link_count(l, lrc_ok ? MODCP_CNT_BUS_MSG : MODCP_CNT_BUS_CRC);
-        }
-        l->state = MODCP_LINK_IDLE;
-        return;
-    }
     l->state = MODCP_LINK_IDLE;
     if (l->rx_bad) {
-        return; /* dropped by the link (modcp_link_rx_discard: DSR OFF) */
+        return; /* counted once already, or dropped by the link (DSR OFF) */
     }
     if (l->rx_overflow) {
-        link_frame_too_long(l);
+        link_frame_too_long(l); /* ours only: SKIP stores nothing */
         return;
     }
-    if (!lrc_ok) {
-        link_event(l, MODCP_EV_CRC); /* 003 §8.5 (08)36H "LRC incorrect" */
+    if (l->fr.ascii.count < ASCII_MIN_FRAME || l->fr.ascii.lrc != 0u) {
+        if (ours) {
+            link_event(l, MODCP_EV_CRC); /* 003 §8.5 (08)36H "LRC incorrect" */
+        }
         link_count(l, MODCP_CNT_BUS_CRC);
         return;
     }
     link_count(l, MODCP_CNT_BUS_MSG);
-    link_count(l, MODCP_CNT_SLAVE_MSG);
-    l->state = MODCP_LINK_EOF;
-    link_arm(l, 1u); /* hand the frame over on the timer, as RTU does */
+    if (ours) {
+        link_count(l, MODCP_CNT_SLAVE_MSG);
+        l->state = MODCP_LINK_EOF;
+        link_arm(l, 1u); /* hand the frame over on the timer, as RTU does */
+    }
 }
 
 /* One decoded byte of the frame in RX / SKIP. */
