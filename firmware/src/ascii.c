@@ -196,21 +196,17 @@ static void frame_char(modcp_link_t *l, uint8_t c, uint32_t now_us)
     if (!a->in_frame) {
         return; /* stray characters before a start character */
     }
-    if (a->got_cr) {
-        if (c == l->ascii_delim) {
+    if (a->got_cr || c == ASCII_CR) {
+        if (a->got_cr && c == l->ascii_delim) {
             frame_end(l);
             return;
         }
-        discard(l, MODCP_EV_ASCII_NOT_HEX); /* CR not followed by the delimiter */
-        a->got_cr = c == ASCII_CR;
-        return;
-    }
-    if (c == ASCII_CR) {
-        a->got_cr = true;
-        if (a->hex_half) {
+        if (a->got_cr || a->hex_half) { /* (after CR no pair is half received) */
+            /* CR not followed by the delimiter, or an odd number of hex characters */
             a->hex_half = false;
-            discard(l, MODCP_EV_ASCII_NOT_HEX); /* odd number of hex characters */
+            discard(l, MODCP_EV_ASCII_NOT_HEX);
         }
+        a->got_cr = c == ASCII_CR;
         return;
     }
     int v = hex_pair(a, c);
