@@ -409,7 +409,8 @@ static const modcp_framing_ops_t rtu_ops, rtu_t15_ops;
 
 /* Normal operation or interference suppression (modem mode, the operating mode
  * parameter: l->modem, one ops table for both); the variant is the t1.5 check. */
-MODCP_SIZE_NOINLINE const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
+MODCP_SIZE_NOINLINE const modcp_framing_ops_t *rtu_configure(modcp_link_t *l,
+                                                              const modcp_params_t *p)
 {
     l->silence_us = l->t35_us;
     l->fr.rtu.stop = l->cap; /* normal operation: the hot path runs up to the capacity */
