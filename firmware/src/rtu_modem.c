@@ -110,7 +110,9 @@ static int m_check(modcp_link_t *l)
         r->stop = (uint16_t)(r->total - 1u);
         return M_CONT;
     }
-    if (l->rx_bad) { /* dropped by the link (DSR OFF) */
+    /* dropped by the link (DSR OFF, modcp_link_rx_discard: only with the RS232 signals;
+     * every other damage drops a candidate at once) */
+    if (MODCP_WITH_RS232_SIGNALS && l->rx_bad) {
         rtu_unclaim(l, l->len);
         return M_CONT;
     }
