@@ -256,9 +256,7 @@ static void busy_track(modcp_link_t *l, uint8_t c, uint32_t now_us)
 
 static void ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
-    if (l->fr.ascii.seven_bit) {
-        b &= 0x7Fu;
-    }
+    b &= l->fr.ascii.char_mask;
     switch (l->state) {
     case MODCP_LINK_IDLE:
         if (b == ASCII_COLON) {
@@ -355,7 +353,7 @@ static const modcp_framing_ops_t ascii_ops = {ascii_on_byte, ascii_on_error, asc
 
 const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p)
 {
-    l->fr.ascii.seven_bit = p->data_bits == 7u;
+    l->fr.ascii.char_mask = p->data_bits == 7u ? 0x7Fu : 0xFFu;
     l->silence_us = l->ascii_timeout_us; /* the character delay time plays t3.5's part */
     return l->cap >= ASCII_MIN_FRAME && l->size >= 11u ? &ascii_ops : NULL;
 }

@@ -89,7 +89,7 @@ typedef struct {
     bool hex_half;   /* a pair is half received */
     bool got_cr;     /* the last character was CR */
     bool in_frame;   /* a ':' started what is being followed (false: stray characters) */
-    bool seven_bit;  /* 7 data bits: the eighth bit of a received character is masked */
+    uint8_t char_mask; /* 7 data bits: 7FH, the eighth bit of a character is masked */
 } modcp_ascii_t;
 
 struct modcp_framing_ops; /* link_internal.h */
