@@ -29,7 +29,7 @@ static void event(modcp_sig_t *s, modcp_event_t ev)
     modcp_diag_event(s->diag, ev); /* never NULL (modcp_sig_init) */
 }
 
-static void count_abort(modcp_sig_t *s)
+static MODCP_SIZE_NOINLINE void count_abort(modcp_sig_t *s)
 {
     if (s->aborts < UINT16_MAX) {
         s->aborts++;
