@@ -302,10 +302,6 @@ static bool ascii_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
     (void)now_us;
     if (l->state == MODCP_LINK_EOF) {
-        if (f == NULL) {
-            l->state = MODCP_LINK_IDLE;
-            return false;
-        }
         uint32_t room = ((uint32_t)l->size - 3u) / 2u; /* binary bytes the reply may have */
         if (room > l->cap) {
             room = l->cap;

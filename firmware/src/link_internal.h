@@ -156,8 +156,8 @@ void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
 /* n characters back to back, the last one ended at end_us (modcp_cp_on_rx_block). */
 void modcp_link_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us);
 void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
-/* Timer expiry. Returns true when a valid frame for us or broadcast is ready in *f;
- * the link is then BUSY until modcp_link_reply() or modcp_link_done(). */
+/* Timer expiry. Returns true when a valid frame for us or broadcast is ready in *f (f
+ * never NULL); the link is then BUSY until modcp_link_reply() or modcp_link_done(). */
 bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f);
 /* Send the reply PDU that was written to f->pdu[0 .. pdu_len). */
 void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us);

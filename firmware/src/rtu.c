@@ -343,15 +343,11 @@ void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 }
 
 /* A formally correct frame for us (or broadcast) in buf[0 .. len): counted and handed
- * to the CP (state BUSY), or dropped without a frame to fill (f NULL). */
+ * to the CP in *f (state BUSY). */
 MODCP_SIZE_NOINLINE bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f)
 {
     link_count(l, MODCP_CNT_BUS_MSG);
     link_count(l, MODCP_CNT_SLAVE_MSG);
-    if (f == NULL) {
-        l->state = MODCP_LINK_IDLE;
-        return false;
-    }
     f->addr = l->buf[0];
     f->pdu = &l->buf[1];
     f->pdu_len = (uint16_t)(l->len - 3u);
