@@ -102,7 +102,7 @@ MODCP_NOINLINE void rtu_unclaim(modcp_link_t *l, uint16_t n)
 
 /* A frame (modem mode: a stretch) starts after t3.5, in SKIP until its first character
  * (or line error) is looked at: the end-of-frame timer is armed here, once per frame. */
-static MODCP_SIZE_NOINLINE void frame_start(modcp_link_t *l, uint32_t now_us)
+static void frame_start(modcp_link_t *l, uint32_t now_us)
 {
     modcp_rtu_t *r = &l->fr.rtu;
     r->skip_crc = MODCP_CRC_INIT;
@@ -139,7 +139,7 @@ void rtu_stretch_end(modcp_link_t *l)
 
 /* Default branch of the receive automaton (a state RTU never uses, i.e. corrupted):
  * (0E)11H, back to idle; the character that found it starts a new frame. */
-MODCP_SIZE_NOINLINE void rtu_internal_error(modcp_link_t *l)
+void rtu_internal_error(modcp_link_t *l)
 {
     link_event(l, MODCP_EV_INTERNAL_RECEIVE);
     l->state = MODCP_LINK_IDLE;
@@ -151,7 +151,7 @@ MODCP_SIZE_NOINLINE void rtu_internal_error(modcp_link_t *l)
  * not stored; only frame starts are followed, for (08)37H and for the return to idle.
  * A line error that is not inside a frame (modem mode: after the CRC) with
  * interference suppression (or RS485) is ignored, as between messages. */
-MODCP_SIZE_NOINLINE void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
+void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
 {
     if (l->rs485 && l->state == MODCP_LINK_TX) {
         return; /* echo of our own transmission */
@@ -344,7 +344,7 @@ void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 
 /* A formally correct frame for us (or broadcast) in buf[0 .. len): counted and handed
  * to the CP in *f (state BUSY). */
-MODCP_SIZE_NOINLINE bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f)
+bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f)
 {
     link_count(l, MODCP_CNT_BUS_MSG);
     link_count(l, MODCP_CNT_SLAVE_MSG);
@@ -405,8 +405,7 @@ static const modcp_framing_ops_t rtu_ops, rtu_t15_ops;
 
 /* Normal operation or interference suppression (modem mode, the operating mode
  * parameter: l->modem, one ops table for both); the variant is the t1.5 check. */
-MODCP_SIZE_NOINLINE const modcp_framing_ops_t *rtu_configure(modcp_link_t *l,
-                                                              const modcp_params_t *p)
+const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
 {
     l->silence_us = l->t35_us;
     l->fr.rtu.stop = l->cap; /* normal operation: the hot path runs up to the capacity */
