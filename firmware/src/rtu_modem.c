@@ -157,7 +157,7 @@ static int m_feed(modcp_link_t *l, uint8_t b)
  * and run the rest through the automaton again, looking for our address. Each round
  * drops at least one character; the new candidate is written behind the read position
  * (in place). */
-static MODCP_NOINLINE void m_resync(modcp_link_t *l)
+static void m_resync(modcp_link_t *l)
 {
     uint16_t n = l->len;
     for (;;) {
