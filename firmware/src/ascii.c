@@ -3,7 +3,8 @@
  * buf + 1, LRC last) while the characters arrive; the PDU engine and the mapping are
  * the ones RTU uses.
  *
- * The backend behind modcp_ascii_ops (link_internal.h), its state in l->fr.ascii.
+ * The backend behind ascii_ops (modcp_framing_ops_t, link_internal.h; chosen by
+ * ascii_configure), its state in l->fr.ascii.
  *
  * Receive, by link state:
  *   IDLE  waiting for ':'. Any other character: wrong start character, event (08)38H
@@ -60,26 +61,47 @@
 #define ASCII_MIN_FRAME 3u /* address, function, LRC */
 #define HEX_BAD 0xFFu
 
-static const char hex_digits[16] = {'0', '1', '2', '3', '4', '5', '6', '7',
-                                    '8', '9', 'A', 'B', 'C', 'D', 'E', 'F'};
+/* The upper-case hex digit of d (0 ... 15). */
+static uint8_t hex_digit(unsigned d)
+{
+    return (uint8_t)(d + (d < 10u ? (unsigned)'0' : (unsigned)'A' - 10u));
+}
 
 static uint8_t hexval(uint8_t c)
 {
-    if (c >= (uint8_t)'0' && c <= (uint8_t)'9') {
+    if ((uint8_t)(c - (uint8_t)'0') <= 9u) {
         return (uint8_t)(c - (uint8_t)'0');
     }
-    if (c >= (uint8_t)'A' && c <= (uint8_t)'F') {
-        return (uint8_t)(c - (uint8_t)'A' + 10u);
-    }
-    if (c >= (uint8_t)'a' && c <= (uint8_t)'f') {
+    c |= 0x20u; /* 'A' ... 'F' -> 'a' ... 'f' (nothing else lands there) */
+    if ((uint8_t)(c - (uint8_t)'a') <= 5u) {
         return (uint8_t)(c - (uint8_t)'a' + 10u);
     }
     return HEX_BAD;
 }
 
+#define PAIR_BAD (-1)  /* hex_pair: not a hex digit (the pair is not touched) */
+#define PAIR_HALF (-2) /* hex_pair: the first digit of a pair, kept */
+
+/* A character into the hex pair being received: PAIR_BAD, PAIR_HALF, or the byte
+ * (0 ... 255) the pair makes. */
+static MODCP_NOINLINE int hex_pair(modcp_ascii_t *a, uint8_t c)
+{
+    uint8_t v = hexval(c);
+    if (v == HEX_BAD) {
+        return PAIR_BAD;
+    }
+    if (!a->hex_half) {
+        a->hex_hi = v;
+        a->hex_half = true;
+        return PAIR_HALF;
+    }
+    a->hex_half = false;
+    return (int)((unsigned)a->hex_hi << 4 | v);
+}
+
 /* A ':' starts a frame (in_frame; false: a run of stray characters); the timer is
  * armed here, once per frame. */
-static void frame_start(modcp_link_t *l, uint32_t now_us)
+static MODCP_NOINLINE void frame_start(modcp_link_t *l, uint32_t now_us)
 {
     modcp_ascii_t *a = &l->fr.ascii;
     l->state = MODCP_LINK_RX;
@@ -110,32 +132,29 @@ static void discard(modcp_link_t *l, modcp_event_t ev)
 /* CR + delimiter: the end of the frame in RX or SKIP. */
 static void frame_end(modcp_link_t *l)
 {
-    const bool lrc_ok = l->fr.ascii.count >= ASCII_MIN_FRAME && l->fr.ascii.lrc == 0u;
+    const bool ours = l->state == MODCP_LINK_RX; /* else SKIP: another slave's frame */
     link_arm(l, 0);
-    if (l->state == MODCP_LINK_SKIP) {
-        if (!l->rx_bad) {
-            link_count(l, lrc_ok ? MODCP_CNT_BUS_MSG : MODCP_CNT_BUS_CRC);
-        }
-        l->state = MODCP_LINK_IDLE;
-        return;
-    }
     l->state = MODCP_LINK_IDLE;
     if (l->rx_bad) {
-        return; /* dropped by the link (modcp_link_rx_discard: DSR OFF) */
+        return; /* counted once already, or dropped by the link (DSR OFF) */
     }
     if (l->rx_overflow) {
-        link_frame_too_long(l);
+        link_frame_too_long(l); /* ours only: SKIP stores nothing */
         return;
     }
-    if (!lrc_ok) {
-        link_event(l, MODCP_EV_CRC); /* 003 §8.5 (08)36H "LRC incorrect" */
+    if (l->fr.ascii.count < ASCII_MIN_FRAME || l->fr.ascii.lrc != 0u) {
+        if (ours) {
+            link_event(l, MODCP_EV_CRC); /* 003 §8.5 (08)36H "LRC incorrect" */
+        }
         link_count(l, MODCP_CNT_BUS_CRC);
         return;
     }
     link_count(l, MODCP_CNT_BUS_MSG);
-    link_count(l, MODCP_CNT_SLAVE_MSG);
-    l->state = MODCP_LINK_EOF;
-    link_arm(l, 1u); /* hand the frame over on the timer, as RTU does */
+    if (ours) {
+        link_count(l, MODCP_CNT_SLAVE_MSG);
+        l->state = MODCP_LINK_EOF;
+        link_arm(l, 1u); /* hand the frame over on the timer, as RTU does */
+    }
 }
 
 /* One decoded byte of the frame in RX / SKIP. */
@@ -143,8 +162,8 @@ static void frame_byte(modcp_link_t *l, uint8_t b)
 {
     modcp_ascii_t *a = &l->fr.ascii;
     a->lrc = (uint8_t)(a->lrc + b);
-    if (a->count < UINT16_MAX) {
-        a->count++;
+    if (a->count < ASCII_MIN_FRAME) {
+        a->count++; /* only the first byte and ">= ASCII_MIN_FRAME" are looked at */
     }
     if (l->state != MODCP_LINK_RX) {
         return;
@@ -153,7 +172,7 @@ static void frame_byte(modcp_link_t *l, uint8_t b)
         l->state = MODCP_LINK_SKIP; /* another slave's frame: not checked, not answered */
         return;
     }
-    if (l->buf != NULL && l->len < l->cap) {
+    if (l->len < l->cap) { /* no buffer: cap 0 */
         l->buf[l->len] = b;
         l->len++;
     } else {
@@ -177,35 +196,25 @@ static void frame_char(modcp_link_t *l, uint8_t c, uint32_t now_us)
     if (!a->in_frame) {
         return; /* stray characters before a start character */
     }
-    if (a->got_cr) {
-        if (c == l->ascii_delim) {
+    if (a->got_cr || c == ASCII_CR) {
+        if (a->got_cr && c == l->ascii_delim) {
             frame_end(l);
             return;
         }
-        discard(l, MODCP_EV_ASCII_NOT_HEX); /* CR not followed by the delimiter */
+        if (a->got_cr || a->hex_half) { /* (after CR no pair is half received) */
+            /* CR not followed by the delimiter, or an odd number of hex characters */
+            a->hex_half = false;
+            discard(l, MODCP_EV_ASCII_NOT_HEX);
+        }
         a->got_cr = c == ASCII_CR;
         return;
     }
-    if (c == ASCII_CR) {
-        a->got_cr = true;
-        if (a->hex_half) {
-            a->hex_half = false;
-            discard(l, MODCP_EV_ASCII_NOT_HEX); /* odd number of hex characters */
-        }
-        return;
-    }
-    uint8_t v = hexval(c);
-    if (v == HEX_BAD) {
+    int v = hex_pair(a, c);
+    if (v == PAIR_BAD) {
         discard(l, MODCP_EV_ASCII_NOT_HEX);
-        return;
+    } else if (v >= 0) {
+        frame_byte(l, (uint8_t)v);
     }
-    if (!a->hex_half) {
-        a->hex_hi = v;
-        a->hex_half = true;
-        return;
-    }
-    a->hex_half = false;
-    frame_byte(l, (uint8_t)((unsigned)a->hex_hi << 4 | v));
 }
 
 /* A character while a request is processed or its reply pending. */
@@ -232,27 +241,22 @@ static void busy_track(modcp_link_t *l, uint8_t c, uint32_t now_us)
         return;
     }
     a->got_cr = c == ASCII_CR;
-    uint8_t v = hexval(c);
-    if (v == HEX_BAD || a->count != 0u) {
-        return;
+    if (a->count != 0u) {
+        return; /* the address is decoded */
     }
-    if (!a->hex_half) {
-        a->hex_hi = v;
-        a->hex_half = true;
-        return;
+    int v = hex_pair(a, c);
+    if (v < 0) {
+        return; /* not a hex digit, or half a pair */
     }
-    a->hex_half = false;
     a->count = 1;
-    if ((uint8_t)((unsigned)a->hex_hi << 4 | v) == l->own_addr) {
+    if ((uint8_t)v == l->own_addr) {
         link_event(l, MODCP_EV_SEQUENCE);
     }
 }
 
 static void ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
-    if (l->fr.ascii.seven_bit) {
-        b &= 0x7Fu;
-    }
+    b &= l->fr.ascii.char_mask;
     switch (l->state) {
     case MODCP_LINK_IDLE:
         if (b == ASCII_COLON) {
@@ -298,10 +302,6 @@ static bool ascii_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
     (void)now_us;
     if (l->state == MODCP_LINK_EOF) {
-        if (f == NULL || l->buf == NULL) {
-            l->state = MODCP_LINK_IDLE;
-            return false;
-        }
         uint32_t room = ((uint32_t)l->size - 3u) / 2u; /* binary bytes the reply may have */
         if (room > l->cap) {
             room = l->cap;
@@ -328,15 +328,15 @@ static uint16_t ascii_encode(modcp_link_t *l, uint16_t pdu_len)
 {
     const uint32_t n = 1u + (uint32_t)pdu_len;    /* address + PDU */
     const uint32_t out = 1u + 2u * (n + 1u) + 2u; /* ':' hex(address PDU LRC) CR LF */
-    if (l->buf == NULL || out > (uint32_t)l->size) {
+    if (out > (uint32_t)l->size) { /* no buffer: size 0 */
         return 0;
     }
     l->buf[n] = modcp_lrc(l->buf, n);
     /* in place from the back: byte i goes to 1 + 2i and 2 + 2i, both beyond i */
     for (uint32_t i = n + 1u; i-- > 0u;) {
         uint8_t b = l->buf[i];
-        l->buf[1u + 2u * i] = (uint8_t)hex_digits[b >> 4];
-        l->buf[2u + 2u * i] = (uint8_t)hex_digits[b & 0x0Fu];
+        l->buf[1u + 2u * i] = hex_digit(b >> 4);
+        l->buf[2u + 2u * i] = hex_digit(b & 0x0Fu);
     }
     l->buf[0] = (uint8_t)ASCII_COLON;
     l->buf[out - 2u] = (uint8_t)ASCII_CR;
@@ -344,12 +344,12 @@ static uint16_t ascii_encode(modcp_link_t *l, uint16_t pdu_len)
     return (uint16_t)out;
 }
 
-static const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p)
-{
-    l->fr.ascii.seven_bit = p->data_bits == 7u;
-    l->silence_us = l->ascii_timeout_us; /* the character delay time plays t3.5's part */
-    return l->cap >= ASCII_MIN_FRAME && l->size >= 11u ? &modcp_ascii_ops : NULL;
-}
+static const modcp_framing_ops_t ascii_ops = {ascii_on_byte, ascii_on_error, ascii_on_timer,
+                                              ascii_encode, NULL};
 
-const modcp_framing_ops_t modcp_ascii_ops = {ascii_configure, ascii_on_byte, ascii_on_error,
-                                             ascii_on_timer, ascii_encode, NULL};
+const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p)
+{
+    l->fr.ascii.char_mask = p->data_bits == 7u ? 0x7Fu : 0xFFu;
+    l->silence_us = l->ascii_timeout_us; /* the character delay time plays t3.5's part */
+    return l->cap >= ASCII_MIN_FRAME && l->size >= 11u ? &ascii_ops : NULL;
+}

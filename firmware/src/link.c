@@ -16,9 +16,12 @@
 #include "diag_internal.h"
 #include "params_internal.h"
 
+/* A reply waits for the RS232 automatic signals (signals.c); never without them. */
+#define TX_HOLD(l) (MODCP_WITH_RS232_SIGNALS && (l)->tx_hold)
+
 static void set_de(const modcp_link_t *l, bool on)
 {
-    if (l->hal != NULL && l->hal->set_de != NULL) {
+    if (l->hal->set_de != NULL) {
         l->hal->set_de(l->hal->ctx, on);
     }
 }
@@ -28,9 +31,7 @@ static void start_tx(modcp_link_t *l)
     l->state = MODCP_LINK_TX;
     l->tx_starts++;
     l->tx_on = true;
-    if (l->hal != NULL && l->hal->uart_tx != NULL) {
-        l->hal->uart_tx(l->hal->ctx, l->buf, l->tx_len);
-    }
+    l->hal->uart_tx(l->hal->ctx, l->buf, l->tx_len); /* never NULL (modcp/hal.h) */
 }
 
 static void reset_rx(modcp_link_t *l)
@@ -44,26 +45,34 @@ static void reset_rx(modcp_link_t *l)
     l->tx_len = 0;
 }
 
-/* A disabled (or not yet configured) link: the line is ignored. Only on_byte is ever
- * reached through it (modcp_link_on_byte / _on_block): every other entry point checks
- * l->enabled first. */
+/* A disabled (or not yet configured) link, state IDLE: the line and the timer are
+ * ignored. Only on_byte (modcp_link_on_byte / _on_block) and on_timer are ever reached
+ * through it: the other entry points check l->enabled or the state first. */
 static void off_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     (void)l;
     (void)b;
     (void)now_us;
 }
-static const modcp_framing_ops_t off_ops = {NULL, off_byte, NULL, NULL, NULL, NULL};
-
-/* The backend for the framing parameter (the only place that names the framings). */
-static const modcp_framing_ops_t *framing_ops(uint8_t framing)
+static bool off_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
-    switch (framing) {
+    (void)l;
+    (void)now_us;
+    (void)f;
+    return false;
+}
+static const modcp_framing_ops_t off_ops = {off_byte, NULL, off_timer, NULL, NULL};
+
+/* The backend for the framing parameter (the only place that names the framings),
+ * configured: the ops to run, NULL if it cannot. */
+static const modcp_framing_ops_t *framing_configure(modcp_link_t *l, const modcp_params_t *p)
+{
+    switch (p->framing) {
     case MODCP_FRAMING_RTU:
-        return &modcp_rtu_ops;
+        return rtu_configure(l, p);
 #if MODCP_WITH_ASCII
     case MODCP_FRAMING_ASCII:
-        return &modcp_ascii_ops;
+        return ascii_configure(l, p);
 #endif
     default:
         return NULL;
@@ -72,9 +81,7 @@ static const modcp_framing_ops_t *framing_ops(uint8_t framing)
 
 void link_frame_too_long(modcp_link_t *l)
 {
-    if (l->diag != NULL) {
-        l->diag->frames_too_long = (uint16_t)(l->diag->frames_too_long + 1u);
-    }
+    l->diag->frames_too_long = (uint16_t)(l->diag->frames_too_long + 1u);
     link_event(l, MODCP_EV_FRAME_TOO_LONG);
 }
 
@@ -82,7 +89,7 @@ void link_frame_too_long(modcp_link_t *l)
  * still arriving (RTU: less than t3.5 since its last character), follow its tail in
  * SKIP so it is never taken for a new request. Without a time (have_now false) the
  * timer is armed for a full t3.5 and its expiry or the next character decides. */
-static void resume_rx(modcp_link_t *l, uint32_t now_us, bool have_now)
+static MODCP_SIZE_NOINLINE void resume_rx(modcp_link_t *l, uint32_t now_us, bool have_now)
 {
     if (l->busy_rx) {
         uint32_t gap = have_now ? now_us - l->last_us : 0u;
@@ -133,13 +140,14 @@ void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
     l->t15_us = p->t15_check != 0u ? modcp_params_t15_us(p) : 0u;
     l->char_us = modcp_params_char_us(p);
     l->turnaround_us = l->rs485 ? (uint32_t)p->turnaround_ms * 1000u : 0u;
+#if MODCP_WITH_RS232_SIGNALS /* else rs232_auto is refused (params.c): never held */
     l->tx_hold = p->rs232_auto != 0u && p->iface == (uint8_t)MODCP_IFACE_RS232;
+#endif
+#if MODCP_WITH_ASCII
     l->ascii_timeout_us = (uint32_t)p->ascii_timeout_ms * 1000u;
     l->ascii_delim = 0x0Au; /* LF until FC08 sub-function 03 changes it */
-    const modcp_framing_ops_t *ops = framing_ops(p->framing);
-    if (ops != NULL) {
-        ops = ops->configure(l, p); /* the variant to run (sets silence_us), NULL if it cannot */
-    }
+#endif
+    const modcp_framing_ops_t *ops = framing_configure(l, p); /* sets silence_us */
     if (ops != NULL) {
         l->ops = ops;
         l->enabled = true;
@@ -183,33 +191,23 @@ void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
     if (!l->enabled || line_errors == 0u) {
         return;
     }
-    if (l->diag != NULL) {
-        if ((line_errors & MODCP_LINE_BREAK) != 0u) {
-            l->diag->breaks = (uint16_t)(l->diag->breaks + 1u);
-            if (!l->suppress) {
-                modcp_diag_event(l->diag, MODCP_EV_BREAK);
-            }
-        } else {
-            l->diag->char_errors = (uint16_t)(l->diag->char_errors + 1u);
-            if (!l->suppress) {
-                modcp_diag_event(l->diag, MODCP_EV_CHAR_ERROR);
-            }
-        }
-        if ((line_errors & MODCP_LINE_OVERRUN) != 0u) {
-            modcp_diag_count(l->diag, MODCP_CNT_CHAR_OVERRUN);
-        }
+    const bool brk = (line_errors & MODCP_LINE_BREAK) != 0u;
+    uint16_t *n = brk ? &l->diag->breaks : &l->diag->char_errors;
+    *n = (uint16_t)(*n + 1u);
+    if (!l->suppress) {
+        link_event(l, brk ? MODCP_EV_BREAK : MODCP_EV_CHAR_ERROR);
+    }
+    if ((line_errors & MODCP_LINE_OVERRUN) != 0u) {
+        link_count(l, MODCP_CNT_CHAR_OVERRUN);
     }
     l->ops->on_error(l, line_errors, now_us);
 }
 
 bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
-    if (!l->enabled) {
-        return false;
-    }
     if (l->state == MODCP_LINK_TURNAROUND) {
         uint32_t waited = now_us - l->tx_at_us;
-        if (l->tx_hold) {
+        if (TX_HOLD(l)) {
             return false; /* RS232 automatic signals: signals.c releases the reply */
         }
         if (waited < l->turnaround_us) {
@@ -227,26 +225,24 @@ bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 
 void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us)
 {
-    if (!l->enabled || l->state != MODCP_LINK_BUSY) {
-        return;
+    if (l->state != MODCP_LINK_BUSY) {
+        return; /* (a disabled link is IDLE) */
     }
     l->tx_at_us = now_us;
     l->tx_len = l->ops->encode(l, pdu_len);
     if (l->tx_len == 0u) {
-        if (l->diag != NULL) {
-            modcp_diag_event(l->diag, MODCP_EV_INTERNAL_SEND); /* reply does not fit */
-        }
+        link_event(l, MODCP_EV_INTERNAL_SEND); /* reply does not fit */
         modcp_link_done(l);
         return;
     }
     if (l->rs485) {
         set_de(l, true);
     }
-    if (l->tx_hold) {
+    if (TX_HOLD(l)) {
         l->state = MODCP_LINK_TURNAROUND; /* signals.c: RTS, data output waiting time, CTS */
         return;
     }
-    if (l->rs485 && l->turnaround_us > 0u) {
+    if (l->turnaround_us > 0u) { /* RS485 only (modcp_link_configure) */
         l->state = MODCP_LINK_TURNAROUND;
         link_arm(l, l->turnaround_us);
         return;

@@ -12,6 +12,14 @@
 #else
 #define MODCP_NOINLINE
 #endif
+/* One copy where it is called from several places, in the builds for size (-Os: the MCU
+ * builds); the compiler decides elsewhere (-O2: the host, where inlining saves the
+ * calls). */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+#define MODCP_SIZE_NOINLINE __attribute__((noinline))
+#else
+#define MODCP_SIZE_NOINLINE
+#endif
 
 /* A framing backend. The link calls it and never asks which one it runs; the backend
  * keeps its own state in l->fr and uses the link's shared fields (state, buffer, len,
@@ -22,10 +30,6 @@
  * end of the last character of the frame. The link handles every expiry in RX / SKIP
  * that comes before l->silence_us has passed since l->last_us by re-arming the rest. */
 typedef struct modcp_framing_ops {
-    /* The framing's part of modcp_link_configure(): its state (already zeroed), and
-     * l->silence_us. Returns the ops to run (the backend may have variants, e.g. RTU
-     * with and without the t1.5 check), NULL if the buffer is too small. */
-    const struct modcp_framing_ops *(*configure)(modcp_link_t *l, const modcp_params_t *p);
     /* A received character (the hot path: per byte a store and a check step). */
     void (*on_byte)(modcp_link_t *l, uint8_t b, uint32_t now_us);
     /* A line error in place of a character (counted and reported by link.c). */
@@ -43,20 +47,20 @@ typedef struct modcp_framing_ops {
     void (*on_block)(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us);
 } modcp_framing_ops_t;
 
-extern const modcp_framing_ops_t modcp_rtu_ops;   /* rtu.c */
-/* RTU in interference suppression = modem mode, without / with the t1.5 check */
-extern const modcp_framing_ops_t modcp_rtu_modem_ops;     /* rtu_modem.c */
-extern const modcp_framing_ops_t modcp_rtu_modem_t15_ops; /* rtu_modem.c */
+/* A framing's part of modcp_link_configure() (rtu_configure, ascii_configure; the link
+ * calls the one of the framing parameter): its state (already zeroed), and
+ * l->silence_us. Returns the ops to run (the backend may have variants, e.g. RTU with
+ * and without the t1.5 check), NULL if the buffer is too small. */
+const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p);
 #if MODCP_WITH_ASCII
-extern const modcp_framing_ops_t modcp_ascii_ops; /* ascii.c */
+const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p);
 #endif
 
-/* Arm the one-shot timer (0 disarms). */
+/* Arm the one-shot timer (0 disarms): hal, its uart_tx and timer_arm are never NULL
+ * (modcp/hal.h: the callbacks that "may be NULL" are the others). */
 static inline void link_arm(const modcp_link_t *l, uint32_t us)
 {
-    if (l->hal != NULL && l->hal->timer_arm != NULL) {
-        l->hal->timer_arm(l->hal->ctx, us);
-    }
+    l->hal->timer_arm(l->hal->ctx, us);
 }
 
 /* The common timer expiry while a frame arrives: armed once at its first character,
@@ -77,18 +81,15 @@ static inline bool link_timer_rearm(const modcp_link_t *l, uint32_t now_us)
     return true;
 }
 
+/* The link's diagnostics (l->diag, never NULL: modcp_link_init). */
 static inline void link_event(const modcp_link_t *l, modcp_event_t ev)
 {
-    if (l->diag != NULL) {
-        modcp_diag_event(l->diag, ev);
-    }
+    modcp_diag_event(l->diag, ev);
 }
 
 static inline void link_count(const modcp_link_t *l, modcp_counter_t c)
 {
-    if (l->diag != NULL) {
-        modcp_diag_count(l->diag, c);
-    }
+    modcp_diag_count(l->diag, c);
 }
 
 /* The current frame is damaged (character error, BREAK, t1.5, bad character): it is
@@ -108,30 +109,43 @@ void link_frame_too_long(modcp_link_t *l);
 
 /* ---- shared by the RTU variants (rtu.c, rtu_modem.c) ---- */
 #define RTU_MIN_FRAME 4u /* address, function, CRC */
+/* modcp_rtu_t.flags (modem mode) */
+#define RTU_M_LEAD 0x01u  /* the stretch began with our address or 0 */
+#define RTU_M_FIRST 0x02u /* the candidate is the stretch's first character */
+#define RTU_M_OPEN 0x04u  /* a wrong CRC at the length: continue to t3.5 (FC08, FC43) */
+#define RTU_M_SBAD 0x08u  /* the stretch around the candidate had a line error */
 void rtu_count_char(modcp_rtu_t *r);
+/* A character of the stretch that is not part of our frame (bus counters only). */
+void rtu_fold(modcp_link_t *l, uint8_t b);
+/* Our address (or 0) starts our frame (modem mode: a candidate) at buf[0]. */
+void rtu_cand_start(modcp_link_t *l, uint8_t b);
+/* Our frame (modem mode: the candidate) given up: its first n characters folded into
+ * the stretch, state SKIP. */
+void rtu_unclaim(modcp_link_t *l, uint16_t n);
+/* t3.5 after a frame followed in SKIP (modem mode: a stretch without a frame). */
+void rtu_stretch_end(modcp_link_t *l);
 /* A character (or line error) while a request is processed or its reply pending. */
 void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us);
 /* A state RTU never uses: (0E)11H, back to idle. */
 void rtu_internal_error(modcp_link_t *l);
 /* A formally correct frame in the buffer: counted, handed over (BUSY). */
 bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f);
-const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p);
 /* The receive automaton of both variants (rtu.c). The hot path: a character of the
  * frame (modem mode: the candidate) below r->stop (normal operation: the capacity) is
- * stored and goes through one CRC step. Where modem mode differs (frame start and end,
- * the characters it looks at, line errors, t1.5) it calls rtu_m_* by l->modem. */
+ * stored and goes through one CRC step. Where modem mode differs (the characters of a
+ * stretch it looks at, line errors, t1.5, the end of our frame) it calls rtu_m_* by
+ * l->modem. */
 void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
 void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us);
 void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
 /* Modem mode's part of that automaton (rtu_modem.c). */
-void rtu_m_stretch_begin(modcp_link_t *l, uint8_t b, uint32_t now_us); /* after t3.5 */
-void rtu_m_stretch_end(modcp_link_t *l);                               /* t3.5 passed */
 void rtu_m_push(modcp_link_t *l, uint8_t b);   /* a character of the stretch / candidate */
 void rtu_m_cand_bad(modcp_link_t *l);          /* a line error in the candidate */
-void rtu_m_t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us);
 uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len);
 
 /* Moved from modcp/link.h: the core's own interface. */
+/* hal: the port's (never NULL, see link_arm); diag: where the link counts and reports,
+ * never NULL. */
 void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag, uint8_t *buf,
                      uint16_t cap);
 /* Apply parameters (framing, address, timing, interface) and enable. */
@@ -142,8 +156,8 @@ void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
 /* n characters back to back, the last one ended at end_us (modcp_cp_on_rx_block). */
 void modcp_link_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us);
 void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
-/* Timer expiry. Returns true when a valid frame for us or broadcast is ready in *f;
- * the link is then BUSY until modcp_link_reply() or modcp_link_done(). */
+/* Timer expiry. Returns true when a valid frame for us or broadcast is ready in *f (f
+ * never NULL); the link is then BUSY until modcp_link_reply() or modcp_link_done(). */
 bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f);
 /* Send the reply PDU that was written to f->pdu[0 .. pdu_len). */
 void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us);

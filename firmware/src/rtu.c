@@ -1,11 +1,13 @@
 /* modcp — RTU framing (004 §5, SPEC §3.1): frame boundaries by the t3.5 gap, address
  * filter, running CRC, t1.5 check, frames that arrive while a request is in progress;
- * one receive automaton (rtu_on_byte, byte_other, rtu_on_error) for normal operation
- * and interference suppression = modem mode, whose differences (frame start and end,
- * the characters it looks at, line errors inside a frame) are the rtu_m_* hooks of
+ * one receive automaton (rtu_on_byte, byte_other, rtu_on_error, rtu_on_block) with
+ * one frame start and one end of a skipped frame for normal operation and interference
+ * suppression = modem mode, whose differences (the characters of a stretch it looks
+ * at, line errors inside a frame, the end of our frame) are the rtu_m_* hooks of
  * rtu_modem.c, called by l->modem off the hot path.
  *
- * The backend behind modcp_rtu_ops (link_internal.h), its state in l->fr.rtu. A
+ * The backend behind rtu_ops (modcp_framing_ops_t, link_internal.h; chosen by
+ * rtu_configure), its state in l->fr.rtu. A
  * character of our frame costs a store and one table-CRC step (plus one comparison with
  * the t1.5 check on: a second entry, rtu_t15_ops, chosen at configuration); the
  * end-of-frame timer is armed once, by the frame's first character (or line error
@@ -52,48 +54,87 @@
 
 void rtu_count_char(modcp_rtu_t *r)
 {
-    if (r->count < UINT16_MAX) {
-        r->count++;
+    if (r->count < RTU_MIN_FRAME) {
+        r->count++; /* only ">= RTU_MIN_FRAME" is looked at */
     }
 }
 
-/* A frame starts with b (or with a line error in place of the first character): the
- * end-of-frame timer is armed here, once per frame. */
-static void frame_start(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
+/* A character of the stretch that is not (or no longer) part of our frame (modem
+ * mode: of a candidate): only for the bus counters. */
+void rtu_fold(modcp_link_t *l, uint8_t b)
 {
     modcp_rtu_t *r = &l->fr.rtu;
-    r->count = 1;
+    r->skip_crc = modcp_crc16_byte(r->skip_crc, b);
+    rtu_count_char(r);
+}
+
+/* Our address (or 0) starts our frame (modem mode: a candidate) at buf[0]. */
+MODCP_SIZE_NOINLINE void rtu_cand_start(modcp_link_t *l, uint8_t b)
+{
+    modcp_rtu_t *r = &l->fr.rtu;
     l->rx_bad = false;
-    if (error) {
-        link_mark_bad(l);
+    l->rx_overflow = false;
+    l->buf[0] = b; /* configured: cap >= RTU_MIN_FRAME */
+    l->len = 1;
+    r->crc = modcp_crc16_byte(MODCP_CRC_INIT, b);
+    r->stop = l->cap; /* normal operation: the hot path runs up to the capacity */
+    r->total = 0;     /* normal operation: always (the length by t3.5) */
+    if (l->modem) {
+        r->stop = 1; /* the function code is looked at */
     }
+    l->state = MODCP_LINK_RX;
+}
+
+/* Our frame (modem mode: the candidate) is given up: its first n characters belong to
+ * the stretch again (modem mode: the rest, if any, stays in the buffer for its resync),
+ * the line is followed in SKIP. */
+MODCP_NOINLINE void rtu_unclaim(modcp_link_t *l, uint16_t n)
+{
+    modcp_rtu_t *r = &l->fr.rtu;
+    for (uint16_t i = 0; i < n; i++) {
+        rtu_fold(l, l->buf[i]);
+    }
+    l->rx_bad = l->rx_bad || (r->flags & RTU_M_SBAD) != 0u;
+    r->flags = (uint8_t)(r->flags & ~(RTU_M_FIRST | RTU_M_OPEN));
+    l->len = 0;
+    l->state = MODCP_LINK_SKIP;
+}
+
+/* A frame (modem mode: a stretch) starts after t3.5, in SKIP until its first character
+ * (or line error) is looked at: the end-of-frame timer is armed here, once per frame. */
+static void frame_start(modcp_link_t *l, uint32_t now_us)
+{
+    modcp_rtu_t *r = &l->fr.rtu;
+    r->skip_crc = MODCP_CRC_INIT;
+    r->count = 0;
+    r->flags = 0;
+    l->rx_bad = false;
     l->rx_overflow = false;
     l->len = 0;
     l->last_us = now_us;
-    if (error) {
-        r->crc = MODCP_CRC_INIT;
-        l->state = MODCP_LINK_SKIP;
-    } else {
-        r->crc = modcp_crc16_byte(MODCP_CRC_INIT, b);
-        if (b == l->own_addr || b == 0u) {
-            l->buf[0] = b; /* configured: cap >= RTU_MIN_FRAME */
-            l->len = 1;
-            l->state = MODCP_LINK_RX;
-        } else {
-            l->state = MODCP_LINK_SKIP; /* not checked, not answered */
-        }
-    }
+    l->state = MODCP_LINK_SKIP; /* not ours: not checked, not answered */
     link_arm(l, l->t35_us);
 }
 
-/* End of a frame for another address: only the serial-line bus counters. */
-static void skip_end(modcp_link_t *l)
+/* t3.5 after a frame followed in SKIP (modem mode: a stretch without a frame), or
+ * after our frame that was not formally correct (rtu_on_timer): a frame that began
+ * with our address reports (08)36H and counts in BUS_CRC; another slave's frame counts
+ * in BUS_MSG or BUS_CRC (modem mode: only in BUS_MSG, other stretches not at all). */
+void rtu_stretch_end(modcp_link_t *l)
 {
     const modcp_rtu_t *r = &l->fr.rtu;
-    if (!l->rx_bad) {
-        link_count(l, (r->count >= RTU_MIN_FRAME && r->crc == 0u) ? MODCP_CNT_BUS_MSG : MODCP_CNT_BUS_CRC);
-    }
     l->state = MODCP_LINK_IDLE;
+    if (l->rx_bad) {
+        return; /* damaged: counted once already (modem mode: if a candidate was) */
+    }
+    if (r->count >= RTU_MIN_FRAME && r->skip_crc == 0u) {
+        link_count(l, MODCP_CNT_BUS_MSG);
+    } else if ((r->flags & RTU_M_LEAD) != 0u) {
+        link_event(l, MODCP_EV_CRC);
+        link_count(l, MODCP_CNT_BUS_CRC);
+    } else if (!l->modem) {
+        link_count(l, MODCP_CNT_BUS_CRC);
+    }
 }
 
 /* Default branch of the receive automaton (a state RTU never uses, i.e. corrupted):
@@ -107,71 +148,102 @@ void rtu_internal_error(modcp_link_t *l)
 }
 
 /* A character (or line error) while a request is processed or its reply is pending:
- * not stored; only frame starts are followed, for (08)37H and for the return to idle. */
+ * not stored; only frame starts are followed, for (08)37H and for the return to idle.
+ * A line error that is not inside a frame (modem mode: after the CRC) with
+ * interference suppression (or RS485) is ignored, as between messages. */
 void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
 {
     if (l->rs485 && l->state == MODCP_LINK_TX) {
         return; /* echo of our own transmission */
     }
     if (!l->busy_rx || now_us - l->last_us >= l->t35_us) {
-        l->busy_rx = true;
-        if (!error && b == l->own_addr) {
+        if (error) {
+            if (l->suppress) {
+                return;
+            }
+        } else if (b == l->own_addr) {
             link_event(l, MODCP_EV_SEQUENCE);
         }
+        l->busy_rx = true;
     }
     l->last_us = now_us;
 }
 
-/* Every case but the plain one of rtu_on_byte(): another state or a full buffer. Kept
- * out of line so the hot path stays a leaf. */
-static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us)
+/* Every case but the plain one of rtu_on_byte() (another state or a full buffer), and
+ * a line error in place of a character (err, b 0): the one receive automaton of both
+ * modes. Kept out of line so that the hot path stays a leaf. Modem mode implies
+ * l->suppress. */
+static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
 {
     modcp_rtu_t *r = &l->fr.rtu;
     switch (l->state) {
     case MODCP_LINK_SKIP:
-        if (now_us - l->last_us < l->t35_us) {
-            l->last_us = now_us;
-            if (l->modem) {
-                rtu_m_push(l, b);
-            } else {
-                rtu_count_char(r);
-                r->crc = modcp_crc16_byte(r->crc, b);
-            }
-            break;
+        if (now_us - l->last_us >= l->t35_us) {
+            rtu_stretch_end(l); /* modem mode: a line error would begin a stretch, ignored */
+            goto start;         /* the skipped frame ended: b starts a new one */
         }
         if (l->modem) {
-            rtu_m_stretch_end(l);
+            if (err) {
+                l->rx_bad = true; /* among stray characters / another frame: not counted */
+            } else {
+                rtu_m_push(l, b);
+            }
+        } else if (err) {
+            goto bad;
         } else {
-            skip_end(l);
+            rtu_fold(l, b);
         }
-        goto start; /* the skipped frame ended: b starts a new one */
+        break;
     case MODCP_LINK_RX: /* normal: the buffer is full, the frame is too long; modem mode:
                            function code, byte count, last character, or a full buffer */
-        l->last_us = now_us;
         if (l->modem) {
-            rtu_m_push(l, b);
-        } else {
+            if (err) {
+                rtu_m_cand_bad(l);
+            } else {
+                rtu_m_push(l, b);
+            }
+        } else if (!err) {
             l->rx_overflow = true;
+        } else if (!l->rx_bad && !l->rx_overflow && l->len >= RTU_MIN_FRAME && r->crc == 0u) {
+            return; /* after the CRC: not part of the frame */
+        } else {
+            goto bad; /* (its count is not looked at: the frame is bad) */
         }
         break;
     case MODCP_LINK_EOF:
     case MODCP_LINK_BUSY:
     case MODCP_LINK_TURNAROUND:
     case MODCP_LINK_TX:
-        rtu_busy_track(l, b, false, now_us);
-        break;
+        rtu_busy_track(l, b, err, now_us);
+        return;
     default:
         if (l->state != MODCP_LINK_IDLE) {
             rtu_internal_error(l);
+            if (err) {
+                return;
+            }
         }
     start:
-        if (l->modem) {
-            rtu_m_stretch_begin(l, b, now_us);
+        if (err && l->suppress) {
+            return; /* between messages: ignored, a frame starts only with a good character */
+        }
+        frame_start(l, now_us);
+        if (err) {
+            goto bad; /* an erroneous frame, skipped to its t3.5 */
+        }
+        if (b == l->own_addr || b == 0u) {
+            rtu_cand_start(l, b);
+            r->flags = RTU_M_LEAD | RTU_M_FIRST;
         } else {
-            frame_start(l, b, false, now_us);
+            rtu_fold(l, b);
         }
         break;
+    bad:
+        link_mark_bad(l);
+        rtu_count_char(r);
+        break;
     }
+    l->last_us = now_us;
 }
 
 /* The hot path: a character of our frame, with room in the buffer (r->stop is the
@@ -180,7 +252,7 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
 void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     if (l->state != MODCP_LINK_RX || l->len >= l->fr.rtu.stop) {
-        byte_other(l, b, now_us);
+        byte_other(l, b, now_us, false);
         return;
     }
     l->last_us = now_us;
@@ -193,15 +265,14 @@ void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
  * so that the check costs nothing when it is off. */
 static MODCP_NOINLINE void t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
+    const bool first = !l->rx_bad;
     if (l->modem) {
-        rtu_m_t15_violated(l, b, now_us);
-        return;
-    }
-    if (!l->rx_bad) {
+        rtu_m_cand_bad(l); /* the candidate is dropped; b may start the next one */
+    } else {
         link_mark_bad(l);
-        if (l->diag != NULL) {
-            l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
-        }
+    }
+    if (first) {
+        l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
         if (!l->suppress) {
             link_event(l, MODCP_EV_ZVZ);
         }
@@ -220,39 +291,26 @@ void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
 
 /* Characters back to back (the k-th of n ended at end_us - (n-1-k) * char_us): runs of
  * our frame with room in the buffer are stored and CRC'd in one loop, every other
- * character goes through byte_other() at its own time, exactly as one by one. With the
- * t1.5 check on (both variants share this entry) only the block's first character can
- * follow a silence: the others come one character time after the one before. */
+ * character goes through byte_other() at its own time, exactly as one by one. Only the
+ * block's first character can follow a silence (the others come one character time
+ * after the one before): it goes through the ops' on_byte, with the t1.5 check if on. */
 static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us)
 {
     const uint32_t c = l->char_us;
     const uint8_t *const e = b + n;
     uint32_t t = end_us - (uint32_t)(n - 1u) * c; /* end of the character at b */
-    if (l->state == MODCP_LINK_IDLE) {
-        if (*b == l->own_addr || *b == 0u) {
-            /* frame_start() of our frame, its first character left to the run below
-             * (a store and a CRC step from the initial value: the same effect) */
-            l->fr.rtu.count = 1;
-            l->fr.rtu.crc = MODCP_CRC_INIT;
-            l->rx_bad = false;
-            l->rx_overflow = false;
-            l->len = 0;
-            l->state = MODCP_LINK_RX;
-            link_arm(l, l->t35_us);
-        }
-    } else if (l->t15_us != 0u && l->state == MODCP_LINK_RX && t - l->last_us > l->t15_us + c) {
-        t15_violated(l, *b++, t);
-        t += c;
-    }
+    l->ops->on_byte(l, *b++, t); /* the only one that may follow a silence: t1.5 */
+    t += c;
     while (b < e) {
-        if (l->state != MODCP_LINK_RX || l->len >= l->cap) {
-            byte_other(l, *b++, t); /* a frame's start included: frame_start() */
+        const uint16_t stop = l->fr.rtu.stop;
+        if (l->state != MODCP_LINK_RX || l->len >= stop) {
+            byte_other(l, *b++, t, false); /* a frame's start included */
             t += c;
             continue;
         }
         unsigned m = (unsigned)(e - b); /* a run of our frame: as many as fit */
-        if (m > (unsigned)(l->cap - l->len)) {
-            m = (unsigned)(l->cap - l->len);
+        if (m > (unsigned)(stop - l->len)) {
+            m = (unsigned)(stop - l->len);
         }
         uint8_t *d = &l->buf[l->len];
         uint16_t crc = l->fr.rtu.crc;
@@ -278,74 +336,18 @@ static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
     }
 }
 
-/* Modem mode implies l->suppress. */
 void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
     (void)line_errors; /* every kind of error has the same effect on framing */
-    modcp_rtu_t *r = &l->fr.rtu;
-    switch (l->state) {
-    case MODCP_LINK_IDLE:
-        if (l->suppress) {
-            break; /* between messages: ignored, a frame starts only with a good character */
-        }
-        frame_start(l, 0, true, now_us);
-        break;
-    case MODCP_LINK_RX:
-        if (l->modem) {
-            rtu_m_cand_bad(l);
-        } else {
-            if (!l->rx_bad && !l->rx_overflow && l->len >= RTU_MIN_FRAME && r->crc == 0u) {
-                return; /* after the CRC: not part of the frame */
-            }
-            link_mark_bad(l);
-        }
-        l->last_us = now_us;
-        break;
-    case MODCP_LINK_SKIP:
-        if (now_us - l->last_us >= l->t35_us) {
-            if (l->modem) {
-                rtu_m_stretch_end(l); /* a new stretch would begin: ignored as on an idle line */
-            } else {
-                skip_end(l);
-            }
-            if (!l->suppress) {
-                frame_start(l, 0, true, now_us);
-            }
-            break;
-        }
-        if (l->modem) {
-            l->rx_bad = true; /* among stray characters / another frame: not counted */
-        } else {
-            link_mark_bad(l);
-            rtu_count_char(r);
-        }
-        l->last_us = now_us;
-        break;
-    case MODCP_LINK_EOF:
-    case MODCP_LINK_BUSY:
-    case MODCP_LINK_TURNAROUND:
-    case MODCP_LINK_TX:
-        if (l->suppress && (!l->busy_rx || now_us - l->last_us >= l->t35_us)) {
-            break; /* not inside a frame (modem mode: after the CRC): ignored, as between messages */
-        }
-        rtu_busy_track(l, 0, true, now_us);
-        break;
-    default:
-        rtu_internal_error(l);
-        break;
-    }
+    byte_other(l, 0, now_us, true);
 }
 
 /* A formally correct frame for us (or broadcast) in buf[0 .. len): counted and handed
- * to the CP (state BUSY), or dropped without a frame to fill (f NULL). */
+ * to the CP in *f (state BUSY). */
 bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f)
 {
     link_count(l, MODCP_CNT_BUS_MSG);
     link_count(l, MODCP_CNT_SLAVE_MSG);
-    if (f == NULL) {
-        l->state = MODCP_LINK_IDLE;
-        return false;
-    }
     f->addr = l->buf[0];
     f->pdu = &l->buf[1];
     f->pdu_len = (uint16_t)(l->len - 3u);
@@ -355,30 +357,33 @@ bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f)
     return true;
 }
 
-/* t3.5 has passed since the last character of the frame (link.c checked it). */
+/* Modem mode: EOF, hand the frame over. RX / SKIP: t3.5 has passed since the last
+ * character (link.c checked it). Our frame (modem mode: a candidate whose length is
+ * known only by t3.5) is delivered if it is formally correct; else its characters
+ * belong to the stretch again and its end is the stretch's (rtu_stretch_end): (08)36H
+ * for a frame that began with our address, (08)16H once for one too long. */
 static bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
     (void)now_us;
-    if (l->state != MODCP_LINK_RX) {
-        if (l->state == MODCP_LINK_SKIP) {
-            skip_end(l);
+    modcp_rtu_t *r = &l->fr.rtu;
+    if (l->state == MODCP_LINK_EOF ||
+        (l->state == MODCP_LINK_RX && !l->rx_bad && !l->rx_overflow && r->total == 0u &&
+         l->len >= RTU_MIN_FRAME && r->crc == 0u)) { /* modem mode: also by t3.5 (unknown FC) */
+        return rtu_deliver(l, f);
+    }
+    if (l->state == MODCP_LINK_RX) {
+        if (l->rx_overflow) {
+            if (!l->rx_bad && (r->flags & RTU_M_FIRST) != 0u) {
+                link_frame_too_long(l);
+            }
+            l->rx_bad = true; /* the stretch is not complete in the buffer */
         }
-        return false; /* else a stale or spurious expiry */
+        rtu_unclaim(l, l->len);
     }
-    l->state = MODCP_LINK_IDLE;
-    if (l->rx_bad) {
-        return false; /* already reported (normal mode) or silently discarded */
+    if (l->state == MODCP_LINK_SKIP) {
+        rtu_stretch_end(l);
     }
-    if (l->rx_overflow) {
-        link_frame_too_long(l);
-        return false;
-    }
-    if (l->len < RTU_MIN_FRAME || l->fr.rtu.crc != 0u) {
-        link_event(l, MODCP_EV_CRC);
-        link_count(l, MODCP_CNT_BUS_CRC);
-        return false;
-    }
-    return rtu_deliver(l, f);
+    return false; /* else a stale or spurious expiry */
 }
 
 uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
@@ -387,7 +392,7 @@ uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
     if (l->reply_same && n + 2u == (uint32_t)l->len) {
         return l->len; /* the request's frame, unchanged: its CRC is in place (len <= cap) */
     }
-    if (l->buf == NULL || n + 2u > (uint32_t)l->cap) {
+    if (n + 2u > (uint32_t)l->cap) { /* no buffer: cap 0 */
         return 0;
     }
     uint16_t crc = modcp_crc16(l->buf, n);
@@ -396,10 +401,10 @@ uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
     return (uint16_t)(n + 2u);
 }
 
-static const modcp_framing_ops_t rtu_t15_ops;
+static const modcp_framing_ops_t rtu_ops, rtu_t15_ops;
 
-/* The variant: normal operation or interference suppression (modem mode, the operating
- * mode parameter), each with and without the t1.5 check. */
+/* Normal operation or interference suppression (modem mode, the operating mode
+ * parameter: l->modem, one ops table for both); the variant is the t1.5 check. */
 const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
 {
     l->silence_us = l->t35_us;
@@ -408,13 +413,10 @@ const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *
     if (l->cap < RTU_MIN_FRAME) {
         return NULL;
     }
-    if (l->modem) {
-        return l->t15_us != 0u ? &modcp_rtu_modem_t15_ops : &modcp_rtu_modem_ops;
-    }
-    return l->t15_us != 0u ? &rtu_t15_ops : &modcp_rtu_ops;
+    return l->t15_us != 0u ? &rtu_t15_ops : &rtu_ops;
 }
 
-const modcp_framing_ops_t modcp_rtu_ops = {rtu_configure, rtu_on_byte, rtu_on_error,
-                                           rtu_on_timer, rtu_encode, rtu_on_block};
-static const modcp_framing_ops_t rtu_t15_ops = {rtu_configure, rtu_on_byte_t15, rtu_on_error,
-                                                rtu_on_timer, rtu_encode, rtu_on_block};
+static const modcp_framing_ops_t rtu_ops = {rtu_on_byte, rtu_on_error, rtu_on_timer, rtu_encode,
+                                            rtu_on_block};
+static const modcp_framing_ops_t rtu_t15_ops = {rtu_on_byte_t15, rtu_on_error, rtu_on_timer,
+                                                rtu_encode, rtu_on_block};

@@ -1,8 +1,11 @@
 /* modcp — RTU framing in interference suppression = modem mode (000 §5.6.1, §8;
- * 004 §2.2): the variant of the RTU backend (rtu.c) that modcp_link_configure selects
- * for the operating mode `suppression` (l->modem). It shares rtu.c's receive automaton
- * and hot path (a character below r->stop: a store and a CRC step); rtu.c calls the
- * rtu_m_* hooks below where modem mode differs, and its end of frame is rtu_m_on_timer.
+ * 004 §2.2): the part of the RTU backend (rtu.c, rtu_ops) that runs for the
+ * operating mode `suppression` (l->modem, set by rtu_configure). It shares rtu.c's ops
+ * table, receive automaton, block path and hot path (a character below r->stop: a store
+ * and a CRC step), its frame and stretch starts and ends (frame_start, rtu_cand_start,
+ * rtu_unclaim, rtu_stretch_end, rtu_on_timer); rtu.c calls the rtu_m_* hooks below
+ * where modem mode differs: a character of a stretch or candidate that needs a look
+ * (rtu_m_push), a line error in a candidate (rtu_m_cand_bad).
  *
  * "The start of a message is recognised by a correctly received slave address"; "the
  * end of the message by a formally correct message with a correct CRC". The line is
@@ -39,22 +42,19 @@
 #include "link_internal.h"
 #include "crc_internal.h"
 
-#define RTU_M_LEAD 0x01u  /* the stretch began with our address or 0 */
-#define RTU_M_FIRST 0x02u /* the candidate is the stretch's first character */
-#define RTU_M_OPEN 0x04u  /* a wrong CRC at the length: continue to t3.5 (FC08, FC43) */
-#define RTU_M_SBAD 0x08u  /* the stretch around the candidate had a line error */
-
 enum { M_CONT, M_FAIL, M_DONE };
 
-#define RQ_BC 0x80u   /* length by the byte count at index (code & 0x1F) */
-#define RQ_OPEN 0x40u /* the usual length; longer requests end by t3.5 */
+#define RQ_BC 0x80u    /* length by the byte count at index (code & RQ_N) */
+#define RQ_OPEN 0x40u  /* the usual length; longer requests end by t3.5 */
+#define RQ_BCAST 0x20u /* broadcast may use it: 00 starts a candidate anywhere */
+#define RQ_N 0x1Fu     /* the length, or the byte count's index */
 
 /* Request lengths (address and CRC included) by function code. */
 static const uint8_t req_len_tab[][2] = {
-    {0x03u, 8u}, {0x10u, RQ_BC | 6u}, {0x06u, 8u}, {0x01u, 8u}, {0x02u, 8u},
-    {0x04u, 8u}, {0x05u, 8u}, {0x0Fu, RQ_BC | 6u}, {0x08u, RQ_OPEN | 8u},
-    {0x17u, RQ_BC | 10u}, {0x16u, 10u}, {0x0Bu, 4u}, {0x0Cu, 4u}, {0x11u, 4u},
-    {0x2Bu, RQ_OPEN | 7u},
+    {0x03u, 8u}, {0x10u, RQ_BCAST | RQ_BC | 6u}, {0x06u, RQ_BCAST | 8u}, {0x01u, 8u},
+    {0x02u, 8u}, {0x04u, 8u}, {0x05u, RQ_BCAST | 8u}, {0x0Fu, RQ_BCAST | RQ_BC | 6u},
+    {0x08u, RQ_OPEN | 8u}, {0x17u, RQ_BC | 10u}, {0x16u, 10u}, {0x0Bu, 4u}, {0x0Cu, 4u},
+    {0x11u, 4u}, {0x2Bu, RQ_OPEN | 7u},
 };
 
 static uint8_t req_len(uint8_t fc)
@@ -64,55 +64,12 @@ static uint8_t req_len(uint8_t fc)
             return req_len_tab[i][1];
         }
     }
-    return 0u; /* unknown: t3.5 */
+    return 0u; /* unknown: t3.5 (and no broadcast) */
 }
 
 static bool m_addr(const modcp_link_t *l, uint8_t b)
 {
     return b == l->own_addr || b == 0u;
-}
-
-/* A character of the stretch that is not (or no longer) part of a candidate. */
-static void m_fold(modcp_link_t *l, uint8_t b)
-{
-    modcp_rtu_t *r = &l->fr.rtu;
-    r->skip_crc = modcp_crc16_byte(r->skip_crc, b);
-    rtu_count_char(r);
-}
-
-static MODCP_NOINLINE void m_cand_start(modcp_link_t *l, uint8_t b)
-{
-    modcp_rtu_t *r = &l->fr.rtu;
-    r->flags = (uint8_t)((r->flags & ~RTU_M_SBAD) | (l->rx_bad ? RTU_M_SBAD : 0u));
-    l->rx_bad = false;
-    l->rx_overflow = false;
-    l->buf[0] = b; /* configured: cap >= RTU_MIN_FRAME */
-    l->len = 1;
-    r->crc = modcp_crc16_byte(MODCP_CRC_INIT, b);
-    r->stop = 1; /* the function code is looked at */
-    r->total = 0;
-    r->bc = 0;
-    l->state = MODCP_LINK_RX;
-}
-
-/* The candidate is given up: its first n characters belong to the stretch again (the
- * rest, if any, stays in the buffer for m_resync), the line is followed in SKIP. */
-static MODCP_NOINLINE void m_unclaim(modcp_link_t *l, uint16_t n)
-{
-    modcp_rtu_t *r = &l->fr.rtu;
-    for (uint16_t i = 0; i < n; i++) {
-        m_fold(l, l->buf[i]);
-    }
-    l->rx_bad = l->rx_bad || (r->flags & RTU_M_SBAD) != 0u;
-    r->flags = (uint8_t)(r->flags & ~(RTU_M_FIRST | RTU_M_OPEN));
-    l->len = 0;
-    l->state = MODCP_LINK_SKIP;
-}
-
-/* The candidate is no frame: its characters belong to the stretch again. */
-static void m_drop(modcp_link_t *l)
-{
-    m_unclaim(l, l->len);
 }
 
 /* The character at index r->stop was stored: function code, byte count or the last. */
@@ -123,8 +80,7 @@ static int m_check(modcp_link_t *l)
     if (n == 2u) {
         uint8_t fc = l->buf[1];
         uint8_t code = req_len(fc);
-        if (l->buf[0] == 0u && (r->flags & RTU_M_FIRST) == 0u && fc != 0x05u && fc != 0x06u &&
-            fc != 0x0Fu && fc != 0x10u) {
+        if (l->buf[0] == 0u && (r->flags & RTU_M_FIRST) == 0u && (code & RQ_BCAST) == 0u) {
             return M_FAIL; /* no broadcast request */
         }
         if (fc == 0u || fc >= 0x80u) {
@@ -135,11 +91,10 @@ static int m_check(modcp_link_t *l)
             return M_CONT;
         }
         if ((code & RQ_BC) != 0u) {
-            r->bc = (uint8_t)(code & 0x1Fu);
-            r->stop = r->bc;
+            r->stop = code & RQ_N; /* the byte count */
             return M_CONT;
         }
-        r->total = (uint16_t)(code & 0x3Fu);
+        r->total = code & RQ_N;
         if ((code & RQ_OPEN) != 0u) {
             r->flags |= RTU_M_OPEN;
         }
@@ -155,8 +110,10 @@ static int m_check(modcp_link_t *l)
         r->stop = (uint16_t)(r->total - 1u);
         return M_CONT;
     }
-    if (l->rx_bad) { /* dropped by the link (DSR OFF) */
-        m_drop(l);
+    /* dropped by the link (DSR OFF, modcp_link_rx_discard: only with the RS232 signals;
+     * every other damage drops a candidate at once) */
+    if (MODCP_WITH_RS232_SIGNALS && l->rx_bad) {
+        rtu_unclaim(l, l->len);
         return M_CONT;
     }
     if (r->crc == 0u) {
@@ -178,10 +135,12 @@ static int m_feed(modcp_link_t *l, uint8_t b)
     modcp_rtu_t *r = &l->fr.rtu;
     if (l->state == MODCP_LINK_SKIP) {
         if (m_addr(l, b)) {
-            r->flags = (uint8_t)(r->flags & ~RTU_M_FIRST);
-            m_cand_start(l, b);
+            /* a candidate inside the stretch: whether the stretch had a line error */
+            r->flags = (uint8_t)((r->flags & ~(RTU_M_FIRST | RTU_M_SBAD)) |
+                                 (l->rx_bad ? RTU_M_SBAD : 0u));
+            rtu_cand_start(l, b);
         } else {
-            m_fold(l, b);
+            rtu_fold(l, b);
         }
         return M_CONT;
     }
@@ -198,11 +157,11 @@ static int m_feed(modcp_link_t *l, uint8_t b)
  * and run the rest through the automaton again, looking for our address. Each round
  * drops at least one character; the new candidate is written behind the read position
  * (in place). */
-static MODCP_NOINLINE void m_resync(modcp_link_t *l)
+static void m_resync(modcp_link_t *l)
 {
     uint16_t n = l->len;
     for (;;) {
-        m_unclaim(l, 1u);
+        rtu_unclaim(l, 1u);
         int res = M_CONT;
         uint16_t k = 1;
         while (k < n && res == M_CONT) {
@@ -225,44 +184,6 @@ void rtu_m_push(modcp_link_t *l, uint8_t b)
     }
 }
 
-/* A stretch begins after t3.5 of silence; the timer is armed here, once. */
-void rtu_m_stretch_begin(modcp_link_t *l, uint8_t b, uint32_t now_us)
-{
-    modcp_rtu_t *r = &l->fr.rtu;
-    r->skip_crc = MODCP_CRC_INIT;
-    r->count = 0;
-    r->flags = 0;
-    l->rx_bad = false;
-    l->rx_overflow = false;
-    l->len = 0;
-    l->last_us = now_us;
-    link_arm(l, l->t35_us);
-    if (m_addr(l, b)) {
-        m_cand_start(l, b);
-        r->flags |= RTU_M_LEAD | RTU_M_FIRST;
-    } else {
-        l->state = MODCP_LINK_SKIP;
-        m_fold(l, b);
-    }
-}
-
-/* t3.5 after a stretch without a frame. */
-void rtu_m_stretch_end(modcp_link_t *l)
-{
-    const modcp_rtu_t *r = &l->fr.rtu;
-    l->state = MODCP_LINK_IDLE;
-    if (l->rx_bad) {
-        return; /* damaged: counted once if a candidate was, else ignored */
-    }
-    bool ok = r->count >= RTU_MIN_FRAME && r->skip_crc == 0u;
-    if ((r->flags & RTU_M_LEAD) != 0u && !ok) {
-        link_event(l, MODCP_EV_CRC); /* began with our address: (08)36H as in normal mode */
-        link_count(l, MODCP_CNT_BUS_CRC);
-    } else if (ok) {
-        link_count(l, MODCP_CNT_BUS_MSG);
-    }
-}
-
 /* A damaged candidate: counted once when it has its function code, dropped. */
 void rtu_m_cand_bad(modcp_link_t *l)
 {
@@ -271,50 +192,5 @@ void rtu_m_cand_bad(modcp_link_t *l)
     } else {
         l->rx_bad = true; /* a lone address character: before the frame, not counted */
     }
-    m_drop(l);
+    rtu_unclaim(l, l->len);
 }
-
-/* The t1.5 check (rtu_on_byte_t15, rtu.c) found a silence too long in the candidate. */
-void rtu_m_t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
-{
-    if (!l->rx_bad && l->diag != NULL) {
-        l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
-    }
-    rtu_m_cand_bad(l);
-    rtu_on_byte(l, b, now_us); /* it may start the next candidate */
-}
-
-/* EOF: hand the frame over. RX / SKIP: t3.5 has passed since the last character. */
-static bool rtu_m_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
-{
-    (void)now_us;
-    modcp_rtu_t *r = &l->fr.rtu;
-    if (l->state == MODCP_LINK_EOF) {
-        return rtu_deliver(l, f);
-    }
-    if (l->state == MODCP_LINK_RX) {
-        if (!l->rx_bad && !l->rx_overflow && r->total == 0u && l->len >= RTU_MIN_FRAME &&
-            r->crc == 0u) {
-            return rtu_deliver(l, f); /* length by t3.5 (unknown function code) */
-        }
-        if (l->rx_overflow) {
-            if (!l->rx_bad && (r->flags & RTU_M_FIRST) != 0u) {
-                link_frame_too_long(l);
-            }
-            l->rx_bad = true; /* the stretch is not complete in the buffer */
-        }
-        m_drop(l);
-    }
-    if (l->state == MODCP_LINK_SKIP) {
-        rtu_m_stretch_end(l);
-    }
-    return false;
-}
-
-/* The receive automaton (rtu_on_byte, rtu_on_byte_t15, rtu_on_error) is normal
- * operation's (rtu.c): where modem mode differs, it comes here by l->modem. */
-const modcp_framing_ops_t modcp_rtu_modem_ops = {rtu_configure, rtu_on_byte, rtu_on_error,
-                                                 rtu_m_on_timer, rtu_encode, NULL};
-const modcp_framing_ops_t modcp_rtu_modem_t15_ops = {rtu_configure, rtu_on_byte_t15,
-                                                     rtu_on_error, rtu_m_on_timer,
-                                                     rtu_encode, NULL};

@@ -14,30 +14,34 @@ static void out(modcp_sig_t *s, modcp_signal_t sig, bool on)
         return;
     }
     *cur = on;
-    if (s->hal != NULL && s->hal->set_signal != NULL) {
+    if (s->hal->set_signal != NULL) {
         s->hal->set_signal(s->hal->ctx, sig, on);
     }
 }
 
 static void arm(const modcp_sig_t *s, uint32_t us)
 {
-    if (s->hal != NULL && s->hal->timer_arm != NULL) {
-        s->hal->timer_arm(s->hal->ctx, us);
-    }
+    s->hal->timer_arm(s->hal->ctx, us); /* never NULL (modcp/hal.h) */
 }
 
 static void event(modcp_sig_t *s, modcp_event_t ev)
 {
-    if (s->diag != NULL) {
-        modcp_diag_event(s->diag, ev);
-    }
+    modcp_diag_event(s->diag, ev); /* never NULL (modcp_sig_init) */
 }
 
-static void count_abort(modcp_sig_t *s)
+static MODCP_SIZE_NOINLINE void count_abort(modcp_sig_t *s)
 {
     if (s->aborts < UINT16_MAX) {
         s->aborts++;
     }
+}
+
+/* Nothing in progress: RTS OFF, DTR ON in automatic mode, else OFF. */
+static void reset(modcp_sig_t *s)
+{
+    s->state = MODCP_SIGST_IDLE;
+    out(s, MODCP_SIG_RTS, false);
+    out(s, MODCP_SIG_DTR, s->enabled);
 }
 
 void modcp_sig_init(modcp_sig_t *s, const modcp_hal_t *hal, modcp_diag_t *diag)
@@ -48,26 +52,21 @@ void modcp_sig_init(modcp_sig_t *s, const modcp_hal_t *hal, modcp_diag_t *diag)
     /* power-on: outputs OFF (set explicitly, whatever the pins did before) */
     s->rts = true;
     s->dtr = true;
-    out(s, MODCP_SIG_RTS, false);
-    out(s, MODCP_SIG_DTR, false);
+    reset(s); /* not enabled: both OFF */
 }
 
 void modcp_sig_disable(modcp_sig_t *s)
 {
     s->enabled = false;
-    s->state = MODCP_SIGST_IDLE;
-    out(s, MODCP_SIG_RTS, false);
-    out(s, MODCP_SIG_DTR, false);
+    reset(s);
 }
 
 void modcp_sig_configure(modcp_sig_t *s, const modcp_params_t *p)
 {
-    s->state = MODCP_SIGST_IDLE;
     s->enabled = p->rs232_auto != 0u && p->iface == (uint8_t)MODCP_IFACE_RS232;
     s->on_delay_us = (uint32_t)p->rts_on_delay_ms * 1000u;
     s->off_delay_us = (uint32_t)p->rts_off_delay_ms * 1000u;
-    out(s, MODCP_SIG_RTS, false);
-    out(s, MODCP_SIG_DTR, s->enabled);
+    reset(s);
 }
 
 bool modcp_sig_rx_allowed(const modcp_sig_t *s)
@@ -186,7 +185,7 @@ static void abort_send(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us)
         modcp_link_tx_release(l, false, now_us);
     } else if (s->state == MODCP_SIGST_SENDING) {
         count_abort(s);
-        if (s->hal != NULL && s->hal->uart_tx_abort != NULL) {
+        if (s->hal->uart_tx_abort != NULL) {
             s->hal->uart_tx_abort(s->hal->ctx);
         }
         s->state = MODCP_SIGST_IDLE;

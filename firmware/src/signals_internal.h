@@ -5,7 +5,7 @@
 
 #include "modcp/signals.h"
 
-/* Power-on: RTS and DTR OFF. */
+/* Power-on: RTS and DTR OFF. diag: where events are reported, never NULL. */
 void modcp_sig_init(modcp_sig_t *s, const modcp_hal_t *hal, modcp_diag_t *diag);
 /* Apply parameters (after modcp_link_configure): automatic -> DTR ON, RTS OFF. */
 void modcp_sig_configure(modcp_sig_t *s, const modcp_params_t *p);

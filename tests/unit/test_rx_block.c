@@ -362,7 +362,7 @@ static void test_frames_in_a_row(void **state)
     lw_free(x);
 }
 
-/* Interference suppression (modem mode): per character through its own backend. */
+/* Interference suppression (modem mode): the same block path as normal operation. */
 static void test_modem_mode(void **state)
 {
     (void)state;

@@ -68,27 +68,28 @@ typedef struct {
 
 /* RTU receive state (rtu.c). */
 typedef struct {
-    uint16_t crc;   /* running CRC over the current frame (modem mode: the candidate) */
-    uint16_t count; /* characters of a skipped frame (bus counters); modem mode: of the
-                       stretch being followed */
-    /* interference suppression (modem mode) only: */
-    uint16_t stop;  /* buffer index of the next character that needs a look (function
-                       code, byte count, last character); the hot path runs below it */
-    uint16_t total; /* the candidate's length by its function code, 0: by t3.5 */
-    uint16_t skip_crc; /* CRC over the stretch (stray characters, other frames) */
-    uint8_t bc;     /* index of the byte count, 0: none */
-    uint8_t flags;  /* RTU_M_* (rtu.c) */
+    uint16_t crc;   /* running CRC over our frame (modem mode: the candidate) */
+    uint16_t count; /* characters of the stretch that is not our frame (a skipped frame;
+                       modem mode: the stretch being followed), counted up to 4 */
+    uint16_t stop;  /* buffer index of the next character that needs a look; the hot
+                       path runs below it (normal operation: the capacity; modem mode:
+                       function code, byte count, last character) */
+    uint16_t total; /* modem mode: the candidate's length by its function code, 0: by
+                       t3.5 (normal operation: always 0) */
+    uint16_t skip_crc; /* CRC over the stretch that is not our frame (bus counters) */
+    uint8_t flags;  /* RTU_M_* (link_internal.h) */
 } modcp_rtu_t;
 
 /* ASCII receive state (ascii.c). */
 typedef struct {
-    uint16_t count;  /* bytes decoded in the current frame (busy: address decoded) */
+    uint16_t count;  /* bytes decoded in the current frame, up to 3 (busy: address
+                        decoded) */
     uint8_t lrc;     /* running byte sum */
     uint8_t hex_hi;  /* first hex character of a pair */
     bool hex_half;   /* a pair is half received */
     bool got_cr;     /* the last character was CR */
     bool in_frame;   /* a ':' started what is being followed (false: stray characters) */
-    bool seven_bit;  /* 7 data bits: the eighth bit of a received character is masked */
+    uint8_t char_mask; /* 7 data bits: 7FH, the eighth bit of a character is masked */
 } modcp_ascii_t;
 
 struct modcp_framing_ops; /* link_internal.h */
