@@ -20,6 +20,15 @@
 #else
 #define MODCP_SIZE_NOINLINE
 #endif
+/* The same, and inlined in every caller in the optimised builds for speed (-O2: the
+ * host), where the compiler would keep a larger function with several callers out. */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+#define MODCP_SIZE_NOINLINE_SPEED_INLINE __attribute__((noinline))
+#elif defined(__GNUC__) && defined(__OPTIMIZE__)
+#define MODCP_SIZE_NOINLINE_SPEED_INLINE __attribute__((always_inline)) inline
+#else
+#define MODCP_SIZE_NOINLINE_SPEED_INLINE
+#endif
 
 /* A framing backend. The link calls it and never asks which one it runs; the backend
  * keeps its own state in l->fr and uses the link's shared fields (state, buffer, len,

@@ -100,9 +100,13 @@ MODCP_NOINLINE void rtu_unclaim(modcp_link_t *l, uint16_t n)
     l->state = MODCP_LINK_SKIP;
 }
 
-/* A frame (modem mode: a stretch) starts after t3.5, in SKIP until its first character
- * (or line error) is looked at: the end-of-frame timer is armed here, once per frame. */
-static void frame_start(modcp_link_t *l, uint32_t now_us)
+/* A frame (modem mode: a stretch) starts after t3.5 (IDLE, or SKIP whose frame ended)
+ * with b, or with a line error (err, b 0): the end-of-frame timer is armed here, once per
+ * frame. Our address (or 0) starts our frame (modem mode: a candidate); any other
+ * character starts one followed in SKIP (not ours: not checked, not answered), a line
+ * error an erroneous one, skipped to its t3.5. */
+static MODCP_SIZE_NOINLINE_SPEED_INLINE void frame_start(modcp_link_t *l, uint8_t b,
+                                                          uint32_t now_us, bool err)
 {
     modcp_rtu_t *r = &l->fr.rtu;
     r->skip_crc = MODCP_CRC_INIT;
@@ -112,7 +116,16 @@ static void frame_start(modcp_link_t *l, uint32_t now_us)
     l->rx_overflow = false;
     l->len = 0;
     l->last_us = now_us;
-    l->state = MODCP_LINK_SKIP; /* not ours: not checked, not answered */
+    l->state = MODCP_LINK_SKIP;
+    if (err) {
+        link_mark_bad(l);
+        rtu_count_char(r);
+    } else if (b == l->own_addr || b == 0u) {
+        rtu_cand_start(l, b);
+        r->flags = RTU_M_LEAD | RTU_M_FIRST;
+    } else {
+        rtu_fold(l, b);
+    }
     link_arm(l, l->t35_us);
 }
 
@@ -227,17 +240,8 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
         if (err && l->suppress) {
             return; /* between messages: ignored, a frame starts only with a good character */
         }
-        frame_start(l, now_us);
-        if (err) {
-            goto bad; /* an erroneous frame, skipped to its t3.5 */
-        }
-        if (b == l->own_addr || b == 0u) {
-            rtu_cand_start(l, b);
-            r->flags = RTU_M_LEAD | RTU_M_FIRST;
-        } else {
-            rtu_fold(l, b);
-        }
-        break;
+        frame_start(l, b, now_us, err);
+        return;
     bad:
         link_mark_bad(l);
         rtu_count_char(r);
@@ -293,13 +297,20 @@ void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
  * our frame with room in the buffer are stored and CRC'd in one loop, every other
  * character goes through byte_other() at its own time, exactly as one by one. Only the
  * block's first character can follow a silence (the others come one character time
- * after the one before): it goes through the ops' on_byte, with the t1.5 check if on. */
+ * after the one before): it goes through the ops' on_byte, with the t1.5 check if on,
+ * or straight to frame_start() when the line is idle (byte_other()'s way there; no
+ * t1.5 check before a frame's first character). */
 static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us)
 {
     const uint32_t c = l->char_us;
     const uint8_t *const e = b + n;
     uint32_t t = end_us - (uint32_t)(n - 1u) * c; /* end of the character at b */
-    l->ops->on_byte(l, *b++, t); /* the only one that may follow a silence: t1.5 */
+    const uint8_t a = *b++; /* the only one that may follow a silence: t1.5 */
+    if (l->state == MODCP_LINK_IDLE) {
+        frame_start(l, a, t, false); /* byte_other()'s, without the detour */
+    } else {
+        l->ops->on_byte(l, a, t);
+    }
     t += c;
     while (b < e) {
         const uint16_t stop = l->fr.rtu.stop;
