@@ -170,6 +170,16 @@ void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
  * the "off" backend (its on_byte ignores the line). A block holds no silence, so it
  * never contains the end of one frame and the start of the next. Only
  * modcp_cp_on_rx_block calls this: a port that never does links none of it. */
+static MODCP_NOINLINE void block_bytes(modcp_link_t *l, const uint8_t *b, uint16_t n,
+                                       uint32_t end_us)
+{
+    uint32_t t = end_us - (uint32_t)(n - 1u) * l->char_us;
+    for (uint16_t k = 0; k < n; k++) {
+        l->ops->on_byte(l, b[k], t);
+        t += l->char_us;
+    }
+}
+
 void modcp_link_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us)
 {
     if (n == 0u) {
@@ -179,11 +189,7 @@ void modcp_link_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
         l->ops->on_block(l, b, n, end_us);
         return;
     }
-    uint32_t t = end_us - (uint32_t)(n - 1u) * l->char_us;
-    for (uint16_t k = 0; k < n; k++) {
-        l->ops->on_byte(l, b[k], t);
-        t += l->char_us;
-    }
+    block_bytes(l, b, n, end_us); /* out of line: the RTU path needs no stack frame */
 }
 
 void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
