@@ -26,10 +26,12 @@ typedef struct modcp_hal {
     void *ctx;
     /* Start sending len bytes. buf stays valid and unchanged until the port calls
      * modcp_cp_on_tx_done(), which it must do when the last stop bit has left the
-     * shift register (transmission complete), not when the data register empties. */
+     * shift register (transmission complete), not when the data register empties.
+     * Required: must not be NULL (the core calls it without a check). */
     void (*uart_tx)(void *ctx, const uint8_t *buf, uint16_t len);
     /* Arm the one-shot timer to call modcp_cp_on_timer() after `us` microseconds,
-     * replacing any armed one; us == 0 disarms. */
+     * replacing any armed one; us == 0 disarms. Required: must not be NULL (the core
+     * calls it without a check). */
     void (*timer_arm)(void *ctx, uint32_t us);
     /* RS485 driver enable (DE). May be NULL (RS232 / RS422). */
     void (*set_de)(void *ctx, bool on);
