@@ -70,6 +70,14 @@ uint16_t modcp_crc16(const uint8_t *p, size_t n)
     return modcp_crc16_update(MODCP_CRC_INIT, p, n);
 }
 
+uint16_t modcp_crc16_append(uint8_t *p, uint16_t n)
+{
+    uint16_t crc = modcp_crc16(p, n);
+    p[n] = (uint8_t)(crc & 0xFFu); /* low byte first */
+    p[n + 1u] = (uint8_t)(crc >> 8);
+    return (uint16_t)(n + 2u);
+}
+
 uint8_t modcp_lrc(const uint8_t *p, size_t n)
 {
     uint8_t sum = 0;

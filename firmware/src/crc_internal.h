@@ -14,5 +14,8 @@ static inline uint16_t modcp_crc16_byte(uint16_t crc, uint8_t b)
     return (uint16_t)((crc >> 8) ^ modcp_crc16_table[(crc ^ b) & 0xFFu]);
 }
 uint16_t modcp_crc16_update(uint16_t crc, const uint8_t *p, size_t n);
+/* The CRC of p[0 .. n) appended at p[n] (low byte first): returns n + 2 (an RTU frame's
+ * length; rtu_encode tail-calls it). */
+uint16_t modcp_crc16_append(uint8_t *p, uint16_t n);
 
 #endif

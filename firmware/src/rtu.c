@@ -406,10 +406,7 @@ uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
     if (n + 2u > (uint32_t)l->cap) { /* no buffer: cap 0 */
         return 0;
     }
-    uint16_t crc = modcp_crc16(l->buf, n);
-    l->buf[n] = (uint8_t)(crc & 0xFFu); /* low byte first */
-    l->buf[n + 1u] = (uint8_t)(crc >> 8);
-    return (uint16_t)(n + 2u);
+    return modcp_crc16_append(l->buf, (uint16_t)n); /* a tail call: no stack frame */
 }
 
 static const modcp_framing_ops_t rtu_ops, rtu_t15_ops;
