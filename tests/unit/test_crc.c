@@ -66,6 +66,17 @@ static void test_manual_frames(void **state)
     check_frame_crc("05 85 02 82 90");
 }
 
+static void test_append(void **state)
+{
+    (void)state;
+    uint8_t f[10] = {0x11, 0x03, 0x00, 0x6B, 0x00, 0x03, 0xAA, 0xAA, 0xAA, 0xAA};
+    assert_int_equal(modcp_crc16_append(f, 6), 8);
+    assert_int_equal(f[6], 0x76); /* low byte first */
+    assert_int_equal(f[7], 0x87);
+    assert_int_equal(f[8], 0xAA); /* nothing after it touched */
+    assert_int_equal(modcp_crc16(f, 8), 0);
+}
+
 static void test_lrc(void **state)
 {
     (void)state;
@@ -84,6 +95,7 @@ int main(void)
         cmocka_unit_test(test_standard_vectors),
         cmocka_unit_test(test_incremental_equals_whole),
         cmocka_unit_test(test_manual_frames),
+        cmocka_unit_test(test_append),
         cmocka_unit_test(test_lrc),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
