@@ -29,6 +29,12 @@
 #else
 #define MODCP_CP_NOINLINE
 #endif
+/* Out of line only when built for size (-Os: the MCU builds); inlined when built for speed. */
+#if defined(__OPTIMIZE_SIZE__)
+#define MODCP_CP_SIZE_NOINLINE MODCP_CP_NOINLINE
+#else
+#define MODCP_CP_SIZE_NOINLINE
+#endif
 
 #if MODCP_WITH_RS232_SIGNALS
 static bool sig_enabled(const modcp_cp_t *cp)
@@ -486,7 +492,7 @@ _Static_assert(ST_CPDIAG(diag_irq_count, irq_count) && ST_CPDIAG(systat_ack, sys
                "status area: diag_irq ... systat as in modcp_cpdiag_t");
 
 /* Publish the status area, written in place under the seqlock (no copy of it). */
-static void publish(modcp_cp_t *cp)
+static MODCP_CP_SIZE_NOINLINE void publish(modcp_cp_t *cp)
 {
     modcp_cp_status_t *st = &cp->bp->status; /* only the CP writes it */
     uint32_t ext = ext_flags(cp);
