@@ -31,14 +31,14 @@
 
 #define JOB_NO_ABORT 0x100u
 
+/* j is zeroed (modcp_cp_init clears the CP object it lives in) */
 void modcp_job_init(modcp_job_t *j, modcp_backplane_t *bp, uint8_t *msgbuf, uint16_t msgcap)
 {
-    memset(j, 0, sizeof *j);
     j->bp = bp;
     j->msgbuf = msgbuf;
     j->msgcap = msgbuf != NULL ? msgcap : 0u;
-    j->state = MODCP_JOBST_IDLE;
 }
+_Static_assert(MODCP_JOBST_IDLE == 0, "a zeroed job is idle");
 
 bool modcp_job_busy(const modcp_job_t *j)
 {
