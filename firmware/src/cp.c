@@ -29,6 +29,12 @@
 #else
 #define MODCP_CP_NOINLINE
 #endif
+/* Out of line only when built for size (-Os: the MCU builds); inlined when built for speed. */
+#if defined(__OPTIMIZE_SIZE__)
+#define MODCP_CP_SIZE_NOINLINE MODCP_CP_NOINLINE
+#else
+#define MODCP_CP_SIZE_NOINLINE
+#endif
 
 #if MODCP_WITH_RS232_SIGNALS
 static bool sig_enabled(const modcp_cp_t *cp)
@@ -384,7 +390,7 @@ static bool params_start(modcp_cp_t *cp)
 #endif
 
 /* A PARAMS record arrived: validate and apply, or stay not ready. */
-static void take_params(modcp_cp_t *cp)
+static MODCP_CP_NOINLINE void take_params(modcp_cp_t *cp)
 {
     unconfigure(cp);
     modcp_diag_clear_buffer(&cp->diag); /* 001 §8.3: re-parameterisation clears it */
@@ -392,13 +398,15 @@ static void take_params(modcp_cp_t *cp)
     modcp_ext_reset(&cp->ext, &cp->diag); /* comm loss disarmed, listen-only left */
 #endif
 
-    modcp_params_t rec;
+    /* decoded and validated in place: the CP is not configured while it runs, and a
+     * record that does not validate whole leaves the defaults (below) */
     const uint8_t *record = cp->job.msgbuf; /* cp->record, or cp->buf (features.h) */
-    modcp_event_t ev = modcp_params_decode(record, cp->job.msglen, &rec);
-    int irq = ev == MODCP_EV_NONE ? (int)rec.diag_irq : -1;
+    modcp_event_t ev = modcp_params_decode(record, cp->job.msglen, &cp->params);
+    int irq = -1;
     modcp_event_t warning = MODCP_EV_NONE;
     if (ev == MODCP_EV_NONE) {
-        ev = modcp_params_apply(&rec, &cp->params, &warning);
+        irq = cp->params.diag_irq;
+        ev = modcp_params_apply(&cp->params, &cp->params, &warning);
     }
     modcp_diag_event(&cp->diag, warning);
     cp->param_event = ev;
@@ -484,7 +492,7 @@ _Static_assert(ST_CPDIAG(diag_irq_count, irq_count) && ST_CPDIAG(systat_ack, sys
                "status area: diag_irq ... systat as in modcp_cpdiag_t");
 
 /* Publish the status area, written in place under the seqlock (no copy of it). */
-static void publish(modcp_cp_t *cp)
+static MODCP_CP_SIZE_NOINLINE void publish(modcp_cp_t *cp)
 {
     modcp_cp_status_t *st = &cp->bp->status; /* only the CP writes it */
     uint32_t ext = ext_flags(cp);

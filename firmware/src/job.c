@@ -31,14 +31,14 @@
 
 #define JOB_NO_ABORT 0x100u
 
+/* j is zeroed (modcp_cp_init clears the CP object it lives in) */
 void modcp_job_init(modcp_job_t *j, modcp_backplane_t *bp, uint8_t *msgbuf, uint16_t msgcap)
 {
-    memset(j, 0, sizeof *j);
     j->bp = bp;
     j->msgbuf = msgbuf;
     j->msgcap = msgbuf != NULL ? msgcap : 0u;
-    j->state = MODCP_JOBST_IDLE;
 }
+_Static_assert(MODCP_JOBST_IDLE == 0, "a zeroed job is idle");
 
 bool modcp_job_busy(const modcp_job_t *j)
 {
@@ -321,11 +321,11 @@ void modcp_job_params_grant(modcp_job_t *j)
 }
 
 /* msgbuf is shared with its owner (the CP's frame buffer): the first block of a
- * PARAMS record stays in the ring until the owner has granted it. */
-static bool params_wait(const modcp_job_t *j)
+ * PARAMS record (next, the block at the ring's tail) stays in the ring until the owner
+ * has granted it. */
+static bool params_wait(const modcp_job_t *j, const modcp_block_t *next)
 {
-    const modcp_block_t *next = modcp_ring_peek(&j->bp->to_cp);
-    return next != NULL && !j->msg_granted && next->kind == MODCP_BP_PARAMS &&
+    return !j->msg_granted && next->kind == MODCP_BP_PARAMS &&
            (next->flags & MODCP_BLK_FIRST) != 0u;
 }
 #endif
@@ -336,7 +336,7 @@ modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us)
     const modcp_block_t *b;
     while ((b = modcp_ring_peek(in)) != NULL) {
 #if MODCP_SHARED_PARAMS_BUFFER
-        if (params_wait(j)) {
+        if (params_wait(j, b)) {
             return MODCP_JOBP_PARAMS_START;
         }
         j->msg_granted = false; /* a grant covers the one block it was asked for */

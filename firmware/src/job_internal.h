@@ -5,6 +5,7 @@
 
 #include "modcp/job.h"
 
+/* j zeroed (inside the CP object, which modcp_cp_init clears). */
 void modcp_job_init(modcp_job_t *j, modcp_backplane_t *bp, uint8_t *msgbuf, uint16_t msgcap);
 /* The CPU transfer limit in bytes and the CPU side's time to answer, for every job
  * from now on (the CP's parameters: set when they are taken). */

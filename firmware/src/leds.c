@@ -2,7 +2,6 @@
 #include "modcp/leds.h"
 
 #include <stddef.h>
-#include <string.h>
 #include "leds_internal.h"
 
 void modcp_leds_change(modcp_leds_t *x, modcp_led_t led, bool on, uint32_t now_us)
@@ -17,9 +16,9 @@ void modcp_leds_change(modcp_leds_t *x, modcp_led_t led, bool on, uint32_t now_u
     }
 }
 
+/* x is zeroed (modcp_cp_init clears the CP object, the LEDs' only owner). */
 void modcp_leds_init(modcp_leds_t *x, const modcp_hal_t *hal)
 {
-    memset(x, 0, sizeof *x);
     x->hal = hal;
     /* set every LED explicitly at power-on, in order: SF on, TXD / RXD off */
     for (unsigned led = MODCP_LED_SF; led < MODCP_LED_COUNT; led++) {

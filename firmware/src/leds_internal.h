@@ -5,7 +5,8 @@
 
 #include "modcp/leds.h"
 
-/* Power-on: SF on, TXD and RXD off. */
+/* Power-on: SF on, TXD and RXD off; x zeroed (inside the CP object, which
+ * modcp_cp_init clears). */
 void modcp_leds_init(modcp_leds_t *x, const modcp_hal_t *hal);
 /* Silence that ends a received frame (t3.5 of the link). */
 void modcp_leds_configure(modcp_leds_t *x, uint32_t quiet_us);

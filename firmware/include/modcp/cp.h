@@ -38,9 +38,15 @@
 typedef struct modcp_cp {
     modcp_backplane_t *bp; /* (the HAL is kept by the link, the LEDs and the signals) */
     modcp_params_t params;
-    bool configured;   /* valid PARAMS applied */
+    /* (the flags next to each other: no padding) */
+    bool published;       /* the status area shows the CP's state (cp.c publish()) */
+    bool publish_all;     /* ... and the RS232 signals are to be rewritten too */
+    bool configured;      /* valid PARAMS applied */
+    bool request_pending; /* a request waits for its job */
+    bool ack_pending;     /* an INIT_ACK could not be sent yet */
     uint16_t record_crc;
     modcp_event_t param_event; /* first fatal parameter event, NONE if configured */
+    modcp_event_t ack_event;
     modcp_areas_t areas;
     modcp_diag_t diag;
     modcp_link_t link;
@@ -51,13 +57,8 @@ typedef struct modcp_cp {
     modcp_pdu_env_t env;
     modcp_job_t job;
     modcp_frame_t frame; /* request being processed */
-    bool request_pending; /* a request waits for its job */
-    bool ack_pending;     /* an INIT_ACK could not be sent yet */
-    bool published;       /* the status area shows the CP's state (cp.c publish()) */
-    bool publish_all;     /* ... and the RS232 signals are to be rewritten too */
     uint32_t err_mark_us; /* link.last_us after the last line error: when it moves on, a
                              character was received (the end of a wire break) */
-    modcp_event_t ack_event;
 #if MODCP_SHARED_PARAMS_BUFFER
     uint8_t buf[MODCP_CP_BUF_SIZE];            /* frame buffer (first MODCP_LINK_BUF_MAX
                                                   bytes), and the PARAMS record as it

@@ -35,34 +35,35 @@ typedef enum {
 
 typedef struct {
     modcp_backplane_t *bp;
+    /* (the byte and 16-bit members first, then the pointers and 32-bit ones: no padding) */
     uint8_t state; /* modcp_jobst_t */
     uint8_t tag;   /* tag of the current / last job, 1..255 */
     uint8_t tx_seq;
     uint8_t rx_seq;
     bool rx_synced; /* rx_seq valid (first block seen) */
-    modcp_bp_job_t hdr;
     bool hdr_sent;
-    const uint8_t *wdata;
+    modcp_bp_job_t hdr;
     uint16_t wpos;
-    uint8_t *rbuf;
     uint16_t rcap;
     uint16_t rlen;      /* read data received so far / in total */
     uint16_t rexpect;   /* data bytes announced by the REPLY header */
     uint16_t limit;     /* CPU transfer limit in bytes (modcp_job_configure) */
-    uint32_t t0_us;
-    uint32_t timeout_us; /* the CPU side's time to answer a job (modcp_job_configure) */
     modcp_event_t event; /* result of the last finished job */
     uint16_t error_nr;   /* FB ERROR_NR for (0E)57H */
     /* incoming PARAMS / INIT */
-    uint8_t *msgbuf;
     uint16_t msgcap;
     uint16_t msglen;
+    modcp_bp_init_t init;
     uint8_t msgkind;   /* kind being reassembled, 0 = none */
     bool msg_overflow;
 #if MODCP_SHARED_PARAMS_BUFFER
     bool msg_granted;  /* the owner freed msgbuf for the PARAMS block ahead */
 #endif
-    modcp_bp_init_t init;
+    const uint8_t *wdata;
+    uint8_t *rbuf;
+    uint8_t *msgbuf;
+    uint32_t t0_us;
+    uint32_t timeout_us; /* the CPU side's time to answer a job (modcp_job_configure) */
     uint32_t proto_errors; /* sequence / framing errors seen on the ring */
     uint32_t illegal_msgs; /* blocks of a kind the CPU side must not send (also in
                               proto_errors); the CP reports (0E)3CH, cpdiag.c */
