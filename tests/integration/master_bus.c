@@ -36,6 +36,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "master_util.h"
@@ -68,6 +69,14 @@ static long e_crc, e_timeout, e_exc, e_other;
 
 static void count_error(void)
 {
+    {
+        struct timespec ts;
+        clock_gettime(CLOCK_MONOTONIC, &ts);
+        /* on stderr, to find the request in the simulator's trace */
+        fprintf(stderr, "master_bus: error at %lld.%06ld s (CLOCK_MONOTONIC), slave %d: %s\n",
+                (long long)ts.tv_sec, ts.tv_nsec / 1000, modbus_get_slave(ctx),
+                modbus_strerror(errno));
+    }
     if (errno == EMBBADCRC) {
         e_crc++;
     } else if (errno == ETIMEDOUT) {

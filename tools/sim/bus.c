@@ -729,16 +729,19 @@ static void deliver(sim_bus_t *b, size_t m, const uint8_t *bytes, const double *
     (void)r;
 }
 
-size_t sim_bus_take(sim_bus_t *b, size_t m, uint8_t *bytes, uint32_t *t_us, size_t cap)
+size_t sim_bus_take(sim_bus_t *b, size_t m, uint8_t *bytes, uint32_t *t_us, size_t cap,
+                    uint32_t until_us, bool *more)
 {
     size_t k = 0;
     pthread_mutex_lock(&b->rx_mu);
-    while (k < cap && b->rxq[m].tail != b->rxq[m].head) {
+    while (k < cap && b->rxq[m].tail != b->rxq[m].head &&
+           (int32_t)(b->rxq[m].t[b->rxq[m].tail] - until_us) <= 0) {
         bytes[k] = b->rxq[m].b[b->rxq[m].tail];
         t_us[k] = b->rxq[m].t[b->rxq[m].tail];
         k++;
         b->rxq[m].tail = (b->rxq[m].tail + 1u) % 8192u;
     }
+    *more = b->rxq[m].tail != b->rxq[m].head;
     pthread_mutex_unlock(&b->rx_mu);
     return k;
 }
@@ -773,9 +776,17 @@ static bool member_sending(const sim_bus_t *b, size_t m, double a, double z)
 }
 
 /* Emit the characters due by now; returns the time of the next one (negative when it
- * continues a frame), or -1 for none. */
+ * continues a frame), or -1 for none.
+ *
+ * The members get a frame's characters before the master gets its last one: the
+ * master answers a reply with its next request (after t3.5), and a member that took
+ * the reply only after that — the bus thread preempted between the two writes while
+ * the member's clock ran on — would see it at its own later time (a member's core
+ * never goes back in time), glued to the request, and miss the request. */
 static double emit_due(sim_bus_t *b, double now)
 {
+    uint8_t mo[SIM_TRACE_MAX]; /* for the master, after the members */
+    size_t mol = 0;
     for (;;) {
         rxchar_t ch;
         if (!decode_next(b, &ch)) {
@@ -786,14 +797,21 @@ static double emit_due(sim_bus_t *b, double now)
             members_flush(b); /* the line paused: the members get what it carried */
         }
         if (at > now + 1.0) {
+            /* a frame goes on (or the line paused, the members have it): the master
+             * gets what was due */
+            write_all(b->master_fd, mo, mol);
             /* negative: a later character of a frame (no need to watch the clock) */
             bool first = b->heard_len == 0u || ch.start - b->heard_end >= (double)b->line.t35_us;
             return first ? at : -at;
         }
-        write_all(b->master_fd, &ch.byte, 1u);
         if (b->mlen == sizeof b->mbuf) {
             members_flush(b);
         }
+        if (mol == sizeof mo) {
+            write_all(b->master_fd, mo, mol);
+            mol = 0;
+        }
+        mo[mol++] = ch.byte;
         uint32_t deaf = 0;
         for (size_t m = 0; m < b->n; m++) {
             if (member_sending(b, m, ch.start, at)) {
@@ -821,6 +839,7 @@ static double emit_due(sim_bus_t *b, double now)
         b->from = ch.start + ((double)b->nbits - 0.5) * b->bit_us;
     }
     members_flush(b); /* nothing follows back to back */
+    write_all(b->master_fd, mo, mol);
     /* senders the receiver is done with */
     for (size_t i = 0; i < MAX_SENDERS; i++) {
         if (b->s[i].used && end_of(b, &b->s[i]) <= b->from + 0.5 * b->bit_us &&

@@ -68,8 +68,12 @@ sim_bus_t *sim_bus_new(const sim_line_t *line, size_t n, const char *const names
 
 /* The characters member m heard, each with the time (the member's 32-bit us clock)
  * its stop bit ended on the line: a member fed with these times frames them by the
- * line's timing, however late its thread runs. Returns how many (at most cap). */
-size_t sim_bus_take(sim_bus_t *b, size_t m, uint8_t *bytes, uint32_t *t_us, size_t cap);
+ * line's timing, however late its thread runs. Only those that ended by until_us (the
+ * member's `now`: a character that arrived after the member read its clock belongs to
+ * its next turn, after its own transmission-complete and timers due by then); *more
+ * says that some are left. Returns how many (at most cap). */
+size_t sim_bus_take(sim_bus_t *b, size_t m, uint8_t *bytes, uint32_t *t_us, size_t cap,
+                    uint32_t until_us, bool *more);
 void sim_bus_free(sim_bus_t *b);
 
 /* The bus thread's body: runs until sim_bus_stop. */

@@ -329,7 +329,14 @@ static void *cp_thread(void *arg)
             }
             uint8_t bb[RX_CHUNK];
             uint32_t bt[RX_CHUNK];
-            size_t k = sim_bus_take(s->bus, m->index, bb, bt, RX_CHUNK);
+            bool more = false;
+            size_t k = sim_bus_take(s->bus, m->index, bb, bt, RX_CHUNK, now, &more);
+            if (more) {
+                /* characters that arrived after `now` was read: the next turn takes
+                 * them (pulled back to `now` they could precede the end of our own
+                 * reply: (08)37H, the request lost) */
+                modcp_posix_wake(&m->port);
+            }
             for (size_t i = 0; i < k; i++) {
                 uint32_t ti = bt[i];
                 if ((int32_t)(ti - m->core_t) < 0) {
