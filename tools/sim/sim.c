@@ -1469,7 +1469,7 @@ int main(int argc, char **argv)
             names[i] = s->m[i].name;
             addr[i] = s->m[i].conf->params.slave_addr;
             fds[i] = s->m[i].port.slave_fd;
-            wakes[i] = s->m[i].port.wake_wr;
+            wakes[i] = s->m[i].port.wake.wr;
         }
         for (size_t i = 0; i < s->n_ext; i++) {
             names[s->n + i] = s->ext_name[i];

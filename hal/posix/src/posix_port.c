@@ -195,32 +195,20 @@ static void port_reset(modcp_posix_port_t *p, uint32_t char_us)
     memset(p, 0, sizeof *p);
     p->fd = -1;
     p->slave_fd = -1;
-    p->wake_rd = -1;
-    p->wake_wr = -1;
+    p->wake.rd = -1;
+    p->wake.wr = -1;
     p->char_us = char_us != 0u ? char_us : 1u;
-}
-
-/* The wake-up pipe: another thread writes a byte to end the owner's wait. */
-static int wake_open(modcp_posix_port_t *p)
-{
-    int fds[2];
-    int rc = pipe_nonblock(fds);
-    if (rc == 0) {
-        p->wake_rd = fds[0];
-        p->wake_wr = fds[1];
-    }
-    return rc;
 }
 
 void modcp_posix_wake(modcp_posix_port_t *p)
 {
-    pipe_poke(p->wake_wr);
+    modcp_posix_event_signal(&p->wake);
 }
 
 int modcp_posix_open_pty(modcp_posix_port_t *p, const char *link, uint32_t char_us)
 {
     port_reset(p, char_us);
-    int wrc = wake_open(p);
+    int wrc = modcp_posix_event_open(&p->wake);
     if (wrc != 0) {
         return wrc;
     }
@@ -306,7 +294,7 @@ int modcp_posix_open_device(modcp_posix_port_t *p, const char *path, uint32_t ba
 {
     port_reset(p, char_us);
     p->parity = parity;
-    int wrc = wake_open(p);
+    int wrc = modcp_posix_event_open(&p->wake);
     if (wrc != 0) {
         return wrc;
     }
@@ -397,14 +385,7 @@ void modcp_posix_close(modcp_posix_port_t *p)
         close(p->fd);
         p->fd = -1;
     }
-    if (p->wake_rd >= 0) {
-        close(p->wake_rd);
-        p->wake_rd = -1;
-    }
-    if (p->wake_wr >= 0) {
-        close(p->wake_wr);
-        p->wake_wr = -1;
-    }
+    modcp_posix_event_close(&p->wake);
 }
 
 /* ---- HAL callbacks ------------------------------------------------------------------- */
@@ -689,8 +670,8 @@ int modcp_posix_wait(modcp_posix_port_t *p, uint32_t max_us, modcp_posix_rx_t *r
         }
     }
 
-    struct pollfd pfs[2] = {{p->fd, POLLIN, 0}, {p->wake_rd, POLLIN, 0}};
-    nfds_t nfds = p->wake_rd >= 0 ? 2u : 1u;
+    struct pollfd pfs[2] = {{p->fd, POLLIN, 0}, {p->wake.rd, POLLIN, 0}};
+    nfds_t nfds = p->wake.rd >= 0 ? 2u : 1u;
     struct timespec ts = {(time_t)(sleep_us / 1000000u), (long)(sleep_us % 1000000u) * 1000L};
     int pr = ppoll(pfs, nfds, &ts, NULL);
     if (pr == 0 && spin) {
@@ -704,7 +685,7 @@ int modcp_posix_wait(modcp_posix_port_t *p, uint32_t max_us, modcp_posix_rx_t *r
         return -errno;
     }
     if (pr > 0 && nfds == 2u && (pfs[1].revents & POLLIN) != 0) {
-        pipe_drain(p->wake_rd);
+        pipe_drain(p->wake.rd);
     }
     const struct pollfd pf = pfs[0];
     now = modcp_posix_now_us();

@@ -33,10 +33,17 @@ typedef struct {
     uint8_t errors; /* MODCP_LINE_* (0 = a good character); BREAK comes with byte 0 */
 } modcp_posix_rx_t;
 
+/* An event another thread can signal (a non-blocking pipe): e.g. a "backplane
+ * interrupt" from one side to the other. Signals before a wait are not lost; several
+ * give one wake-up. */
+typedef struct {
+    int rd, wr;
+} modcp_posix_event_t;
+
 typedef struct modcp_posix_port {
     int fd;       /* pty master or device */
     int slave_fd; /* pty: a slave fd kept open so the master never reads EIO; else -1 */
-    int wake_rd, wake_wr; /* wake-up pipe (modcp_posix_wake ends modcp_posix_wait) */
+    modcp_posix_event_t wake; /* modcp_posix_wake ends modcp_posix_wait */
     bool is_pty; /* we own the pty master (open_pty) */
     bool paced;  /* nothing paces the bytes (a pty on either side): the port does */
     char path[256]; /* the device a master opens (pty slave name or the device) */
@@ -133,12 +140,6 @@ void modcp_posix_sleep_until_us64(uint64_t t_us);
  * microseconds before a deadline that must not be late; keep it that short. */
 void modcp_posix_spin_until_us64(uint64_t t_us);
 
-/* An event another thread can signal (a non-blocking pipe): e.g. a "backplane
- * interrupt" from one side to the other. Signals before a wait are not lost; several
- * give one wake-up. */
-typedef struct {
-    int rd, wr;
-} modcp_posix_event_t;
 int modcp_posix_event_open(modcp_posix_event_t *e); /* 0 or -errno */
 void modcp_posix_event_close(modcp_posix_event_t *e);
 void modcp_posix_event_signal(modcp_posix_event_t *e);
