@@ -24,18 +24,6 @@
 
 /* ---- RS232 automatic secondary signals (signals.c), or none in this build ------ */
 
-#if defined(__GNUC__)
-#define MODCP_CP_NOINLINE __attribute__((noinline))
-#else
-#define MODCP_CP_NOINLINE
-#endif
-/* Out of line only when built for size (-Os: the MCU builds); inlined when built for speed. */
-#if defined(__OPTIMIZE_SIZE__)
-#define MODCP_CP_SIZE_NOINLINE MODCP_CP_NOINLINE
-#else
-#define MODCP_CP_SIZE_NOINLINE
-#endif
-
 #if MODCP_WITH_RS232_SIGNALS
 static bool sig_enabled(const modcp_cp_t *cp)
 {
@@ -195,13 +183,9 @@ bool modcp_cp_ready(const modcp_cp_t *cp)
 /* Carry the request on: the PDU engine's decision on the frame that has just ended
  * (start) or on the result of its job, then its next job (a request of the extended set
  * may need several in sequence: modcp_pdu_complete() then returns the next) or the end
- * of the request. */
-#if defined(__GNUC__)
-#define CP_INLINE inline __attribute__((always_inline))
-#else
-#define CP_INLINE inline
-#endif
-static CP_INLINE void advance_here(modcp_cp_t *cp, bool start, uint32_t now_us)
+ * of the request. Built for size one copy, shared by the end of a frame and the poll;
+ * built for speed inline in each (no call and no stack frame of its own per request). */
+static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, bool start, uint32_t now_us)
 {
     const modcp_pdu_env_t *env = &cp->env;
     uint16_t out_len = 0;
@@ -235,21 +219,9 @@ static CP_INLINE void advance_here(modcp_cp_t *cp, bool start, uint32_t now_us)
     }
 }
 
-/* Built for size (-Os: the MCU builds) advance_here is one copy out of line, shared by
- * the end of a frame and the poll; built for speed each has it inline (no call and no
- * stack frame of its own per request). */
-#if defined(__OPTIMIZE_SIZE__)
-static MODCP_CP_NOINLINE void advance(modcp_cp_t *cp, bool start, uint32_t now_us)
-{
-    advance_here(cp, start, now_us);
-}
-#else
-#define advance advance_here
-#endif
-
 /* Cold part of modcp_cp_on_rx: RS232 automatic signals configured (DSR gates the
  * reception, a character ends the time to RTS off). */
-static MODCP_CP_NOINLINE void rx_signals(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
+static MODCP_NOINLINE void rx_signals(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
 {
     if (!sig_rx_allowed(cp)) {
         return; /* RS232 automatic signals: no reception while DSR is OFF */
@@ -275,7 +247,7 @@ void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
 
 /* Characters back to back (DMA, FIFO): the link's block path; with RS232 automatic
  * signals each goes through the per-character entry at its own time. */
-static MODCP_CP_NOINLINE void rx_block_signals(modcp_cp_t *cp, const uint8_t *b, uint16_t n,
+static MODCP_NOINLINE void rx_block_signals(modcp_cp_t *cp, const uint8_t *b, uint16_t n,
                                                uint32_t end_us)
 {
     uint32_t t = end_us - (uint32_t)(n - 1u) * cp->link.char_us;
@@ -314,7 +286,7 @@ void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us
 #if defined(__OPTIMIZE_SIZE__)
 static void timer_expired(modcp_cp_t *cp, uint32_t now_us)
 #else
-static MODCP_CP_NOINLINE void timer_expired(modcp_cp_t *cp, uint32_t now_us)
+static MODCP_NOINLINE void timer_expired(modcp_cp_t *cp, uint32_t now_us)
 #endif
 {
     cp->published = false;
@@ -340,7 +312,7 @@ void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
 
 /* Transmission complete with RS232 automatic signals: RTS OFF after its delay, then
  * receive (the signals' timer), unless they leave it to the link. */
-static MODCP_CP_NOINLINE void tx_done_signals(modcp_cp_t *cp, uint32_t now_us)
+static MODCP_NOINLINE void tx_done_signals(modcp_cp_t *cp, uint32_t now_us)
 {
     modcp_link_tx_complete(&cp->link); /* TXD: the last stop bit is out */
     if (!sig_on_tx_done(cp, now_us)) {
@@ -390,7 +362,7 @@ static bool params_start(modcp_cp_t *cp)
 #endif
 
 /* A PARAMS record arrived: validate and apply, or stay not ready. */
-static MODCP_CP_NOINLINE void take_params(modcp_cp_t *cp)
+static MODCP_NOINLINE void take_params(modcp_cp_t *cp)
 {
     unconfigure(cp);
     modcp_diag_clear_buffer(&cp->diag); /* 001 §8.3: re-parameterisation clears it */
@@ -492,7 +464,7 @@ _Static_assert(ST_CPDIAG(diag_irq_count, irq_count) && ST_CPDIAG(systat_ack, sys
                "status area: diag_irq ... systat as in modcp_cpdiag_t");
 
 /* Publish the status area, written in place under the seqlock (no copy of it). */
-static MODCP_CP_SIZE_NOINLINE void publish(modcp_cp_t *cp)
+static MODCP_SIZE_NOINLINE void publish(modcp_cp_t *cp)
 {
     modcp_cp_status_t *st = &cp->bp->status; /* only the CP writes it */
     uint32_t ext = ext_flags(cp);

@@ -5,30 +5,7 @@
 
 #include "modcp/link.h"
 #include "diag_internal.h"
-
-/* Keep a cold path out of the hot one (a leaf function needs no stack frame). */
-#if defined(__GNUC__)
-#define MODCP_NOINLINE __attribute__((noinline))
-#else
-#define MODCP_NOINLINE
-#endif
-/* One copy where it is called from several places, in the builds for size (-Os: the MCU
- * builds); the compiler decides elsewhere (-O2: the host, where inlining saves the
- * calls). */
-#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
-#define MODCP_SIZE_NOINLINE __attribute__((noinline))
-#else
-#define MODCP_SIZE_NOINLINE
-#endif
-/* The same, and inlined in every caller in the optimised builds for speed (-O2: the
- * host), where the compiler would keep a larger function with several callers out. */
-#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
-#define MODCP_SIZE_NOINLINE_SPEED_INLINE __attribute__((noinline))
-#elif defined(__GNUC__) && defined(__OPTIMIZE__)
-#define MODCP_SIZE_NOINLINE_SPEED_INLINE __attribute__((always_inline)) inline
-#else
-#define MODCP_SIZE_NOINLINE_SPEED_INLINE
-#endif
+#include "inline_internal.h"
 
 /* A framing backend. The link calls it and never asks which one it runs; the backend
  * keeps its own state in l->fr and uses the link's shared fields (state, buffer, len,
