@@ -28,6 +28,7 @@
 #include <string.h>
 #include "backplane_internal.h"
 #include "job_internal.h"
+#include "inline_internal.h"
 
 #define JOB_NO_ABORT 0x100u
 
@@ -112,10 +113,7 @@ void modcp_job_abort(modcp_job_t *j)
 /* Stamp block b, the free slot at the head of the ring towards the CPU side (word:
  * modcp_block_word), and hand it over. One copy of it when built for size (-Os: the MCU
  * builds), inlined else. */
-#if defined(__OPTIMIZE_SIZE__) && defined(__GNUC__)
-__attribute__((noinline))
-#endif
-static void hand_over(modcp_job_t *j, modcp_block_t *b, uint32_t word)
+static MODCP_SIZE_NOINLINE void hand_over(modcp_job_t *j, modcp_block_t *b, uint32_t word)
 {
     modcp_ring_t *r = &j->bp->to_cpu;
     uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
@@ -175,17 +173,8 @@ static void push_blocks(modcp_job_t *j)
         if (j->hdr.op == MODCP_JOB_READ || len <= MODCP_BP_JOB_INLINE) {
             if (j->hdr.op != MODCP_JOB_READ) { /* the write data with the header */
                 const uint8_t *w = j->wdata;
-#if !defined(__OPTIMIZE_SIZE__) /* built for speed: a coil or a register without a loop */
-                if (len - 1u < 2u) { /* FC05: 1 byte, FC06: 2 */
-                    b->data[MODCP_BP_JOB_HDR_LEN] = w[0];
-                    b->data[MODCP_BP_JOB_HDR_LEN + 1u] = w[len - 1u];
-                    n += len;
-                } else
-#endif
-                {
-                    for (; n < MODCP_BP_JOB_HDR_LEN + len; n++) {
-                        b->data[n] = *w++;
-                    }
+                for (; n < MODCP_BP_JOB_HDR_LEN + len; n++) {
+                    b->data[n] = *w++;
                 }
             }
             flags = MODCP_BLK_FIRST | MODCP_BLK_LAST; /* the whole job */
