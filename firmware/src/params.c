@@ -83,7 +83,7 @@
      (uint8_t)(members), (uint8_t)sizeof(type), (uint8_t)FIRST_WIDTH_##type},
 #define ROW_M(...)
 
-/* A group's structs: member j at byte 2 j, 2 bytes wide, the first possibly 1 byte
+/* A group's structs (packed): 2-byte members one after the other, the first possibly 1 byte
  * (FIRST_WIDTH_<type>); test_params checks that the rows list the members in this order. */
 #define FIRST_WIDTH_modcp_bitwin_t 1u
 #define FIRST_WIDTH_modcp_r32range_t 2u
@@ -107,13 +107,14 @@ const uint8_t modcp_param_row_count = (uint8_t)(sizeof modcp_param_rows / sizeof
                                                : (field) == MODCP_PF_ID_STRING || (index) == 0, \
                    #member ": index");
 #define CHECK_G(member, count, type, members, field)                                         \
-    _Static_assert(sizeof(type) == 2u * (members) &&                                          \
+    _Static_assert(sizeof(type) == FIRST_WIDTH_##type + 2u * ((members) - 1u) &&              \
                        MODCP_PARAM_OFF(member) <= MODCP_PARAM_ABSENT,                         \
-                   #member ": one 2-byte slot per member");
+                   #member ": members without a gap");
 #define CHECK_M(type, member, width, count)                                                  \
-    _Static_assert(offsetof(type, member) % 2u == 0u &&                                        \
+    _Static_assert((offsetof(type, member) == 0u ||                                           \
+                    (offsetof(type, member) - FIRST_WIDTH_##type) % 2u == 0u) &&              \
                        (width) == (offsetof(type, member) == 0u ? FIRST_WIDTH_##type : 2u),   \
-                   #type "." #member ": slot");
+                   #type "." #member ": place");
 MODCP_PARAM_ROWS(CHECK_S, CHECK_G, CHECK_M)
 #if MODCP_WITH_EXTENDED
 #define CHECK_ID_S(member, width, field, index, ...)                                          \
@@ -266,6 +267,14 @@ static CHECK_INLINE bool scan_count_ok(const modcp_params_t *p)
            (uint32_t)p->scan_start + (uint32_t)p->scan_count <= 0x10000u;
 }
 
+/* A 2-byte member of a (packed) group struct. */
+static CHECK_INLINE uint16_t get16(const uint8_t *b)
+{
+    uint16_t v;
+    memcpy(&v, b, sizeof v);
+    return v;
+}
+
 static CHECK_INLINE uint32_t pair(uint16_t hi, uint16_t lo)
 {
     return ((uint32_t)hi << 16) | (uint32_t)lo;
@@ -278,9 +287,9 @@ static CHECK_INLINE uint32_t pair(uint16_t hi, uint16_t lo)
      AREA_BIT(MODCP_AREA_C) | AREA_BIT(MODCP_AREA_DB))
 #define AREAS_INPUTS (AREA_BIT(MODCP_AREA_M) | AREA_BIT(MODCP_AREA_I) | AREA_BIT(MODCP_AREA_DB))
 
-_Static_assert(offsetof(modcp_bitwin_t, area) == 0u && offsetof(modcp_bitwin_t, from) == 2u &&
-                   offsetof(modcp_bitwin_t, to) == 4u && offsetof(modcp_bitwin_t, start) == 6u &&
-                   offsetof(modcp_bitwin_t, db) == 8u,
+_Static_assert(offsetof(modcp_bitwin_t, area) == 0u && offsetof(modcp_bitwin_t, from) == 1u &&
+                   offsetof(modcp_bitwin_t, to) == 3u && offsetof(modcp_bitwin_t, start) == 5u &&
+                   offsetof(modcp_bitwin_t, db) == 7u,
                "area, from, to, start, db");
 _Static_assert(offsetof(modcp_r32range_t, from) == 0u && offsetof(modcp_r32range_t, to) == 2u &&
                    offsetof(modcp_r32range_t, db) == 4u,
@@ -305,7 +314,7 @@ static CHECK_INLINE void check_ranges(issue_sink_t *s, const modcp_params_t *p,
                                      : MODCP_EV_INPUT_FROMTO;
     const unsigned areas = r32 ? AREA_BIT(MODCP_AREA_DB) : coils ? AREAS_COILS : AREAS_INPUTS;
     const uint8_t *base = (const uint8_t *)p + r->off;
-    const size_t ft = r32 ? 0u : 2u; /* from, to, then start, db (window) or db (range) */
+    const size_t ft = r32 ? 0u : 1u; /* from, to, then start, db (window) or db (range) */
     const unsigned count = r->max;
     uint32_t ok = 0;
     if (r32 && p->regs32 == 0u) {
@@ -313,10 +322,10 @@ static CHECK_INLINE void check_ranges(issue_sink_t *s, const modcp_params_t *p,
     }
     for (unsigned k = 0; k < count; k++) {
         const uint8_t *e = base + (size_t)k * r->min;
-        const uint16_t *f = (const uint16_t *)(const void *)(e + ft);
-        const uint16_t from = f[0];
-        const uint16_t to = f[1];
-        const uint16_t db = r32 ? f[2] : f[3];
+        const uint8_t *f = e + ft;
+        const uint16_t from = get16(f);
+        const uint16_t to = get16(f + 2);
+        const uint16_t db = get16(f + (r32 ? 4 : 6));
         const uint8_t area = !r32                        ? e[0]
                              : (from | to | db) != 0u ? (uint8_t)MODCP_AREA_DB
                                                       : (uint8_t)MODCP_AREA_NONE;
@@ -336,7 +345,7 @@ static CHECK_INLINE void check_ranges(issue_sink_t *s, const modcp_params_t *p,
             if (r32) {
                 bits <<= k == MODCP_R32_INT16 ? 4u : 5u;
             }
-            uint32_t last = (r32 ? 0u : f[2]) + (tc ? bits / 16u - 1u : (bits - 1u) / 8u);
+            uint32_t last = (r32 ? 0u : get16(f + 4)) + (tc ? bits / 16u - 1u : (bits - 1u) / 8u);
             if (tc && bits % 16u != 0u) {
                 bad = bits;
             } else if (last > 0xFFFFu) {
@@ -349,20 +358,20 @@ static CHECK_INLINE void check_ranges(issue_sink_t *s, const modcp_params_t *p,
         add_fatal(s, FI(r->field, k), ev, bad);
     }
     for (unsigned j = 1; j < count; j++) {
-        const uint16_t *b = (const uint16_t *)(const void *)(base + (size_t)j * r->min + ft);
+        const uint8_t *b = base + (size_t)j * r->min + ft;
         if ((ok & (1u << j)) == 0u) {
             continue;
         }
         for (unsigned i = 0; i < j; i++) {
-            const uint16_t *a = (const uint16_t *)(const void *)(base + (size_t)i * r->min + ft);
+            const uint8_t *a = base + (size_t)i * r->min + ft;
             uint32_t bad;
             if ((ok & (1u << i)) == 0u) {
                 continue;
             }
-            if (a[0] <= b[1] && b[0] <= a[1]) {
+            if (get16(a) <= get16(b + 2) && get16(b) <= get16(a + 2)) {
                 bad = i;
-            } else if (r32 && a[2] == b[2]) {
-                bad = b[2];
+            } else if (r32 && get16(a + 4) == get16(b + 4)) {
+                bad = get16(b + 4);
             } else {
                 continue;
             }

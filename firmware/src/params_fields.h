@@ -22,7 +22,8 @@
  *       count consecutive structs from member on, each encoded as the members rows
  *       that follow (window by window); validated by its own function in params.c.
  *   M(type, member, width, count)   a member of the group above (count = the group's), in the
- *       order of the struct: member j at byte 2 j, 2 bytes wide, the first may be 1 byte
+ *       order of the (packed) struct: 2 bytes wide, the first may be 1 byte, one after the
+ *       other as in the record
  * The composite keys ([coils], [inputs], [registers] ranges, [limits], [scanner]
  * entries) and the tool's own [cpu] keys are documented by MODCP_PARAM_DOC_ROWS(D). */
 #ifndef MODCP_PARAMS_FIELDS_H
@@ -44,9 +45,10 @@ enum {
  *      legal range (min fits a byte; a 4-byte row, the baud rate, has its own rule), def the
  *      default as MODCP_PARAM_DEF_CODE (below), event its number in class 0EH.
  *   G: wf = 0; max = count, min = size of one struct, event = number of members, def =
- *      width of the first member (1 or 2). Member j sits at byte 2 j of the struct and is 2
- *      bytes wide, except the first, which may be one byte (params.c checks it at compile
- *      time, test_params the members' order).
+ *      width of the first member (1 or 2). The members follow one another without a gap
+ *      (the structs are packed, modcp/params.h), 2 bytes wide except the first, which may be
+ *      one byte: a struct is laid out as its bytes in the record (params.c checks it at
+ *      compile time, test_params the members' order).
  *   off: offset into modcp_params_t (every row's member starts below byte 255, the record
  *      struct keeps the long arrays last), MODCP_PARAM_ABSENT for a member this build does
  *      not keep. */

@@ -109,8 +109,8 @@ static void dec_field(const codec_t *c, size_t at, size_t off, uint8_t width)
 
 /* Every field in record order. A row this build does not keep (off MODCP_PARAM_ABSENT)
  * has only its place in the record (encode leaves the zeros there). A group's structs are
- * one run of 2-byte slots (params_fields.h): member j of struct k is slot k * members + j,
- * 2 bytes wide in the record except a struct's first member, which may be one byte. */
+ * packed (params_fields.h): their members lie one after the other as in the record, 2
+ * bytes wide except a struct's first member, which may be one byte. */
 static void walk(const codec_t *c, field_fn *fn)
 {
     size_t at = 0;
@@ -118,21 +118,23 @@ static void walk(const codec_t *c, field_fn *fn)
         const modcp_param_row_t *r = &modcp_param_rows[i];
         uint8_t first = MODCP_PARAM_WIDTH(r);
         uint8_t members = 1;
-        size_t slots = 1;
+        size_t fields = 1;
+        size_t off = r->off;
         if (first == 0u) { /* a group: count structs */
             first = r->def;
             members = r->event;
-            slots = (size_t)r->max * members;
+            fields = (size_t)r->max * members;
         }
-        for (size_t k = 0, j = 0; k < slots; k++) {
+        for (size_t k = 0, j = 0; k < fields; k++) {
             uint8_t w = j == 0u ? first : 2u;
             if (++j == members) {
                 j = 0;
             }
             if (r->off != MODCP_PARAM_ABSENT) {
-                fn(c, at, r->off + 2u * k, w);
+                fn(c, at, off, w);
             }
             at += w;
+            off += w;
         }
     }
 }

@@ -122,29 +122,37 @@ static void test_defaults(void **state)
     assert_int_equal(eff.slave_addr, 222);
 }
 
-/* The core walks a group's structs by slot: member j at byte 2 j, 2 bytes wide except a
- * 1-byte first member (params_fields.h); the rows must list the members in that order. */
+/* The core walks a group's (packed) structs member by member as the record lays them out:
+ * one after the other, 2 bytes wide except a 1-byte first member (params_fields.h); the
+ * rows must list the members in that order. */
 static void test_group_members_in_slot_order(void **state)
 {
     (void)state;
 #define SLOT_S(...)
-#define SLOT_G(member, count, type, members, field) {0xFFu, (uint8_t)(members)},
-#define SLOT_M(type, member, width, count) {(uint8_t)offsetof(type, member), (uint8_t)(width)},
+#define SLOT_G(member, count, type, members, field) {0xFFu, (uint8_t)(members), sizeof(type)},
+#define SLOT_M(type, member, width, count) {(uint8_t)offsetof(type, member), (uint8_t)(width), 0u},
     static const struct {
         uint8_t off;
         uint8_t width; /* a group's row: the number of members */
+        uint8_t size;  /* a group's row: the size of one struct */
     } slots[] = {MODCP_PARAM_ROWS(SLOT_S, SLOT_G, SLOT_M)};
     size_t members = 0;
+    size_t size = 0;
     size_t j = 0;
+    size_t at = 0;
     for (size_t i = 0; i <= sizeof slots / sizeof slots[0]; i++) {
         if (i == sizeof slots / sizeof slots[0] || slots[i].off == 0xFFu) {
             assert_int_equal(j, members); /* the previous group's members all listed */
+            assert_int_equal(at, size);   /* and nothing else in its struct */
             members = i < sizeof slots / sizeof slots[0] ? slots[i].width : 0u;
+            size = i < sizeof slots / sizeof slots[0] ? slots[i].size : 0u;
             j = 0;
+            at = 0;
             continue;
         }
-        assert_int_equal(slots[i].off, 2u * j);
+        assert_int_equal(slots[i].off, at);
         assert_true(slots[i].width == 2u || (j == 0u && slots[i].width == 1u));
+        at += slots[i].width;
         j++;
     }
 }

@@ -44,10 +44,20 @@ typedef enum {
     MODCP_AREA_DB = 6,
 } modcp_area_t;
 
+/* The structs of the mapping lists are packed (GCC, Clang): a one-byte first member is
+ * followed by no padding byte, so their members lie one after the other as in the record
+ * (params_record.c walks them so; params.c checks it at compile time). */
+#if defined(__GNUC__)
+#define MODCP_PARAMS_PACKED __attribute__((packed))
+#else
+#define MODCP_PARAMS_PACKED
+#endif
+
 /* A bit window: Modbus bit addresses from..to (inclusive) map onto area starting at
  * byte `start` (M, Q, I, DB bytes) or element `start` (T, C, 16 bits each).
- * For DB windows `db` is the DB number. area == MODCP_AREA_NONE: window unused. */
-typedef struct {
+ * For DB windows `db` is the DB number. area == MODCP_AREA_NONE: window unused.
+ * 9 bytes (packed). */
+typedef struct MODCP_PARAMS_PACKED {
     uint8_t area;
     uint16_t from;
     uint16_t to;
@@ -73,8 +83,9 @@ typedef struct {
     uint16_t db;
 } modcp_r32range_t;
 
-/* An operand a scanner register points at (word operands: MW, IW, QW, DBn.DBWm, T, C). */
-typedef struct {
+/* An operand a scanner register points at (word operands: MW, IW, QW, DBn.DBWm, T, C);
+ * 5 bytes (packed). */
+typedef struct MODCP_PARAMS_PACKED {
     uint8_t area;    /* modcp_area_t; NONE = unused entry */
     uint16_t db;     /* DB number for MODCP_AREA_DB */
     uint16_t offset; /* byte offset (M, I, Q, DB) or element number (T, C) */
@@ -84,8 +95,8 @@ typedef struct {
 #define MODCP_ID_STRING_MAX 16
 
 typedef struct {
-    /* Members grouped by width (4, 1, 2 bytes, the 2-byte-aligned arrays, the strings)
-     * so the struct has no padding inside and the scalars stay at small offsets (short
+    /* Members grouped by width (4, 1, 2 bytes, the packed arrays, the 2-byte arrays, the
+     * strings) so the struct has no padding and the scalars stay at small offsets (short
      * loads); the record's order is that of the rows (params_fields.h). */
     uint32_t baud; /* 300 ... 115200 */
     /* character frame */
