@@ -69,18 +69,19 @@
 
 #include <string.h>
 
+#include "inline_internal.h"
 #include "params_fields.h"
 #include "params_internal.h"
 
 /* ---- the rows ------------------------------------------------------------------ */
 
 #define ROW_S(member, width, field, index, min, max, def, ev, flags, ...)                      \
-    {(uint16_t)((max) > 0xFFFF ? 0xFFFF : (max)), (uint8_t)MODCP_PARAM_OFF(member),           \
-     (uint8_t)((width) | ((flags) << 5)), (uint8_t)(field), MODCP_EVENT_NUMBER(ev),           \
-     (uint8_t)((min) > 0xFF ? 0 : (min)), (uint8_t)MODCP_PARAM_DEF_CODE(def)},
+    {(uint8_t)MODCP_PARAM_OFF(member), (uint8_t)((width) | ((flags) << 5)), (uint8_t)(field), \
+     MODCP_EVENT_NUMBER(ev), (uint8_t)((width) > 2 ? 0 : (min)),                              \
+     (uint8_t)MODCP_PARAM_CODE((width) > 2 ? 0u : (max)), (uint8_t)MODCP_PARAM_CODE(def)},
 #define ROW_G(member, count, type, members, field)                                           \
-    {(uint16_t)(count), (uint8_t)MODCP_PARAM_OFF(member), 0u, (uint8_t)(field),              \
-     (uint8_t)(members), (uint8_t)sizeof(type), (uint8_t)FIRST_WIDTH_##type},
+    {(uint8_t)MODCP_PARAM_OFF(member), 0u, (uint8_t)(field), (uint8_t)(members),             \
+     (uint8_t)sizeof(type), (uint8_t)(count), (uint8_t)FIRST_WIDTH_##type},
 #define ROW_M(...)
 
 /* A group's structs (packed): 2-byte members one after the other, the first possibly 1 byte
@@ -90,8 +91,8 @@
 #define FIRST_WIDTH_modcp_limit_t 2u
 #define FIRST_WIDTH_modcp_operand_ref_t 1u
 
-const modcp_param_row_t modcp_param_rows[] = {MODCP_PARAM_ROWS(ROW_S, ROW_G, ROW_M)};
-const uint8_t modcp_param_row_count = (uint8_t)(sizeof modcp_param_rows / sizeof modcp_param_rows[0]);
+const modcp_param_row_t modcp_param_rows[MODCP_PARAM_ROW_COUNT] = {
+    MODCP_PARAM_ROWS(ROW_S, ROW_G, ROW_M)};
 
 /* Every event of a row is a parameter event of class 0EH; the ranges and defaults of the
  * rows up to 16 bits fit the table (a 32-bit row, the baud rate, is checked by its own
@@ -99,9 +100,9 @@ const uint8_t modcp_param_row_count = (uint8_t)(sizeof modcp_param_rows / sizeof
 #define CHECK_S(member, width, field, index, min, max, def, ev, flags, ...)                    \
     _Static_assert(MODCP_EVENT_CLASS(ev) == 0x0Eu, #member ": event class 0EH");             \
     _Static_assert(((width) > 2 && ((flags) & MODCP_PF_CUSTOM) != 0) ||                       \
-                       ((max) <= 0xFFFF && (min) <= 0xFF),                                    \
+                       (MODCP_PARAM_CODE(max) <= 0xFFu && (min) <= 0xFF),                     \
                    #member ": range fits the row");                                           \
-    _Static_assert(MODCP_PARAM_DEF_CODE(def) <= 0xFFu && (flags) < 8, #member ": default");   \
+    _Static_assert(MODCP_PARAM_CODE(def) <= 0xFFu && (flags) < 8, #member ": default");       \
     _Static_assert(MODCP_PARAM_OFF(member) <= MODCP_PARAM_ABSENT, #member ": offset");        \
     _Static_assert((field) == MODCP_PF_SCANNER ? (index) == 0xFF                              \
                                                : (field) == MODCP_PF_ID_STRING || (index) == 0, \
@@ -133,11 +134,12 @@ _Static_assert(offsetof(modcp_params_t, lim_q) ==
                    offsetof(modcp_params_t, lim_db) + 2u * sizeof(modcp_limit_t),
                "lim_db, lim_m, lim_q are one group of three");
 
-static const uint16_t big_defaults[] = {MODCP_PARAM_BIG_DEFAULTS};
+static const uint16_t big_values[] = {MODCP_PARAM_BIG_VALUES};
 
-static uint32_t row_def(const modcp_param_row_t *r)
+/* A value coded by MODCP_PARAM_CODE (a row's default or maximum). */
+static MODCP_NOINLINE uint32_t big(uint8_t code)
 {
-    return r->def < 240u ? r->def : big_defaults[r->def - 240u];
+    return code < 240u ? code : big_values[code - 240u];
 }
 
 static uint32_t param_get(const modcp_params_t *p, const modcp_param_row_t *r)
@@ -172,7 +174,7 @@ static void param_put(modcp_params_t *p, const modcp_param_row_t *r, uint32_t v)
 /* The row's default into p (modcp_params_defaults, and a corrected field in apply). */
 static void put_default(modcp_params_t *p, const modcp_param_row_t *r)
 {
-    param_put(p, r, row_def(r));
+    param_put(p, r, big(r->def));
 }
 
 /* ---- defaults ----------------------------------------------------------------- */
@@ -188,7 +190,7 @@ void modcp_params_defaults(modcp_params_t *p)
 {
     /* everything not in a row is 0: no windows, no ranges, writes disabled */
     memset(p, 0, sizeof *p);
-    for (uint8_t i = 0; i < modcp_param_row_count; i++) {
+    for (uint8_t i = 0; i < MODCP_PARAM_ROW_COUNT; i++) {
         const modcp_param_row_t *r = &modcp_param_rows[i];
         uint8_t w = MODCP_PARAM_WIDTH(r);
         if (w != 0u && w != MODCP_PW_STR) {
@@ -496,7 +498,7 @@ static CHECK_INLINE void check_group(const modcp_params_t *p, issue_sink_t *s,
 /* Every row in record order; fix != NULL: a bad MODCP_PF_WARN field gets its default. */
 static CHECK_INLINE void run_checks(const modcp_params_t *p, issue_sink_t *s, modcp_params_t *fix)
 {
-    for (uint8_t i = 0; i < modcp_param_row_count; i++) {
+    for (uint8_t i = 0; i < MODCP_PARAM_ROW_COUNT; i++) {
         const modcp_param_row_t *r = &modcp_param_rows[i];
         uint8_t w = MODCP_PARAM_WIDTH(r);
         uint8_t flags = MODCP_PARAM_FLAGS(r);
@@ -505,7 +507,7 @@ static CHECK_INLINE void run_checks(const modcp_params_t *p, issue_sink_t *s, mo
             continue;
         }
         uint32_t v = w == MODCP_PW_STR ? 0u : param_get(p, r);
-        bool ok = w > 2u || (v >= r->min && v <= r->max) ||
+        bool ok = w > 2u || (v >= r->min && v <= big(r->max)) ||
                   ((flags & MODCP_PF_ZERO_OK) != 0u && v == 0u);
         if (ok && (flags & MODCP_PF_CUSTOM) != 0u) {
             ok = custom_ok(p, r, &v);

@@ -114,7 +114,7 @@ static void dec_field(const codec_t *c, size_t at, size_t off, uint8_t width)
 static void walk(const codec_t *c, field_fn *fn)
 {
     size_t at = 0;
-    for (uint8_t i = 0; i < modcp_param_row_count; i++) {
+    for (uint8_t i = 0; i < MODCP_PARAM_ROW_COUNT; i++) {
         const modcp_param_row_t *r = &modcp_param_rows[i];
         uint8_t first = MODCP_PARAM_WIDTH(r);
         uint8_t members = 1;
