@@ -69,19 +69,18 @@
 
 #include <string.h>
 
-#include "inline_internal.h"
 #include "params_fields.h"
 #include "params_internal.h"
 
 /* ---- the rows ------------------------------------------------------------------ */
 
 #define ROW_S(member, width, field, index, min, max, def, ev, flags, ...)                      \
-    {(uint8_t)MODCP_PARAM_OFF(member), (uint8_t)((width) | ((flags) << 5)), (uint8_t)(field), \
-     MODCP_EVENT_NUMBER(ev), (uint8_t)((width) > 2 ? 0 : (min)),                              \
-     (uint8_t)MODCP_PARAM_CODE((width) > 2 ? 0u : (max)), (uint8_t)MODCP_PARAM_CODE(def)},
+    {(uint16_t)((max) > 0xFFFF ? 0xFFFF : (max)), (uint8_t)MODCP_PARAM_OFF(member),           \
+     (uint8_t)((width) | ((flags) << 5)), (uint8_t)(field), MODCP_EVENT_NUMBER(ev),           \
+     (uint8_t)((min) > 0xFF ? 0 : (min)), (uint8_t)MODCP_PARAM_DEF_CODE(def)},
 #define ROW_G(member, count, type, members, field)                                           \
-    {(uint8_t)MODCP_PARAM_OFF(member), 0u, (uint8_t)(field), (uint8_t)(members),             \
-     (uint8_t)sizeof(type), (uint8_t)(count), (uint8_t)FIRST_WIDTH_##type},
+    {(uint16_t)(count), (uint8_t)MODCP_PARAM_OFF(member), 0u, (uint8_t)(field),              \
+     (uint8_t)(members), (uint8_t)sizeof(type), (uint8_t)FIRST_WIDTH_##type},
 #define ROW_M(...)
 
 /* A group's structs (packed): 2-byte members one after the other, the first possibly 1 byte
@@ -100,20 +99,20 @@ const modcp_param_row_t modcp_param_rows[MODCP_PARAM_ROW_COUNT] = {
 #define CHECK_S(member, width, field, index, min, max, def, ev, flags, ...)                    \
     _Static_assert(MODCP_EVENT_CLASS(ev) == 0x0Eu, #member ": event class 0EH");             \
     _Static_assert(((width) > 2 && ((flags) & MODCP_PF_CUSTOM) != 0) ||                       \
-                       (MODCP_PARAM_CODE(max) <= 0xFFu && (min) <= 0xFF),                     \
+                       ((max) <= 0xFFFF && (min) <= 0xFF),                                    \
                    #member ": range fits the row");                                           \
-    _Static_assert(MODCP_PARAM_CODE(def) <= 0xFFu && (flags) < 8, #member ": default");       \
+    _Static_assert(MODCP_PARAM_DEF_CODE(def) <= 0xFFu && (flags) < 8, #member ": default");   \
     _Static_assert(MODCP_PARAM_OFF(member) <= MODCP_PARAM_ABSENT, #member ": offset");        \
     _Static_assert((field) == MODCP_PF_SCANNER ? (index) == 0xFF                              \
                                                : (field) == MODCP_PF_ID_STRING || (index) == 0, \
                    #member ": index");
 #define CHECK_G(member, count, type, members, field)                                         \
-    _Static_assert(sizeof(type) == FIRST_WIDTH_##type + 2u * ((members) - 1u) &&              \
+    _Static_assert(sizeof(type) == MODCP_PARAM_SLOT(FIRST_WIDTH_##type) + 2u * ((members) - 1u) && \
                        MODCP_PARAM_OFF(member) <= MODCP_PARAM_ABSENT,                         \
                    #member ": members without a gap");
 #define CHECK_M(type, member, width, count)                                                  \
     _Static_assert((offsetof(type, member) == 0u ||                                           \
-                    (offsetof(type, member) - FIRST_WIDTH_##type) % 2u == 0u) &&              \
+                    (offsetof(type, member) - MODCP_PARAM_SLOT(FIRST_WIDTH_##type)) % 2u == 0u) && \
                        (width) == (offsetof(type, member) == 0u ? FIRST_WIDTH_##type : 2u),   \
                    #type "." #member ": place");
 MODCP_PARAM_ROWS(CHECK_S, CHECK_G, CHECK_M)
@@ -134,12 +133,11 @@ _Static_assert(offsetof(modcp_params_t, lim_q) ==
                    offsetof(modcp_params_t, lim_db) + 2u * sizeof(modcp_limit_t),
                "lim_db, lim_m, lim_q are one group of three");
 
-static const uint16_t big_values[] = {MODCP_PARAM_BIG_VALUES};
+static const uint16_t big_defaults[] = {MODCP_PARAM_BIG_DEFAULTS};
 
-/* A value coded by MODCP_PARAM_CODE (a row's default or maximum). */
-static MODCP_NOINLINE uint32_t big(uint8_t code)
+static uint32_t row_def(const modcp_param_row_t *r)
 {
-    return code < 240u ? code : big_values[code - 240u];
+    return r->def < 240u ? r->def : big_defaults[r->def - 240u];
 }
 
 static uint32_t param_get(const modcp_params_t *p, const modcp_param_row_t *r)
@@ -174,7 +172,7 @@ static void param_put(modcp_params_t *p, const modcp_param_row_t *r, uint32_t v)
 /* The row's default into p (modcp_params_defaults, and a corrected field in apply). */
 static void put_default(modcp_params_t *p, const modcp_param_row_t *r)
 {
-    param_put(p, r, big(r->def));
+    param_put(p, r, row_def(r));
 }
 
 /* ---- defaults ----------------------------------------------------------------- */
@@ -269,12 +267,16 @@ static CHECK_INLINE bool scan_count_ok(const modcp_params_t *p)
            (uint32_t)p->scan_start + (uint32_t)p->scan_count <= 0x10000u;
 }
 
-/* A 2-byte member of a (packed) group struct. */
+/* A 2-byte member of a group struct: at any address when packed, else 2-byte aligned. */
 static CHECK_INLINE uint16_t get16(const uint8_t *b)
 {
+#if MODCP_PARAMS_PACKED_LAYOUT
     uint16_t v;
     memcpy(&v, b, sizeof v);
     return v;
+#else
+    return *(const uint16_t *)(const void *)b;
+#endif
 }
 
 static CHECK_INLINE uint32_t pair(uint16_t hi, uint16_t lo)
@@ -289,9 +291,11 @@ static CHECK_INLINE uint32_t pair(uint16_t hi, uint16_t lo)
      AREA_BIT(MODCP_AREA_C) | AREA_BIT(MODCP_AREA_DB))
 #define AREAS_INPUTS (AREA_BIT(MODCP_AREA_M) | AREA_BIT(MODCP_AREA_I) | AREA_BIT(MODCP_AREA_DB))
 
-_Static_assert(offsetof(modcp_bitwin_t, area) == 0u && offsetof(modcp_bitwin_t, from) == 1u &&
-                   offsetof(modcp_bitwin_t, to) == 3u && offsetof(modcp_bitwin_t, start) == 5u &&
-                   offsetof(modcp_bitwin_t, db) == 7u,
+#define WIN_FROM offsetof(modcp_bitwin_t, from) /* 1 packed, 2 otherwise */
+_Static_assert(offsetof(modcp_bitwin_t, area) == 0u && WIN_FROM == MODCP_PARAM_SLOT(1u) &&
+                   offsetof(modcp_bitwin_t, to) == WIN_FROM + 2u &&
+                   offsetof(modcp_bitwin_t, start) == WIN_FROM + 4u &&
+                   offsetof(modcp_bitwin_t, db) == WIN_FROM + 6u,
                "area, from, to, start, db");
 _Static_assert(offsetof(modcp_r32range_t, from) == 0u && offsetof(modcp_r32range_t, to) == 2u &&
                    offsetof(modcp_r32range_t, db) == 4u,
@@ -316,7 +320,7 @@ static CHECK_INLINE void check_ranges(issue_sink_t *s, const modcp_params_t *p,
                                      : MODCP_EV_INPUT_FROMTO;
     const unsigned areas = r32 ? AREA_BIT(MODCP_AREA_DB) : coils ? AREAS_COILS : AREAS_INPUTS;
     const uint8_t *base = (const uint8_t *)p + r->off;
-    const size_t ft = r32 ? 0u : 1u; /* from, to, then start, db (window) or db (range) */
+    const size_t ft = r32 ? 0u : WIN_FROM; /* from, to, then start, db (window) or db (range) */
     const unsigned count = r->max;
     uint32_t ok = 0;
     if (r32 && p->regs32 == 0u) {
@@ -507,7 +511,7 @@ static CHECK_INLINE void run_checks(const modcp_params_t *p, issue_sink_t *s, mo
             continue;
         }
         uint32_t v = w == MODCP_PW_STR ? 0u : param_get(p, r);
-        bool ok = w > 2u || (v >= r->min && v <= big(r->max)) ||
+        bool ok = w > 2u || (v >= r->min && v <= r->max) ||
                   ((flags & MODCP_PF_ZERO_OK) != 0u && v == 0u);
         if (ok && (flags & MODCP_PF_CUSTOM) != 0u) {
             ok = custom_ok(p, r, &v);

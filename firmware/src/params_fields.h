@@ -22,8 +22,8 @@
  *       count consecutive structs from member on, each encoded as the members rows
  *       that follow (window by window); validated by its own function in params.c.
  *   M(type, member, width, count)   a member of the group above (count = the group's), in the
- *       order of the (packed) struct: 2 bytes wide, the first may be 1 byte, one after the
- *       other as in the record
+ *       order of the struct: 2 bytes wide, the first may be 1 byte, one after the other as
+ *       in the record (a 1-byte member in a 2-byte slot unless packed, modcp/params.h)
  * The composite keys ([coils], [inputs], [registers] ranges, [limits], [scanner]
  * entries) and the tool's own [cpu] keys are documented by MODCP_PARAM_DOC_ROWS(D). */
 #ifndef MODCP_PARAMS_FIELDS_H
@@ -40,43 +40,34 @@ enum {
     MODCP_PF_CUSTOM = 0x04,  /* a further rule in params.c */
 };
 
-/* The rows as the core keeps them (params.c), 7 bytes each:
+/* The rows as the core keeps them (params.c), 8 bytes each:
  *   S: wf = width | flags << 5 (width 1, 2, 4 or MODCP_PW_STR), field != 0, min .. max the
- *      legal range (min fits a byte, max as MODCP_PARAM_CODE; a 4-byte row, the baud rate,
- *      has its own rule), def the default as MODCP_PARAM_CODE, event its number in class 0EH.
+ *      legal range (min fits a byte; a 4-byte row, the baud rate, has its own rule), def the
+ *      default as MODCP_PARAM_DEF_CODE (below), event its number in class 0EH.
  *   G: wf = 0; max = count, min = size of one struct, event = number of members, def =
- *      width of the first member (1 or 2). The members follow one another without a gap
- *      (the structs are packed, modcp/params.h), 2 bytes wide except the first, which may be
- *      one byte: a struct is laid out as its bytes in the record (params.c checks it at
+ *      width of the first member (1 or 2). The members follow one another in the record's
+ *      order, 2 bytes wide except the first, which may be one byte: a packed struct is
+ *      laid out as its bytes in the record, an unpacked one (MODCP_PARAMS_PACKED_LAYOUT 0,
+ *      modcp/params.h) gives a one-byte member a 2-byte slot (params.c checks it at
  *      compile time, test_params the members' order).
  *   off: offset into modcp_params_t (every row's member starts below byte 255, the record
  *      struct keeps the long arrays last), MODCP_PARAM_ABSENT for a member this build does
  *      not keep. */
 typedef struct {
+    uint16_t max;
     uint8_t off;
     uint8_t wf;
     uint8_t field;
     uint8_t event;
     uint8_t min;
-    uint8_t max;
     uint8_t def;
 } modcp_param_row_t;
 
-/* A default or a maximum in one byte: values below 240 as they are, the larger ones (the
- * baud rate, a few times in ms, 1024 bytes, 65535, 255) as 240 + their index in
- * MODCP_PARAM_BIG_VALUES; 0x100: none fits (refused at compile time, params.c). */
-#define MODCP_PARAM_BIG_VALUES 9600u, 1000u, 5000u, 6500u, 1024u, 30000u, 65535u, 255u
-#define MODCP_PARAM_CODE(v)                                                                       \
-    ((v) < 240u        ? (v)                                                                      \
-     : (v) == 9600u  ? 240u                                                                       \
-     : (v) == 1000u  ? 241u                                                                       \
-     : (v) == 5000u  ? 242u                                                                       \
-     : (v) == 6500u  ? 243u                                                                       \
-     : (v) == 1024u  ? 244u                                                                       \
-     : (v) == 30000u ? 245u                                                                       \
-     : (v) == 65535u ? 246u                                                                       \
-     : (v) == 255u   ? 247u                                                                       \
-                     : 0x100u)
+/* A default in one byte: values below 240 as they are, the larger ones (the baud rate and
+ * a few times in ms) as 240 + their index in MODCP_PARAM_BIG_DEFAULTS. */
+#define MODCP_PARAM_BIG_DEFAULTS 9600u, 1000u, 5000u
+#define MODCP_PARAM_DEF_CODE(v)                                                                   \
+    ((v) < 240u ? (v) : (v) == 9600u ? 240u : (v) == 1000u ? 241u : (v) == 5000u ? 242u : 0x100u)
 
 /* A row whose member this build does not keep (modcp/params.h: the scanner entries and
  * the ID strings without MODCP_WITH_EXTENDED) has off == MODCP_PARAM_ABSENT: its bytes
@@ -103,8 +94,12 @@ typedef struct {
     MODCP_PX_CAT(MODCP_PX_IF_, MODCP_PX_IS(MODCP_PX_ABSENT_##member))                             \
     (MODCP_PARAM_ABSENT, offsetof(modcp_params_t, member))
 
+/* The bytes a member of width w takes in its struct: a one-byte member of a group struct
+ * has a 2-byte slot unless the structs are packed (modcp/params.h). */
+#define MODCP_PARAM_SLOT(w) (MODCP_PARAMS_PACKED_LAYOUT ? (w) : ((w) + 1u) & ~1u)
 #define MODCP_PARAM_WIDTH(r) ((uint8_t)((r)->wf & 0x1Fu))
 #define MODCP_PARAM_FLAGS(r) ((uint8_t)((r)->wf >> 5))
+
 
 #define MODCP_PARAM_ROWS(S, G, M)                                                                 \
     S(baud, 4, MODCP_PF_BAUD, 0, 300, 115200, 9600, MODCP_EV_PARAM_RECORD, MODCP_PF_CUSTOM,        \

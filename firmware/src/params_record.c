@@ -108,9 +108,9 @@ static void dec_field(const codec_t *c, size_t at, size_t off, uint8_t width)
 }
 
 /* Every field in record order. A row this build does not keep (off MODCP_PARAM_ABSENT)
- * has only its place in the record (encode leaves the zeros there). A group's structs are
- * packed (params_fields.h): their members lie one after the other as in the record, 2
- * bytes wide except a struct's first member, which may be one byte. */
+ * has only its place in the record (encode leaves the zeros there). A group's structs'
+ * members lie one after the other as in the record (params_fields.h), 2 bytes wide except
+ * a struct's first member, which may be one byte (in a 2-byte slot unless packed). */
 static void walk(const codec_t *c, field_fn *fn)
 {
     size_t at = 0;
@@ -131,7 +131,8 @@ static void walk(const codec_t *c, field_fn *fn)
                 j = 0;
             }
             if (r->off != MODCP_PARAM_ABSENT) {
-                fn(c, at, off, w);
+                /* unpacked: every member of a group in a 2-byte slot */
+                fn(c, at, MODCP_PARAMS_PACKED_LAYOUT ? off : r->off + 2u * k, w);
             }
             at += w;
             off += w;

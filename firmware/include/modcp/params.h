@@ -44,19 +44,24 @@ typedef enum {
     MODCP_AREA_DB = 6,
 } modcp_area_t;
 
-/* The structs of the mapping lists are packed (GCC, Clang): a one-byte first member is
- * followed by no padding byte, so their members lie one after the other as in the record
- * (params_record.c walks them so; params.c checks it at compile time). */
-#if defined(__GNUC__)
+/* The structs of the mapping lists with a one-byte first member are packed (GCC, Clang)
+ * where the CPU loads a 2-byte member from an odd address in one instruction: no padding
+ * byte after the area (one per window, 10 in modcp_params_t, 16 more with the scanner).
+ * Elsewhere (Cortex-M0/M0+: byte loads would cost flash) they keep their natural layout,
+ * the area in a 2-byte slot. params_record.c and params.c follow either layout
+ * (MODCP_PARAMS_PACKED_LAYOUT; params.c checks it at compile time). */
+#if defined(__GNUC__) && !(defined(__arm__) && !defined(__ARM_FEATURE_UNALIGNED))
 #define MODCP_PARAMS_PACKED __attribute__((packed))
+#define MODCP_PARAMS_PACKED_LAYOUT 1
 #else
 #define MODCP_PARAMS_PACKED
+#define MODCP_PARAMS_PACKED_LAYOUT 0
 #endif
 
 /* A bit window: Modbus bit addresses from..to (inclusive) map onto area starting at
  * byte `start` (M, Q, I, DB bytes) or element `start` (T, C, 16 bits each).
  * For DB windows `db` is the DB number. area == MODCP_AREA_NONE: window unused.
- * 9 bytes (packed). */
+ * 9 bytes (packed; 10 otherwise). */
 typedef struct MODCP_PARAMS_PACKED {
     uint8_t area;
     uint16_t from;
@@ -84,7 +89,7 @@ typedef struct {
 } modcp_r32range_t;
 
 /* An operand a scanner register points at (word operands: MW, IW, QW, DBn.DBWm, T, C);
- * 5 bytes (packed). */
+ * 5 bytes (packed; 6 otherwise). */
 typedef struct MODCP_PARAMS_PACKED {
     uint8_t area;    /* modcp_area_t; NONE = unused entry */
     uint16_t db;     /* DB number for MODCP_AREA_DB */
