@@ -300,7 +300,9 @@ _Static_assert(offsetof(modcp_bitwin_t, area) == 0u && WIN_FROM == MODCP_PARAM_S
 _Static_assert(offsetof(modcp_r32range_t, from) == 0u && offsetof(modcp_r32range_t, to) == 2u &&
                    offsetof(modcp_r32range_t, db) == 4u,
                "from, to, db");
-_Static_assert(MODCP_EV_COIL_OVERLAP == MODCP_EV_COIL_FROMTO + 2 &&
+_Static_assert(MODCP_EV_INPUT_FROMTO == MODCP_EV_COIL_FROMTO + 1 &&
+                   MODCP_PF_INPUTS == MODCP_PF_COILS + 1 &&
+                   MODCP_EV_COIL_OVERLAP == MODCP_EV_COIL_FROMTO + 2 &&
                    MODCP_EV_INPUT_OVERLAP == MODCP_EV_INPUT_FROMTO + 2,
                "the overlap event follows the from/to event by 2");
 
@@ -315,9 +317,8 @@ static CHECK_INLINE void check_ranges(issue_sink_t *s, const modcp_params_t *p,
 {
     const bool r32 = r->field == MODCP_PF_R32;
     const bool coils = r->field == MODCP_PF_COILS;
-    const modcp_event_t ev = r32     ? MODCP_EV_PARAM_RECORD
-                             : coils ? MODCP_EV_COIL_FROMTO
-                                     : MODCP_EV_INPUT_FROMTO;
+    const modcp_event_t ev = r32 ? MODCP_EV_PARAM_RECORD
+                                 : (modcp_event_t)(MODCP_EV_COIL_FROMTO + (r->field - MODCP_PF_COILS));
     const unsigned areas = r32 ? AREA_BIT(MODCP_AREA_DB) : coils ? AREAS_COILS : AREAS_INPUTS;
     const uint8_t *base = (const uint8_t *)p + r->off;
     const size_t ft = r32 ? 0u : WIN_FROM; /* from, to, then start, db (window) or db (range) */
