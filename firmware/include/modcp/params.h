@@ -50,12 +50,17 @@ typedef enum {
  * Elsewhere (Cortex-M0/M0+: byte loads would cost flash) they keep their natural layout,
  * the area in a 2-byte slot. params_record.c and params.c follow either layout
  * (MODCP_PARAMS_PACKED_LAYOUT; params.c checks it at compile time). */
+#ifndef MODCP_PARAMS_PACKED_LAYOUT /* (a build may choose: 0 = natural layout) */
 #if defined(__GNUC__) && !(defined(__arm__) && !defined(__ARM_FEATURE_UNALIGNED))
-#define MODCP_PARAMS_PACKED __attribute__((packed))
 #define MODCP_PARAMS_PACKED_LAYOUT 1
 #else
-#define MODCP_PARAMS_PACKED
 #define MODCP_PARAMS_PACKED_LAYOUT 0
+#endif
+#endif
+#if MODCP_PARAMS_PACKED_LAYOUT
+#define MODCP_PARAMS_PACKED __attribute__((packed))
+#else
+#define MODCP_PARAMS_PACKED
 #endif
 
 /* A bit window: Modbus bit addresses from..to (inclusive) map onto area starting at
