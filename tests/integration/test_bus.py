@@ -13,7 +13,7 @@
    noise, each counted in status and off by default.
 
     test_bus.py --sim PATH/modcp-sim --master-bus PATH/master_bus --config configs/default.ini
-                [--ops 10000]
+                [--ops 10000] [--cycle-ms 10]
 """
 import argparse
 import os
@@ -125,7 +125,11 @@ def pty_stalls(before):
 
 def three(t, a, tmp):
     c = make_configs(a.config, tmp, [("s1", 1, {}), ("s2", 2, {}), ("s3", 3, {})])
-    sim = bus(a, c)
+    # the members' CPU cycle: three CPU threads waking every 1 ms, with other processes
+    # keeping the host busy, starve the kernel worker that moves a pty's data
+    # (flush_to_ldisc, see pty_stalls): the master's requests then wait in its pty for
+    # seconds. 10 ms (a usual PLC cycle) leaves the worker its turns.
+    sim = bus(a, c, cycle_ms=a.cycle_ms)
     try:
         console(t, sim)
         klog = kernel_log()
@@ -337,6 +341,8 @@ def main():
     ap.add_argument("--master-bus", required=True)
     ap.add_argument("--config", required=True)
     ap.add_argument("--ops", type=int, default=10000)
+    ap.add_argument("--cycle-ms", type=int, default=10,
+                    help="the members' CPU cycle for the libmodbus and pymodbus runs")
     ap.add_argument("--only", default="refused,ascii,three,duplicate,faults")
     a = ap.parse_args()
     t = Checks()
