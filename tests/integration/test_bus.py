@@ -13,7 +13,7 @@
    noise, each counted in status and off by default.
 
     test_bus.py --sim PATH/modcp-sim --master-bus PATH/master_bus --config configs/default.ini
-                [--ops 10000]
+                [--ops 10000] [--cycle-ms 10]
 """
 import argparse
 import os
@@ -105,16 +105,45 @@ def console(t, sim):
     sim.cmd("@s2 set DB800.DBW0 0")
 
 
+def kernel_log():
+    """The kernel's log lines (dmesg), [] when it cannot be read."""
+    try:
+        r = subprocess.run(["dmesg"], capture_output=True, text=True, timeout=10)
+        return r.stdout.splitlines() if r.returncode == 0 else []
+    except (OSError, subprocess.SubprocessError):
+        return []
+
+
+def pty_stalls(before):
+    """Lines the kernel logged since `before` (kernel_log()) about its workqueue stalling
+    the ptys' data (flush_to_ldisc): a pty holds what a process wrote until a kernel
+    worker moves it to the reader, and on a loaded host that worker has been seen to wait
+    for seconds (docs/simulator.md, bus). Explains timeouts the simulator cannot see."""
+    new = kernel_log()[len(before):]
+    return [l for l in new if "workqueue lockup" in l or "flush_to_ldisc" in l]
+
+
 def three(t, a, tmp):
     c = make_configs(a.config, tmp, [("s1", 1, {}), ("s2", 2, {}), ("s3", 3, {})])
-    sim = bus(a, c)
+    # the members' CPU cycle: three CPU threads waking every 1 ms, with other processes
+    # keeping the host busy, starve the kernel worker that moves a pty's data
+    # (flush_to_ldisc, see pty_stalls): the master's requests then wait in its pty for
+    # seconds. 10 ms (a usual PLC cycle) leaves the worker its turns.
+    sim = bus(a, c, cycle_ms=a.cycle_ms)
     try:
         console(t, sim)
+        klog = kernel_log()
         r = subprocess.run([a.master_bus, "--device", sim.device, "--baud", "115200", "--slaves",
                             "1,2,3", "--broadcast", "--ops", str(a.ops), "--max-regs", "20",
                             "--max-coils", "64", "--timeout-ms", "5000"],
                            capture_output=True, text=True, timeout=1200)
         print(r.stdout.strip()[-2000:])
+        if r.returncode != 0:
+            with open("/proc/loadavg") as f:
+                print("load average: " + " ".join(f.read().split()[:3]))
+            print(r.stderr.strip()[-1500:])
+            for line in pty_stalls(klog)[:12]:
+                print("kernel: " + line)
         t.ok(r.returncode == 0 and "0 failed" in r.stdout,
              "libmodbus: broadcast FC16 in all three, %d mixed requests, zero mismatches" % a.ops)
         # pymodbus polls the three by address
@@ -312,6 +341,8 @@ def main():
     ap.add_argument("--master-bus", required=True)
     ap.add_argument("--config", required=True)
     ap.add_argument("--ops", type=int, default=10000)
+    ap.add_argument("--cycle-ms", type=int, default=10,
+                    help="the members' CPU cycle for the libmodbus and pymodbus runs")
     ap.add_argument("--only", default="refused,ascii,three,duplicate,faults")
     a = ap.parse_args()
     t = Checks()

@@ -73,6 +73,10 @@ struct sim_bus {
     double mt[SIM_TRACE_MAX];      /* end of its stop bit */
     size_t mlen;
     sim_trace_t tr;      /* bus thread only (after init) */
+    /* MODCP_SIM_BUS_LOG=FILE: the bus thread's polls, reads and writes, each with its
+     * CLOCK_MONOTONIC time (the times master_bus prints its errors with); off: NULL */
+    FILE *log;
+    pthread_mutex_t log_mu;
 };
 
 /* ---- time ------------------------------------------------------------------------ */
@@ -80,6 +84,29 @@ struct sim_bus {
 static double now_rel(const sim_bus_t *b)
 {
     return (double)(modcp_posix_now_us64() - b->t0_us64);
+}
+
+/* One line of the bus log (MODCP_SIM_BUS_LOG): "<s.us> <what> [bytes]". Any thread. */
+static void blog(sim_bus_t *b, const char *what, const uint8_t *p, size_t n)
+{
+    if (b->log == NULL) {
+        return;
+    }
+    uint64_t t = modcp_posix_now_us64();
+    char line[200];
+    size_t pos = (size_t)snprintf(line, sizeof line, "%llu.%06llu %s",
+                                  (unsigned long long)(t / 1000000u),
+                                  (unsigned long long)(t % 1000000u), what);
+    for (size_t i = 0; i < n && pos + 8u < sizeof line; i++) {
+        pos += (size_t)snprintf(line + pos, sizeof line - pos, i == 12u && n > 13u ? " .." : " %02X",
+                                p[i]);
+        if (i == 12u && n > 13u) {
+            break;
+        }
+    }
+    pthread_mutex_lock(&b->log_mu);
+    fprintf(b->log, "%s\n", line);
+    pthread_mutex_unlock(&b->log_mu);
 }
 
 /* A member's 32-bit clock value as us since the bus's t0. */
@@ -464,6 +491,14 @@ sim_bus_t *sim_bus_new(const sim_line_t *line, size_t n, const char *const names
     atomic_init(&b->trace_on, false);
     pthread_mutex_init(&b->mu, NULL);
     b->rng = seed != 0u ? seed : 0x2545F491u;
+    pthread_mutex_init(&b->log_mu, NULL);
+    const char *log = getenv("MODCP_SIM_BUS_LOG");
+    if (log != NULL && log[0] != '\0') {
+        b->log = fopen(log, "w");
+        if (b->log != NULL) {
+            (void)setvbuf(b->log, NULL, _IOFBF, 1u << 20);
+        }
+    }
     sim_trace_init(&b->tr, 0, line->ascii, line->t35_us, trace_print, b);
     b->tr.any_addr = true;
     return b;
@@ -474,6 +509,10 @@ void sim_bus_free(sim_bus_t *b)
     if (b != NULL) {
         close(b->wake_rd);
         close(b->wake_wr);
+        if (b->log != NULL) {
+            fclose(b->log);
+        }
+        pthread_mutex_destroy(&b->log_mu);
         pthread_mutex_destroy(&b->mu);
         pthread_mutex_destroy(&b->rx_mu);
         free(b);
@@ -527,6 +566,11 @@ void sim_bus_tx(sim_bus_t *b, size_t m, const uint8_t *buf, uint16_t len, uint32
         len = MODCP_POSIX_TX_MAX;
     }
     double t0 = rel_of(b, now_us);
+    if (b->log != NULL) {
+        char what[64];
+        snprintf(what, sizeof what, "tx @%s t0=+%.0f", b->names[m], now_rel(b) - t0);
+        blog(b, what, buf, len);
+    }
     char label[48];
     snprintf(label, sizeof label, "@%s slave %u", b->names[m], (unsigned)b->addr[m]);
     pthread_mutex_lock(&b->mu);
@@ -709,6 +753,11 @@ static void deliver(sim_bus_t *b, size_t m, const uint8_t *bytes, const double *
     if (n == 0u) {
         return;
     }
+    if (b->log != NULL) {
+        char what[64];
+        snprintf(what, sizeof what, "to @%s at -%.0f", b->names[m], now_rel(b) - t[n - 1u]);
+        blog(b, what, bytes, n);
+    }
     if (b->wake_fd[m] < 0) { /* an external member (a QEMU board's UART): its tty */
         write_all(b->member_fd[m], bytes, n);
         return;
@@ -746,6 +795,14 @@ size_t sim_bus_take(sim_bus_t *b, size_t m, uint8_t *bytes, uint32_t *t_us, size
     return k;
 }
 
+static void master_write(sim_bus_t *b, const uint8_t *p, size_t n)
+{
+    if (n > 0u) {
+        blog(b, "to master", p, n);
+        write_all(b->master_fd, p, n);
+    }
+}
+
 static void members_flush(sim_bus_t *b)
 {
     for (size_t m = 0; m < b->n && b->mlen > 0u; m++) {
@@ -775,7 +832,7 @@ static bool member_sending(const sim_bus_t *b, size_t m, double a, double z)
     return false;
 }
 
-/* Emit the characters due by now; returns the time of the next one (negative when it
+/* Emit the characters due by now; returns the time the next one ends (*later: it
  * continues a frame), or -1 for none.
  *
  * The members get a frame's characters before the master gets its last one: the
@@ -783,8 +840,9 @@ static bool member_sending(const sim_bus_t *b, size_t m, double a, double z)
  * the reply only after that — the bus thread preempted between the two writes while
  * the member's clock ran on — would see it at its own later time (a member's core
  * never goes back in time), glued to the request, and miss the request. */
-static double emit_due(sim_bus_t *b, double now)
+static double emit_due(sim_bus_t *b, double now, bool *later)
 {
+    *later = false;
     uint8_t mo[SIM_TRACE_MAX]; /* for the master, after the members */
     size_t mol = 0;
     for (;;) {
@@ -799,16 +857,16 @@ static double emit_due(sim_bus_t *b, double now)
         if (at > now + 1.0) {
             /* a frame goes on (or the line paused, the members have it): the master
              * gets what was due */
-            write_all(b->master_fd, mo, mol);
-            /* negative: a later character of a frame (no need to watch the clock) */
-            bool first = b->heard_len == 0u || ch.start - b->heard_end >= (double)b->line.t35_us;
-            return first ? at : -at;
+            master_write(b, mo, mol);
+            /* a later character of a frame: no need to watch the clock */
+            *later = b->heard_len > 0u && ch.start - b->heard_end < (double)b->line.t35_us;
+            return at;
         }
         if (b->mlen == sizeof b->mbuf) {
             members_flush(b);
         }
         if (mol == sizeof mo) {
-            write_all(b->master_fd, mo, mol);
+            master_write(b, mo, mol);
             mol = 0;
         }
         mo[mol++] = ch.byte;
@@ -839,7 +897,7 @@ static double emit_due(sim_bus_t *b, double now)
         b->from = ch.start + ((double)b->nbits - 0.5) * b->bit_us;
     }
     members_flush(b); /* nothing follows back to back */
-    write_all(b->master_fd, mo, mol);
+    master_write(b, mo, mol);
     /* senders the receiver is done with */
     for (size_t i = 0; i < MAX_SENDERS; i++) {
         if (b->s[i].used && end_of(b, &b->s[i]) <= b->from + 0.5 * b->bit_us &&
@@ -869,16 +927,17 @@ void *sim_bus_thread(void *arg)
     while (!atomic_load(&b->stop)) {
         double now = now_rel(b);
         pthread_mutex_lock(&b->mu);
-        double next = emit_due(b, now);
+        bool later = false;
+        double next = emit_due(b, now, &later);
         bool frame_open = b->tr.rx_len > 0u;
         pthread_mutex_unlock(&b->mu);
         /* sleep until SPIN_US before the next character, then watch the clock */
         double wait_us = 5000.0;
         bool spin = false;
-        if (next < -0.5) { /* a later character of a frame: just sleep until it */
-            double d = -next - now;
+        if (next >= 0.0 && later) { /* a later character of a frame: just sleep until it */
+            double d = next - now;
             wait_us = d < wait_us ? (d > 0.0 ? d : 0.0) : wait_us;
-        } else if (next >= 0.0) {
+        } else if (next >= 0.0) { /* (-1: nothing on the line, the 5 ms tick) */
             double d = next - now;
             if (d < wait_us) {
                 wait_us = d > SPIN_US ? d - SPIN_US : 0.0;
@@ -890,7 +949,18 @@ void *sim_bus_thread(void *arg)
         }
         struct timespec ts = {(time_t)(wait_us / 1e6), (long)((long long)(wait_us * 1000.0) %
                                                              1000000000LL)};
+        if (b->log != NULL) {
+            char what[64];
+            snprintf(what, sizeof what, "poll %.0f%s", wait_us, spin ? " spin" : "");
+            blog(b, what, NULL, 0);
+        }
         int pr = ppoll(pf, nf, &ts, NULL);
+        if (b->log != NULL) {
+            char what[80];
+            snprintf(what, sizeof what, "polled %d wake=%x master=%x", pr, (unsigned)pf[0].revents,
+                     (unsigned)pf[1].revents);
+            blog(b, what, NULL, 0);
+        }
         if (pr == 0 && spin) {
             const struct timespec zero = {0, 0};
             while (pr == 0 && now_rel(b) < next) {
@@ -909,6 +979,12 @@ void *sim_bus_thread(void *arg)
         if ((pf[1].revents & (POLLIN | POLLHUP | POLLERR)) != 0) {
             uint8_t buf[512];
             ssize_t n = read(b->master_fd, buf, sizeof buf);
+            if (b->log != NULL) {
+                char what[64];
+                snprintf(what, sizeof what, "master read %zd%s", n,
+                         n < 0 ? strerror(errno) : "");
+                blog(b, what, buf, n > 0 ? (size_t)n : 0u);
+            }
             if (n > 0) {
                 double at_[512];
                 for (ssize_t i = 0; i < n; i++) {
