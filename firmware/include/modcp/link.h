@@ -94,7 +94,37 @@ typedef struct {
 
 struct modcp_framing_ops; /* link_internal.h */
 
-typedef struct { /* members by size: no padding */
+typedef struct { /* members by size, the small ones first: every byte within reach of the
+                    short (16-bit) Thumb load / store (offset < 32), every halfword too
+                    (< 64); no padding but one byte */
+    uint8_t state;    /* modcp_link_state_t */
+    bool rx_bad;      /* character error / BREAK / t1.5 violation inside the frame */
+    bool rx_overflow;
+    bool busy_rx;     /* a frame is being followed while BUSY/TURNAROUND/TX */
+    uint8_t own_addr;
+    bool suppress;    /* interference suppression (also RS485) */
+    bool modem;       /* RTU in interference suppression = modem mode (rtu_modem.c) */
+    bool rs485;
+    bool enabled;     /* configured; a disabled link ignores the line */
+    bool tx_on;       /* a transmission is on the line: from its start to transmission
+                         complete (or its abort) */
+    bool reply_same;  /* set by the caller before every modcp_link_reply(): the reply is
+                         the request's PDU, unchanged (FC05 / FC06 echo), so a framing
+                         may send the frame as received (RTU: its CRC in place) */
+    bool tx_hold;     /* RS232 automatic signals: a reply waits in TURNAROUND until
+                         modcp_link_tx_release() (signals.c decides RTS / CTS) */
+    uint8_t ascii_delim; /* ASCII: end of frame is CR + this (LF; FC08 sub-function 03) */
+    union {           /* the framing's own receive state */
+        modcp_rtu_t rtu;
+#if MODCP_WITH_ASCII
+        modcp_ascii_t ascii;
+#endif
+    } fr;
+    uint16_t len;     /* bytes stored */
+    uint16_t cap;     /* receive / RTU capacity: the buffer, at most MODCP_ADU_MAX */
+    uint16_t size;    /* the whole buffer (ASCII replies are hex-encoded in place) */
+    uint16_t tx_len;
+    uint16_t tx_starts; /* transmissions started (the TXD LED reads it, leds.h) */
     const modcp_hal_t *hal;
     modcp_diag_t *diag;
     uint8_t *buf;
@@ -113,34 +143,6 @@ typedef struct { /* members by size: no padding */
                           echo of our own RS485 reply; never reset: the RXD LED reads
                           it at poll time, leds.h) */
     uint32_t tx_at_us; /* when the reply was handed over (start of the turnaround) */
-    uint16_t cap;     /* receive / RTU capacity: the buffer, at most MODCP_ADU_MAX */
-    uint16_t size;    /* the whole buffer (ASCII replies are hex-encoded in place) */
-    uint16_t len;     /* bytes stored */
-    uint16_t tx_len;
-    uint16_t tx_starts; /* transmissions started (the TXD LED reads it, leds.h) */
-    union {           /* the framing's own receive state */
-        modcp_rtu_t rtu;
-#if MODCP_WITH_ASCII
-        modcp_ascii_t ascii;
-#endif
-    } fr;
-    uint8_t own_addr;
-    bool suppress;    /* interference suppression (also RS485) */
-    bool modem;       /* RTU in interference suppression = modem mode (rtu_modem.c) */
-    bool rs485;
-    uint8_t ascii_delim; /* ASCII: end of frame is CR + this (LF; FC08 sub-function 03) */
-    bool enabled;     /* configured; a disabled link ignores the line */
-    uint8_t state;    /* modcp_link_state_t */
-    bool rx_bad;      /* character error / BREAK / t1.5 violation inside the frame */
-    bool rx_overflow;
-    bool busy_rx;     /* a frame is being followed while BUSY/TURNAROUND/TX */
-    bool tx_hold;     /* RS232 automatic signals: a reply waits in TURNAROUND until
-                         modcp_link_tx_release() (signals.c decides RTS / CTS) */
-    bool tx_on;       /* a transmission is on the line: from its start to transmission
-                         complete (or its abort) */
-    bool reply_same;  /* set by the caller before every modcp_link_reply(): the reply is
-                         the request's PDU, unchanged (FC05 / FC06 echo), so a framing
-                         may send the frame as received (RTU: its CRC in place) */
 } modcp_link_t;
 
 #endif
