@@ -350,6 +350,7 @@ static const modcp_framing_ops_t ascii_ops = {ascii_on_byte, ascii_on_error, asc
 const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p)
 {
     l->fr.ascii.char_mask = p->data_bits == 7u ? 0x7Fu : 0xFFu;
-    l->silence_us = l->ascii_timeout_us; /* the character delay time plays t3.5's part */
+    /* the character delay time plays t3.5's part */
+    l->silence_us = (uint32_t)p->ascii_timeout_ms * 1000u;
     return l->cap >= ASCII_MIN_FRAME && l->size >= 11u ? &ascii_ops : NULL;
 }

@@ -93,13 +93,13 @@ static MODCP_SIZE_NOINLINE void resume_rx(modcp_link_t *l, uint32_t now_us, bool
 {
     if (l->busy_rx) {
         uint32_t gap = have_now ? now_us - l->last_us : 0u;
-        if (gap < l->silence_us) {
+        if (gap < LINK_SILENCE(l)) {
             l->busy_rx = false;
             l->state = MODCP_LINK_SKIP;
             l->rx_bad = true; /* only its tail was seen: not counted */
             l->rx_overflow = false;
             l->len = 0;
-            link_arm(l, l->silence_us - gap);
+            link_arm(l, LINK_SILENCE(l) - gap);
             return;
         }
     }
@@ -144,10 +144,9 @@ void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
     l->tx_hold = p->rs232_auto != 0u && p->iface == (uint8_t)MODCP_IFACE_RS232;
 #endif
 #if MODCP_WITH_ASCII
-    l->ascii_timeout_us = (uint32_t)p->ascii_timeout_ms * 1000u;
     l->ascii_delim = 0x0Au; /* LF until FC08 sub-function 03 changes it */
 #endif
-    const modcp_framing_ops_t *ops = framing_configure(l, p); /* sets silence_us */
+    const modcp_framing_ops_t *ops = framing_configure(l, p);
     if (ops != NULL) {
         l->ops = ops;
         l->enabled = true;

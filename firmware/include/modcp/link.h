@@ -130,14 +130,16 @@ typedef struct { /* members by size, the small ones first: every byte within rea
     uint8_t *buf;
     const struct modcp_framing_ops *ops; /* the framing (never NULL: "off" when disabled) */
     /* configuration */
-    uint32_t silence_us; /* the silence that ends a frame: t35_us (RTU) or
-                            ascii_timeout_us (ASCII) */
+#if MODCP_WITH_ASCII
+    uint32_t silence_us; /* the silence that ends a frame: t35_us (RTU) or the ASCII
+                            character delay time; built without ASCII it is t35_us
+                            (LINK_SILENCE, link_internal.h) */
+#endif
     uint32_t t35_us;
     uint32_t t15_us;  /* 0 = no t1.5 check */
     uint32_t char_us; /* one character time; byte timestamps are character ends, so the
                          silence between two bytes is their distance minus char_us */
     uint32_t turnaround_us;
-    uint32_t ascii_timeout_us; /* ASCII character delay time */
     /* receive and transmit state shared by the framings */
     uint32_t last_us;  /* time of the last received character (every state but the
                           echo of our own RS485 reply; never reset: the RXD LED reads
