@@ -17,7 +17,11 @@
 #include "params_internal.h"
 
 /* A reply waits for the RS232 automatic signals (signals.c); never without them. */
-#define TX_HOLD(l) (MODCP_WITH_RS232_SIGNALS && (l)->tx_hold)
+#if MODCP_WITH_RS232_SIGNALS
+#define TX_HOLD(l) ((l)->tx_hold)
+#else
+#define TX_HOLD(l) false
+#endif
 
 static void set_de(const modcp_link_t *l, bool on)
 {
@@ -31,7 +35,7 @@ static void start_tx(modcp_link_t *l)
     l->state = MODCP_LINK_TX;
     l->tx_starts++;
     l->tx_on = true;
-    l->hal->uart_tx(l->hal->ctx, l->buf, l->tx_len); /* never NULL (modcp/hal.h) */
+    l->hal->uart_tx(l->hal->ctx, l->buf, l->len); /* never NULL (modcp/hal.h) */
 }
 
 static void reset_rx(modcp_link_t *l)
@@ -42,7 +46,6 @@ static void reset_rx(modcp_link_t *l)
     l->rx_overflow = false;
     l->busy_rx = false;
     memset(&l->fr, 0, sizeof l->fr);
-    l->tx_len = 0;
 }
 
 /* A disabled (or not yet configured) link, state IDLE: the line and the timer are
@@ -234,8 +237,8 @@ void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us)
         return; /* (a disabled link is IDLE) */
     }
     l->tx_at_us = now_us;
-    l->tx_len = l->ops->encode(l, pdu_len);
-    if (l->tx_len == 0u) {
+    l->len = l->ops->encode(l, pdu_len); /* now the reply's length on the line */
+    if (l->len == 0u) {
         link_event(l, MODCP_EV_INTERNAL_SEND); /* reply does not fit */
         modcp_link_done(l);
         return;

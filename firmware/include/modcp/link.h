@@ -96,7 +96,7 @@ struct modcp_framing_ops; /* link_internal.h */
 
 typedef struct { /* members by size, the small ones first: every byte within reach of the
                     short (16-bit) Thumb load / store (offset < 32), every halfword too
-                    (< 64); no padding but one byte */
+                    (< 64); no padding but a byte or two */
     uint8_t state;    /* modcp_link_state_t */
     bool rx_bad;      /* character error / BREAK / t1.5 violation inside the frame */
     bool rx_overflow;
@@ -111,8 +111,10 @@ typedef struct { /* members by size, the small ones first: every byte within rea
     bool reply_same;  /* set by the caller before every modcp_link_reply(): the reply is
                          the request's PDU, unchanged (FC05 / FC06 echo), so a framing
                          may send the frame as received (RTU: its CRC in place) */
+#if MODCP_WITH_RS232_SIGNALS
     bool tx_hold;     /* RS232 automatic signals: a reply waits in TURNAROUND until
                          modcp_link_tx_release() (signals.c decides RTS / CTS) */
+#endif
     uint8_t ascii_delim; /* ASCII: end of frame is CR + this (LF; FC08 sub-function 03) */
     union {           /* the framing's own receive state */
         modcp_rtu_t rtu;
@@ -120,10 +122,10 @@ typedef struct { /* members by size, the small ones first: every byte within rea
         modcp_ascii_t ascii;
 #endif
     } fr;
-    uint16_t len;     /* bytes stored */
+    uint16_t len;     /* bytes stored; from modcp_link_reply() on (TURNAROUND, TX) the
+                         reply's length on the line */
     uint16_t cap;     /* receive / RTU capacity: the buffer, at most MODCP_ADU_MAX */
     uint16_t size;    /* the whole buffer (ASCII replies are hex-encoded in place) */
-    uint16_t tx_len;
     uint16_t tx_starts; /* transmissions started (the TXD LED reads it, leds.h) */
     const modcp_hal_t *hal;
     modcp_diag_t *diag;
