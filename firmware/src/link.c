@@ -167,8 +167,8 @@ void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
     l->ops->on_byte(l, b, now_us);
 }
 
-/* Characters back to back: the framing's block path (RTU: store and CRC in one loop),
- * or its on_byte for each at the time it ended (ASCII, modem mode). A disabled link has
+/* Characters back to back: the framing's block path (RTU built for speed: store and CRC
+ * in one loop), or its on_byte for each at the time it ended (ASCII; RTU built for size). A disabled link has
  * the "off" backend (its on_byte ignores the line). A block holds no silence, so it
  * never contains the end of one frame and the start of the next. Only
  * modcp_cp_on_rx_block calls this: a port that never does links none of it. */
