@@ -344,8 +344,10 @@ static uint16_t ascii_encode(modcp_link_t *l, uint16_t pdu_len)
     return (uint16_t)out;
 }
 
-static const modcp_framing_ops_t ascii_ops = {ascii_on_byte, ascii_on_error, ascii_on_timer,
-                                              ascii_encode, NULL};
+static const modcp_framing_ops_t ascii_ops = {.on_byte = ascii_on_byte,
+                                              .on_error = ascii_on_error,
+                                              .on_timer = ascii_on_timer,
+                                              .encode = ascii_encode};
 
 const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p)
 {

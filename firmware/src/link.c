@@ -16,6 +16,14 @@
 #include "diag_internal.h"
 #include "params_internal.h"
 
+/* Built for speed block_bytes stays out of the RTU block path; for size it is the only
+ * one (no framing has a block path) and is inlined. */
+#if defined(__OPTIMIZE_SIZE__)
+#define LINK_SPEED_NOINLINE
+#else
+#define LINK_SPEED_NOINLINE MODCP_NOINLINE
+#endif
+
 /* A reply waits for the RS232 automatic signals (signals.c); never without them. */
 #if MODCP_WITH_RS232_SIGNALS
 #define TX_HOLD(l) ((l)->tx_hold)
@@ -64,7 +72,7 @@ static bool off_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
     (void)f;
     return false;
 }
-static const modcp_framing_ops_t off_ops = {off_byte, NULL, off_timer, NULL, NULL};
+static const modcp_framing_ops_t off_ops = {.on_byte = off_byte, .on_timer = off_timer};
 
 /* The backend for the framing parameter (the only place that names the framings),
  * configured: the ops to run, NULL if it cannot. */
@@ -172,8 +180,8 @@ void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
  * the "off" backend (its on_byte ignores the line). A block holds no silence, so it
  * never contains the end of one frame and the start of the next. Only
  * modcp_cp_on_rx_block calls this: a port that never does links none of it. */
-static MODCP_NOINLINE void block_bytes(modcp_link_t *l, const uint8_t *b, uint16_t n,
-                                       uint32_t end_us)
+static LINK_SPEED_NOINLINE void block_bytes(modcp_link_t *l, const uint8_t *b, uint16_t n,
+                                            uint32_t end_us)
 {
     uint32_t t = end_us - (uint32_t)(n - 1u) * l->char_us;
     for (uint16_t k = 0; k < n; k++) {
@@ -187,11 +195,13 @@ void modcp_link_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
     if (n == 0u) {
         return;
     }
+#if !defined(__OPTIMIZE_SIZE__) /* built for size there is no block path */
     if (l->ops->on_block != NULL) {
         l->ops->on_block(l, b, n, end_us);
         return;
     }
-    block_bytes(l, b, n, end_us); /* out of line: the RTU path needs no stack frame */
+#endif
+    block_bytes(l, b, n, end_us); /* for speed out of line: the RTU path needs no stack frame */
 }
 
 void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)

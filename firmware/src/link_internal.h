@@ -27,10 +27,13 @@ typedef struct modcp_framing_ops {
     /* The reply PDU at buf + 1 (address at buf[0]) framed in place; its length on the
      * line, 0 if it does not fit. */
     uint16_t (*encode)(modcp_link_t *l, uint16_t pdu_len);
+#if !defined(__OPTIMIZE_SIZE__)
     /* Optional: n > 0 characters back to back, the last one ended at end_us (the k-th
      * of n at end_us - (n-1-k) * char_us); must have exactly the effect of n on_byte
-     * calls at those times. NULL: the link calls on_byte for each. */
+     * calls at those times. NULL: the link calls on_byte for each. Built for size
+     * (-Os: the MCU builds) there is none: the link always does. */
     void (*on_block)(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us);
+#endif
 } modcp_framing_ops_t;
 
 /* A framing's part of modcp_link_configure() (rtu_configure, ascii_configure; the link

@@ -52,6 +52,17 @@
 #include "link_internal.h"
 #include "crc_internal.h"
 
+/* Placement by build goal. For speed (-O2): frame_start inlined in its two callers
+ * (byte_other, rtu_on_block), t15_violated kept out of the t1.5 entry (a leaf with a
+ * tail call). For size (-Os) neither has more than one caller (no block path): the
+ * compiler inlines them. */
+#if defined(__OPTIMIZE_SIZE__)
+#define RTU_SPEED_INLINE
+#define RTU_SPEED_NOINLINE
+#else
+#define RTU_SPEED_INLINE MODCP_SIZE_NOINLINE_SPEED_INLINE
+#define RTU_SPEED_NOINLINE MODCP_NOINLINE
+#endif
 
 void rtu_count_char(modcp_rtu_t *r)
 {
@@ -106,7 +117,7 @@ MODCP_NOINLINE void rtu_unclaim(modcp_link_t *l, uint16_t n)
  * frame. Our address (or 0) starts our frame (modem mode: a candidate); any other
  * character starts one followed in SKIP (not ours: not checked, not answered), a line
  * error an erroneous one, skipped to its t3.5. */
-static MODCP_SIZE_NOINLINE_SPEED_INLINE void frame_start(modcp_link_t *l, uint8_t b,
+static RTU_SPEED_INLINE void frame_start(modcp_link_t *l, uint8_t b,
                                                           uint32_t now_us, bool err)
 {
     modcp_rtu_t *r = &l->fr.rtu;
@@ -268,7 +279,7 @@ void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 /* With the t1.5 check on: the silence before a character of our frame (distance of the
  * two character ends minus one character time) must not exceed t1.5. A separate entry,
  * so that the check costs nothing when it is off. */
-static MODCP_NOINLINE void t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
+static RTU_SPEED_NOINLINE void t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     const bool first = !l->rx_bad;
     if (l->modem) {
@@ -304,10 +315,7 @@ void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
  * Built for size (-Os: the MCU builds) there is no block path: the link gives each
  * character to on_byte at its time (block_bytes, link.c), with the same effect and
  * about 110 bytes less (a few instructions more per character). */
-#if defined(__OPTIMIZE_SIZE__)
-#define RTU_ON_BLOCK NULL
-#else
-#define RTU_ON_BLOCK rtu_on_block
+#if !defined(__OPTIMIZE_SIZE__)
 static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us)
 {
     const uint32_t c = l->char_us;
@@ -433,7 +441,15 @@ const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *
     return l->t15_us != 0u ? &rtu_t15_ops : &rtu_ops;
 }
 
-static const modcp_framing_ops_t rtu_ops = {rtu_on_byte, rtu_on_error, rtu_on_timer, rtu_encode,
+#if defined(__OPTIMIZE_SIZE__)
+#define RTU_ON_BLOCK /* no block path (link_internal.h) */
+#else
+#define RTU_ON_BLOCK .on_block = rtu_on_block,
+#endif
+static const modcp_framing_ops_t rtu_ops = {.on_byte = rtu_on_byte, .on_error = rtu_on_error,
+                                            .on_timer = rtu_on_timer, .encode = rtu_encode,
                                             RTU_ON_BLOCK};
-static const modcp_framing_ops_t rtu_t15_ops = {rtu_on_byte_t15, rtu_on_error, rtu_on_timer,
-                                                rtu_encode, RTU_ON_BLOCK};
+static const modcp_framing_ops_t rtu_t15_ops = {.on_byte = rtu_on_byte_t15,
+                                                .on_error = rtu_on_error,
+                                                .on_timer = rtu_on_timer,
+                                                .encode = rtu_encode, RTU_ON_BLOCK};
