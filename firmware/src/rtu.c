@@ -433,7 +433,6 @@ const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *
 #if MODCP_WITH_ASCII
     l->silence_us = l->t35_us; /* (built without ASCII the silence is t35_us) */
 #endif
-    l->fr.rtu.stop = l->cap; /* normal operation: the hot path runs up to the capacity */
     l->modem = p->opmode == (uint8_t)MODCP_OPMODE_SUPPRESS;
     if (l->cap < RTU_MIN_FRAME) {
         return NULL;
