@@ -344,12 +344,15 @@ static uint16_t ascii_encode(modcp_link_t *l, uint16_t pdu_len)
     return (uint16_t)out;
 }
 
-static const modcp_framing_ops_t ascii_ops = {ascii_on_byte, ascii_on_error, ascii_on_timer,
-                                              ascii_encode, NULL};
+static const modcp_framing_ops_t ascii_ops = {.on_byte = ascii_on_byte,
+                                              .on_error = ascii_on_error,
+                                              .on_timer = ascii_on_timer,
+                                              .encode = ascii_encode};
 
 const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p)
 {
     l->fr.ascii.char_mask = p->data_bits == 7u ? 0x7Fu : 0xFFu;
-    l->silence_us = l->ascii_timeout_us; /* the character delay time plays t3.5's part */
+    /* the character delay time plays t3.5's part */
+    l->silence_us = (uint32_t)p->ascii_timeout_ms * 1000u;
     return l->cap >= ASCII_MIN_FRAME && l->size >= 11u ? &ascii_ops : NULL;
 }

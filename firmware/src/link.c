@@ -16,8 +16,20 @@
 #include "diag_internal.h"
 #include "params_internal.h"
 
+/* Built for speed block_bytes stays out of the RTU block path; for size it is the only
+ * one (no framing has a block path) and is inlined. */
+#if defined(__OPTIMIZE_SIZE__)
+#define LINK_SPEED_NOINLINE
+#else
+#define LINK_SPEED_NOINLINE MODCP_NOINLINE
+#endif
+
 /* A reply waits for the RS232 automatic signals (signals.c); never without them. */
-#define TX_HOLD(l) (MODCP_WITH_RS232_SIGNALS && (l)->tx_hold)
+#if MODCP_WITH_RS232_SIGNALS
+#define TX_HOLD(l) ((l)->tx_hold)
+#else
+#define TX_HOLD(l) false
+#endif
 
 static void set_de(const modcp_link_t *l, bool on)
 {
@@ -31,7 +43,7 @@ static void start_tx(modcp_link_t *l)
     l->state = MODCP_LINK_TX;
     l->tx_starts++;
     l->tx_on = true;
-    l->hal->uart_tx(l->hal->ctx, l->buf, l->tx_len); /* never NULL (modcp/hal.h) */
+    l->hal->uart_tx(l->hal->ctx, l->buf, l->len); /* never NULL (modcp/hal.h) */
 }
 
 static void reset_rx(modcp_link_t *l)
@@ -42,7 +54,6 @@ static void reset_rx(modcp_link_t *l)
     l->rx_overflow = false;
     l->busy_rx = false;
     memset(&l->fr, 0, sizeof l->fr);
-    l->tx_len = 0;
 }
 
 /* A disabled (or not yet configured) link, state IDLE: the line and the timer are
@@ -61,7 +72,7 @@ static bool off_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
     (void)f;
     return false;
 }
-static const modcp_framing_ops_t off_ops = {off_byte, NULL, off_timer, NULL, NULL};
+static const modcp_framing_ops_t off_ops = {.on_byte = off_byte, .on_timer = off_timer};
 
 /* The backend for the framing parameter (the only place that names the framings),
  * configured: the ops to run, NULL if it cannot. */
@@ -93,13 +104,13 @@ static MODCP_SIZE_NOINLINE void resume_rx(modcp_link_t *l, uint32_t now_us, bool
 {
     if (l->busy_rx) {
         uint32_t gap = have_now ? now_us - l->last_us : 0u;
-        if (gap < l->silence_us) {
+        if (gap < LINK_SILENCE(l)) {
             l->busy_rx = false;
             l->state = MODCP_LINK_SKIP;
             l->rx_bad = true; /* only its tail was seen: not counted */
             l->rx_overflow = false;
             l->len = 0;
-            link_arm(l, l->silence_us - gap);
+            link_arm(l, LINK_SILENCE(l) - gap);
             return;
         }
     }
@@ -144,10 +155,9 @@ void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
     l->tx_hold = p->rs232_auto != 0u && p->iface == (uint8_t)MODCP_IFACE_RS232;
 #endif
 #if MODCP_WITH_ASCII
-    l->ascii_timeout_us = (uint32_t)p->ascii_timeout_ms * 1000u;
     l->ascii_delim = 0x0Au; /* LF until FC08 sub-function 03 changes it */
 #endif
-    const modcp_framing_ops_t *ops = framing_configure(l, p); /* sets silence_us */
+    const modcp_framing_ops_t *ops = framing_configure(l, p);
     if (ops != NULL) {
         l->ops = ops;
         l->enabled = true;
@@ -165,13 +175,13 @@ void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
     l->ops->on_byte(l, b, now_us);
 }
 
-/* Characters back to back: the framing's block path (RTU: store and CRC in one loop),
- * or its on_byte for each at the time it ended (ASCII, modem mode). A disabled link has
+/* Characters back to back: the framing's block path (RTU built for speed: store and CRC
+ * in one loop), or its on_byte for each at the time it ended (ASCII; RTU built for size). A disabled link has
  * the "off" backend (its on_byte ignores the line). A block holds no silence, so it
  * never contains the end of one frame and the start of the next. Only
  * modcp_cp_on_rx_block calls this: a port that never does links none of it. */
-static MODCP_NOINLINE void block_bytes(modcp_link_t *l, const uint8_t *b, uint16_t n,
-                                       uint32_t end_us)
+static LINK_SPEED_NOINLINE void block_bytes(modcp_link_t *l, const uint8_t *b, uint16_t n,
+                                            uint32_t end_us)
 {
     uint32_t t = end_us - (uint32_t)(n - 1u) * l->char_us;
     for (uint16_t k = 0; k < n; k++) {
@@ -185,11 +195,13 @@ void modcp_link_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
     if (n == 0u) {
         return;
     }
+#if !defined(__OPTIMIZE_SIZE__) /* built for size there is no block path */
     if (l->ops->on_block != NULL) {
         l->ops->on_block(l, b, n, end_us);
         return;
     }
-    block_bytes(l, b, n, end_us); /* out of line: the RTU path needs no stack frame */
+#endif
+    block_bytes(l, b, n, end_us); /* for speed out of line: the RTU path needs no stack frame */
 }
 
 void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
@@ -235,8 +247,8 @@ void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us)
         return; /* (a disabled link is IDLE) */
     }
     l->tx_at_us = now_us;
-    l->tx_len = l->ops->encode(l, pdu_len);
-    if (l->tx_len == 0u) {
+    l->len = l->ops->encode(l, pdu_len); /* now the reply's length on the line */
+    if (l->len == 0u) {
         link_event(l, MODCP_EV_INTERNAL_SEND); /* reply does not fit */
         modcp_link_done(l);
         return;

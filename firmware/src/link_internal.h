@@ -14,7 +14,7 @@
  * Timer contract: the backend arms the one-shot timer (link_arm) once when a frame
  * starts (RX / SKIP entered from IDLE), never per character; it keeps l->last_us at the
  * end of the last character of the frame. The link handles every expiry in RX / SKIP
- * that comes before l->silence_us has passed since l->last_us by re-arming the rest. */
+ * that comes before LINK_SILENCE(l) has passed since l->last_us by re-arming the rest. */
 typedef struct modcp_framing_ops {
     /* A received character (the hot path: per byte a store and a check step). */
     void (*on_byte)(modcp_link_t *l, uint8_t b, uint32_t now_us);
@@ -27,19 +27,29 @@ typedef struct modcp_framing_ops {
     /* The reply PDU at buf + 1 (address at buf[0]) framed in place; its length on the
      * line, 0 if it does not fit. */
     uint16_t (*encode)(modcp_link_t *l, uint16_t pdu_len);
+#if !defined(__OPTIMIZE_SIZE__)
     /* Optional: n > 0 characters back to back, the last one ended at end_us (the k-th
      * of n at end_us - (n-1-k) * char_us); must have exactly the effect of n on_byte
-     * calls at those times. NULL: the link calls on_byte for each. */
+     * calls at those times. NULL: the link calls on_byte for each. Built for size
+     * (-Os: the MCU builds) there is none: the link always does. */
     void (*on_block)(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us);
+#endif
 } modcp_framing_ops_t;
 
 /* A framing's part of modcp_link_configure() (rtu_configure, ascii_configure; the link
  * calls the one of the framing parameter): its state (already zeroed), and
- * l->silence_us. Returns the ops to run (the backend may have variants, e.g. RTU with
+ * l->silence_us (built with ASCII). Returns the ops to run (the backend may have variants, e.g. RTU with
  * and without the t1.5 check), NULL if the buffer is too small. */
 const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p);
 #if MODCP_WITH_ASCII
 const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p);
+#endif
+
+/* The silence that ends a frame (RTU t3.5, ASCII the character delay time). */
+#if MODCP_WITH_ASCII
+#define LINK_SILENCE(l) ((l)->silence_us)
+#else
+#define LINK_SILENCE(l) ((l)->t35_us)
 #endif
 
 /* Arm the one-shot timer (0 disarms): hal, its uart_tx and timer_arm are never NULL
@@ -60,10 +70,10 @@ static inline bool link_timer_rearm(const modcp_link_t *l, uint32_t now_us)
         return false;
     }
     uint32_t gap = now_us - l->last_us;
-    if (gap >= l->silence_us) {
+    if (gap >= LINK_SILENCE(l)) {
         return false;
     }
-    link_arm(l, l->silence_us - gap);
+    link_arm(l, LINK_SILENCE(l) - gap);
     return true;
 }
 

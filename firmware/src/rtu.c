@@ -15,7 +15,8 @@
  * frame is checked only when t3.5 has passed. Time stamps are the ends of characters,
  * as the UART receive interrupt sees them. A block of characters back to back
  * (modcp_cp_on_rx_block: DMA, FIFO) has the effect of its characters one by one at
- * their ends; a run of our frame is stored and CRC'd in one loop.
+ * their ends; a run of our frame is stored and CRC'd in one loop (built for speed; for
+ * size the link hands them to on_byte one by one).
  * The reply of an FC05 / FC06 is the request unchanged (l->reply_same, set by the CP
  * from the PDU engine): its frame goes out as received, the CRC already in place.
  *
@@ -51,6 +52,17 @@
 #include "link_internal.h"
 #include "crc_internal.h"
 
+/* Placement by build goal. For speed (-O2): frame_start inlined in its two callers
+ * (byte_other, rtu_on_block), t15_violated kept out of the t1.5 entry (a leaf with a
+ * tail call). For size (-Os) neither has more than one caller (no block path): the
+ * compiler inlines them. */
+#if defined(__OPTIMIZE_SIZE__)
+#define RTU_SPEED_INLINE
+#define RTU_SPEED_NOINLINE
+#else
+#define RTU_SPEED_INLINE MODCP_SIZE_NOINLINE_SPEED_INLINE
+#define RTU_SPEED_NOINLINE MODCP_NOINLINE
+#endif
 
 void rtu_count_char(modcp_rtu_t *r)
 {
@@ -105,7 +117,7 @@ MODCP_NOINLINE void rtu_unclaim(modcp_link_t *l, uint16_t n)
  * frame. Our address (or 0) starts our frame (modem mode: a candidate); any other
  * character starts one followed in SKIP (not ours: not checked, not answered), a line
  * error an erroneous one, skipped to its t3.5. */
-static MODCP_SIZE_NOINLINE_SPEED_INLINE void frame_start(modcp_link_t *l, uint8_t b,
+static RTU_SPEED_INLINE void frame_start(modcp_link_t *l, uint8_t b,
                                                           uint32_t now_us, bool err)
 {
     modcp_rtu_t *r = &l->fr.rtu;
@@ -267,7 +279,7 @@ void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 /* With the t1.5 check on: the silence before a character of our frame (distance of the
  * two character ends minus one character time) must not exceed t1.5. A separate entry,
  * so that the check costs nothing when it is off. */
-static MODCP_NOINLINE void t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
+static RTU_SPEED_NOINLINE void t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     const bool first = !l->rx_bad;
     if (l->modem) {
@@ -299,7 +311,11 @@ void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
  * block's first character can follow a silence (the others come one character time
  * after the one before): it goes through the ops' on_byte, with the t1.5 check if on,
  * or straight to frame_start() when the line is idle (byte_other()'s way there; no
- * t1.5 check before a frame's first character). */
+ * t1.5 check before a frame's first character).
+ * Built for size (-Os: the MCU builds) there is no block path: the link gives each
+ * character to on_byte at its time (block_bytes, link.c), with the same effect and
+ * about 110 bytes less (a few instructions more per character). */
+#if !defined(__OPTIMIZE_SIZE__)
 static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us)
 {
     const uint32_t c = l->char_us;
@@ -329,8 +345,7 @@ static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
         t += (m - 1u) * c;
         l->last_us = t;
         t += c;
-#if !defined(__OPTIMIZE_SIZE__) /* not -Os (the MCU builds): two per turn, half the loop */
-        for (; m >= 2u; m -= 2u) {
+        for (; m >= 2u; m -= 2u) { /* two per turn, half the loop */
             uint8_t c0 = b[0], c1 = b[1];
             d[0] = c0;
             d[1] = c1;
@@ -338,7 +353,6 @@ static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
             b += 2;
             d += 2;
         }
-#endif
         for (; m > 0u; m--) {
             crc = modcp_crc16_byte(crc, *b);
             *d++ = *b++;
@@ -346,6 +360,7 @@ static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
         l->fr.rtu.crc = crc;
     }
 }
+#endif
 
 void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
@@ -415,8 +430,9 @@ static const modcp_framing_ops_t rtu_ops, rtu_t15_ops;
  * parameter: l->modem, one ops table for both); the variant is the t1.5 check. */
 const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
 {
-    l->silence_us = l->t35_us;
-    l->fr.rtu.stop = l->cap; /* normal operation: the hot path runs up to the capacity */
+#if MODCP_WITH_ASCII
+    l->silence_us = l->t35_us; /* (built without ASCII the silence is t35_us) */
+#endif
     l->modem = p->opmode == (uint8_t)MODCP_OPMODE_SUPPRESS;
     if (l->cap < RTU_MIN_FRAME) {
         return NULL;
@@ -424,7 +440,15 @@ const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *
     return l->t15_us != 0u ? &rtu_t15_ops : &rtu_ops;
 }
 
-static const modcp_framing_ops_t rtu_ops = {rtu_on_byte, rtu_on_error, rtu_on_timer, rtu_encode,
-                                            rtu_on_block};
-static const modcp_framing_ops_t rtu_t15_ops = {rtu_on_byte_t15, rtu_on_error, rtu_on_timer,
-                                                rtu_encode, rtu_on_block};
+#if defined(__OPTIMIZE_SIZE__)
+#define RTU_ON_BLOCK /* no block path (link_internal.h) */
+#else
+#define RTU_ON_BLOCK .on_block = rtu_on_block,
+#endif
+static const modcp_framing_ops_t rtu_ops = {.on_byte = rtu_on_byte, .on_error = rtu_on_error,
+                                            .on_timer = rtu_on_timer, .encode = rtu_encode,
+                                            RTU_ON_BLOCK};
+static const modcp_framing_ops_t rtu_t15_ops = {.on_byte = rtu_on_byte_t15,
+                                                .on_error = rtu_on_error,
+                                                .on_timer = rtu_on_timer,
+                                                .encode = rtu_encode, RTU_ON_BLOCK};

@@ -308,7 +308,7 @@ static void test_character_delay_time(void **state)
     ascii_example_params(&p);
     p.ascii_timeout_ms = 50;
     world_t *w = ascii_world_started(&p);
-    assert_int_equal(w->cp.link.ascii_timeout_us, 50000);
+    assert_int_equal(w->cp.link.silence_us, 50000);
 
     /* 49.999 ms between the characters: answered */
     ascii_feed(w, ":", ASCII_CHAR_US);
@@ -350,7 +350,7 @@ static void test_invalid_timeout_default(void **state)
         p.ascii_timeout_ms = bad[k];
         world_t *w = ascii_world_started(&p);
         assert_int_equal(w->cp.params.ascii_timeout_ms, 1000);
-        assert_int_equal(w->cp.link.ascii_timeout_us, 1000000);
+        assert_int_equal(w->cp.link.silence_us, 1000000);
         assert_true(world_has_event(w, MODCP_EV_FMUL));
         ascii_feed(w, ":0508", ASCII_CHAR_US);
         assert_int_equal(w->fake.timer_us, 1000000);
@@ -362,7 +362,7 @@ static void test_invalid_timeout_default(void **state)
     ascii_example_params(&p);
     p.ascii_timeout_ms = 6500;
     world_t *w = ascii_world_started(&p);
-    assert_int_equal(w->cp.link.ascii_timeout_us, 6500000);
+    assert_int_equal(w->cp.link.silence_us, 6500000);
     assert_false(world_has_event(w, MODCP_EV_FMUL));
     ascii_world_free(w);
 }

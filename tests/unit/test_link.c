@@ -144,7 +144,7 @@ static void assert_tx(const ctx_t *c, const char *hex)
     uint8_t b[300];
     size_t n = hex_frame(hex, b, sizeof b);
     assert_int_equal(c->f.tx_len, n);
-    assert_int_equal(c->l.tx_len, n);
+    assert_int_equal(c->l.len, n); /* the reply's length on the line */
     assert_memory_equal(c->f.tx, b, n);
 }
 
@@ -1010,7 +1010,7 @@ static void test_configure_fields(void **state)
     assert_int_equal(c->l.t15_us, 860);
     assert_int_equal(c->l.char_us, 573);
     assert_int_equal(c->l.turnaround_us, 0);
-    assert_int_equal(c->l.ascii_timeout_us, 6500000);
+    assert_int_equal(c->l.silence_us, 6000); /* RTU: t3.5 (the ASCII timeout is ASCII's) */
     assert_int_equal(c->l.state, MODCP_LINK_IDLE);
     assert_int_equal(c->f.log[0].kind, FHL_ARM);
     assert_int_equal(c->f.log[0].value, 0);

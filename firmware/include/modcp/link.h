@@ -94,53 +94,59 @@ typedef struct {
 
 struct modcp_framing_ops; /* link_internal.h */
 
-typedef struct { /* members by size: no padding */
-    const modcp_hal_t *hal;
-    modcp_diag_t *diag;
-    uint8_t *buf;
-    const struct modcp_framing_ops *ops; /* the framing (never NULL: "off" when disabled) */
-    /* configuration */
-    uint32_t silence_us; /* the silence that ends a frame: t35_us (RTU) or
-                            ascii_timeout_us (ASCII) */
-    uint32_t t35_us;
-    uint32_t t15_us;  /* 0 = no t1.5 check */
-    uint32_t char_us; /* one character time; byte timestamps are character ends, so the
-                         silence between two bytes is their distance minus char_us */
-    uint32_t turnaround_us;
-    uint32_t ascii_timeout_us; /* ASCII character delay time */
-    /* receive and transmit state shared by the framings */
-    uint32_t last_us;  /* time of the last received character (every state but the
-                          echo of our own RS485 reply; never reset: the RXD LED reads
-                          it at poll time, leds.h) */
-    uint32_t tx_at_us; /* when the reply was handed over (start of the turnaround) */
-    uint16_t cap;     /* receive / RTU capacity: the buffer, at most MODCP_ADU_MAX */
-    uint16_t size;    /* the whole buffer (ASCII replies are hex-encoded in place) */
-    uint16_t len;     /* bytes stored */
-    uint16_t tx_len;
-    uint16_t tx_starts; /* transmissions started (the TXD LED reads it, leds.h) */
+typedef struct { /* members by size, the small ones first: every byte within reach of the
+                    short (16-bit) Thumb load / store (offset < 32), every halfword too
+                    (< 64); no padding but a byte or two */
+    uint8_t state;    /* modcp_link_state_t */
+    bool rx_bad;      /* character error / BREAK / t1.5 violation inside the frame */
+    bool rx_overflow;
+    bool busy_rx;     /* a frame is being followed while BUSY/TURNAROUND/TX */
+    uint8_t own_addr;
+    bool suppress;    /* interference suppression (also RS485) */
+    bool modem;       /* RTU in interference suppression = modem mode (rtu_modem.c) */
+    bool rs485;
+    bool enabled;     /* configured; a disabled link ignores the line */
+    bool tx_on;       /* a transmission is on the line: from its start to transmission
+                         complete (or its abort) */
+    bool reply_same;  /* set by the caller before every modcp_link_reply(): the reply is
+                         the request's PDU, unchanged (FC05 / FC06 echo), so a framing
+                         may send the frame as received (RTU: its CRC in place) */
+#if MODCP_WITH_RS232_SIGNALS
+    bool tx_hold;     /* RS232 automatic signals: a reply waits in TURNAROUND until
+                         modcp_link_tx_release() (signals.c decides RTS / CTS) */
+#endif
+    uint8_t ascii_delim; /* ASCII: end of frame is CR + this (LF; FC08 sub-function 03) */
     union {           /* the framing's own receive state */
         modcp_rtu_t rtu;
 #if MODCP_WITH_ASCII
         modcp_ascii_t ascii;
 #endif
     } fr;
-    uint8_t own_addr;
-    bool suppress;    /* interference suppression (also RS485) */
-    bool modem;       /* RTU in interference suppression = modem mode (rtu_modem.c) */
-    bool rs485;
-    uint8_t ascii_delim; /* ASCII: end of frame is CR + this (LF; FC08 sub-function 03) */
-    bool enabled;     /* configured; a disabled link ignores the line */
-    uint8_t state;    /* modcp_link_state_t */
-    bool rx_bad;      /* character error / BREAK / t1.5 violation inside the frame */
-    bool rx_overflow;
-    bool busy_rx;     /* a frame is being followed while BUSY/TURNAROUND/TX */
-    bool tx_hold;     /* RS232 automatic signals: a reply waits in TURNAROUND until
-                         modcp_link_tx_release() (signals.c decides RTS / CTS) */
-    bool tx_on;       /* a transmission is on the line: from its start to transmission
-                         complete (or its abort) */
-    bool reply_same;  /* set by the caller before every modcp_link_reply(): the reply is
-                         the request's PDU, unchanged (FC05 / FC06 echo), so a framing
-                         may send the frame as received (RTU: its CRC in place) */
+    uint16_t len;     /* bytes stored; from modcp_link_reply() on (TURNAROUND, TX) the
+                         reply's length on the line */
+    uint16_t cap;     /* receive / RTU capacity: the buffer, at most MODCP_ADU_MAX */
+    uint16_t size;    /* the whole buffer (ASCII replies are hex-encoded in place) */
+    uint16_t tx_starts; /* transmissions started (the TXD LED reads it, leds.h) */
+    const modcp_hal_t *hal;
+    modcp_diag_t *diag;
+    uint8_t *buf;
+    const struct modcp_framing_ops *ops; /* the framing (never NULL: "off" when disabled) */
+    /* configuration */
+#if MODCP_WITH_ASCII
+    uint32_t silence_us; /* the silence that ends a frame: t35_us (RTU) or the ASCII
+                            character delay time; built without ASCII it is t35_us
+                            (LINK_SILENCE, link_internal.h) */
+#endif
+    uint32_t t35_us;
+    uint32_t t15_us;  /* 0 = no t1.5 check */
+    uint32_t char_us; /* one character time; byte timestamps are character ends, so the
+                         silence between two bytes is their distance minus char_us */
+    uint32_t turnaround_us;
+    /* receive and transmit state shared by the framings */
+    uint32_t last_us;  /* time of the last received character (every state but the
+                          echo of our own RS485 reply; never reset: the RXD LED reads
+                          it at poll time, leds.h) */
+    uint32_t tx_at_us; /* when the reply was handed over (start of the turnaround) */
 } modcp_link_t;
 
 #endif
