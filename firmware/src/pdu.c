@@ -173,11 +173,8 @@ static modcp_pdu_action_t fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8
     s->same = false; /* the reply is an exception */
     modcp_diag_event(d, ev);
     uint8_t code = s->x.exc;
-    if (code == (uint8_t)MODCP_EXC_OF_EVENT) {
-        code = modcp_event_exception(ev);
-        if (code == 0u) {
-            code = MODCP_EXC_DEVICE_FAILURE;
-        }
+    if (code == (uint8_t)MODCP_EXC_OF_MAP) {
+        code = modcp_pdu_map_exception(ev);
         s->x.exc = code;
     }
 #if MODCP_WITH_EXTENDED

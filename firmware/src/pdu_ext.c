@@ -155,7 +155,7 @@ modcp_pdu_action_t modcp_pdu_seq_next(modcp_pdu_t *s, const modcp_pdu_env_t *env
         const uint16_t k = second ? (uint16_t)(i - nw) : i;
         modcp_event_t ev = operand(s, env, write, k, &o);
         if (ev != MODCP_EV_NONE) {
-            return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+            return modcp_pdu_map_err(s, ev);
         }
         if (o.area == MODCP_AREA_NONE) {
             if (x->phase == PH_READ) {
@@ -271,7 +271,7 @@ modcp_pdu_action_t modcp_pdu_scan(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     }
     modcp_event_t ev = map_part(s, env, write, s->fc);
     if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+        return modcp_pdu_map_err(s, ev);
     }
     if (!write && 2u + x->rbytes > cap) {
         return modcp_pdu_err(s, MODCP_EV_JOB_LENGTH, MODCP_EXC_DEVICE_FAILURE);
@@ -296,7 +296,7 @@ modcp_pdu_action_t modcp_pdu_fc22(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     x->wlen = 4; /* direct: and mask, or mask */
     modcp_event_t ev = map_part(s, env, true, s->fc);
     if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+        return modcp_pdu_map_err(s, ev);
     }
     x->wop = MODCP_JOB_MASKWRITE;
     x->woff = 3;
@@ -338,7 +338,7 @@ modcp_pdu_action_t modcp_pdu_fc23(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         ev = map_part(s, env, false, 3u);
     }
     if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+        return modcp_pdu_map_err(s, ev);
     }
     x->rbytes = x->rscan ? (uint16_t)(2u * x->rqty) : x->rdir.count;
     if (x->rbytes > 250u || 2u + (uint32_t)x->rbytes > cap) {

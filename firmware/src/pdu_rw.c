@@ -45,7 +45,7 @@ static bool map_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty)
     o->bit = s->r32_kind;
     modcp_event_t ev = modcp_map_regs_kind(env->p, env->areas, s->fc, s->addr, qty, o);
     if (ev != MODCP_EV_NONE) {
-        (void)modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+        (void)modcp_pdu_map_err(s, ev);
         return false;
     }
     o->bit = 0; /* = s->r32_kind */
@@ -58,7 +58,7 @@ static bool map_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty)
 {
     modcp_event_t ev = modcp_map_bits(env->p, env->areas, s->fc, s->addr, qty, &s->job.opnd);
     if (ev != MODCP_EV_NONE) {
-        (void)modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+        (void)modcp_pdu_map_err(s, ev);
         return false;
     }
     return true;
