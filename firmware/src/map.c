@@ -28,8 +28,9 @@
  * FC22 (mask write, a 16-bit operation) with regs32 set: decision of modcp, the
  * int16 range only; an address in the int32 / float range -> (0E)51H.
  *
- * qty 0 (the PDU engine never passes it) -> (08)32H; an fc the function does not
- * serve -> (08)31H. a == NULL: controller sizes and work DB unknown, not checked. */
+ * modcp_map_bits / modcp_map_regs (tests, FC22 / FC23): qty 0 -> (08)32H; an fc the
+ * function does not serve -> (08)31H. The PDU engine never passes either and calls
+ * modcp_map_bits_valid / modcp_map_regs_kind, which skip both checks. a == NULL: controller sizes and work DB unknown, not checked. */
 #include "modcp/map.h"
 
 #include <stddef.h>
@@ -109,6 +110,18 @@ bool modcp_map_db_write_ok(const modcp_params_t *p, const modcp_areas_t *a, uint
 modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
                              uint16_t addr, uint16_t qty, modcp_operand_t *out)
 {
+    if (fc != 1u && fc != 2u && fc != 5u && fc != 15u) {
+        return MODCP_EV_ILLEGAL_FC;
+    }
+    if (qty == 0u) {
+        return MODCP_EV_QUANTITY;
+    }
+    return modcp_map_bits_valid(p, a, fc, addr, qty, out);
+}
+
+modcp_event_t modcp_map_bits_valid(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
+                                   uint16_t addr, uint16_t qty, modcp_operand_t *out)
+{
     const modcp_bitwin_t *w = p->coils;
     unsigned n = MODCP_COIL_WINDOWS;
     unsigned usable = COIL_AREAS; /* AREA_BIT set */
@@ -116,11 +129,6 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
         w = p->inputs;
         n = MODCP_INPUT_WINDOWS;
         usable = INPUT_AREAS;
-    } else if (fc != 1u && fc != 5u && fc != 15u) {
-        return MODCP_EV_ILLEGAL_FC;
-    }
-    if (qty == 0u) {
-        return MODCP_EV_QUANTITY;
     }
     for (;; w++) { /* the first window holding addr */
         if (n-- == 0u) {
@@ -176,6 +184,12 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
 modcp_event_t modcp_map_regs(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
                              uint16_t reg, uint16_t qty, modcp_operand_t *out)
 {
+    if (fc > 23u || ((1u << fc) & REG_FCS) == 0u) {
+        return MODCP_EV_ILLEGAL_FC;
+    }
+    if (qty == 0u) {
+        return MODCP_EV_QUANTITY;
+    }
     out->bit = modcp_regs32_kind(p, fc, reg);
     return modcp_map_regs_kind(p, a, fc, reg, qty, out);
 }
@@ -183,12 +197,6 @@ modcp_event_t modcp_map_regs(const modcp_params_t *p, const modcp_areas_t *a, ui
 modcp_event_t modcp_map_regs_kind(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
                                   uint16_t reg, uint16_t qty, modcp_operand_t *out)
 {
-    if (fc > 23u || ((1u << fc) & REG_FCS) == 0u) {
-        return MODCP_EV_ILLEGAL_FC;
-    }
-    if (qty == 0u) {
-        return MODCP_EV_QUANTITY;
-    }
     uint32_t db;
     uint32_t offset;
     uint32_t bytes;

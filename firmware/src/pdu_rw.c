@@ -56,7 +56,8 @@ static bool map_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty)
  * request refused (s->err) when they do not map. */
 static bool map_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty)
 {
-    modcp_event_t ev = modcp_map_bits(env->p, env->areas, s->fc, s->addr, qty, &s->job.opnd);
+    modcp_event_t ev =
+        modcp_map_bits_valid(env->p, env->areas, s->fc, s->addr, qty, &s->job.opnd);
     if (ev != MODCP_EV_NONE) {
         (void)modcp_pdu_map_err(s, ev);
         return false;
