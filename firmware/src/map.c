@@ -202,7 +202,12 @@ modcp_event_t modcp_map_regs_kind(const modcp_params_t *p, const modcp_areas_t *
     uint32_t bytes;
     if (fc != 4u && p->regs32 != 0u) { /* the 32-bit scheme (never FC04, 003 §4.4) */
         const uint8_t k1 = out->bit;    /* the range's kind + 1, 0: none */
-        if (k1 == 0u || (fc == 22u && k1 != MODCP_R32_INT16 + 1u)) {
+#if MODCP_WITH_EXTENDED
+        if (fc == 22u && k1 != MODCP_R32_INT16 + 1u) {
+            return MODCP_EV_NO_WINDOW;
+        }
+#endif
+        if (k1 == 0u) {
             return MODCP_EV_NO_WINDOW;
         }
         const modcp_r32range_t *r = &p->r32[k1 - 1u];

@@ -30,10 +30,11 @@ static modcp_pdu_action_t job(modcp_pdu_t *s, uint8_t op, uint16_t len, const ui
     return MODCP_PDU_JOB;
 }
 
-/* A read job whose data land after the reply's function code and byte count. */
+/* A read job whose data land after the reply's function code and byte count (the
+ * reply is built in place: cap >= len >= 5). */
 static modcp_pdu_action_t read_job(modcp_pdu_t *s, uint16_t len, uint8_t *pdu, uint16_t cap)
 {
-    return job(s, MODCP_JOB_READ, len, NULL, pdu + 2, (uint16_t)(cap > 2u ? cap - 2u : 0u));
+    return job(s, MODCP_JOB_READ, len, NULL, pdu + 2, (uint16_t)(cap - 2u));
 }
 
 /* The registers s->addr .. + qty mapped to their DB bytes (s->job.opnd) in the width
