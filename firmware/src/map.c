@@ -73,13 +73,11 @@ _Static_assert(offsetof(modcp_areas_t, q_bytes) == offsetof(modcp_areas_t, i_byt
                    offsetof(modcp_areas_t, counters) == offsetof(modcp_areas_t, i_bytes) + 8u,
                "modcp_areas_t: the sizes in area order");
 
+/* The size of area (I, Q, M, T, C or DB: the caller knows it is one of them). */
 static inline uint32_t area_size(const modcp_areas_t *a, uint8_t area)
 {
     if (a == NULL || area == MODCP_AREA_DB) {
         return 0x10000u;
-    }
-    if (area < MODCP_AREA_I || area > MODCP_AREA_C) {
-        return 0u;
     }
     uint16_t n;
     memcpy(&n, (const uint8_t *)a + offsetof(modcp_areas_t, i_bytes) +
@@ -90,6 +88,9 @@ static inline uint32_t area_size(const modcp_areas_t *a, uint8_t area)
 
 uint32_t modcp_map_area_size(const modcp_areas_t *a, uint8_t area)
 {
+    if (a != NULL && area != MODCP_AREA_DB && (area < MODCP_AREA_I || area > MODCP_AREA_C)) {
+        return 0u;
+    }
     return area_size(a, area);
 }
 
