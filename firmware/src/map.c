@@ -28,7 +28,7 @@
  * FC22 (mask write, a 16-bit operation) with regs32 set: decision of modcp, the
  * int16 range only; an address in the int32 / float range -> (0E)51H.
  *
- * modcp_map_bits / modcp_map_regs (tests, FC22 / FC23): qty 0 -> (08)32H; an fc the
+ * modcp_map_bits / modcp_map_regs (the tests, tools): qty 0 -> (08)32H; an fc the
  * function does not serve -> (08)31H. The PDU engine never passes either and calls
  * modcp_map_bits_valid / modcp_map_regs_kind, which skip both checks. a == NULL: controller sizes and work DB unknown, not checked. */
 #include "modcp/map.h"

@@ -231,7 +231,8 @@ static modcp_event_t map_part(modcp_pdu_t *s, const modcp_pdu_env_t *env, bool w
         return modcp_scan_check(env->p, env->areas, start, qty, write);
     }
     modcp_operand_t *o = write ? &x->wdir : &x->rdir;
-    const modcp_event_t ev = modcp_map_regs(env->p, env->areas, fc, start, qty, o);
+    o->bit = modcp_regs32_kind(env->p, fc, start); /* fc 03, 22, 23; qty >= 1 */
+    const modcp_event_t ev = modcp_map_regs_kind(env->p, env->areas, fc, start, qty, o);
     o->bit = 0;
     return ev;
 }
