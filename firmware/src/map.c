@@ -45,10 +45,10 @@
 #define REG_FCS ((1u << 3) | (1u << 4) | (1u << 6) | (1u << 16) | (1u << 22) | (1u << 23))
 
 /* After the function code was checked (01 / 02 / 05 / 15, 03 / 04 / 06 / 16 / 22 / 23):
- * every one but the reads writes. */
+ * every one but the reads (01 .. 04) writes. */
 static bool is_write_fc(uint8_t fc)
 {
-    return fc != 1u && fc != 2u && fc != 3u && fc != 4u;
+    return fc > 4u;
 }
 
 static bool is_tc(uint8_t area)
