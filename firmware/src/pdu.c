@@ -144,7 +144,9 @@ uint16_t modcp_pdu_exception(uint8_t *pdu, uint8_t fc, uint8_t code)
 }
 
 /* Event word -> Modbus exception code (events.h, 004 ch. 7, SPEC §5.2); 0 for events
- * that name no code (the caller answers 04). */
+ * that name no code (the caller answers 04). The engine itself names the code where it
+ * refuses, and fail() answers the mapping's events by modcp_pdu_map_exception, which
+ * agrees with this table (test_map.c: test_event_exception). */
 uint8_t modcp_event_exception(modcp_event_t ev)
 {
     if (ev == MODCP_EV_ILLEGAL_FC) {
