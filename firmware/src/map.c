@@ -28,8 +28,9 @@
  * FC22 (mask write, a 16-bit operation) with regs32 set: decision of modcp, the
  * int16 range only; an address in the int32 / float range -> (0E)51H.
  *
- * qty 0 (the PDU engine never passes it) -> (08)32H; an fc the function does not
- * serve -> (08)31H. a == NULL: controller sizes and work DB unknown, not checked. */
+ * modcp_map_bits / modcp_map_regs (the tests, tools): qty 0 -> (08)32H; an fc the
+ * function does not serve -> (08)31H. The PDU engine never passes either and calls
+ * modcp_map_bits_valid / modcp_map_regs_kind, which skip both checks. a == NULL: controller sizes and work DB unknown, not checked. */
 #include "modcp/map.h"
 
 #include <stddef.h>
@@ -44,10 +45,10 @@
 #define REG_FCS ((1u << 3) | (1u << 4) | (1u << 6) | (1u << 16) | (1u << 22) | (1u << 23))
 
 /* After the function code was checked (01 / 02 / 05 / 15, 03 / 04 / 06 / 16 / 22 / 23):
- * every one but the reads writes. */
+ * every one but the reads (01 .. 04) writes. */
 static bool is_write_fc(uint8_t fc)
 {
-    return fc != 1u && fc != 2u && fc != 3u && fc != 4u;
+    return fc > 4u;
 }
 
 static bool is_tc(uint8_t area)
@@ -72,13 +73,11 @@ _Static_assert(offsetof(modcp_areas_t, q_bytes) == offsetof(modcp_areas_t, i_byt
                    offsetof(modcp_areas_t, counters) == offsetof(modcp_areas_t, i_bytes) + 8u,
                "modcp_areas_t: the sizes in area order");
 
+/* The size of area (I, Q, M, T, C or DB: the caller knows it is one of them). */
 static inline uint32_t area_size(const modcp_areas_t *a, uint8_t area)
 {
     if (a == NULL || area == MODCP_AREA_DB) {
         return 0x10000u;
-    }
-    if (area < MODCP_AREA_I || area > MODCP_AREA_C) {
-        return 0u;
     }
     uint16_t n;
     memcpy(&n, (const uint8_t *)a + offsetof(modcp_areas_t, i_bytes) +
@@ -89,6 +88,9 @@ static inline uint32_t area_size(const modcp_areas_t *a, uint8_t area)
 
 uint32_t modcp_map_area_size(const modcp_areas_t *a, uint8_t area)
 {
+    if (a != NULL && area != MODCP_AREA_DB && (area < MODCP_AREA_I || area > MODCP_AREA_C)) {
+        return 0u;
+    }
     return area_size(a, area);
 }
 
@@ -109,6 +111,18 @@ bool modcp_map_db_write_ok(const modcp_params_t *p, const modcp_areas_t *a, uint
 modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
                              uint16_t addr, uint16_t qty, modcp_operand_t *out)
 {
+    if (fc != 1u && fc != 2u && fc != 5u && fc != 15u) {
+        return MODCP_EV_ILLEGAL_FC;
+    }
+    if (qty == 0u) {
+        return MODCP_EV_QUANTITY;
+    }
+    return modcp_map_bits_valid(p, a, fc, addr, qty, out);
+}
+
+modcp_event_t modcp_map_bits_valid(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
+                                   uint16_t addr, uint16_t qty, modcp_operand_t *out)
+{
     const modcp_bitwin_t *w = p->coils;
     unsigned n = MODCP_COIL_WINDOWS;
     unsigned usable = COIL_AREAS; /* AREA_BIT set */
@@ -116,11 +130,6 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
         w = p->inputs;
         n = MODCP_INPUT_WINDOWS;
         usable = INPUT_AREAS;
-    } else if (fc != 1u && fc != 5u && fc != 15u) {
-        return MODCP_EV_ILLEGAL_FC;
-    }
-    if (qty == 0u) {
-        return MODCP_EV_QUANTITY;
     }
     for (;; w++) { /* the first window holding addr */
         if (n-- == 0u) {
@@ -176,6 +185,12 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
 modcp_event_t modcp_map_regs(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
                              uint16_t reg, uint16_t qty, modcp_operand_t *out)
 {
+    if (fc > 23u || ((1u << fc) & REG_FCS) == 0u) {
+        return MODCP_EV_ILLEGAL_FC;
+    }
+    if (qty == 0u) {
+        return MODCP_EV_QUANTITY;
+    }
     out->bit = modcp_regs32_kind(p, fc, reg);
     return modcp_map_regs_kind(p, a, fc, reg, qty, out);
 }
@@ -183,18 +198,17 @@ modcp_event_t modcp_map_regs(const modcp_params_t *p, const modcp_areas_t *a, ui
 modcp_event_t modcp_map_regs_kind(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
                                   uint16_t reg, uint16_t qty, modcp_operand_t *out)
 {
-    if (fc > 23u || ((1u << fc) & REG_FCS) == 0u) {
-        return MODCP_EV_ILLEGAL_FC;
-    }
-    if (qty == 0u) {
-        return MODCP_EV_QUANTITY;
-    }
     uint32_t db;
     uint32_t offset;
     uint32_t bytes;
     if (fc != 4u && p->regs32 != 0u) { /* the 32-bit scheme (never FC04, 003 §4.4) */
         const uint8_t k1 = out->bit;    /* the range's kind + 1, 0: none */
-        if (k1 == 0u || (fc == 22u && k1 != MODCP_R32_INT16 + 1u)) {
+#if MODCP_WITH_EXTENDED
+        if (fc == 22u && k1 != MODCP_R32_INT16 + 1u) {
+            return MODCP_EV_NO_WINDOW;
+        }
+#endif
+        if (k1 == 0u) {
             return MODCP_EV_NO_WINDOW;
         }
         const modcp_r32range_t *r = &p->r32[k1 - 1u];

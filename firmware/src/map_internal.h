@@ -13,6 +13,10 @@
  * (0E)52H write outside the M/Q limits. */
 modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
                              uint16_t addr, uint16_t qty, modcp_operand_t *out);
+/* The same for a request the PDU engine has checked: fc is 01, 02, 05 or 15, qty >= 1
+ * (no (08)31H, no (08)32H for qty 0). */
+modcp_event_t modcp_map_bits_valid(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
+                                   uint16_t addr, uint16_t qty, modcp_operand_t *out);
 /* Register access (16-bit scheme): FC03/06/16 use hr_base_db, FC04 ir_base_db.
  * DB = base + (reg >> 9), DBW = (reg & 0x1FF) * 2; out->count = 2 * qty bytes.
  * With params.regs32 set, FC03/06/16 use the three 32-bit ranges instead
@@ -22,9 +26,10 @@ modcp_event_t modcp_map_bits(const modcp_params_t *p, const modcp_areas_t *a, ui
  * (0E)53H DB > 65535, (0E)39H request crosses a DB boundary, (0E)51H no 32-bit range. */
 modcp_event_t modcp_map_regs(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
                              uint16_t reg, uint16_t qty, modcp_operand_t *out);
-/* The same with the register kind already known: on entry out->bit holds
- * modcp_regs32_kind(p, fc, reg) (the PDU engine has it from the function-code
- * table's check of the quantity). */
+/* The same with the register kind already known, for a request the PDU engine has
+ * checked (fc one of 03, 04, 06, 16, 22, 23; qty >= 1): on entry out->bit holds
+ * modcp_regs32_kind(p, fc, reg) (the engine has it from the function-code table's
+ * check of the quantity). */
 modcp_event_t modcp_map_regs_kind(const modcp_params_t *p, const modcp_areas_t *a, uint8_t fc,
                                   uint16_t reg, uint16_t qty, modcp_operand_t *out);
 /* Size of a controller area in bytes (M, Q, I) or elements (T, C) as reported at init;

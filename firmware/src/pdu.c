@@ -144,7 +144,9 @@ uint16_t modcp_pdu_exception(uint8_t *pdu, uint8_t fc, uint8_t code)
 }
 
 /* Event word -> Modbus exception code (events.h, 004 ch. 7, SPEC §5.2); 0 for events
- * that name no code (the caller answers 04). */
+ * that name no code (the caller answers 04). The engine itself names the code where it
+ * refuses, and fail() answers the mapping's events by modcp_pdu_map_exception, which
+ * agrees with this table (test_map.c: test_event_exception). */
 uint8_t modcp_event_exception(modcp_event_t ev)
 {
     if (ev == MODCP_EV_ILLEGAL_FC) {
@@ -173,11 +175,8 @@ static modcp_pdu_action_t fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8
     s->same = false; /* the reply is an exception */
     modcp_diag_event(d, ev);
     uint8_t code = s->x.exc;
-    if (code == (uint8_t)MODCP_EXC_OF_EVENT) {
-        code = modcp_event_exception(ev);
-        if (code == 0u) {
-            code = MODCP_EXC_DEVICE_FAILURE;
-        }
+    if (code == (uint8_t)MODCP_EXC_OF_MAP) {
+        code = modcp_pdu_map_exception(ev);
         s->x.exc = code;
     }
 #if MODCP_WITH_EXTENDED

@@ -155,7 +155,7 @@ modcp_pdu_action_t modcp_pdu_seq_next(modcp_pdu_t *s, const modcp_pdu_env_t *env
         const uint16_t k = second ? (uint16_t)(i - nw) : i;
         modcp_event_t ev = operand(s, env, write, k, &o);
         if (ev != MODCP_EV_NONE) {
-            return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+            return modcp_pdu_map_err(s, ev);
         }
         if (o.area == MODCP_AREA_NONE) {
             if (x->phase == PH_READ) {
@@ -231,7 +231,8 @@ static modcp_event_t map_part(modcp_pdu_t *s, const modcp_pdu_env_t *env, bool w
         return modcp_scan_check(env->p, env->areas, start, qty, write);
     }
     modcp_operand_t *o = write ? &x->wdir : &x->rdir;
-    const modcp_event_t ev = modcp_map_regs(env->p, env->areas, fc, start, qty, o);
+    o->bit = modcp_regs32_kind(env->p, fc, start); /* fc 03, 22, 23; qty >= 1 */
+    const modcp_event_t ev = modcp_map_regs_kind(env->p, env->areas, fc, start, qty, o);
     o->bit = 0;
     return ev;
 }
@@ -271,7 +272,7 @@ modcp_pdu_action_t modcp_pdu_scan(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     }
     modcp_event_t ev = map_part(s, env, write, s->fc);
     if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+        return modcp_pdu_map_err(s, ev);
     }
     if (!write && 2u + x->rbytes > cap) {
         return modcp_pdu_err(s, MODCP_EV_JOB_LENGTH, MODCP_EXC_DEVICE_FAILURE);
@@ -296,7 +297,7 @@ modcp_pdu_action_t modcp_pdu_fc22(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     x->wlen = 4; /* direct: and mask, or mask */
     modcp_event_t ev = map_part(s, env, true, s->fc);
     if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+        return modcp_pdu_map_err(s, ev);
     }
     x->wop = MODCP_JOB_MASKWRITE;
     x->woff = 3;
@@ -338,7 +339,7 @@ modcp_pdu_action_t modcp_pdu_fc23(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         ev = map_part(s, env, false, 3u);
     }
     if (ev != MODCP_EV_NONE) {
-        return modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+        return modcp_pdu_map_err(s, ev);
     }
     x->rbytes = x->rscan ? (uint16_t)(2u * x->rqty) : x->rdir.count;
     if (x->rbytes > 250u || 2u + (uint32_t)x->rbytes > cap) {

@@ -24,8 +24,7 @@
 /* Modbus exception codes (Application Protocol V1.1b3 §7). */
 enum {
     MODCP_EXC_NONE = 0,              /* s->x.exc: no exception (yet) */
-    MODCP_EXC_OF_EVENT = 0,          /* modcp_pdu_err: the event's code
-                                        (modcp_event_exception), else 04 */
+    MODCP_EXC_OF_MAP = 0,            /* modcp_pdu_map_err: the mapping event's code */
     MODCP_EXC_ILLEGAL_FUNCTION = 1,
     MODCP_EXC_ILLEGAL_ADDRESS = 2,
     MODCP_EXC_ILLEGAL_VALUE = 3,
@@ -68,6 +67,20 @@ static inline modcp_pdu_action_t modcp_pdu_err(modcp_pdu_t *s, modcp_event_t ev,
     s->err = ev;
     s->x.exc = exc;
     return MODCP_PDU_FAIL;
+}
+
+/* Refuse the request with event ev of the mapping (map.c, scanner.c); pdu.c answers
+ * (08)32H with 03, the others ((0E)39H, (0E)50H..55H) with 02, as
+ * modcp_event_exception() says (modcp_pdu_map_exception). */
+static inline modcp_pdu_action_t modcp_pdu_map_err(modcp_pdu_t *s, modcp_event_t ev)
+{
+    return modcp_pdu_err(s, ev, MODCP_EXC_OF_MAP);
+}
+
+/* The exception of a mapping event (modcp_pdu_map_err). */
+static inline uint8_t modcp_pdu_map_exception(modcp_event_t ev)
+{
+    return ev == MODCP_EV_QUANTITY ? MODCP_EXC_ILLEGAL_VALUE : MODCP_EXC_ILLEGAL_ADDRESS;
 }
 
 static inline uint16_t modcp_get16(const uint8_t *p)

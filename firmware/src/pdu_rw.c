@@ -30,10 +30,11 @@ static modcp_pdu_action_t job(modcp_pdu_t *s, uint8_t op, uint16_t len, const ui
     return MODCP_PDU_JOB;
 }
 
-/* A read job whose data land after the reply's function code and byte count. */
+/* A read job whose data land after the reply's function code and byte count (the
+ * reply is built in place: cap >= len >= 5). */
 static modcp_pdu_action_t read_job(modcp_pdu_t *s, uint16_t len, uint8_t *pdu, uint16_t cap)
 {
-    return job(s, MODCP_JOB_READ, len, NULL, pdu + 2, (uint16_t)(cap > 2u ? cap - 2u : 0u));
+    return job(s, MODCP_JOB_READ, len, NULL, pdu + 2, (uint16_t)(cap - 2u));
 }
 
 /* The registers s->addr .. + qty mapped to their DB bytes (s->job.opnd) in the width
@@ -45,7 +46,7 @@ static bool map_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty)
     o->bit = s->r32_kind;
     modcp_event_t ev = modcp_map_regs_kind(env->p, env->areas, s->fc, s->addr, qty, o);
     if (ev != MODCP_EV_NONE) {
-        (void)modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+        (void)modcp_pdu_map_err(s, ev);
         return false;
     }
     o->bit = 0; /* = s->r32_kind */
@@ -56,9 +57,10 @@ static bool map_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty)
  * request refused (s->err) when they do not map. */
 static bool map_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty)
 {
-    modcp_event_t ev = modcp_map_bits(env->p, env->areas, s->fc, s->addr, qty, &s->job.opnd);
+    modcp_event_t ev =
+        modcp_map_bits_valid(env->p, env->areas, s->fc, s->addr, qty, &s->job.opnd);
     if (ev != MODCP_EV_NONE) {
-        (void)modcp_pdu_err(s, ev, MODCP_EXC_OF_EVENT);
+        (void)modcp_pdu_map_err(s, ev);
         return false;
     }
     return true;

@@ -22,10 +22,15 @@ _Static_assert(MODCP_R32_INT16 == 0 && MODCP_R32_INT32 == 1 && MODCP_R32_FLOAT =
  * 16-bit registers); 0 for MODCP_QLIM_NONE. */
 static inline uint16_t modcp_qty_limit(const modcp_params_t *p, uint8_t lim, uint8_t r32_kind)
 {
+#if MODCP_WITH_ASCII
     unsigned col = p->qty_limits == (uint8_t)MODCP_QLIMITS_SPEC
                        ? MODCP_QCOL_SPEC
                        : (p->framing == (uint8_t)MODCP_FRAMING_ASCII ? MODCP_QCOL_ASCII
                                                                      : MODCP_QCOL_RTU);
+#else /* framing ascii is refused by the validation (params.c) */
+    unsigned col =
+        p->qty_limits == (uint8_t)MODCP_QLIMITS_SPEC ? MODCP_QCOL_SPEC : MODCP_QCOL_RTU;
+#endif
     if (lim == (uint8_t)MODCP_QLIM_NONE) {
         return 0u; /* no row (the callers in the core know better) */
     }
