@@ -180,21 +180,24 @@ bool modcp_cp_ready(const modcp_cp_t *cp)
     return cp->configured && cp->env.fb_ready;
 }
 
-/* Carry the request on: the PDU engine's decision on the frame that has just ended
- * (start) or on the result of its job, then its next job (a request of the extended set
+/* Carry the request on: the PDU engine's decision on the frame f that has just ended
+ * or (f NULL) on the result of its job, then its next job (a request of the extended set
  * may need several in sequence: modcp_pdu_complete() then returns the next) or the end
- * of the request. Built for size one copy, shared by the end of a frame and the poll;
- * built for speed inline in each (no call and no stack frame of its own per request). */
-static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, bool start, uint32_t now_us)
+ * of the request. The request's PDU, where the reply is built, is at buf + 1 (after the
+ * address, RTU and ASCII alike: rtu_deliver, ascii_on_timer); the frame is not kept.
+ * Built for size one copy, shared by the end of a frame and the poll; built for speed
+ * inline in each (no call and no stack frame of its own per request). */
+static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, const modcp_frame_t *f,
+                                                      uint32_t now_us)
 {
     const modcp_pdu_env_t *env = &cp->env;
+    uint8_t *pdu = cp->buf + 1;
     uint16_t out_len = 0;
     modcp_pdu_action_t a;
-    if (start) {
-        const modcp_frame_t *f = &cp->frame;
+    if (f != NULL) {
         a = modcp_pdu_request(&cp->pdu, env, f->addr, f->pdu, f->pdu_len, f->pdu_cap, &out_len);
     } else {
-        a = modcp_pdu_complete(&cp->pdu, env, cp->job.event, cp->frame.pdu, &out_len);
+        a = modcp_pdu_complete(&cp->pdu, env, cp->job.event, pdu, &out_len);
     }
     while (a == MODCP_PDU_JOB) { /* a job's first blocks go out at once */
         modcp_event_t ev = modcp_job_start(&cp->job, &cp->pdu.job, cp->pdu.wdata, cp->pdu.rdata,
@@ -203,7 +206,7 @@ static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, bool start,
             cp->request_pending = true;
             return;
         }
-        a = modcp_pdu_complete(&cp->pdu, env, ev, cp->frame.pdu, &out_len);
+        a = modcp_pdu_complete(&cp->pdu, env, ev, pdu, &out_len);
     }
 #if MODCP_WITH_EXTENDED
     modcp_pdu_finished(&cp->pdu, env, a, now_us); /* FC11/12 accounting, comm loss */
@@ -293,8 +296,9 @@ static MODCP_NOINLINE void timer_expired(modcp_cp_t *cp, uint32_t now_us)
     if (sig_on_timer(cp, now_us)) {
         return; /* data output waiting time / time to RTS off */
     }
-    if (modcp_link_on_timer(&cp->link, now_us, &cp->frame)) {
-        advance(cp, true, now_us); /* a frame for us has ended */
+    modcp_frame_t f;
+    if (modcp_link_on_timer(&cp->link, now_us, &f)) {
+        advance(cp, &f, now_us); /* a frame for us has ended */
     }
 }
 
@@ -513,7 +517,7 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
                 continue;
             }
             cp->request_pending = false;
-            advance(cp, false, now_us); /* the next job, or the reply */
+            advance(cp, NULL, now_us); /* the next job, or the reply */
             if (cp->job.state == MODCP_JOBST_IDLE && modcp_ring_peek(&cp->bp->to_cp) == NULL) {
                 break; /* what another modcp_job_poll would find: nothing */
             }

@@ -55,8 +55,8 @@ typedef struct modcp_cp {
      * diagnostics and extended state, and env.fb_ready: INIT received and acknowledged
      * (stored here only) */
     modcp_pdu_env_t env;
-    modcp_job_t job;
-    modcp_frame_t frame; /* request being processed */
+    modcp_job_t job; /* (the frame that has ended is on the stack: modcp_cp_on_timer; the
+                        request's PDU is at buf + 1) */
     uint32_t err_mark_us; /* link.last_us after the last line error: when it moves on, a
                              character was received (the end of a wire break) */
 #if MODCP_SHARED_PARAMS_BUFFER
