@@ -118,7 +118,7 @@ static void line_params(modcp_cp_t *cp, bool ok, int irq)
 static void line_poll(modcp_cp_t *cp, uint32_t now_us)
 {
     /* (the poll always has its backplane: modcp_job_poll and publish() use it too) */
-    uint32_t req = atomic_load_explicit(&cp->bp->systat_req, memory_order_acquire);
+    uint32_t req = atomic_load_explicit(&cp->job.bp->systat_req, memory_order_acquire);
     if (req != cp->cpdiag.systat_ack) { /* a new SYSTAT request */
         modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, modcp_cp_ready(cp));
     }
@@ -150,7 +150,6 @@ void modcp_cp_on_signals(modcp_cp_t *cp, bool cts, bool dsr, uint32_t now_us)
 void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp)
 {
     memset(cp, 0, sizeof *cp); /* diagnostics and CP diagnostics empty (no _init of their own) */
-    cp->bp = bp;
     modcp_params_defaults(&cp->params);
     modcp_link_init(&cp->link, hal, &cp->diag, cp->buf, (uint16_t)MODCP_LINK_BUF_MAX);
 #if MODCP_SHARED_PARAMS_BUFFER
@@ -470,7 +469,7 @@ _Static_assert(ST_CPDIAG(diag_irq_count, irq_count) && ST_CPDIAG(systat_ack, sys
 /* Publish the status area, written in place under the seqlock (no copy of it). */
 static MODCP_SIZE_NOINLINE void publish(modcp_cp_t *cp)
 {
-    modcp_cp_status_t *st = &cp->bp->status; /* only the CP writes it */
+    modcp_cp_status_t *st = &cp->job.bp->status; /* only the CP writes it */
     uint32_t ext = ext_flags(cp);
     uint8_t leds = modcp_leds_bits(&cp->leds);
     if (cp->published && st->events_total == cp->diag.events_total &&
@@ -478,7 +477,7 @@ static MODCP_SIZE_NOINLINE void publish(modcp_cp_t *cp)
         st->leds == leds && (st->flags & (MODCP_CPST_COMMLOSS | MODCP_CPST_LISTEN_ONLY)) == ext) {
         return;
     }
-    (void)modcp_bp_status_begin(cp->bp);
+    (void)modcp_bp_status_begin(cp->job.bp);
     st->flags = (cp->configured ? MODCP_CPST_CONFIGURED : 0u) |
                 (modcp_cp_ready(cp) ? MODCP_CPST_READY : 0u) |
                 (sf_on(cp) ? MODCP_CPST_SF : 0u) | ext |
@@ -496,7 +495,7 @@ static MODCP_SIZE_NOINLINE void publish(modcp_cp_t *cp)
         st->signal_aborts = cp->sig.aborts;
     }
 #endif /* else: stay 0 from modcp_bp_init (the CP is the status area's only writer) */
-    modcp_bp_status_end(cp->bp);
+    modcp_bp_status_end(cp->job.bp);
     cp->published = true;
     cp->publish_all = false;
 }
@@ -518,7 +517,7 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
             }
             cp->request_pending = false;
             advance(cp, NULL, now_us); /* the next job, or the reply */
-            if (cp->job.state == MODCP_JOBST_IDLE && modcp_ring_peek(&cp->bp->to_cp) == NULL) {
+            if (cp->job.state == MODCP_JOBST_IDLE && modcp_ring_peek(&cp->job.bp->to_cp) == NULL) {
                 break; /* what another modcp_job_poll would find: nothing */
             }
         } else if (r == MODCP_JOBP_PARAMS) {

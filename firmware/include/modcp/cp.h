@@ -36,7 +36,8 @@
 #endif
 
 typedef struct modcp_cp {
-    modcp_backplane_t *bp; /* (the HAL is kept by the link, the LEDs and the signals) */
+    /* (the backplane is kept by the job, job.bp; the HAL by the link, the LEDs and the
+     * signals) */
     modcp_params_t params;
     /* (the flags next to each other: no padding) */
     bool published;       /* the status area shows the CP's state (cp.c publish()) */
