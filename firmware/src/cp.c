@@ -400,16 +400,16 @@ static MODCP_NOINLINE void take_params(modcp_cp_t *cp)
 }
 
 /* The FB's INIT: accept it when our parameters are the ones the CPU side holds. */
-static void take_init(modcp_cp_t *cp)
+static void take_init(modcp_cp_t *cp, const modcp_bp_init_t *init)
 {
     modcp_event_t ev = MODCP_EV_NONE;
     if (!cp->configured) {
         ev = cp->param_event;
-    } else if (cp->job.init.record_crc != cp->record_crc) {
+    } else if (init->record_crc != cp->record_crc) {
         ev = MODCP_EV_PARAM_RECORD;
     }
     if (ev == MODCP_EV_NONE) {
-        cp->areas = cp->job.init.areas;
+        cp->areas = init->areas;
         cp->env.fb_ready = true;
     } else {
         cp->env.fb_ready = false;
@@ -505,8 +505,9 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
     if (cp->ack_pending) {
         cp->ack_pending = !modcp_job_send_ack(&cp->job, cp->ack_event);
     }
+    modcp_bp_init_t init; /* an INIT's payload, until take_init has taken it */
     for (;;) {
-        modcp_jobp_t r = modcp_job_poll(&cp->job, now_us);
+        modcp_jobp_t r = modcp_job_poll(&cp->job, now_us, &init);
         if (r == MODCP_JOBP_NOTHING) {
             break;
         }
@@ -523,7 +524,7 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
         } else if (r == MODCP_JOBP_PARAMS) {
             take_params(cp);
         } else if (r == MODCP_JOBP_INIT) {
-            take_init(cp);
+            take_init(cp, &init);
         }
 #if MODCP_SHARED_PARAMS_BUFFER
         else if (r == MODCP_JOBP_PARAMS_START) {

@@ -270,7 +270,7 @@ static modcp_jobp_t rx_params(modcp_job_t *j, const modcp_block_t *b)
     return MODCP_JOBP_PARAMS;
 }
 
-static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b)
+static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b, modcp_bp_init_t *init)
 {
     if (b->seq != j->rx_seq && j->rx_synced) { /* (the first block seen syncs) */
         j->proto_errors++;
@@ -291,7 +291,7 @@ static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b)
     case MODCP_BP_PARAMS:
         return rx_params(j, b);
     case MODCP_BP_INIT:
-        if (!modcp_bp_init_decode(b->data, b->len, &j->init)) {
+        if (!modcp_bp_init_decode(b->data, b->len, init)) {
             j->proto_errors++;
             return MODCP_JOBP_NOTHING;
         }
@@ -319,7 +319,7 @@ static bool params_wait(const modcp_job_t *j, const modcp_block_t *next)
 }
 #endif
 
-modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us)
+modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us, modcp_bp_init_t *init)
 {
     modcp_ring_t *in = &j->bp->to_cp;
     const modcp_block_t *b;
@@ -330,7 +330,7 @@ modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us)
         }
         j->msg_granted = false; /* a grant covers the one block it was asked for */
 #endif
-        modcp_jobp_t r = rx_block(j, b); /* read in place (one copy out for REPLY data) */
+        modcp_jobp_t r = rx_block(j, b, init); /* read in place (one copy out for REPLY data) */
         modcp_ring_release(in);
         if (r != MODCP_JOBP_NOTHING) {
             return r;

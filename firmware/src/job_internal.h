@@ -17,8 +17,9 @@ void modcp_job_configure(modcp_job_t *j, uint16_t limit, uint32_t timeout_us);
 modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const uint8_t *wdata,
                               uint8_t *rbuf, uint16_t rcap, uint32_t now_us);
 /* Move blocks; detect completion and timeout ((0E)31H for READ/WRITE, (0E)3BH for
- * BITWRITE; the job's tag is then written to abort_tag). */
-modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us);
+ * BITWRITE; the job's tag is then written to abort_tag). For MODCP_JOBP_INIT the INIT
+ * payload is decoded into *init (the caller's; untouched otherwise). */
+modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us, modcp_bp_init_t *init);
 /* Drop the current job without waiting (CP re-parameterised). */
 void modcp_job_abort(modcp_job_t *j);
 #if MODCP_SHARED_PARAMS_BUFFER

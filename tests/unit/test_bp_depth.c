@@ -46,11 +46,12 @@ static void fb(fx_t *f)
 
 static modcp_jobp_t poll(fx_t *f)
 {
-    modcp_jobp_t r = modcp_job_poll(&f->job, 0);
+    modcp_bp_init_t init;
+    modcp_jobp_t r = modcp_job_poll(&f->job, 0, &init);
 #if MODCP_SHARED_PARAMS_BUFFER
     if (r == MODCP_JOBP_PARAMS_START) {
         modcp_job_params_grant(&f->job);
-        r = modcp_job_poll(&f->job, 0);
+        r = modcp_job_poll(&f->job, 0, &init);
     }
 #endif
     return r;
