@@ -10,7 +10,8 @@ void modcp_job_init(modcp_job_t *j, modcp_backplane_t *bp, uint8_t *msgbuf, uint
 /* The CPU transfer limit in bytes and the CPU side's time to answer, for every job
  * from now on (the CP's parameters: set when they are taken). */
 void modcp_job_configure(modcp_job_t *j, uint16_t limit, uint32_t timeout_us);
-/* Start a job and push its first blocks at once. hdr->len bytes of wdata are sent for
+/* Start a job and push its first blocks at once. *hdr is not copied: it must stay as it
+ * is until the job ends (the CP passes its pdu.job). hdr->len bytes of wdata are sent for
  * WRITE / BITWRITE; for READ, hdr->len bytes are expected back into rbuf (rcap >=
  * hdr->len). Returns MODCP_EV_JOB_LENGTH when hdr->len is above the limit
  * (modcp_job_configure), MODCP_EV_INTERNAL_SEND if a job is already running; else NONE. */

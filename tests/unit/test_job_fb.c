@@ -34,6 +34,7 @@ typedef struct {
     modcp_fb_out_t out;
     modcp_job_t job;
     modcp_bp_init_t init; /* the last INIT's payload (modcp_job_poll) */
+    modcp_bp_job_t hdr;   /* the running job's header (start) */
     uint8_t msgbuf[400];
     uint8_t rbuf[1200];
     uint8_t wbuf[1200];
@@ -126,11 +127,14 @@ static int run_job(fx_t *f)
 static modcp_event_t start(fx_t *f, uint8_t op, uint8_t area, uint16_t db, uint16_t offset,
                            uint8_t bit, uint16_t count, uint16_t len, uint16_t limit)
 {
-    modcp_bp_job_t h = {.op = op,
-                        .opnd = {.area = area, .bit = bit, .db = db, .offset = offset, .count = count},
-                        .len = len};
+    /* the job keeps a pointer to its header: f->hdr, unless a job runs (refused then) */
+    modcp_bp_job_t busy_hdr;
+    modcp_bp_job_t *h = modcp_job_busy(&f->job) ? &busy_hdr : &f->hdr;
+    *h = (modcp_bp_job_t){.op = op,
+                          .opnd = {.area = area, .bit = bit, .db = db, .offset = offset, .count = count},
+                          .len = len};
     modcp_job_configure(&f->job, limit, TIMEOUT_US);
-    return modcp_job_start(&f->job, &h, f->wbuf, f->rbuf, sizeof f->rbuf, f->now_us);
+    return modcp_job_start(&f->job, h, f->wbuf, f->rbuf, sizeof f->rbuf, f->now_us);
 }
 
 /* ---- initialisation (004 §4.2) ------------------------------------------------------ */

@@ -43,7 +43,6 @@ typedef struct {
     uint8_t rx_seq;
     bool rx_synced; /* rx_seq valid (first block seen) */
     bool hdr_sent;
-    modcp_bp_job_t hdr;
     uint16_t wpos;
     uint16_t rcap;
     uint16_t rlen;      /* read data received so far / in total */
@@ -59,6 +58,8 @@ typedef struct {
 #if MODCP_SHARED_PARAMS_BUFFER
     bool msg_granted;  /* the owner freed msgbuf for the PARAMS block ahead */
 #endif
+    const modcp_bp_job_t *hdr; /* the caller's (modcp_job_start; the CP's pdu.job): not
+                                  copied, valid until the job ends */
     const uint8_t *wdata;
     uint8_t *rbuf;
     uint8_t *msgbuf;
