@@ -118,7 +118,7 @@ static void line_params(modcp_cp_t *cp, bool ok, int irq)
 static void line_poll(modcp_cp_t *cp, uint32_t now_us)
 {
     /* (the poll always has its backplane: modcp_job_poll and publish() use it too) */
-    uint32_t req = atomic_load_explicit(&cp->bp->systat_req, memory_order_acquire);
+    uint32_t req = atomic_load_explicit(&cp->job.bp->systat_req, memory_order_acquire);
     if (req != cp->cpdiag.systat_ack) { /* a new SYSTAT request */
         modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, modcp_cp_ready(cp));
     }
@@ -150,7 +150,6 @@ void modcp_cp_on_signals(modcp_cp_t *cp, bool cts, bool dsr, uint32_t now_us)
 void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp)
 {
     memset(cp, 0, sizeof *cp); /* diagnostics and CP diagnostics empty (no _init of their own) */
-    cp->bp = bp;
     modcp_params_defaults(&cp->params);
     modcp_link_init(&cp->link, hal, &cp->diag, cp->buf, (uint16_t)MODCP_LINK_BUF_MAX);
 #if MODCP_SHARED_PARAMS_BUFFER
@@ -180,21 +179,24 @@ bool modcp_cp_ready(const modcp_cp_t *cp)
     return cp->configured && cp->env.fb_ready;
 }
 
-/* Carry the request on: the PDU engine's decision on the frame that has just ended
- * (start) or on the result of its job, then its next job (a request of the extended set
+/* Carry the request on: the PDU engine's decision on the frame f that has just ended
+ * or (f NULL) on the result of its job, then its next job (a request of the extended set
  * may need several in sequence: modcp_pdu_complete() then returns the next) or the end
- * of the request. Built for size one copy, shared by the end of a frame and the poll;
- * built for speed inline in each (no call and no stack frame of its own per request). */
-static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, bool start, uint32_t now_us)
+ * of the request. The request's PDU, where the reply is built, is at buf + 1 (after the
+ * address, RTU and ASCII alike: rtu_deliver, ascii_on_timer); the frame is not kept.
+ * Built for size one copy, shared by the end of a frame and the poll; built for speed
+ * inline in each (no call and no stack frame of its own per request). */
+static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, const modcp_frame_t *f,
+                                                      uint32_t now_us)
 {
     const modcp_pdu_env_t *env = &cp->env;
+    uint8_t *pdu = cp->buf + 1;
     uint16_t out_len = 0;
     modcp_pdu_action_t a;
-    if (start) {
-        const modcp_frame_t *f = &cp->frame;
+    if (f != NULL) {
         a = modcp_pdu_request(&cp->pdu, env, f->addr, f->pdu, f->pdu_len, f->pdu_cap, &out_len);
     } else {
-        a = modcp_pdu_complete(&cp->pdu, env, cp->job.event, cp->frame.pdu, &out_len);
+        a = modcp_pdu_complete(&cp->pdu, env, cp->job.event, pdu, &out_len);
     }
     while (a == MODCP_PDU_JOB) { /* a job's first blocks go out at once */
         modcp_event_t ev = modcp_job_start(&cp->job, &cp->pdu.job, cp->pdu.wdata, cp->pdu.rdata,
@@ -203,7 +205,7 @@ static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, bool start,
             cp->request_pending = true;
             return;
         }
-        a = modcp_pdu_complete(&cp->pdu, env, ev, cp->frame.pdu, &out_len);
+        a = modcp_pdu_complete(&cp->pdu, env, ev, pdu, &out_len);
     }
 #if MODCP_WITH_EXTENDED
     modcp_pdu_finished(&cp->pdu, env, a, now_us); /* FC11/12 accounting, comm loss */
@@ -293,8 +295,9 @@ static MODCP_NOINLINE void timer_expired(modcp_cp_t *cp, uint32_t now_us)
     if (sig_on_timer(cp, now_us)) {
         return; /* data output waiting time / time to RTS off */
     }
-    if (modcp_link_on_timer(&cp->link, now_us, &cp->frame)) {
-        advance(cp, true, now_us); /* a frame for us has ended */
+    modcp_frame_t f;
+    if (modcp_link_on_timer(&cp->link, now_us, &f)) {
+        advance(cp, &f, now_us); /* a frame for us has ended */
     }
 }
 
@@ -397,16 +400,16 @@ static MODCP_NOINLINE void take_params(modcp_cp_t *cp)
 }
 
 /* The FB's INIT: accept it when our parameters are the ones the CPU side holds. */
-static void take_init(modcp_cp_t *cp)
+static void take_init(modcp_cp_t *cp, const modcp_bp_init_t *init)
 {
     modcp_event_t ev = MODCP_EV_NONE;
     if (!cp->configured) {
         ev = cp->param_event;
-    } else if (cp->job.init.record_crc != cp->record_crc) {
+    } else if (init->record_crc != cp->record_crc) {
         ev = MODCP_EV_PARAM_RECORD;
     }
     if (ev == MODCP_EV_NONE) {
-        cp->areas = cp->job.init.areas;
+        cp->areas = init->areas;
         cp->env.fb_ready = true;
     } else {
         cp->env.fb_ready = false;
@@ -466,7 +469,7 @@ _Static_assert(ST_CPDIAG(diag_irq_count, irq_count) && ST_CPDIAG(systat_ack, sys
 /* Publish the status area, written in place under the seqlock (no copy of it). */
 static MODCP_SIZE_NOINLINE void publish(modcp_cp_t *cp)
 {
-    modcp_cp_status_t *st = &cp->bp->status; /* only the CP writes it */
+    modcp_cp_status_t *st = &cp->job.bp->status; /* only the CP writes it */
     uint32_t ext = ext_flags(cp);
     uint8_t leds = modcp_leds_bits(&cp->leds);
     if (cp->published && st->events_total == cp->diag.events_total &&
@@ -474,7 +477,7 @@ static MODCP_SIZE_NOINLINE void publish(modcp_cp_t *cp)
         st->leds == leds && (st->flags & (MODCP_CPST_COMMLOSS | MODCP_CPST_LISTEN_ONLY)) == ext) {
         return;
     }
-    (void)modcp_bp_status_begin(cp->bp);
+    (void)modcp_bp_status_begin(cp->job.bp);
     st->flags = (cp->configured ? MODCP_CPST_CONFIGURED : 0u) |
                 (modcp_cp_ready(cp) ? MODCP_CPST_READY : 0u) |
                 (sf_on(cp) ? MODCP_CPST_SF : 0u) | ext |
@@ -492,7 +495,7 @@ static MODCP_SIZE_NOINLINE void publish(modcp_cp_t *cp)
         st->signal_aborts = cp->sig.aborts;
     }
 #endif /* else: stay 0 from modcp_bp_init (the CP is the status area's only writer) */
-    modcp_bp_status_end(cp->bp);
+    modcp_bp_status_end(cp->job.bp);
     cp->published = true;
     cp->publish_all = false;
 }
@@ -502,8 +505,9 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
     if (cp->ack_pending) {
         cp->ack_pending = !modcp_job_send_ack(&cp->job, cp->ack_event);
     }
+    modcp_bp_init_t init; /* an INIT's payload, until take_init has taken it */
     for (;;) {
-        modcp_jobp_t r = modcp_job_poll(&cp->job, now_us);
+        modcp_jobp_t r = modcp_job_poll(&cp->job, now_us, &init);
         if (r == MODCP_JOBP_NOTHING) {
             break;
         }
@@ -513,14 +517,14 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
                 continue;
             }
             cp->request_pending = false;
-            advance(cp, false, now_us); /* the next job, or the reply */
-            if (cp->job.state == MODCP_JOBST_IDLE && modcp_ring_peek(&cp->bp->to_cp) == NULL) {
+            advance(cp, NULL, now_us); /* the next job, or the reply */
+            if (cp->job.state == MODCP_JOBST_IDLE && modcp_ring_peek(&cp->job.bp->to_cp) == NULL) {
                 break; /* what another modcp_job_poll would find: nothing */
             }
         } else if (r == MODCP_JOBP_PARAMS) {
             take_params(cp);
         } else if (r == MODCP_JOBP_INIT) {
-            take_init(cp);
+            take_init(cp, &init);
         }
 #if MODCP_SHARED_PARAMS_BUFFER
         else if (r == MODCP_JOBP_PARAMS_START) {

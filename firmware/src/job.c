@@ -72,7 +72,7 @@ modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const u
     }
     uint32_t tag = j->tag + 1u; /* 1 ... 255, then 1 again (0 is no job's) */
     j->tag = (uint8_t)(tag + (tag >> 8));
-    j->hdr = *hdr;
+    j->hdr = hdr;
     j->hdr_sent = false;
     j->wdata = wdata;
     j->wpos = 0;
@@ -140,7 +140,7 @@ static void push_data(modcp_job_t *j)
     modcp_ring_t *r = &j->bp->to_cpu;
     modcp_block_t *b;
     while (j->state == MODCP_JOBST_SENDING && (b = modcp_ring_slot(r)) != NULL) {
-        uint32_t rest = (uint32_t)j->hdr.len - j->wpos;
+        uint32_t rest = (uint32_t)j->hdr->len - j->wpos;
         uint32_t n = rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest;
         uint8_t flags = 0;
         modcp_block_copy(b->data, j->wdata + j->wpos, n);
@@ -166,12 +166,12 @@ static void push_blocks(modcp_job_t *j)
             atomic_store_explicit(&j->bp->abort_tag, JOB_NO_ABORT, memory_order_release);
         }
         modcp_block_t *b = &r->slot[head & (MODCP_BP_DEPTH - 1u)];
-        uint32_t n = modcp_bp_job_encode(&j->hdr, b->data);
-        uint32_t len = j->hdr.len;
+        uint32_t n = modcp_bp_job_encode(j->hdr, b->data);
+        uint32_t len = j->hdr->len;
         uint8_t flags = MODCP_BLK_FIRST;
         j->hdr_sent = true;
-        if (j->hdr.op == MODCP_JOB_READ || len <= MODCP_BP_JOB_INLINE) {
-            if (j->hdr.op != MODCP_JOB_READ) { /* the write data with the header */
+        if (j->hdr->op == MODCP_JOB_READ || len <= MODCP_BP_JOB_INLINE) {
+            if (j->hdr->op != MODCP_JOB_READ) { /* the write data with the header */
                 const uint8_t *w = j->wdata;
                 for (; n < MODCP_BP_JOB_HDR_LEN + len; n++) {
                     b->data[n] = *w++;
@@ -198,7 +198,7 @@ static modcp_jobp_t finish(modcp_job_t *j, modcp_event_t ev, uint16_t error_nr)
 static modcp_jobp_t finish_reply(modcp_job_t *j)
 {
     bool ok = j->rlen == j->rexpect && j->rlen <= j->rcap &&
-              (j->hdr.op != MODCP_JOB_READ || j->rexpect == j->hdr.len);
+              (j->hdr->op != MODCP_JOB_READ || j->rexpect == j->hdr->len);
     return finish(j, ok ? MODCP_EV_NONE : MODCP_EV_XFER_STATE, 0);
 }
 
@@ -270,7 +270,7 @@ static modcp_jobp_t rx_params(modcp_job_t *j, const modcp_block_t *b)
     return MODCP_JOBP_PARAMS;
 }
 
-static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b)
+static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b, modcp_bp_init_t *init)
 {
     if (b->seq != j->rx_seq && j->rx_synced) { /* (the first block seen syncs) */
         j->proto_errors++;
@@ -291,7 +291,7 @@ static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b)
     case MODCP_BP_PARAMS:
         return rx_params(j, b);
     case MODCP_BP_INIT:
-        if (!modcp_bp_init_decode(b->data, b->len, &j->init)) {
+        if (!modcp_bp_init_decode(b->data, b->len, init)) {
             j->proto_errors++;
             return MODCP_JOBP_NOTHING;
         }
@@ -319,7 +319,7 @@ static bool params_wait(const modcp_job_t *j, const modcp_block_t *next)
 }
 #endif
 
-modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us)
+modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us, modcp_bp_init_t *init)
 {
     modcp_ring_t *in = &j->bp->to_cp;
     const modcp_block_t *b;
@@ -330,7 +330,7 @@ modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us)
         }
         j->msg_granted = false; /* a grant covers the one block it was asked for */
 #endif
-        modcp_jobp_t r = rx_block(j, b); /* read in place (one copy out for REPLY data) */
+        modcp_jobp_t r = rx_block(j, b, init); /* read in place (one copy out for REPLY data) */
         modcp_ring_release(in);
         if (r != MODCP_JOBP_NOTHING) {
             return r;
@@ -338,7 +338,7 @@ modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us)
     }
     if (modcp_job_busy(j) && (uint32_t)(now_us - j->t0_us) >= j->timeout_us) {
         cancel(j);
-        return finish(j, j->hdr.op == MODCP_JOB_BITWRITE ? MODCP_EV_FB_TIMEOUT
+        return finish(j, j->hdr->op == MODCP_JOB_BITWRITE ? MODCP_EV_FB_TIMEOUT
                                                          : MODCP_EV_XFER_TIMEOUT,
                       0);
     }

@@ -133,17 +133,20 @@ static void test_sequence_wraps(void **state)
     modcp_bp_init(&bp);
     uint8_t seq = 254;
     const uint8_t want[] = {254, 255, 0, 1};
-    for (int k = 0; k < 4; k++) {
-        modcp_block_t b = blk(MODCP_BP_REPLY, (uint8_t)k, 1);
-        assert_true(modcp_ring_put(&bp.to_cp, &b, &seq));
+    /* in groups of MODCP_BP_DEPTH blocks (depth 4: all four, then all four out) */
+    for (int g = 0; g < 4; g += (int)MODCP_BP_DEPTH) {
+        for (int k = g; k < 4 && k < g + (int)MODCP_BP_DEPTH; k++) {
+            modcp_block_t b = blk(MODCP_BP_REPLY, (uint8_t)k, 1);
+            assert_true(modcp_ring_put(&bp.to_cp, &b, &seq));
+        }
+        for (int k = g; k < 4 && k < g + (int)MODCP_BP_DEPTH; k++) {
+            modcp_block_t out;
+            assert_true(modcp_ring_get(&bp.to_cp, &out));
+            assert_int_equal(out.seq, want[k]);
+            assert_int_equal(out.data[0], k);
+        }
     }
     assert_int_equal(seq, 2);
-    for (int k = 0; k < 4; k++) {
-        modcp_block_t out;
-        assert_true(modcp_ring_get(&bp.to_cp, &out));
-        assert_int_equal(out.seq, want[k]);
-        assert_int_equal(out.data[0], k);
-    }
 }
 
 /* head / tail are free-running 32-bit counters: crossing 2^32 must be seamless. */

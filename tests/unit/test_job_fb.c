@@ -33,6 +33,8 @@ typedef struct {
     modcp_fb_t fb;
     modcp_fb_out_t out;
     modcp_job_t job;
+    modcp_bp_init_t init; /* the last INIT's payload (modcp_job_poll) */
+    modcp_bp_job_t hdr;   /* the running job's header (start) */
     uint8_t msgbuf[400];
     uint8_t rbuf[1200];
     uint8_t wbuf[1200];
@@ -85,7 +87,7 @@ static void fb(fx_t *f, bool start)
 
 static modcp_jobp_t poll(fx_t *f)
 {
-    return modcp_job_poll(&f->job, f->now_us);
+    return modcp_job_poll(&f->job, f->now_us, &f->init);
 }
 
 /* Init handshake, the happy path (used by every job test). */
@@ -125,11 +127,14 @@ static int run_job(fx_t *f)
 static modcp_event_t start(fx_t *f, uint8_t op, uint8_t area, uint16_t db, uint16_t offset,
                            uint8_t bit, uint16_t count, uint16_t len, uint16_t limit)
 {
-    modcp_bp_job_t h = {.op = op,
-                        .opnd = {.area = area, .bit = bit, .db = db, .offset = offset, .count = count},
-                        .len = len};
+    /* the job keeps a pointer to its header: f->hdr, unless a job runs (refused then) */
+    modcp_bp_job_t busy_hdr;
+    modcp_bp_job_t *h = modcp_job_busy(&f->job) ? &busy_hdr : &f->hdr;
+    *h = (modcp_bp_job_t){.op = op,
+                          .opnd = {.area = area, .bit = bit, .db = db, .offset = offset, .count = count},
+                          .len = len};
     modcp_job_configure(&f->job, limit, TIMEOUT_US);
-    return modcp_job_start(&f->job, &h, f->wbuf, f->rbuf, sizeof f->rbuf, f->now_us);
+    return modcp_job_start(&f->job, h, f->wbuf, f->rbuf, sizeof f->rbuf, f->now_us);
 }
 
 /* ---- initialisation (004 §4.2) ------------------------------------------------------ */
@@ -173,13 +178,13 @@ static void test_init_happy_path(void **state)
     assert_int_equal(f->job.msglen, RECORD_LEN);
     assert_memory_equal(f->msgbuf, f->record, RECORD_LEN);
     assert_int_equal(poll(f), MODCP_JOBP_INIT);
-    assert_int_equal(f->job.init.areas.i_bytes, 128);
-    assert_int_equal(f->job.init.areas.q_bytes, 512);
-    assert_int_equal(f->job.init.areas.m_bytes, 2048);
-    assert_int_equal(f->job.init.areas.timers, 256);
-    assert_int_equal(f->job.init.areas.counters, 200);
-    assert_int_equal(f->job.init.areas.work_db, WORK_DB);
-    assert_int_equal(f->job.init.record_crc, modcp_crc16(f->record, RECORD_LEN));
+    assert_int_equal(f->init.areas.i_bytes, 128);
+    assert_int_equal(f->init.areas.q_bytes, 512);
+    assert_int_equal(f->init.areas.m_bytes, 2048);
+    assert_int_equal(f->init.areas.timers, 256);
+    assert_int_equal(f->init.areas.counters, 200);
+    assert_int_equal(f->init.areas.work_db, WORK_DB);
+    assert_int_equal(f->init.record_crc, modcp_crc16(f->record, RECORD_LEN));
     assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
     assert_int_equal(f->job.proto_errors, 0);
 
@@ -891,7 +896,7 @@ static void test_work_db_missing(void **state)
     fx_t *f = *state;
     fx_fb_init(f, 81);
     init_ok(f);
-    assert_int_equal(f->job.init.areas.work_db, 81);
+    assert_int_equal(f->init.areas.work_db, 81);
     f->wbuf[0] = 0x01;
     assert_int_equal(start(f, MODCP_JOB_BITWRITE, MODCP_AREA_M, 0, 5, 0, 1, 1, 1024), MODCP_EV_NONE);
     run_job(f);

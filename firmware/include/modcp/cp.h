@@ -36,7 +36,8 @@
 #endif
 
 typedef struct modcp_cp {
-    modcp_backplane_t *bp; /* (the HAL is kept by the link, the LEDs and the signals) */
+    /* (the backplane is kept by the job, job.bp; the HAL by the link, the LEDs and the
+     * signals) */
     modcp_params_t params;
     /* (the flags next to each other: no padding) */
     bool published;       /* the status area shows the CP's state (cp.c publish()) */
@@ -55,8 +56,8 @@ typedef struct modcp_cp {
      * diagnostics and extended state, and env.fb_ready: INIT received and acknowledged
      * (stored here only) */
     modcp_pdu_env_t env;
-    modcp_job_t job;
-    modcp_frame_t frame; /* request being processed */
+    modcp_job_t job; /* (the frame that has ended is on the stack: modcp_cp_on_timer; the
+                        request's PDU is at buf + 1) */
     uint32_t err_mark_us; /* link.last_us after the last line error: when it moves on, a
                              character was received (the end of a wire break) */
 #if MODCP_SHARED_PARAMS_BUFFER

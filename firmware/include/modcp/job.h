@@ -26,7 +26,8 @@ typedef enum {
     MODCP_JOBP_NOTHING = 0,
     MODCP_JOBP_DONE,   /* current job finished: see event (NONE = success) and rlen */
     MODCP_JOBP_PARAMS, /* a complete PARAMS record is in msgbuf[0 .. msglen) */
-    MODCP_JOBP_INIT,   /* an INIT message arrived: see init */
+    MODCP_JOBP_INIT,   /* an INIT message arrived: its payload is in the caller's *init
+                          (modcp_job_poll; the job keeps nothing of it) */
     MODCP_JOBP_PARAMS_START, /* MODCP_SHARED_PARAMS_BUFFER: a PARAMS record starts, its
                                 first block waits in the ring, nothing is stored; free
                                 msgbuf, then call modcp_job_params_grant() (reported on
@@ -42,7 +43,6 @@ typedef struct {
     uint8_t rx_seq;
     bool rx_synced; /* rx_seq valid (first block seen) */
     bool hdr_sent;
-    modcp_bp_job_t hdr;
     uint16_t wpos;
     uint16_t rcap;
     uint16_t rlen;      /* read data received so far / in total */
@@ -53,12 +53,13 @@ typedef struct {
     /* incoming PARAMS / INIT */
     uint16_t msgcap;
     uint16_t msglen;
-    modcp_bp_init_t init;
     uint8_t msgkind;   /* kind being reassembled, 0 = none */
     bool msg_overflow;
 #if MODCP_SHARED_PARAMS_BUFFER
     bool msg_granted;  /* the owner freed msgbuf for the PARAMS block ahead */
 #endif
+    const modcp_bp_job_t *hdr; /* the caller's (modcp_job_start; the CP's pdu.job): not
+                                  copied, valid until the job ends */
     const uint8_t *wdata;
     uint8_t *rbuf;
     uint8_t *msgbuf;

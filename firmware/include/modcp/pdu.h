@@ -11,6 +11,7 @@
 #include "modcp/backplane.h"
 #include "modcp/diag.h"
 #include "modcp/ext.h"
+#include "modcp/features.h"
 #include "modcp/map.h"
 #include "modcp/params.h"
 
@@ -29,7 +30,9 @@ typedef struct {
     const modcp_areas_t *areas;
     modcp_diag_t *diag;
     bool fb_ready; /* CPU side initialised */
+#if MODCP_WITH_EXTENDED
     modcp_ext_t *ext; /* extended set: persistent state (may be NULL) */
+#endif
 } modcp_pdu_env_t;
 
 typedef struct {
