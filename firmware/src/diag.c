@@ -68,16 +68,22 @@ void modcp_diag_clear_counters(modcp_diag_t *d)
     memset(d->counters, 0, sizeof d->counters);
 }
 
+_Static_assert(offsetof(modcp_diag_t, buffer_len) == offsetof(modcp_diag_t, buffer) +
+                                                       sizeof((modcp_diag_t *)0)->buffer,
+               "diag: buffer_len right after the buffer (one memset clears both)");
+
 void modcp_diag_clear_buffer(modcp_diag_t *d)
 {
-    memset(d->buffer, 0, sizeof d->buffer);
-    d->buffer_len = 0;
+    /* the events and buffer_len */
+    memset((uint8_t *)d + offsetof(modcp_diag_t, buffer), 0, sizeof d->buffer + 1u);
 }
 
 void modcp_diag_read_systat(modcp_diag_t *d, bool run, uint8_t out[16])
 {
     out[0] = run ? MODCP_SYSTAT_RUN : MODCP_SYSTAT_FAULT;
     out[1] = 0u;
-    memcpy(&out[2], &d->systat_flags, SYSTAT_FROM_FLAGS);
-    memset(&d->systat_len, 0, 1u + SYSTAT_FROM_FLAGS); /* length, flags, events */
+    const uint8_t *from = (const uint8_t *)d + offsetof(modcp_diag_t, systat_flags);
+    memcpy(&out[2], from, SYSTAT_FROM_FLAGS);
+    /* cleared: length, flags, events */
+    memset((uint8_t *)d + offsetof(modcp_diag_t, systat_len), 0, 1u + SYSTAT_FROM_FLAGS);
 }
