@@ -76,10 +76,12 @@ void modcp_cpdiag_systat(modcp_cpdiag_t *d, modcp_diag_t *diag, uint32_t req, bo
 void modcp_cpdiag_backplane(modcp_cpdiag_t *d, modcp_diag_t *diag, uint32_t proto_errors,
                             uint32_t illegal_msgs)
 {
-    uint32_t illegal = illegal_msgs - d->illegal_seen;
-    uint32_t other = (proto_errors - d->proto_seen) - illegal;
-    d->illegal_seen = illegal_msgs;
-    d->proto_seen = proto_errors;
+    /* new errors since the last call, modulo 65536: at most one event of each kind per
+     * call, so only "any new" matters (65536 new errors between two polls do not happen) */
+    uint16_t illegal = (uint16_t)(illegal_msgs - d->illegal_seen);
+    uint16_t other = (uint16_t)((uint16_t)(proto_errors - d->proto_seen) - illegal);
+    d->illegal_seen = (uint16_t)illegal_msgs;
+    d->proto_seen = (uint16_t)proto_errors;
     if (illegal != 0u) {
         modcp_diag_event(diag, MODCP_EV_ILLEGAL_JOB);
     }

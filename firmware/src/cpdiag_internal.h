@@ -17,7 +17,9 @@ void modcp_cpdiag_params(modcp_cpdiag_t *d, bool ok, int irq_setting);
 /* Backplane protocol errors counted by job.c (totals): new blocks of a kind the CPU
  * side must not send -> (0E)3CH "illegal job"; other new unexpected blocks (sequence
  * gap, data without its header, continuation without a start, short INIT) -> (0E)30H
- * "unexpected acknowledgement". At most one of each per call (per poll). */
+ * "unexpected acknowledgement". At most one of each per call (per poll). The totals
+ * already reported are kept modulo 65536 (cpdiag.h): a caller that compares the 32-bit
+ * totals with them calls again after 65536 errors, and nothing new is reported then. */
 void modcp_cpdiag_backplane(modcp_cpdiag_t *d, modcp_diag_t *diag, uint32_t proto_errors,
                             uint32_t illegal_msgs);
 /* Serve a SYSTAT request (number req) if it is new: image + clear. run: CP in RUN. */

@@ -1,6 +1,7 @@
 /* modcp — diagnostics store: diagnostic buffer, SYSTAT, STATUS word, counters. */
 #include "modcp/diag.h"
 
+#include <stddef.h>
 #include <string.h>
 #include "commlog_internal.h"
 #include "diag_internal.h"
@@ -9,6 +10,12 @@ void modcp_diag_init(modcp_diag_t *d)
 {
     memset(d, 0, sizeof *d);
 }
+
+_Static_assert(offsetof(modcp_diag_t, systat_zero) == offsetof(modcp_diag_t, systat_flags) + 1u &&
+                   offsetof(modcp_diag_t, systat) == offsetof(modcp_diag_t, systat_flags) + 2u &&
+                   offsetof(modcp_diag_t, systat_flags) == offsetof(modcp_diag_t, systat_len) + 1u,
+               "diag: SYSTAT from systat_flags on is the image from byte 2 on");
+#define SYSTAT_FROM_FLAGS (2u + 2u * MODCP_SYSTAT_EVENTS) /* image bytes 2..15 */
 
 void modcp_diag_event(modcp_diag_t *d, modcp_event_t ev)
 {
@@ -21,16 +28,21 @@ void modcp_diag_event(modcp_diag_t *d, modcp_event_t ev)
     if (d->buffer_len < MODCP_DIAG_BUFFER) {
         d->buffer_len++;
     }
-    /* SYSTAT: only the first six events until read; U = overflow */
-    if (d->systat_len < MODCP_SYSTAT_EVENTS) {
-        d->systat[d->systat_len++] = ev;
-        d->systat_flags |= MODCP_SYSTAT_F;
+    /* SYSTAT: only the first six events until read; U = overflow (F is set then: the
+     * first event set it) */
+    unsigned n = d->systat_len;
+    unsigned f = d->systat_flags | MODCP_SYSTAT_F;
+    if (n < MODCP_SYSTAT_EVENTS) {
+        d->systat[2u * n] = (uint8_t)(ev >> 8);
+        d->systat[2u * n + 1u] = (uint8_t)ev;
+        d->systat_len = (uint8_t)(n + 1u);
     } else {
-        d->systat_flags |= MODCP_SYSTAT_U;
+        f |= MODCP_SYSTAT_U;
     }
     if (ev == MODCP_EV_BREAK) {
-        d->systat_flags |= MODCP_SYSTAT_B;
+        f |= MODCP_SYSTAT_B;
     }
+    d->systat_flags = (uint8_t)f;
     /* STATUS word: bits 12..8 class, 7..0 number */
     d->status = (uint16_t)(ev & 0x1FFFu);
     d->events_total++;
@@ -56,22 +68,22 @@ void modcp_diag_clear_counters(modcp_diag_t *d)
     memset(d->counters, 0, sizeof d->counters);
 }
 
+_Static_assert(offsetof(modcp_diag_t, buffer_len) == offsetof(modcp_diag_t, buffer) +
+                                                       sizeof((modcp_diag_t *)0)->buffer,
+               "diag: buffer_len right after the buffer (one memset clears both)");
+
 void modcp_diag_clear_buffer(modcp_diag_t *d)
 {
-    memset(d->buffer, 0, sizeof d->buffer);
-    d->buffer_len = 0;
+    /* the events and buffer_len */
+    memset((uint8_t *)d + offsetof(modcp_diag_t, buffer), 0, sizeof d->buffer + 1u);
 }
 
 void modcp_diag_read_systat(modcp_diag_t *d, bool run, uint8_t out[16])
 {
-    memset(out, 0, 16);
     out[0] = run ? MODCP_SYSTAT_RUN : MODCP_SYSTAT_FAULT;
-    out[2] = d->systat_flags;
-    for (uint8_t i = 0; i < d->systat_len; i++) {
-        out[4u + 2u * i] = (uint8_t)(d->systat[i] >> 8);
-        out[5u + 2u * i] = (uint8_t)(d->systat[i] & 0xFFu);
-    }
-    d->systat_len = 0;
-    d->systat_flags = 0;
-    memset(d->systat, 0, sizeof d->systat);
+    out[1] = 0u;
+    const uint8_t *from = (const uint8_t *)d + offsetof(modcp_diag_t, systat_flags);
+    memcpy(&out[2], from, SYSTAT_FROM_FLAGS);
+    /* cleared: length, flags, events */
+    memset((uint8_t *)d + offsetof(modcp_diag_t, systat_len), 0, 1u + SYSTAT_FROM_FLAGS);
 }

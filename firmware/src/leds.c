@@ -4,29 +4,35 @@
 #include <stddef.h>
 #include "leds_internal.h"
 
-void modcp_leds_change(modcp_leds_t *x, modcp_led_t led, bool on, uint32_t now_us)
+_Static_assert(MODCP_LED_SF == 0 && MODCP_LED_TXD == 1 && MODCP_LED_RXD == 2,
+               "leds: SF is bit 0, TXD / RXD index on_us by led - 1");
+
+void modcp_leds_switch(modcp_leds_t *x, const modcp_hal_t *hal, unsigned want, uint32_t now_us)
 {
-    x->on[led] = on;
-    x->bits = (uint8_t)((x->bits & ~(1u << led)) | ((unsigned)on << led));
-    if (led != MODCP_LED_SF) {
-        x->on_us[led - 1u] = now_us; /* SF has no minimum on-time */
+    unsigned changed = want ^ x->bits;
+    unsigned went_on = want & changed;
+    x->bits = (uint8_t)want;
+    if ((went_on & MODCP_LED_BIT(MODCP_LED_TXD)) != 0u) { /* SF has no minimum on-time */
+        x->on_us[MODCP_LED_TXD - 1u] = now_us;
     }
-    if (x->hal != NULL && x->hal->set_led != NULL) {
-        x->hal->set_led(x->hal->ctx, led, on);
+    if ((went_on & MODCP_LED_BIT(MODCP_LED_RXD)) != 0u) {
+        x->on_us[MODCP_LED_RXD - 1u] = now_us;
+    }
+    if (hal == NULL || hal->set_led == NULL) {
+        return;
+    }
+    for (unsigned led = MODCP_LED_SF; changed != 0u; led++, changed >>= 1) {
+        if ((changed & 1u) != 0u) {
+            hal->set_led(hal->ctx, (modcp_led_t)led, (want & MODCP_LED_BIT(led)) != 0u);
+        }
     }
 }
 
 /* x is zeroed (modcp_cp_init clears the CP object, the LEDs' only owner). */
 void modcp_leds_init(modcp_leds_t *x, const modcp_hal_t *hal)
 {
-    x->hal = hal;
-    /* set every LED explicitly at power-on, in order: SF on, TXD / RXD off */
-    for (unsigned led = MODCP_LED_SF; led < MODCP_LED_COUNT; led++) {
-        modcp_leds_change(x, (modcp_led_t)led, led == MODCP_LED_SF, 0);
-    }
-}
-
-void modcp_leds_configure(modcp_leds_t *x, uint32_t quiet_us)
-{
-    x->quiet_us = quiet_us;
+    /* set every LED explicitly at power-on, in order: SF on, TXD / RXD off (from levels
+     * taken as the opposite, each of the three is a change) */
+    x->bits = (uint8_t)(MODCP_LED_BIT(MODCP_LED_TXD) | MODCP_LED_BIT(MODCP_LED_RXD));
+    modcp_leds_switch(x, hal, MODCP_LED_BIT(MODCP_LED_SF), 0u);
 }

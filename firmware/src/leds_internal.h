@@ -5,52 +5,54 @@
 
 #include "modcp/leds.h"
 
-/* Power-on: SF on, TXD and RXD off; x zeroed (inside the CP object, which
- * modcp_cp_init clears). */
+#define MODCP_LED_BIT(led) (1u << (unsigned)(led))
+
+/* Power-on: SF on, TXD and RXD off, each set at the HAL; x zeroed (inside the CP
+ * object, which modcp_cp_init clears). */
 void modcp_leds_init(modcp_leds_t *x, const modcp_hal_t *hal);
-/* Silence that ends a received frame (t3.5 of the link). */
-void modcp_leds_configure(modcp_leds_t *x, uint32_t quiet_us);
-/* Switch a level (leds.c): the HAL hears of it. */
-void modcp_leds_change(modcp_leds_t *x, modcp_led_t led, bool on, uint32_t now_us);
-/* Set a level; the HAL hears of changes only. */
-static inline void modcp_leds_set(modcp_leds_t *x, modcp_led_t led, bool on, uint32_t now_us)
+/* The silence that ends a received frame is the link's t3.5 (l->t35_us), read at every
+ * poll: nothing to store. Kept for the caller of the old interface (cp.c). */
+static inline void modcp_leds_configure(modcp_leds_t *x, uint32_t quiet_us)
 {
-    if (x->on[led] != on) {
-        modcp_leds_change(x, led, on, now_us);
-    }
+    (void)x;
+    (void)quiet_us;
 }
-static inline bool modcp_leds_min_on_elapsed(const modcp_leds_t *x, modcp_led_t led,
-                                             uint32_t now_us)
-{
-    return now_us - x->on_us[led - 1u] >= MODCP_LED_MIN_ON_US; /* TXD / RXD */
-}
+/* Switch the levels to want (bits 1 << modcp_led_t); the HAL hears of each LED that
+ * changes, in the order SF, TXD, RXD (leds.c). */
+void modcp_leds_switch(modcp_leds_t *x, const modcp_hal_t *hal, unsigned want, uint32_t now_us);
 /* Drive the LEDs at now_us from the link's receive / transmit record; sf: the group
  * error is present. Inline: a few compares once per poll (the CP's only caller); a
  * change of level is the out-of-line part. */
 static inline void modcp_leds_poll(modcp_leds_t *x, bool sf, const modcp_link_t *l,
                                    uint32_t now_us)
 {
-    modcp_leds_set(x, MODCP_LED_SF, sf, now_us);
+    unsigned want = (x->bits & ~MODCP_LED_BIT(MODCP_LED_SF)) | (unsigned)sf; /* SF: bit 0 */
 
     if (l->tx_starts != x->tx_seen || l->tx_on) { /* started since the last poll, or on */
         x->tx_seen = l->tx_starts;
-        modcp_leds_set(x, MODCP_LED_TXD, true, now_us);
-    } else if (x->on[MODCP_LED_TXD] && modcp_leds_min_on_elapsed(x, MODCP_LED_TXD, now_us)) {
-        modcp_leds_set(x, MODCP_LED_TXD, false, now_us);
+        want |= MODCP_LED_BIT(MODCP_LED_TXD);
+    } else if ((want & MODCP_LED_BIT(MODCP_LED_TXD)) != 0u &&
+               now_us - x->on_us[MODCP_LED_TXD - 1u] >= MODCP_LED_MIN_ON_US) {
+        want &= ~MODCP_LED_BIT(MODCP_LED_TXD);
     }
 
     if (l->last_us != x->rx_seen_us) { /* a character since the last poll */
         x->rx_seen_us = l->last_us;
-        modcp_leds_set(x, MODCP_LED_RXD, true, now_us);
-    } else if (x->on[MODCP_LED_RXD] && modcp_leds_min_on_elapsed(x, MODCP_LED_RXD, now_us) &&
-               now_us - l->last_us >= x->quiet_us) {
-        modcp_leds_set(x, MODCP_LED_RXD, false, now_us);
+        want |= MODCP_LED_BIT(MODCP_LED_RXD);
+    } else if ((want & MODCP_LED_BIT(MODCP_LED_RXD)) != 0u &&
+               now_us - x->on_us[MODCP_LED_RXD - 1u] >= MODCP_LED_MIN_ON_US &&
+               now_us - l->last_us >= l->t35_us) {
+        want &= ~MODCP_LED_BIT(MODCP_LED_RXD);
+    }
+
+    if (want != x->bits) {
+        modcp_leds_switch(x, l->hal, want, now_us);
     }
 }
 /* Levels as bits (1 << modcp_led_t) for the status area. */
 static inline uint8_t modcp_leds_bits(const modcp_leds_t *x)
 {
-    return x->bits; /* kept by every change of a level (leds.c) */
+    return x->bits;
 }
 
 #endif

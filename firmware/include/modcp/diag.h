@@ -46,9 +46,11 @@ typedef struct {
     uint16_t status;      /* last event as STATUS word */
     modcp_event_t buffer[MODCP_DIAG_BUFFER]; /* newest first */
     uint8_t buffer_len;
-    uint8_t systat_len;
+    uint8_t systat_len;   /* events entered in SYSTAT since the last read (0..6) */
+    /* from here on SYSTAT as its image (004 §7.4) from byte 2: one copy reads it */
     uint8_t systat_flags; /* MODCP_SYSTAT_F | U | B */
-    modcp_event_t systat[MODCP_SYSTAT_EVENTS];
+    uint8_t systat_zero;  /* image byte 3: always 0 */
+    uint8_t systat[2u * MODCP_SYSTAT_EVENTS]; /* the events, high byte (class) first */
 #if MODCP_WITH_EXTENDED
     modcp_comm_t comm; /* FC11 / FC12 event counter and log, listen-only (commlog.h) */
 #endif

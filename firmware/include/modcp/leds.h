@@ -5,7 +5,7 @@
  *      mode) is present. The caller computes it; leds.c only drives it.
  *  TXD: on while a reply is being sent; on for at least MODCP_LED_MIN_ON_US.
  *  RXD: on while characters are received (any address: the line is alive); a received
- *      frame keeps it on until it has ended (no character for `quiet_us`, t3.5) and
+ *      frame keeps it on until it has ended (no character for the link's t3.5) and
  *      at least MODCP_LED_MIN_ON_US have passed since it went on.
  * The LEDs have one source, the link (modcp/link.h): it records the time of the last
  * received character (last_us; not the echo of our own RS485 reply), the transmissions
@@ -13,7 +13,7 @@
  * complete). modcp_leds_poll(), i.e. modcp_cp_poll(), reads them and switches the LEDs:
  * nothing is called per byte. The minimum on-time counts from the moment the LED was
  * switched on, so every frame is visible for at least 200 ms however late the poll
- * comes. set_led is called only when a level changes. */
+ * comes. set_led (the link's HAL) is called only when a level changes. */
 /* Public for layout only: modcp_cp_t embeds modcp_leds_t, so the type is here; its fields
  * are private and its functions are internal (firmware/src/leds_internal.h). */
 #ifndef MODCP_LEDS_H
@@ -29,13 +29,10 @@
 #define MODCP_LED_COUNT 3u
 
 typedef struct {
-    const modcp_hal_t *hal;
-    bool on[MODCP_LED_COUNT];       /* levels as last set, indexed by modcp_led_t */
-    uint8_t bits;                   /* the same levels as bits (1 << modcp_led_t) */
     uint32_t on_us[MODCP_LED_COUNT - 1u]; /* when TXD / RXD (index led - 1) went on */
-    uint32_t quiet_us;  /* silence that ends a received frame */
     uint32_t rx_seen_us; /* the link's last_us at the last poll */
     uint16_t tx_seen;    /* the link's tx_starts at the last poll */
+    uint8_t bits;        /* the levels as last set (1 << modcp_led_t) */
 } modcp_leds_t;
 
 #endif
