@@ -105,9 +105,11 @@ typedef struct MODCP_PARAMS_PACKED {
 #define MODCP_ID_STRING_MAX 16
 
 typedef struct {
-    /* Members grouped by width (4, 1, 2 bytes, the packed arrays, the 2-byte arrays, the
-     * strings) so the struct has no padding and the scalars stay at small offsets (short
-     * loads); the record's order is that of the rows (params_fields.h). */
+    /* Members grouped by width (4, 1, 2 bytes, the 2-byte arrays, the packed windows, the
+     * strings) so the struct has no padding and the often-read members stay at small
+     * offsets (Thumb's 2-byte loads reach byte 31, halfword 62, word 124: the limits and
+     * the 32-bit ranges before the windows); the record's order is that of the rows
+     * (params_fields.h), not of the members. */
     uint32_t baud; /* 300 ... 115200 */
     /* character frame */
     uint8_t data_bits;  /* RTU 8; ASCII 7 (8 allowed) */
@@ -148,14 +150,14 @@ typedef struct {
     uint16_t start_time_ms;    /* FB init time (START_TIME) */
     uint16_t commloss_ms;      /* 0 off, 100 ... 30000 */
     uint16_t scan_start;       /* indirection scanner: first scanner register address */
-    /* mapping */
-    modcp_bitwin_t coils[MODCP_COIL_WINDOWS];   /* FC01/05/15 */
-    modcp_bitwin_t inputs[MODCP_INPUT_WINDOWS]; /* FC02 */
-    modcp_r32range_t r32[3]; /* indexed by modcp_r32_kind_t */
     /* write limits */
     modcp_limit_t lim_db; /* resulting DB numbers */
     modcp_limit_t lim_m;  /* flag bytes */
     modcp_limit_t lim_q;  /* output bytes */
+    /* mapping */
+    modcp_r32range_t r32[3]; /* indexed by modcp_r32_kind_t */
+    modcp_bitwin_t coils[MODCP_COIL_WINDOWS];   /* FC01/05/15 */
+    modcp_bitwin_t inputs[MODCP_INPUT_WINDOWS]; /* FC02 */
 #if MODCP_WITH_EXTENDED
     /* Kept only with the extended set (164 bytes): without it the record still carries
      * them (one record for every build), the decoder skips them and scan_count must be
