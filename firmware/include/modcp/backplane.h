@@ -77,6 +77,10 @@ enum {
  * systat as in modcp_cpdiag_t (cpdiag.h). */
 typedef struct {
     uint32_t flags;        /* MODCP_CPST_* */
+    /* line discipline and diagnostics (leds.h, signals.h, cpdiag.h) */
+    uint8_t leds;           /* LED levels: bit MODCP_LED_SF / TXD / RXD */
+    uint8_t signals;        /* RS232 signals: MODCP_SIGBIT_* (RTS, DTR, CTS, DSR, AUTO) */
+    uint16_t signal_aborts; /* sends / receptions aborted by CTS / DSR */
     uint32_t events_total; /* events since start (changes whenever an event is added) */
     uint16_t counters[8];   /* Modbus serial-line counters (modcp_counter_t order) */
     uint16_t frames_too_long; /* frames longer than the receive buffer */
@@ -86,10 +90,6 @@ typedef struct {
     uint16_t status;        /* STATUS word of the last event */
     modcp_event_t buffer[9]; /* diagnostic buffer, newest first */
     uint8_t buffer_len;
-    /* line discipline and diagnostics (leds.h, signals.h, cpdiag.h) */
-    uint8_t leds;           /* LED levels: bit MODCP_LED_SF / TXD / RXD */
-    uint8_t signals;        /* RS232 signals: MODCP_SIGBIT_* (RTS, DTR, CTS, DSR, AUTO) */
-    uint16_t signal_aborts; /* sends / receptions aborted by CTS / DSR */
     modcp_event_t param_event; /* why the CP is not configured (NONE if it is) */
     uint8_t diag_irq[4];    /* last diagnostic interrupt record (001 §8.4) */
     uint32_t diag_irq_count; /* advances with every diagnostic interrupt */
