@@ -15,6 +15,18 @@ _Static_assert(offsetof(modcp_diag_t, systat_zero) == offsetof(modcp_diag_t, sys
                    offsetof(modcp_diag_t, systat) == offsetof(modcp_diag_t, systat_flags) + 2u &&
                    offsetof(modcp_diag_t, systat_flags) == offsetof(modcp_diag_t, systat_len) + 1u,
                "diag: SYSTAT from systat_flags on is the image from byte 2 on");
+/* Keep a base pointer in a register: GCC folds it back into d + offset otherwise, with
+ * 4-byte Thumb-2 loads and stores beyond byte 31. An empty asm it cannot see through. */
+#if defined(__GNUC__)
+#define KEEP_BASE(p) __asm__("" : "+r"(p))
+#else
+#define KEEP_BASE(p) ((void)0)
+#endif
+/* offsets of the SYSTAT members from buffer_len */
+#define B_AT(f) (offsetof(modcp_diag_t, f) - offsetof(modcp_diag_t, buffer_len))
+#define B_LEN B_AT(systat_len)
+#define B_FLAGS B_AT(systat_flags)
+#define B_EVENTS B_AT(systat)
 #define SYSTAT_FROM_FLAGS (2u + 2u * MODCP_SYSTAT_EVENTS) /* image bytes 2..15 */
 
 void modcp_diag_event(modcp_diag_t *d, modcp_event_t ev)
@@ -25,24 +37,28 @@ void modcp_diag_event(modcp_diag_t *d, modcp_event_t ev)
     /* diagnostic buffer: ring of 9, newest first */
     memmove(&d->buffer[1], &d->buffer[0], (MODCP_DIAG_BUFFER - 1u) * sizeof d->buffer[0]);
     d->buffer[0] = ev;
-    if (d->buffer_len < MODCP_DIAG_BUFFER) {
-        d->buffer_len++;
+    /* buffer_len and the SYSTAT block through one pointer: their offsets from it are
+     * small (short Thumb loads; from d they are beyond byte 31) */
+    uint8_t *b = &d->buffer_len;
+    KEEP_BASE(b);
+    if (b[0] < MODCP_DIAG_BUFFER) {
+        b[0]++;
     }
     /* SYSTAT: only the first six events until read; U = overflow (F is set then: the
      * first event set it) */
-    unsigned n = d->systat_len;
-    unsigned f = d->systat_flags | MODCP_SYSTAT_F;
+    unsigned n = b[B_LEN];
+    unsigned f = b[B_FLAGS] | MODCP_SYSTAT_F;
     if (n < MODCP_SYSTAT_EVENTS) {
-        d->systat[2u * n] = (uint8_t)(ev >> 8);
-        d->systat[2u * n + 1u] = (uint8_t)ev;
-        d->systat_len = (uint8_t)(n + 1u);
+        b[B_EVENTS + 2u * n] = (uint8_t)(ev >> 8);
+        b[B_EVENTS + 2u * n + 1u] = (uint8_t)ev;
+        b[B_LEN] = (uint8_t)(n + 1u);
     } else {
         f |= MODCP_SYSTAT_U;
     }
     if (ev == MODCP_EV_BREAK) {
         f |= MODCP_SYSTAT_B;
     }
-    d->systat_flags = (uint8_t)f;
+    b[B_FLAGS] = (uint8_t)f;
     /* STATUS word: bits 12..8 class, 7..0 number */
     d->status = (uint16_t)(ev & 0x1FFFu);
     d->events_total++;

@@ -77,7 +77,7 @@ enum {
  * systat as in modcp_cpdiag_t (cpdiag.h). */
 typedef struct {
     uint32_t flags;        /* MODCP_CPST_* */
-    /* line discipline and diagnostics (leds.h, signals.h, cpdiag.h) */
+    /* line discipline (leds.h, signals.h) */
     uint8_t leds;           /* LED levels: bit MODCP_LED_SF / TXD / RXD */
     uint8_t signals;        /* RS232 signals: MODCP_SIGBIT_* (RTS, DTR, CTS, DSR, AUTO) */
     uint16_t signal_aborts; /* sends / receptions aborted by CTS / DSR */
