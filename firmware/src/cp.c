@@ -105,12 +105,11 @@ static void line_reply(modcp_cp_t *cp, uint16_t out_len, uint32_t now_us)
 static void line_params(modcp_cp_t *cp, bool ok, int irq)
 {
     modcp_cpdiag_params(&cp->cpdiag, ok, irq);
-    if (ok) {
 #if MODCP_WITH_RS232_SIGNALS
+    if (ok) {
         modcp_sig_configure(&cp->sig, &cp->params);
-#endif
-        modcp_leds_configure(&cp->leds, cp->link.t35_us);
     }
+#endif
 }
 
 /* CP task: SYSTAT requests of the CPU side, LEDs (from the link's receive / transmit
