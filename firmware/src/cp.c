@@ -121,10 +121,9 @@ static void line_poll(modcp_cp_t *cp, uint32_t now_us)
     if (req != cp->cpdiag.systat_ack) { /* a new SYSTAT request */
         modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, modcp_cp_ready(cp));
     }
-    if (cp->job.proto_errors != cp->cpdiag.proto_seen ||
-        cp->job.illegal_msgs != cp->cpdiag.illegal_seen) { /* new backplane errors */
-        modcp_cpdiag_backplane(&cp->cpdiag, &cp->diag, cp->job.proto_errors,
-                               cp->job.illegal_msgs);
+    if (cp->job.new_errors != 0u) { /* new backplane errors */
+        modcp_cpdiag_backplane(&cp->diag, cp->job.new_errors);
+        cp->job.new_errors = 0;
     }
     if (cp->cpdiag.wire_break && cp->link.last_us != cp->err_mark_us) {
         modcp_cpdiag_good_char(&cp->cpdiag); /* a character arrived after the BREAK */
