@@ -35,8 +35,8 @@ typedef enum {
 } modcp_jobp_t;
 
 typedef struct {
-    modcp_backplane_t *bp;
-    /* (the byte and 16-bit members first, then the pointers and 32-bit ones: no padding) */
+    /* (the byte and 16-bit members first, then the pointers and 32-bit ones: no padding,
+     * and all within reach of Thumb's 2-byte loads / stores, see modcp_cp_t) */
     uint8_t state; /* modcp_jobst_t */
     uint8_t tag;   /* tag of the current / last job, 1..255 */
     uint8_t tx_seq;
@@ -60,6 +60,7 @@ typedef struct {
 #endif
     uint8_t new_errors; /* MODCP_JOB_ERR_* seen on the ring since the owner cleared it
                            (the CP reports them, cpdiag.c, and clears it) */
+    modcp_backplane_t *bp;
     const modcp_bp_job_t *hdr; /* the caller's (modcp_job_start; the CP's pdu.job): not
                                   copied, valid until the job ends */
     const uint8_t *wdata;
