@@ -51,9 +51,9 @@ typedef struct modcp_cp {
     modcp_event_t ack_event;
     uint32_t err_mark_us; /* link.last_us after the last line error: when it moves on, a
                              character was received (the end of a wire break) */
-    modcp_link_t link;
     modcp_job_t job; /* (the frame that has ended is on the stack: modcp_cp_on_timer; the
                         request's PDU is at buf + 1) */
+    modcp_link_t link;
     modcp_pdu_t pdu;
     /* what the PDU engine works with, set up once (cp_init): the parameters, areas,
      * diagnostics and extended state, and env.fb_ready: INIT received and acknowledged
