@@ -105,12 +105,11 @@ static void line_reply(modcp_cp_t *cp, uint16_t out_len, uint32_t now_us)
 static void line_params(modcp_cp_t *cp, bool ok, int irq)
 {
     modcp_cpdiag_params(&cp->cpdiag, ok, irq);
-    if (ok) {
 #if MODCP_WITH_RS232_SIGNALS
+    if (ok) {
         modcp_sig_configure(&cp->sig, &cp->params);
-#endif
-        modcp_leds_configure(&cp->leds, cp->link.t35_us);
     }
+#endif
 }
 
 /* CP task: SYSTAT requests of the CPU side, LEDs (from the link's receive / transmit
@@ -122,10 +121,9 @@ static void line_poll(modcp_cp_t *cp, uint32_t now_us)
     if (req != cp->cpdiag.systat_ack) { /* a new SYSTAT request */
         modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, modcp_cp_ready(cp));
     }
-    if (cp->job.proto_errors != cp->cpdiag.proto_seen ||
-        cp->job.illegal_msgs != cp->cpdiag.illegal_seen) { /* new backplane errors */
-        modcp_cpdiag_backplane(&cp->cpdiag, &cp->diag, cp->job.proto_errors,
-                               cp->job.illegal_msgs);
+    if (cp->job.new_errors != 0u) { /* new backplane errors */
+        modcp_cpdiag_backplane(&cp->diag, cp->job.new_errors);
+        cp->job.new_errors = 0;
     }
     if (cp->cpdiag.wire_break && cp->link.last_us != cp->err_mark_us) {
         modcp_cpdiag_good_char(&cp->cpdiag); /* a character arrived after the BREAK */

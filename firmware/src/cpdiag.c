@@ -6,6 +6,7 @@
 #include "modcp/hal.h"
 #include "cpdiag_internal.h"
 #include "diag_internal.h"
+#include "job_internal.h"
 
 #define MODULE_CLASS_CP 0x0Cu
 
@@ -73,19 +74,12 @@ void modcp_cpdiag_systat(modcp_cpdiag_t *d, modcp_diag_t *diag, uint32_t req, bo
     d->systat_ack = req;
 }
 
-void modcp_cpdiag_backplane(modcp_cpdiag_t *d, modcp_diag_t *diag, uint32_t proto_errors,
-                            uint32_t illegal_msgs)
+void modcp_cpdiag_backplane(modcp_diag_t *diag, unsigned errors)
 {
-    /* new errors since the last call, modulo 65536: at most one event of each kind per
-     * call, so only "any new" matters (65536 new errors between two polls do not happen) */
-    uint16_t illegal = (uint16_t)(illegal_msgs - d->illegal_seen);
-    uint16_t other = (uint16_t)((uint16_t)(proto_errors - d->proto_seen) - illegal);
-    d->illegal_seen = (uint16_t)illegal_msgs;
-    d->proto_seen = (uint16_t)proto_errors;
-    if (illegal != 0u) {
+    if ((errors & MODCP_JOB_ERR_ILLEGAL) != 0u) {
         modcp_diag_event(diag, MODCP_EV_ILLEGAL_JOB);
     }
-    if (other != 0u) {
+    if ((errors & MODCP_JOB_ERR_PROTO) != 0u) {
         modcp_diag_event(diag, MODCP_EV_XFER_ACK);
     }
 }

@@ -14,14 +14,12 @@ void modcp_cpdiag_good_char(modcp_cpdiag_t *d);
 /* A PARAMS record was taken: ok (applied) or rejected; irq_setting: its diag_irq field
  * (-1 when the record could not be decoded). Clears the wire break. */
 void modcp_cpdiag_params(modcp_cpdiag_t *d, bool ok, int irq_setting);
-/* Backplane protocol errors counted by job.c (totals): new blocks of a kind the CPU
- * side must not send -> (0E)3CH "illegal job"; other new unexpected blocks (sequence
- * gap, data without its header, continuation without a start, short INIT) -> (0E)30H
- * "unexpected acknowledgement". At most one of each per call (per poll). The totals
- * already reported are kept modulo 65536 (cpdiag.h): a caller that compares the 32-bit
- * totals with them calls again after 65536 errors, and nothing new is reported then. */
-void modcp_cpdiag_backplane(modcp_cpdiag_t *d, modcp_diag_t *diag, uint32_t proto_errors,
-                            uint32_t illegal_msgs);
+/* Backplane protocol errors seen by job.c since the last call (errors: its new_errors,
+ * MODCP_JOB_ERR_* bits, job_internal.h): blocks of a kind the CPU side must not send ->
+ * (0E)3CH "illegal job"; other unexpected blocks (sequence gap, data without its header,
+ * continuation without a start, short INIT) -> (0E)30H "unexpected acknowledgement". At
+ * most one of each per call (per poll). */
+void modcp_cpdiag_backplane(modcp_diag_t *diag, unsigned errors);
 /* Serve a SYSTAT request (number req) if it is new: image + clear. run: CP in RUN. */
 void modcp_cpdiag_systat(modcp_cpdiag_t *d, modcp_diag_t *diag, uint32_t req, bool run);
 

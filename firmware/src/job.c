@@ -48,6 +48,13 @@ bool modcp_job_busy(const modcp_job_t *j)
 
 static void push_blocks(modcp_job_t *j);
 
+/* An unexpected block (kind: MODCP_JOB_ERR_*): counted, and its kind kept for the owner. */
+static MODCP_NOINLINE void proto_error(modcp_job_t *j, unsigned kind)
+{
+    j->proto_errors++;
+    j->new_errors = (uint8_t)(j->new_errors | kind);
+}
+
 void modcp_job_configure(modcp_job_t *j, uint16_t limit, uint32_t timeout_us)
 {
     j->limit = limit;
@@ -211,7 +218,7 @@ static modcp_jobp_t rx_reply(modcp_job_t *j, const modcp_block_t *b)
     uint32_t n = b->len;
     if ((b->flags & MODCP_BLK_FIRST) != 0u) {
         if (j->state == MODCP_JOBST_RECEIVING || n < MODCP_BP_REPLY_HDR_LEN) {
-            j->proto_errors++;
+            proto_error(j, MODCP_JOB_ERR_PROTO);
             return finish(j, MODCP_EV_XFER_STATE, 0);
         }
         /* the header's fields read where they are: modcp_bp_reply_decode into a local
@@ -229,7 +236,7 @@ static modcp_jobp_t rx_reply(modcp_job_t *j, const modcp_block_t *b)
         d += MODCP_BP_REPLY_HDR_LEN; /* the whole reply in one block: data after the header */
         n -= MODCP_BP_REPLY_HDR_LEN;
     } else if (j->state != MODCP_JOBST_RECEIVING) {
-        j->proto_errors++; /* data before the header */
+        proto_error(j, MODCP_JOB_ERR_PROTO); /* data before the header */
         return finish(j, MODCP_EV_XFER_STATE, 0);
     }
     if (n > 0u) { /* count everything that arrived (saturating), store only what fits */
@@ -251,7 +258,7 @@ static modcp_jobp_t rx_params(modcp_job_t *j, const modcp_block_t *b)
         j->msglen = 0;
         j->msg_overflow = false;
     } else if (j->msgkind != MODCP_BP_PARAMS) {
-        j->proto_errors++; /* continuation without a start */
+        proto_error(j, MODCP_JOB_ERR_PROTO); /* continuation without a start */
         return MODCP_JOBP_NOTHING;
     }
     if ((uint32_t)j->msglen + b->len > j->msgcap) {
@@ -273,7 +280,7 @@ static modcp_jobp_t rx_params(modcp_job_t *j, const modcp_block_t *b)
 static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b, modcp_bp_init_t *init)
 {
     if (b->seq != j->rx_seq && j->rx_synced) { /* (the first block seen syncs) */
-        j->proto_errors++;
+        proto_error(j, MODCP_JOB_ERR_PROTO);
         if (j->msgkind != 0u) {
             j->msg_overflow = true; /* a message lost a block: report it empty */
         }
@@ -281,7 +288,7 @@ static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b, modcp_bp_in
     j->rx_synced = true;
     j->rx_seq = (uint8_t)(b->seq + 1u);
     if (b->len > MODCP_BLOCK_SIZE) {
-        j->proto_errors++;
+        proto_error(j, MODCP_JOB_ERR_PROTO);
         return MODCP_JOBP_NOTHING;
     }
     if (b->kind == MODCP_BP_REPLY) { /* the common one: first */
@@ -292,13 +299,12 @@ static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b, modcp_bp_in
         return rx_params(j, b);
     case MODCP_BP_INIT:
         if (!modcp_bp_init_decode(b->data, b->len, init)) {
-            j->proto_errors++;
+            proto_error(j, MODCP_JOB_ERR_PROTO);
             return MODCP_JOBP_NOTHING;
         }
         return MODCP_JOBP_INIT;
     default:
-        j->proto_errors++; /* JOB / INIT_ACK travel the other way */
-        j->illegal_msgs++;
+        proto_error(j, MODCP_JOB_ERR_ILLEGAL); /* JOB / INIT_ACK travel the other way */
         return MODCP_JOBP_NOTHING;
     }
 }

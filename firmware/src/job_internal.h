@@ -5,6 +5,13 @@
 
 #include "modcp/job.h"
 
+/* modcp_job_t.new_errors: a block of a kind the CPU side must not send (JOB,
+ * INIT_ACK); any other unexpected block (sequence gap, data without its header,
+ * continuation without a start, bad length, short INIT). Each one counts in proto_errors
+ * too. */
+#define MODCP_JOB_ERR_PROTO 1u
+#define MODCP_JOB_ERR_ILLEGAL 2u
+
 /* j zeroed (inside the CP object, which modcp_cp_init clears). */
 void modcp_job_init(modcp_job_t *j, modcp_backplane_t *bp, uint8_t *msgbuf, uint16_t msgcap);
 /* The CPU transfer limit in bytes and the CPU side's time to answer, for every job

@@ -10,13 +10,6 @@
 /* Power-on: SF on, TXD and RXD off, each set at the HAL; x zeroed (inside the CP
  * object, which modcp_cp_init clears). */
 void modcp_leds_init(modcp_leds_t *x, const modcp_hal_t *hal);
-/* The silence that ends a received frame is the link's t3.5 (l->t35_us), read at every
- * poll: nothing to store. Kept for the caller of the old interface (cp.c). */
-static inline void modcp_leds_configure(modcp_leds_t *x, uint32_t quiet_us)
-{
-    (void)x;
-    (void)quiet_us;
-}
 /* Switch the levels to want (bits 1 << modcp_led_t); the HAL hears of each LED that
  * changes, in the order SF, TXD, RXD (leds.c). */
 void modcp_leds_switch(modcp_leds_t *x, const modcp_hal_t *hal, unsigned want, uint32_t now_us);

@@ -18,6 +18,7 @@
 #include "backplane_internal.h"
 #include "cpdiag_internal.h"
 #include "diag_internal.h"
+#include "job_internal.h"
 #include "params_internal.h"
 
 #define FC08_REQ "05 08 00 00 A5 C3 DA 8E" /* 004 §6.7, answered by the CP alone */
@@ -589,25 +590,23 @@ static void test_backplane_protocol_events(void **state)
     world_free(w);
 }
 
-/* cpdiag alone: the totals already reported are kept modulo 65536; a call with totals
- * past 65535 reports only what is new, and a call with nothing new reports nothing. */
-static void test_backplane_totals_wrap(void **state)
+/* cpdiag alone: the error kinds job.c saw since the last call (its new_errors), each
+ * reported once per call; a call with nothing new reports nothing. */
+static void test_backplane_error_kinds(void **state)
 {
     (void)state;
-    modcp_cpdiag_t c;
     modcp_diag_t d;
-    modcp_cpdiag_init(&c);
     modcp_diag_init(&d);
-    modcp_cpdiag_backplane(&c, &d, 65536u + 3u, 65536u + 1u); /* both kinds new */
+    modcp_cpdiag_backplane(&d, MODCP_JOB_ERR_PROTO | MODCP_JOB_ERR_ILLEGAL); /* both kinds */
     assert_int_equal(d.buffer_len, 2);
     assert_int_equal(d.buffer[0], MODCP_EV_XFER_ACK);
     assert_int_equal(d.buffer[1], MODCP_EV_ILLEGAL_JOB);
-    modcp_cpdiag_backplane(&c, &d, 65536u + 3u, 65536u + 1u); /* nothing new */
+    modcp_cpdiag_backplane(&d, 0u); /* nothing new */
     assert_int_equal(d.buffer_len, 2);
-    modcp_cpdiag_backplane(&c, &d, 65536u + 4u, 65536u + 2u); /* one illegal only */
+    modcp_cpdiag_backplane(&d, MODCP_JOB_ERR_ILLEGAL); /* one illegal only */
     assert_int_equal(d.buffer_len, 3);
     assert_int_equal(d.buffer[0], MODCP_EV_ILLEGAL_JOB);
-    modcp_cpdiag_backplane(&c, &d, 131072u + 10u, 65536u + 2u); /* others only */
+    modcp_cpdiag_backplane(&d, MODCP_JOB_ERR_PROTO); /* others only */
     assert_int_equal(d.buffer_len, 4);
     assert_int_equal(d.buffer[0], MODCP_EV_XFER_ACK);
 }
@@ -706,7 +705,7 @@ int main(void)
         cmocka_unit_test(test_leds_rs485_echo),
         cmocka_unit_test(test_internal_receive_error),
         cmocka_unit_test(test_backplane_protocol_events),
-        cmocka_unit_test(test_backplane_totals_wrap),
+        cmocka_unit_test(test_backplane_error_kinds),
         cmocka_unit_test(test_status_area_fields),
         cmocka_unit_test(test_status_area_published_on_change),
     };

@@ -1344,6 +1344,8 @@ static void test_cp_message_checks(void **state)
     assert_int_equal(poll(f), MODCP_JOBP_PARAMS);
     assert_int_equal(f->job.msglen, 0);
     assert_int_equal(f->job.proto_errors, 1);
+    assert_int_equal(f->job.new_errors, MODCP_JOB_ERR_PROTO); /* the kind, for the CP */
+    f->job.new_errors = 0; /* (the CP clears it once reported) */
 
     b.kind = MODCP_BP_INIT; /* too short for an INIT */
     b.flags = MODCP_BLK_FIRST | MODCP_BLK_LAST;
@@ -1356,6 +1358,15 @@ static void test_cp_message_checks(void **state)
     assert_true(modcp_ring_put(&f->bp.to_cp, &b, &seq));
     assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
     assert_int_equal(f->job.proto_errors, 4);
+    assert_int_equal(f->job.new_errors, MODCP_JOB_ERR_PROTO | MODCP_JOB_ERR_ILLEGAL);
+    f->job.new_errors = 0;
+
+    b.kind = MODCP_BP_JOB; /* wrong direction alone: illegal, and no other kind */
+    b.flags = MODCP_BLK_FIRST | MODCP_BLK_LAST;
+    assert_true(modcp_ring_put(&f->bp.to_cp, &b, &seq));
+    assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
+    assert_int_equal(f->job.proto_errors, 5);
+    assert_int_equal(f->job.new_errors, MODCP_JOB_ERR_ILLEGAL);
 }
 
 int main(void)

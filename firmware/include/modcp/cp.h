@@ -38,8 +38,9 @@
 typedef struct modcp_cp {
     /* (the backplane is kept by the job, job.bp; the HAL by the link, the LEDs and the
      * signals) */
-    modcp_params_t params;
-    /* (the flags next to each other: no padding) */
+    /* (the flags and small members first, then the often used sub-structs, the params
+     * and the buffers last: Thumb has 2-byte loads / stores only for a byte at offsets
+     * 0..31, a halfword at 0..62, a word at 0..124 of the struct a pointer points to) */
     bool published;       /* the status area shows the CP's state (cp.c publish()) */
     bool publish_all;     /* ... and the RS232 signals are to be rewritten too */
     bool configured;      /* valid PARAMS applied */
@@ -48,27 +49,16 @@ typedef struct modcp_cp {
     uint16_t record_crc;
     modcp_event_t param_event; /* first fatal parameter event, NONE if configured */
     modcp_event_t ack_event;
-    modcp_areas_t areas;
-    modcp_diag_t diag;
+    uint32_t err_mark_us; /* link.last_us after the last line error: when it moves on, a
+                             character was received (the end of a wire break) */
+    modcp_job_t job; /* (the frame that has ended is on the stack: modcp_cp_on_timer; the
+                        request's PDU is at buf + 1) */
     modcp_link_t link;
     modcp_pdu_t pdu;
     /* what the PDU engine works with, set up once (cp_init): the parameters, areas,
      * diagnostics and extended state, and env.fb_ready: INIT received and acknowledged
      * (stored here only) */
     modcp_pdu_env_t env;
-    modcp_job_t job; /* (the frame that has ended is on the stack: modcp_cp_on_timer; the
-                        request's PDU is at buf + 1) */
-    uint32_t err_mark_us; /* link.last_us after the last line error: when it moves on, a
-                             character was received (the end of a wire break) */
-#if MODCP_SHARED_PARAMS_BUFFER
-    uint8_t buf[MODCP_CP_BUF_SIZE];            /* frame buffer (first MODCP_LINK_BUF_MAX
-                                                  bytes), and the PARAMS record as it
-                                                  arrives while the link is off */
-#else
-    uint8_t buf[MODCP_LINK_BUF_MAX];           /* frame buffer: request, then reply (ASCII:
-                                                  hex-encoded in place, see link.h) */
-    uint8_t record[MODCP_PARAMS_RECORD_MAX];   /* PARAMS record as it arrives */
-#endif
     /* line discipline and diagnostics (signals.c, leds.c, cpdiag.c) */
 #if MODCP_WITH_RS232_SIGNALS
     modcp_sig_t sig;       /* RS232 automatic secondary signals */
@@ -77,6 +67,18 @@ typedef struct modcp_cp {
     modcp_cpdiag_t cpdiag; /* wire break, diagnostic interrupt, SYSTAT service */
 #if MODCP_WITH_EXTENDED
     modcp_ext_t ext;       /* extended function set: comm loss, ASCII delimiter (ext.h) */
+#endif
+    modcp_areas_t areas;
+    modcp_diag_t diag;
+    modcp_params_t params;
+#if MODCP_SHARED_PARAMS_BUFFER
+    uint8_t buf[MODCP_CP_BUF_SIZE];            /* frame buffer (first MODCP_LINK_BUF_MAX
+                                                  bytes), and the PARAMS record as it
+                                                  arrives while the link is off */
+#else
+    uint8_t buf[MODCP_LINK_BUF_MAX];           /* frame buffer: request, then reply (ASCII:
+                                                  hex-encoded in place, see link.h) */
+    uint8_t record[MODCP_PARAMS_RECORD_MAX];   /* PARAMS record as it arrives */
 #endif
 } modcp_cp_t;
 

@@ -41,8 +41,6 @@ typedef struct {
     uint32_t irq_count; /* interrupts raised since start */
     uint32_t systat_ack; /* number of the last SYSTAT request answered */
     uint8_t systat[16];  /* the image given with it */
-    uint16_t proto_seen;   /* job.c's proto_errors already reported, modulo 65536 */
-    uint16_t illegal_seen; /* job.c's illegal_msgs already reported, modulo 65536 */
     bool wire_break;    /* BREAK in normal mode, until the next good character */
     bool param_error;   /* the last PARAMS record was rejected */
     bool irq_enabled;   /* params.diag_irq of the last decodable record */

@@ -35,8 +35,8 @@ typedef enum {
 } modcp_jobp_t;
 
 typedef struct {
-    modcp_backplane_t *bp;
-    /* (the byte and 16-bit members first, then the pointers and 32-bit ones: no padding) */
+    /* (the byte and 16-bit members first, then the pointers and 32-bit ones: no padding,
+     * and all within reach of Thumb's 2-byte loads / stores, see modcp_cp_t) */
     uint8_t state; /* modcp_jobst_t */
     uint8_t tag;   /* tag of the current / last job, 1..255 */
     uint8_t tx_seq;
@@ -58,6 +58,9 @@ typedef struct {
 #if MODCP_SHARED_PARAMS_BUFFER
     bool msg_granted;  /* the owner freed msgbuf for the PARAMS block ahead */
 #endif
+    uint8_t new_errors; /* MODCP_JOB_ERR_* seen on the ring since the owner cleared it
+                           (the CP reports them, cpdiag.c, and clears it) */
+    modcp_backplane_t *bp;
     const modcp_bp_job_t *hdr; /* the caller's (modcp_job_start; the CP's pdu.job): not
                                   copied, valid until the job ends */
     const uint8_t *wdata;
@@ -65,9 +68,7 @@ typedef struct {
     uint8_t *msgbuf;
     uint32_t t0_us;
     uint32_t timeout_us; /* the CPU side's time to answer a job (modcp_job_configure) */
-    uint32_t proto_errors; /* sequence / framing errors seen on the ring */
-    uint32_t illegal_msgs; /* blocks of a kind the CPU side must not send (also in
-                              proto_errors); the CP reports (0E)3CH, cpdiag.c */
+    uint32_t proto_errors; /* sequence / framing errors seen on the ring (total) */
 } modcp_job_t;
 
 /* True while a job (a request's transfer to the CPU side) is running. */
