@@ -283,11 +283,7 @@ void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us
  * (the link decides) and, for a frame for us, the request carried on. Built for speed
  * out of line (with advance inline), so that the re-arms (modcp_cp_on_timer) pay for no
  * stack frame; built for size, in modcp_cp_on_timer (advance is out of line then). */
-#if defined(__OPTIMIZE_SIZE__)
-static void timer_expired(modcp_cp_t *cp, uint32_t now_us)
-#else
-static MODCP_NOINLINE void timer_expired(modcp_cp_t *cp, uint32_t now_us)
-#endif
+static MODCP_SPEED_NOINLINE void timer_expired(modcp_cp_t *cp, uint32_t now_us)
 {
     cp->published = false;
     if (sig_on_timer(cp, now_us)) {

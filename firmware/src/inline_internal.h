@@ -26,5 +26,24 @@
 #else
 #define MODCP_SIZE_NOINLINE_SPEED_INLINE
 #endif
+/* Placed for speed only (-O2: the host), the compiler's choice for size (-Os: there the
+ * function often has a single caller, e.g. without the RTU block path): kept out of
+ * line / inlined in every caller. */
+#if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
+#define MODCP_SPEED_NOINLINE __attribute__((noinline))
+#else
+#define MODCP_SPEED_NOINLINE
+#endif
+#if defined(__GNUC__) && defined(__OPTIMIZE__) && !defined(__OPTIMIZE_SIZE__)
+#define MODCP_SPEED_INLINE __attribute__((always_inline)) inline
+#else
+#define MODCP_SPEED_INLINE
+#endif
+/* Inlined in every caller, in every build (a small helper on a path that pays per call). */
+#if defined(__GNUC__)
+#define MODCP_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define MODCP_ALWAYS_INLINE inline
+#endif
 
 #endif

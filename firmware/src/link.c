@@ -16,14 +16,6 @@
 #include "diag_internal.h"
 #include "params_internal.h"
 
-/* Built for speed block_bytes stays out of the RTU block path; for size it is the only
- * one (no framing has a block path) and is inlined. */
-#if defined(__OPTIMIZE_SIZE__)
-#define LINK_SPEED_NOINLINE
-#else
-#define LINK_SPEED_NOINLINE MODCP_NOINLINE
-#endif
-
 /* A reply waits for the RS232 automatic signals (signals.c); never without them. */
 #if MODCP_WITH_RS232_SIGNALS
 #define TX_HOLD(l) ((l)->tx_hold)
@@ -180,7 +172,9 @@ void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
  * the "off" backend (its on_byte ignores the line). A block holds no silence, so it
  * never contains the end of one frame and the start of the next. Only
  * modcp_cp_on_rx_block calls this: a port that never does links none of it. */
-static LINK_SPEED_NOINLINE void block_bytes(modcp_link_t *l, const uint8_t *b, uint16_t n,
+/* Built for speed block_bytes stays out of the RTU block path; for size it is the only
+ * one (no framing has a block path) and is inlined. */
+static MODCP_SPEED_NOINLINE void block_bytes(modcp_link_t *l, const uint8_t *b, uint16_t n,
                                             uint32_t end_us)
 {
     uint32_t t = end_us - (uint32_t)(n - 1u) * l->char_us;

@@ -6,16 +6,12 @@
 #include <stddef.h>
 
 #include "modcp/plcmem.h"
+#include "inline_internal.h"
 
-#if defined(__GNUC__)
-#define PLCMEM_INLINE inline __attribute__((always_inline))
-#else
-#define PLCMEM_INLINE inline
-#endif
 
 /* The DB lookup, inlined into modcp_plcmem_byte_area (every DB job) and behind
  * modcp_plcmem_db. */
-static PLCMEM_INLINE modcp_db_t *modcp_plcmem_find_db(const modcp_plcmem_t *mem,
+static MODCP_ALWAYS_INLINE modcp_db_t *modcp_plcmem_find_db(const modcp_plcmem_t *mem,
                                                       uint16_t number)
 {
     if (mem->dbs == NULL) {
@@ -49,7 +45,7 @@ static PLCMEM_INLINE modcp_db_t *modcp_plcmem_find_db(const modcp_plcmem_t *mem,
 /* The byte storage of an I / Q / M / DB operand covering [offset, offset + len), or
  * NULL with *ev set. Inline: the FB locates every job's bytes with it (fb.c), plcmem.c
  * every access. */
-static PLCMEM_INLINE uint8_t *modcp_plcmem_byte_area(const modcp_plcmem_t *mem,
+static MODCP_ALWAYS_INLINE uint8_t *modcp_plcmem_byte_area(const modcp_plcmem_t *mem,
                                                      const modcp_operand_t *op, uint32_t len,
                                                      modcp_event_t *ev)
 {

@@ -55,14 +55,7 @@
 /* Placement by build goal. For speed (-O2): frame_start inlined in its two callers
  * (byte_other, rtu_on_block), t15_violated kept out of the t1.5 entry (a leaf with a
  * tail call). For size (-Os) neither has more than one caller (no block path): the
- * compiler inlines them. */
-#if defined(__OPTIMIZE_SIZE__)
-#define RTU_SPEED_INLINE
-#define RTU_SPEED_NOINLINE
-#else
-#define RTU_SPEED_INLINE MODCP_SIZE_NOINLINE_SPEED_INLINE
-#define RTU_SPEED_NOINLINE MODCP_NOINLINE
-#endif
+ * compiler inlines them (MODCP_SPEED_INLINE / MODCP_SPEED_NOINLINE, inline_internal.h). */
 
 void rtu_count_char(modcp_rtu_t *r)
 {
@@ -117,7 +110,7 @@ MODCP_NOINLINE void rtu_unclaim(modcp_link_t *l, uint16_t n)
  * frame. Our address (or 0) starts our frame (modem mode: a candidate); any other
  * character starts one followed in SKIP (not ours: not checked, not answered), a line
  * error an erroneous one, skipped to its t3.5. */
-static RTU_SPEED_INLINE void frame_start(modcp_link_t *l, uint8_t b,
+static MODCP_SPEED_INLINE void frame_start(modcp_link_t *l, uint8_t b,
                                                           uint32_t now_us, bool err)
 {
     modcp_rtu_t *r = &l->fr.rtu;
@@ -279,7 +272,7 @@ void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 /* With the t1.5 check on: the silence before a character of our frame (distance of the
  * two character ends minus one character time) must not exceed t1.5. A separate entry,
  * so that the check costs nothing when it is off. */
-static RTU_SPEED_NOINLINE void t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
+static MODCP_SPEED_NOINLINE void t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     const bool first = !l->rx_bad;
     if (l->modem) {
