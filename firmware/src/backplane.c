@@ -48,7 +48,7 @@ bool modcp_ring_put(modcp_ring_t *r, const modcp_block_t *b, uint8_t *seq)
         return false;
     }
     *slot = *b;
-    modcp_ring_publish(r, seq);
+    modcp_ring_publish(r, slot, seq);
     return true;
 }
 
@@ -130,6 +130,6 @@ bool modcp_ring_put_data(modcp_ring_t *r, uint8_t *seq, uint8_t kind, uint8_t fl
     b->kind = kind;
     b->flags = flags;
     b->tag = tag;
-    modcp_ring_publish(r, seq);
+    modcp_ring_publish(r, b, seq);
     return true;
 }

@@ -47,10 +47,11 @@ static inline modcp_block_t *modcp_ring_slot(modcp_ring_t *r)
     }
     return &r->slot[head & (MODCP_BP_DEPTH - 1u)];
 }
-static inline void modcp_ring_publish(modcp_ring_t *r, uint8_t *seq)
+/* b: the slot modcp_ring_slot() gave. */
+static inline void modcp_ring_publish(modcp_ring_t *r, modcp_block_t *b, uint8_t *seq)
 {
     uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
-    r->slot[head & (MODCP_BP_DEPTH - 1u)].seq = *seq;
+    b->seq = *seq;
     *seq = (uint8_t)(*seq + 1u);
     atomic_store_explicit(&r->head, head + 1u, memory_order_release);
 }

@@ -120,7 +120,7 @@ static void pump_reply(modcp_fb_t *fb)
         b->kind = MODCP_BP_REPLY;
         b->flags = flags;
         b->tag = fb->job_tag;
-        modcp_ring_publish(r, &fb->tx_seq);
+        modcp_ring_publish(r, b, &fb->tx_seq);
     }
     while (fb->reply_pending && (b = modcp_ring_slot(r)) != NULL) {
         uint32_t rest = (uint32_t)fb->reply.len - fb->reply_pos;
@@ -134,7 +134,7 @@ static void pump_reply(modcp_fb_t *fb)
         if (n == rest) {
             fb->reply_pending = false;
         }
-        modcp_ring_publish(r, &fb->tx_seq);
+        modcp_ring_publish(r, b, &fb->tx_seq);
     }
 }
 

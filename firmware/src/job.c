@@ -122,11 +122,8 @@ void modcp_job_abort(modcp_job_t *j)
  * builds), inlined else. */
 static MODCP_SIZE_NOINLINE void hand_over(modcp_job_t *j, modcp_block_t *b, uint32_t word)
 {
-    modcp_ring_t *r = &j->bp->to_cpu;
-    uint32_t head = atomic_load_explicit(&r->head, memory_order_relaxed);
     modcp_block_stamp(b, word);
-    b->seq = j->tx_seq++;
-    atomic_store_explicit(&r->head, head + 1u, memory_order_release);
+    modcp_ring_publish(&j->bp->to_cpu, b, &j->tx_seq);
 }
 
 bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev)

@@ -102,7 +102,7 @@ static void test_slot_in_place(void **state)
         b->kind = MODCP_BP_REPLY;
         b->flags = 0;
         b->tag = 9;
-        modcp_ring_publish(r, &seq);
+        modcp_ring_publish(r, b, &seq);
         assert_int_equal(atomic_load(&r->head), k + 1u);
     }
     assert_int_equal(seq, (uint8_t)(200 + MODCP_BP_DEPTH));
