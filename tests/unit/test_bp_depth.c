@@ -24,15 +24,15 @@
 
 typedef struct {
     modcp_backplane_t bp;
-    uint8_t m[512];
+    uint8_t m[100 + CONSISTENT + MODCP_BLOCK_SIZE]; /* the job at 100, one block longer */
     modcp_plcmem_t mem;
     uint8_t record[RECORD_LEN];
     modcp_fb_t fb;
     modcp_fb_out_t out;
     modcp_job_t job;
     uint8_t msgbuf[64];
-    uint8_t rbuf[256];
-    uint8_t wbuf[256];
+    uint8_t rbuf[CONSISTENT + MODCP_BLOCK_SIZE];
+    uint8_t wbuf[CONSISTENT + MODCP_BLOCK_SIZE];
     modcp_bp_job_t hdr;
 } fx_t;
 
@@ -117,7 +117,7 @@ static void test_write_longer_spans_calls(void **state)
     start(f, MODCP_JOB_WRITE, len);
     fb(f);
     assert_memory_equal(f->m + 100, f->wbuf, CONSISTENT);
-    assert_int_equal(f->m[100 + CONSISTENT], 0x80u + CONSISTENT); /* not yet */
+    assert_int_equal(f->m[100 + CONSISTENT], (uint8_t)(0x80u + CONSISTENT)); /* not yet */
     assert_false(f->out.cp_start_ndr);
     int calls = 1;
     modcp_jobp_t r;
@@ -143,7 +143,7 @@ static void test_read_consistent(void **state)
     assert_int_equal(f->job.event, MODCP_EV_NONE);
     assert_int_equal(f->job.rlen, CONSISTENT);
     for (unsigned k = 0; k < CONSISTENT; k++) {
-        assert_int_equal(f->rbuf[k], 0x80u + k);
+        assert_int_equal(f->rbuf[k], (uint8_t)(0x80u + k));
     }
 }
 
