@@ -661,11 +661,13 @@ static void test_fc_table_lookup(void **state)
             }
             memset(buf, 0, sizeof buf);
             buf[0] = (uint8_t)fc;
+            modcp_diag_init(&d); /* the event below is this request's */
             modcp_pdu_action_t a = modcp_pdu_request(&s, &env, 5, buf, 1, sizeof buf, &out);
             const bool exc01 = a == MODCP_PDU_REPLY && out == 2u && buf[0] == (uint8_t)(fc | 0x80u) &&
                                buf[1] == 0x01u;
             assert_int_equal(exc01, !known);
             if (!known) {
+                assert_int_equal(d.buffer_len, 1);
                 assert_int_equal(d.buffer[0], MODCP_EV_ILLEGAL_FC);
             }
         }

@@ -671,7 +671,7 @@ static void test_event_exception(void **state)
     };
     for (size_t i = 0; i < sizeof map_events / sizeof map_events[0]; i++) {
         modcp_pdu_t s;
-        memset(&s, 0, sizeof s);
+        memset(&s, 0xA5, sizeof s); /* neither err nor x.exc holds the expected value */
         assert_int_equal(modcp_pdu_map_err(&s, map_events[i]), MODCP_PDU_FAIL);
         assert_int_equal(s.err, map_events[i]);
         assert_int_equal(s.x.exc, MODCP_EXC_OF_MAP);
