@@ -428,18 +428,16 @@ static void rx_ack(modcp_fb_t *fb, const modcp_block_t *b)
 static FB_INLINE bool reply_header(modcp_fb_t *fb)
 {
     modcp_ring_t *out = &fb->bp->to_cp;
-    uint32_t head = atomic_load_explicit(&out->head, memory_order_relaxed);
-    if (head - atomic_load_explicit(&out->tail, memory_order_acquire) >= MODCP_BP_DEPTH) {
+    modcp_block_t *rb = modcp_ring_slot(out);
+    if (rb == NULL) {
         return false;
     }
-    modcp_block_t *rb = &out->slot[head & (MODCP_BP_DEPTH - 1u)];
     modcp_block_stamp(rb, modcp_block_word(modcp_bp_reply_encode(&fb->reply, rb->data),
                                            MODCP_BP_REPLY, MODCP_BLK_FIRST | MODCP_BLK_LAST,
                                            fb->job_tag));
-    rb->seq = fb->tx_seq++;
     fb->reply_hdr_sent = true;
     fb->reply_pending = false;
-    atomic_store_explicit(&out->head, head + 1u, memory_order_release);
+    modcp_ring_publish(out, rb, &fb->tx_seq);
     return true;
 }
 
