@@ -13,7 +13,11 @@
  *               gap or line error; ASCII: the LRC of the hex pairs since the last ':'
  *               as two hex digits, then CR LF (so mutations reach the PDU, not only
  *               the CRC / LRC check)
- *   anything else: a received byte, 100 us after the previous one.
+ *   anything else: a received byte, 100 us after the previous one; in an input of
+ *               odd length the received bytes between two other events arrive as one
+ *               block instead (modcp_cp_on_rx_block: DMA / FIFO, up to 64 characters
+ *               back to back, one character time apart; a timer due meanwhile fires
+ *               late, after the block), so that the block path runs too.
  * In the fuzz targets the first input byte selects the CP's parameter set (cfg_params):
  * 0 the manual's example, 1 + 32-bit registers, scanner, comm loss, 2 RS485 with
  * reply suppression, t1.5 check, Modbus end-of-frame timing, DB bit windows,
@@ -319,6 +323,26 @@ static void advance(uint32_t us)
     }
 }
 
+/* Received characters gathered for one block (inputs of odd length). */
+static uint8_t blk[64];
+static uint16_t blk_n;
+
+/* The gathered characters as one block: back to back, the first ending now. */
+static void flush_block(void)
+{
+    if (blk_n == 0u) {
+        return;
+    }
+    uint32_t end = W.now_us + (uint32_t)(blk_n - 1u) * W.cp.link.char_us;
+    if (W.timer_at != 0 && (int32_t)(W.timer_at - end) < 0) {
+        W.timer_at = end; /* due during the block: the interrupt comes after it */
+    }
+    W.now_us = end;
+    modcp_cp_on_rx_block(&W.cp, blk, blk_n, end);
+    blk_n = 0;
+    advance(100);
+}
+
 static void fb_cycle(void)
 {
     modcp_fb_in_t in = {true};
@@ -445,6 +469,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     SNAP = W;
     uint8_t fr[600]; /* the frame so far, for 0xFE */
     size_t fr_len = 0;
+    const int blocks = (size & 1u) != 0u; /* received bytes as blocks */
+    blk_n = 0;
     for (size_t k = 0; k < size; k++) {
         uint8_t b = data[k];
         int literal = b < 0xF0;
@@ -454,6 +480,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 b = data[++k];
             }
         }
+        if (!literal || (blocks && blk_n == sizeof blk)) {
+            flush_block(); /* the block ends before any other event */
+        }
         if (literal) { /* a received byte */
             if (ascii_mode && b == ':') {
                 fr_len = 0;
@@ -461,8 +490,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             if (fr_len < sizeof fr) {
                 fr[fr_len++] = b;
             }
-            modcp_cp_on_rx(&W.cp, b, W.now_us);
-            advance(100);
+            if (blocks) {
+                blk[blk_n++] = b;
+            } else {
+                modcp_cp_on_rx(&W.cp, b, W.now_us);
+                advance(100);
+            }
         } else if (b == 0xFE) {
             send_check(fr, &fr_len, sizeof fr);
         } else if (b <= 0xF7) {
@@ -486,6 +519,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             fb_cycle();
         }
     }
+    flush_block();
     advance(10000);
     settle();
     check_memory();
