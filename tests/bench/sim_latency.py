@@ -51,6 +51,7 @@ Nothing is asserted (the machine is shared): the script fails only when the simu
 does not start or a reply is wrong or missing.
 """
 import argparse
+import atexit
 import os
 import random
 import select
@@ -229,6 +230,8 @@ def main():
     if a.stages:
         fd, log_path = tempfile.mkstemp(prefix="modcp-latlog-")
         os.close(fd)
+        # removed however the run ends (a bad reply exits, Ctrl-C, a failed start)
+        atexit.register(lambda: os.path.exists(log_path) and os.unlink(log_path))
         os.environ["MODCP_SIM_LATLOG"] = log_path
     try:
         with simlib.Sim(a.sim, a.config, sets=sets, cycle_ms=a.cycle_ms, control=False) as sim:
@@ -257,7 +260,6 @@ def main():
           % (a.baud, a.cycle_ms, t35, cycle_us // 2, ch))
     if a.stages:
         stages_report(*stages)
-        os.unlink(log_path)
     if a.hist:
         lo = times[0]
         step = max(1.0, (times[-1] - lo) / 20)
