@@ -3,7 +3,6 @@
 #include "bus.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <poll.h>
 #include <pthread.h>
 #include <stdatomic.h>
@@ -47,7 +46,7 @@ struct sim_bus {
         size_t head, tail;
     } rxq[SIM_BUS_MAX_MEMBERS];
     int master_fd;
-    int wake_rd, wake_wr;
+    modcp_posix_event_t wake; /* the bus thread's: a member replied, a request to stop */
     uint64_t t0_us64;
     void (*print)(void *user, const char *line);
     void *user;
@@ -473,17 +472,10 @@ sim_bus_t *sim_bus_new(const sim_line_t *line, size_t n, const char *const names
     }
     pthread_mutex_init(&b->rx_mu, NULL);
     b->master_fd = master_fd;
-    int fds[2];
-    if (pipe(fds) != 0) {
+    if (modcp_posix_event_open(&b->wake) != 0) {
         free(b);
         return NULL;
     }
-    for (int i = 0; i < 2; i++) {
-        (void)fcntl(fds[i], F_SETFL, fcntl(fds[i], F_GETFL) | O_NONBLOCK);
-        (void)fcntl(fds[i], F_SETFD, FD_CLOEXEC);
-    }
-    b->wake_rd = fds[0];
-    b->wake_wr = fds[1];
     b->t0_us64 = t0_us64;
     b->print = print;
     b->user = user;
@@ -507,8 +499,7 @@ sim_bus_t *sim_bus_new(const sim_line_t *line, size_t n, const char *const names
 void sim_bus_free(sim_bus_t *b)
 {
     if (b != NULL) {
-        close(b->wake_rd);
-        close(b->wake_wr);
+        modcp_posix_event_close(&b->wake);
         if (b->log != NULL) {
             fclose(b->log);
         }
@@ -521,9 +512,7 @@ void sim_bus_free(sim_bus_t *b)
 
 static void wake(sim_bus_t *b)
 {
-    char c = 1;
-    ssize_t r = write(b->wake_wr, &c, 1);
-    (void)r;
+    modcp_posix_event_signal(&b->wake);
 }
 
 void sim_bus_stop(sim_bus_t *b)
@@ -916,7 +905,7 @@ void *sim_bus_thread(void *arg)
     sim_bus_t *b = arg;
     struct pollfd pf[2 + SIM_BUS_MAX_MEMBERS];
     nfds_t nf = 0;
-    pf[nf++] = (struct pollfd){b->wake_rd, POLLIN, 0};
+    pf[nf++] = (struct pollfd){b->wake.rd, POLLIN, 0};
     pf[nf++] = (struct pollfd){b->master_fd, POLLIN, 0};
     for (size_t m = 0; m < b->n; m++) {
         pf[nf++] = (struct pollfd){b->member_fd[m], POLLIN, 0};
@@ -972,9 +961,7 @@ void *sim_bus_thread(void *arg)
         }
         double t = now_rel(b);
         if ((pf[0].revents & POLLIN) != 0) {
-            char drain[64];
-            while (read(b->wake_rd, drain, sizeof drain) > 0) {
-            }
+            modcp_posix_event_clear(&b->wake);
         }
         if ((pf[1].revents & (POLLIN | POLLHUP | POLLERR)) != 0) {
             uint8_t buf[512];

@@ -119,6 +119,11 @@ void modcp_posix_event_signal(modcp_posix_event_t *e)
     pipe_poke(e->wr);
 }
 
+void modcp_posix_event_clear(modcp_posix_event_t *e)
+{
+    pipe_drain(e->rd);
+}
+
 bool modcp_posix_event_wait_until(modcp_posix_event_t *e, uint64_t t_us)
 {
     uint64_t now = modcp_posix_now_us64();
@@ -127,7 +132,7 @@ bool modcp_posix_event_wait_until(modcp_posix_event_t *e, uint64_t t_us)
     struct pollfd pf = {e->rd, POLLIN, 0};
     int pr = ppoll(&pf, 1, &ts, NULL);
     if (pr > 0) {
-        pipe_drain(e->rd);
+        modcp_posix_event_clear(e);
         return true;
     }
     return false;
@@ -685,7 +690,7 @@ int modcp_posix_wait(modcp_posix_port_t *p, uint32_t max_us, modcp_posix_rx_t *r
         return -errno;
     }
     if (pr > 0 && nfds == 2u && (pfs[1].revents & POLLIN) != 0) {
-        pipe_drain(p->wake.rd);
+        modcp_posix_event_clear(&p->wake);
     }
     const struct pollfd pf = pfs[0];
     now = modcp_posix_now_us();

@@ -143,6 +143,8 @@ void modcp_posix_spin_until_us64(uint64_t t_us);
 int modcp_posix_event_open(modcp_posix_event_t *e); /* 0 or -errno */
 void modcp_posix_event_close(modcp_posix_event_t *e);
 void modcp_posix_event_signal(modcp_posix_event_t *e);
+/* For a caller that polls e->rd itself: take the signals that are pending. */
+void modcp_posix_event_clear(modcp_posix_event_t *e);
 /* Sleep until the absolute time t_us (64-bit) or a signal; true when signalled. */
 bool modcp_posix_event_wait_until(modcp_posix_event_t *e, uint64_t t_us);
 
