@@ -2,7 +2,7 @@
  * (tests/bench/sim_latency.py --stages).
  *
  * With MODCP_SIM_LATLOG=FILE in the environment, the CP thread of a simulator with one
- * slave appends one line per reply to FILE, when the reply's first byte has been
+ * slave writes one line per reply to FILE (created anew at the start), when the reply's first byte has been
  * written to the line:
  *
  *   seq rx timer_due timer_seen job fb_due fb_start fb_end take tx_t0 first_due first

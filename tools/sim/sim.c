@@ -498,14 +498,12 @@ static void *cpu_thread(void *arg)
             }
             /* blocks from the CP wait for this FB call: it starts on time, not a
              * wake-up late (the last CPU_SPIN_US are spent watching the clock) */
-            if (!m->paused && ring_pending(&m->bp.to_cpu) && next - now <= CPU_SPIN_US) {
+            const bool blocks_wait = !m->paused && ring_pending(&m->bp.to_cpu);
+            if (blocks_wait && next - now <= CPU_SPIN_US) {
                 modcp_posix_spin_until_us64(next);
                 break;
             }
-            uint64_t at = next;
-            if (!m->paused && ring_pending(&m->bp.to_cpu)) {
-                at = next - CPU_SPIN_US;
-            }
+            uint64_t at = blocks_wait ? next - CPU_SPIN_US : next;
             (void)modcp_posix_event_wait_until(&m->cpu_irq, at);
         }
         if (atomic_load(&s->stop)) {
