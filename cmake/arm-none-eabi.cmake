@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # modcp — CMake toolchain file for Debian's arm-none-eabi-gcc (newlib, newlib-nano).
 #
 #   cmake -DCMAKE_TOOLCHAIN_FILE=cmake/arm-none-eabi.cmake -DMODCP_ARM_CPU=cortex-m3 ...

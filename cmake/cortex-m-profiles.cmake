@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # modcp — the Cortex-M profiles the core is built for (cmake/arm-none-eabi.cmake, the
 # core-<profile> presets, tools/build-arm, tools/size).
 #

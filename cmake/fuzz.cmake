@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # libFuzzer build (-DMODCP_FUZZ=ON with CC=clang; tools/fuzz configures build/fuzz).
 # Every library of the build -- the core (firmware/), the console, the config reader
 # (tools/conf) -- is compiled with coverage instrumentation and ASan + UBSan, so that

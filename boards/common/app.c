@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp boards — the application every board runs.
  *
  *   CP side   UART / timer interrupts of the board's HAL call modcp_cp_on_*(); the CP

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp boards — reset handler, default handlers and the C library's minimal system
  * calls. The vector table itself is board-specific (boards/<board>/board.c) because the
  * interrupt numbers differ; it references Reset_Handler and the handlers here.

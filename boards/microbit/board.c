@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp board — BBC micro:bit v1 (nRF51822 QFAA: Cortex-M0, 16 MHz, 256 KB flash,
  * 16 KB RAM), as QEMU's `microbit` machine models it.
  *

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # modcp — BBC micro:bit (nRF51822, Cortex-M0). Included by boards/CMakeLists.txt with
 # MODCP_BOARD=microbit (preset microbit, MODCP_ARM_CPU=cortex-m0) or
 # MODCP_BOARD_DIR=<this folder>.

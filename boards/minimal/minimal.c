@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the core alone in a minimal image, for the size report (tools/size).
  *
  * References exactly the CP side's event interface (modcp_cp_init / on_rx /

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp board — ARM MPS2 with the AN385 FPGA image (Cortex-M3), as QEMU's mps2-an385
  * models it.
  *

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # modcp — ARM MPS2 AN385 (Cortex-M3, CMSDK UART + timer). Included by boards/CMakeLists.txt
 # for MODCP_BOARD=mps2-an385 or MODCP_BOARD_DIR=<this folder>: the image modcp-<board>.elf
 # from the common application, this folder's board.c and linker script, and the CMSDK HAL.

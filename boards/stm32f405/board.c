@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp board — STM32F405 (also STM32F407; QEMU netduinoplus2), Cortex-M4F.
  *
  * Pin map (an STM32F4-Discovery-style board; change here for another board):

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — Modbus ASCII framing (003 §2 = manual §8.1, SPEC §3.2): ':' + hex pairs +
  * LRC + CR LF, decoded into the same binary buffer as RTU (address at buf[0], PDU at
  * buf + 1, LRC last) while the characters arrive; the PDU engine and the mapping are

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the CPU–CP backplane: two SPSC rings of 32-byte blocks and the message
  * header (de)serialisers (SPEC §6).
  *

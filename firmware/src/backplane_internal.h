@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the core's internal interface of backplane.c (modcp/backplane.h holds what a port or
  * an application calls). Not part of the public API: for the core, its tests and tools. */
 #ifndef MODCP_BACKPLANE_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the CP status area on the backplane: a single-writer seqlock. The CP side
  * publishes (in place, between begin and end, or from a copy), the CPU side copies;
  * neither ever waits for the other. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — communication event log and flags (see modcp/commlog.h). */
 #include "modcp/commlog.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — comm-loss supervision (SPEC §2, §5.3; 002 §7) and the persistent state of
  * the extended set.
  *

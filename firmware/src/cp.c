@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the CP side wired together.
  *
  * Start-up (SPEC §2, §6): the CP is "not ready" (SF on, line ignored) until the CPU

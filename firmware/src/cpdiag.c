@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — wire break, diagnostic interrupt, SYSTAT service (see modcp/cpdiag.h). */
 #include "modcp/cpdiag.h"
 

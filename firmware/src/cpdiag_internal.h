@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the core's internal interface of cpdiag.c (modcp/cpdiag.h holds what a port or
  * an application calls). Not part of the public API: for the core, its tests and tools. */
 #ifndef MODCP_CPDIAG_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — CRC-16 (Modbus) by a 256-entry table, and the ASCII LRC. */
 #include "modcp/crc.h"
 #include "crc_internal.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the core's internal interface of crc.c (modcp/crc.h holds what a port or
  * an application calls). Not part of the public API: for the core, its tests and tools. */
 #ifndef MODCP_CRC_INTERNAL_H

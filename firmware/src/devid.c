@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — identification of the extended set: FC17 report slave ID (Modbus
  * Application Protocol V1.1b3 §6.13) and FC43/14 read device identification (§6.21),
  * both from the parameter record's strings (SPEC §2: vendor, product, revision,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — diagnostics store: diagnostic buffer, SYSTAT, STATUS word, counters. */
 #include "modcp/diag.h"
 

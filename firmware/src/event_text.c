@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — event texts and remedies in English (004 §7.5, 001 §8.2, 003 §8.5).
  * Kept in its own file so images that do not show texts do not link it. */
 #include "modcp/diag.h"

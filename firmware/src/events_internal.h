@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the core's internal interface of events.c (modcp/events.h holds what a port or
  * an application calls). Not part of the public API: for the core, its tests and tools. */
 #ifndef MODCP_EVENTS_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the CPU side's communication FB (FB 80 / FB 180 model, 004 §4, §7.6).
  *
  * One call per CPU cycle does, in this order:

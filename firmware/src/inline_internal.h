@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — where a function is placed: out of line, or inlined, by build goal (-Os for
  * the MCU builds, -O2 for the host). Internal to the core: not part of the public API. */
 #ifndef MODCP_INLINE_INTERNAL_H

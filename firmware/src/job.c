@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — CP side of the backplane (SPEC §6, 004 §4.6).
  *
  * A job goes out as one header block (kind JOB, FIRST, the job's tag, data = the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — LEDs SF / TXD / RXD (see modcp/leds.h). */
 #include "modcp/leds.h"
 

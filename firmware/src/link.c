@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — serial link layer: configuration, the framing backend behind its ops struct
  * (RTU in rtu.c, ASCII in ascii.c, selected once in modcp_link_configure), the
  * end-of-frame silence, line-error accounting, transmit, turnaround and RS485 driver

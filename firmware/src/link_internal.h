@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the link layer and its framing backends (link.c, rtu.c, ascii.c).
  * Internal to the core: not part of the public API. */
 #ifndef MODCP_LINK_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — mapping engine: Modbus addresses -> controller operands (004 §3, 003 §4).
  *
  * Bits (FC01/05/15 on the coil windows, FC02 on the input windows), checked in

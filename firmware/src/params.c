@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the parameter record: defaults, validation, effective copy, binary form.
  *
  * Validation rules and the events they raise (004 §2, §3, §7.5; 003 §3, §4.5, §8.6).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the parameter record described once (X-macros).
  *
  * Everything about a parameter is in one row here: its place in the record (the order of

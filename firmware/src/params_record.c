@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the parameter record's binary form, from the rows of params_fields.h.
  *
  * Little-endian, fixed widths, fields in the order of the rows:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — PDU engine: decode a request, check it against the function-code table,
  * hand it to its handler, encode the reply or the exception; the end-of-request
  * accounting of the extended set.

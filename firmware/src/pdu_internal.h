@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — internal interface of the PDU engine: the function-code table's handler
  * type, the named exception codes, and the handlers the table (pdu.c) points at.
  * Not for other modules.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — handlers of the manual's function set (004 §6), one per class: bits (FC01,
  * 02, 05, 15), registers (FC03, 04, 06, 16), and FC08 sub-function 0000. Each maps its
  * request and sets up one CPU job; the reply is encoded by pdu.c from s->x.echo /

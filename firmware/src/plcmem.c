@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — controller memory model (CPU side only).
  *
  * Every access is checked completely before anything is copied, in uint32 arithmetic

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — quantity limits by limit set (manual / spec), framing and register width;
  * register width of a holding register in the 32-bit scheme. See modcp/quantity.h for
  * the table. */

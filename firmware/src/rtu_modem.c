@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — RTU framing in interference suppression = modem mode (000 §5.6.1, §8;
  * 004 §2.2): the part of the RTU backend (rtu.c, rtu_ops) that runs for the
  * operating mode `suppression` (l->modem, set by rtu_configure). It shares rtu.c's ops

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — indirection scanner (SPEC §5.3, 002 §11 "scanner de communication").
  *
  * scan_count (1..16) consecutive holding registers from scan_start; register

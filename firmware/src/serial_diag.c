@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — serial-line diagnostics of the extended set: FC08 (Modbus Application
  * Protocol V1.1b3 §6.8, Modbus over Serial Line V1.02 §6.1), FC11 get comm event
  * counter (§6.9), FC12 get comm event log (§6.10).

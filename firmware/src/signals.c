@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — RS232 automatic secondary signals (see modcp/signals.h). */
 #include "modcp/signals.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — character and frame timing derived from the parameters (004 §5.3, SPEC §3.1).
  * Integer arithmetic only; results are rounded up to whole microseconds. */
 #include <stdint.h>

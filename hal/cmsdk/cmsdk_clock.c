@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp HAL (CMSDK) — free-running time base.
  *
  * One APB timer counts down from 0xFFFFFFFF at PCLK and reloads (period 2^32 cycles).

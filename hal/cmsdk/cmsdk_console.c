@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp HAL (CMSDK) — console UART with interrupt-driven receive and transmit queues.
  * Single producer / single consumer each way: the receive ISR fills rx, thread mode
  * empties it; thread mode fills tx, the transmit ISR empties it. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp HAL (CMSDK) — the Modbus port: UART receive / transmit, the end-of-frame
  * one-shot and transmit-complete detection, feeding the CP's event functions. */
 #include <stdbool.h>

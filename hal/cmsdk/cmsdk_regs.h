@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp HAL (CMSDK) — registers of the ARM CMSDK APB UART, APB timer and APB dual timer
  * (ARM Cortex-M System Design Kit Technical Reference Manual, DDI 0479). Private to
  * hal/cmsdk. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp HAL (nRF51) — the crystal, the microsecond time base (TIMER0), the periodic
  * tick (TIMER2) and GPIO outputs. */
 #include <stdbool.h>

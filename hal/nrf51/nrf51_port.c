@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp HAL (nRF51) — the Modbus port: UART0 receive / transmit, the end-of-frame
  * one-shot on a 16-bit TIMER, RS485 DE and the LEDs, feeding the CP's event functions. */
 #include <stdbool.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp HAL (nRF51) — the registers used, from the nRF51 Series Reference Manual v3.0
  * (CLOCK, TIMER, UART, GPIO chapters). No vendor headers. Private to hal/nrf51.
  * Every peripheral register is 32 bits wide and accessed as a word. Tasks are triggered

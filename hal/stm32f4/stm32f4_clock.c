@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp HAL (STM32F4) — clock tree, peripheral clocks, GPIO and the TIM5 time base. */
 #include <stdbool.h>
 #include <stdint.h>

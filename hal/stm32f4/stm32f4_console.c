@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp HAL (STM32F4) — console USART (8N1) with interrupt-driven receive and transmit
  * queues. Single producer / single consumer each way. */
 #include <stdbool.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp HAL (STM32F4) — between the files of this HAL only. */
 #ifndef MODCP_STM32F4_INTERNAL_H
 #define MODCP_STM32F4_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp HAL (STM32F4) — the Modbus port: USART receive / transmit with transmission
  * complete, the end-of-frame one-shot (TIM2 one-pulse mode or the SysTick deadline),
  * RS485 DE and the LEDs, feeding the CP's event functions. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp HAL (STM32F4) — the registers this HAL uses, from RM0090 (STM32F405/407
  * reference manual) and the ARMv7-M ARM for SysTick. Private to hal/stm32f4. */
 #ifndef MODCP_STM32F4_REGS_H

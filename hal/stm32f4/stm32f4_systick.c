@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp HAL (STM32F4) — SysTick as a deadline timer with two clients: the board's
  * periodic tick and, in SysTick one-shot mode, the end-of-frame one-shot. Deadlines are
  * absolute microsecond times of the TIM5 time base; SysTick is reprogrammed after every

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 #define _POSIX_C_SOURCE 200809L
 /* Benchmark: instructions per request through the whole modcp core (bytes in with
  * their CRC, link, PDU, mapping, job over the backplane, FB against memory, reply out),

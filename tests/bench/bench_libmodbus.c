@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 #define _POSIX_C_SOURCE 200809L
 /* Benchmark: the same requests served by libmodbus's slave side (modbus_receive +
  * modbus_reply over a socketpair, RTU backend, CRC checked by libmodbus) for

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The requests both benchmarks serve (slave 5). Frames are built at start-up with
  * their CRC (bench_frame): holding registers in one DB (DB 800), coils in M. */
 #ifndef BENCH_REQUESTS_H

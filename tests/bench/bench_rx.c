@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 #define _POSIX_C_SOURCE 200809L
 /* Benchmark: the receive path per byte. Feeds the frames of an FC16 request with 123
  * registers (255 bytes, slave 5, 9600 baud 8E1: one byte every 1146 us) with an

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # modcp — receive-path cost per byte under callgrind (nothing asserted), as key=value:
 #   rx_instr_per_byte=       modcp_link_on_byte() (link + framing), per received byte
 #   rx_t15_instr_per_byte=   the same with the t1.5 check on

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """modcp — transactions per second on a line with three slaves vs one slave.
 
     tests/bench/bus_bench.py [--sim build/host/tools/sim/modcp-sim]

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """modcp — the simulator's slave time, measured as a raw master on its pty.
 
     tests/bench/sim_latency.py [--sim build/host/tools/sim/modcp-sim]

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Fuzz target: the configuration file text (tools/conf: INI -> parameter record +
  * controller memory), through the reader's public functions only (modcp_conf.h):
  * load, record, memory, generated C source, line settings.

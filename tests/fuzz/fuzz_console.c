@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Fuzz target: the monitor console's command line (firmware/console), as the simulator
  * and a board's second UART feed it, over a controller memory, the FB, a diagnostics
  * snapshot and a CP status area.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Fuzz target: arbitrary bytes, gaps and line errors on the serial line of a running
  * CP + FB (the manual's example parameter set). Invariants checked after every input:
  *   - every transmitted frame is a well-formed reply: our address, valid CRC,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Fuzz target: the parameter record the CPU side hands the CP (SPEC §2), through
  * decode, validate, apply and the CP's configuration over the backplane.
  * Input: byte 0 selects the form of the rest:

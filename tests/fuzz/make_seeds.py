@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Hand-written seed inputs for the line targets (fuzz_rtu, fuzz_ascii), in the harness
 encoding of fuzz_line.c: byte 0 = parameter set, 0xFE = the frame's CRC / LRC, 0xF0 =
 end of frame, 0xFC = one FB cycle, 0xFD escapes a literal byte >= 0xF0.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Replay of a fuzz target's corpus without libFuzzer (gcc builds, ctest label fuzz):
  *   fuzz_<target>_replay FILE|DIR...
  * runs LLVMFuzzerTestOneInput once on every file (directories: their regular files, in

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* master_regs32 — libmodbus (RTU) against a modcp slave in 32-bit register mode,
  * configured with configs/regs32.ini (003 §4.5: 3000-4999 int16 -> DB2.DBW0,
  * 5000-5099 int32 -> DB3.DBD0, 7000-9999 float -> DB4.DBD0; FC04 base DB 900).

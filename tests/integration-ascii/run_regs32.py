@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """32-bit registers over RTU (003 §4.5): modcp-sim with configs/regs32.ini on its pty,
 master_regs32 (libmodbus, raw requests) runs its checks over the line, then the values
 it wrote are verified from the controller side through the simulator's console

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Modbus ASCII (003 §2) against modcp-sim, with pymodbus's ASCII framer (Debian's
 /usr/bin/python3, python3-pymodbus) and, for what pymodbus cannot send, raw frames
 through the same pty.

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """test_docs.py — the commands and example values that README.md and docs/ show, run.
 
     test_docs.py --root ROOT --build BUILD_DIR

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Extended function set (SPEC §5.3) with pymodbus (Debian's python3-pymodbus, 3.0 API)
 against modcp-sim with configs/default.ini, comm-loss supervision 500 ms:
 

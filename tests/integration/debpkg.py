@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """debpkg — a Python master whose import fails names the Debian package to install.
 
     try:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* master_bus — a libmodbus master on a line with several modcp slaves (modcp-sim with
  * several configs, each a copy of configs/default.ini with its own address).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* master_libmodbus — the full check list of a modcp slave configured with
  * configs/default.ini (or configs/manual-4.6.4.ini with --profile 4.6.4), over any
  * serial device: a modcp-sim pty, a QEMU -serial pty, a real line.

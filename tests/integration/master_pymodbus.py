@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """master_pymodbus.py — pymodbus (Debian's python3-pymodbus, 3.0 API) against a modcp
 slave configured with configs/default.ini, on any serial device.
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* master_spec_limits — the quantity boundaries a libmodbus master expects (the logic of
  * libmodbus's tests/unit-test-client.c: its "too many data" checks and its crafted
  * requests of test_server(), written anew here), against a modcp slave configured with

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Helpers shared by the C test masters (master_libmodbus, master_ext, master_regs32):
  * pass/fail bookkeeping, hex strings, an independent bitwise Modbus CRC (deliberately
  * not the core's table code), and reading a reply of known length with a deadline. */

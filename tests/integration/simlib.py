@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """modcp integration tests: start modcp-sim on its own pty, talk to its console, stop it.
 
 As a module:

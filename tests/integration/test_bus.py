@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Several modcp slaves on one line (issue 15): modcp-sim a.ini b.ini c.ini.
 
  - a member whose line settings differ is refused, member and field named;

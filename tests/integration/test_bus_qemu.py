@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """A QEMU board and a host-simulated slave on one line (issue 15 item 3):
 
     tools/run-qemu mps2-an385            -> slave 5 (the image's default.ini) on MODBUS_TTY

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cmocka: the C source that `modcp-conf c configs/default.ini` generates (the contract
  * of modcp/cfg_gen.h for the firmware images): record, memory with the initial values,
  * sorted DB table, work DB, cycle time. Linked with the generated cfg_default.c. */

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """modcp-conf and modcp-sim on good and bad INI files: exit codes, one line per
 problem naming section, key, value, rule and event; the simulator refuses a bad file
 with the same lines; the binary record's header, fields and CRC.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cmocka: the monitor console (firmware/console) — operands in S7 notation, exact
  * answers, errors as one line, truncation, and garbage that must never crash. */
 #include <setjmp.h>

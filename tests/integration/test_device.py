@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """modcp-sim --device: the serial-device path of the POSIX HAL (termios from the
 parameters, PARMRK decoding of the received stream). The "device" is the slave side of
 a pseudo-terminal pair made here; the test is the master on the other side. Frames

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """mbpoll against modcp-sim (configs/default.ini): reads and writes registers and
 coils; mbpoll's output is parsed and the values asserted, writes are checked through
 the simulator's console (the controller memory) and by reading back with mbpoll.

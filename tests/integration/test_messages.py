@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """modcp-sim's messages a person reads (issue 14 item 3), asserted word for word:
 
  - --pty-link PATH held by a running instance: refused, the PID named, the link kept;

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # A board in one folder, out of the tree: a copy of boards/mps2-an385 under another name
 # and path is built with -DMODCP_BOARD_DIR (Cortex-M3); the image is named after the
 # folder. Nothing of modcp's tree is edited for it.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # What a new user does, checked in CI: a fresh `git clone` of this tree into an empty
 # temporary folder (nothing beside it: no ../shared, no build folder), then the first
 # steps of `tools/test --quick` there: install-deps --host-only (a no-op when everything

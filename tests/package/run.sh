@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # modcp as a CMake package: an outside project (tests/package/outside) adds the modcp
 # tree with add_subdirectory() and links modcp::core. Built for the host and run (the
 # manual's FC03 example through the public API), then built for Cortex-M3.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """modcp — real masters against the firmware images running in QEMU.
 
     qemu_test.py --root ROOT --board mps2-an385|stm32f405|microbit --suite SUITE [options]

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Modbus ASCII framing (003 §2 = manual §8.1, SPEC §3.2), end to end through the core:
  * characters in -> ascii.c -> PDU engine -> mapping -> job -> FB -> reply out as text.
  * Every ASCII frame of 003 §2 (the telegram example of §8.1 and the vectors worked out

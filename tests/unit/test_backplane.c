@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Backplane rings and header encoders (SPEC §6: 32-byte blocks, request/acknowledge
  * per block with sequence numbers). */
 #include <pthread.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The consistency a backplane ring depth guarantees (docs/cpu-cp-interface.md "Jobs and
  * consistency"), for the depth this core is built with: unit.test_bp_depth at
  * modcp_core's (MODCP_BP_DEPTH, default 4), unit.test_bp_depth_manual at the manual

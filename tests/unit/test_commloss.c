@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Comm-loss supervision (SPEC §2, §5.3; 002 §7): armed by the first accepted write for
  * our address; no valid request for our address within commloss_ms -> event (0E)60H
  * once and MODCP_CPST_COMMLOSS in the backplane status area; the next valid request

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* End to end through the core: frame in -> link -> PDU -> mapping -> job over the
  * backplane -> FB against controller memory -> reply out. Every worked example of
  * 004 §6 with the 004 §9 frames (CRC included), the 4.6.4 negative tests, every

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* CRC-16 and LRC against the standard vectors and the manual's frames (004 §9). */
 #include <setjmp.h>
 #include <stdarg.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Diagnostics (SPEC §7, 004 §7, 001 §8): STATUS word, diagnostic buffer, SYSTAT (first
  * six events, F / U / B, clear on read) and its service over the backplane, the
  * diagnostic interrupt records, wire break, the LEDs SF / TXD / RXD with their 200 ms

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Extended function set (SPEC §5.3), end to end through the core with the 004 §9
  * example parameters (slave 5, holding registers from DB 800, DB writes 800..899):
  * FC08 sub-functions with the Serial Line V1.02 counter semantics, FC11, FC12 with the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The documented interpretations of issue 13 item 8: where modcp reads the manuals in a
  * particular way, a test pins the behaviour that the documents describe (with the
  * manual's words and the reason):

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The CP-side job module and the CPU-side FB together over one backplane, single
  * thread: the test alternates modcp_job_poll() (the CP task) and modcp_fb_call() (the
  * CPU cycle). 004 §4.2 init handshake, §4.4 / §4.5 job limits and 32-byte blocks,

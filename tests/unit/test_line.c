@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Line discipline end to end (SPEC §3.1, 004 §2.2, §2.3, §5.3): character errors and
  * BREAK in normal and interference-suppression mode and on RS485, frame start by the
  * own address, errors after the CRC, the t1.5 check, the t3.5 end of frame, RS485

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Link layer, RTU framing and timing: end-of-frame thresholds, address filter, CRC,
  * over-long frames, t1.5, line errors in normal and interference-suppression mode,
  * (08)37H, transmit with CRC, RS485 driver enable and turnaround.

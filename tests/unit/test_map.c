@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Mapping engine: every worked example of 004 §3.1, §3.3, §3.4, §6 and of 003 §4,
  * the 4.6.4 write limits, every event of map.h, and the event -> exception table. */
 #include <setjmp.h>

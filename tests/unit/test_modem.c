@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Interference suppression = the French edition's modem mode (000 §5.6.1 "Fonctionnement
  * modem", 000 §8 end of telegram; 004 §2.2 "Interference suppression"): the start of a
  * frame is a correctly received own slave address, the end a formally correct frame

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Parameter record: defaults (SPEC §2), validation events (004 §7.5 class 0EH, 003 §8.6),
  * the effective copy, the binary record, the job limit. */
 #include <setjmp.h>

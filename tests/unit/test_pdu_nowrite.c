@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Property (issue 13 item 9, Application Protocol §7: an exception reply means the
  * request was not executed): for random write requests FC05, 06, 15, 16, 22 and 23 -
  * direct and through the indirection scanner, good and bad lengths, quantities,

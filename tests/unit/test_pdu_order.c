@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The order in which the PDU engine checks a request (docs/diagnostics.md "Order of
  * checks"): address -> CRC -> CPU side initialised (SPEC §6) -> broadcast rule
  * (SPEC §5.2) -> function code -> length -> quantity -> values -> addresses and write

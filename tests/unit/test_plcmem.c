@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Controller memory model: bytes, T/C words high byte first, bit read-modify-write,
  * access events (0E)38H / (0E)39H (004 §7.5), DB lookup. Memory laid out for the
  * manual's example parameter set (004 §9): MB 1000.., QB 256.., T 100.., C 200..,

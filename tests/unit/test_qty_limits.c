@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Quantity limits, protocol.quantity_limits (issue 13 item 7): `manual` keeps the
  * manuals' RTU limits (004 §6: FC01/02/15 1 … 2040 bits, FC03/04/16 1 … 127 registers);
  * `spec` applies the Modbus application protocol's (V1.1b3 §6.1 FC01 and §6.2 FC02

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The 32-bit register extension (003 §4.5, SPEC §4), end to end through the core in RTU
  * and in ASCII: three ranges int16 -> DB2.DBW, int32 -> DB3.DBD, float -> DB4.DBD
  * (3000-4999, 5000-5099, 7000-9999 as in the manual's example) replace the DB-offset

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Block reception (modcp_cp_on_rx_block, for UARTs with DMA or a FIFO): n characters
  * back to back handed over at the end of the last one have exactly the effect of the
  * same characters one by one (modcp_cp_on_rx at each character's end). Every case runs

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Indirection scanner (SPEC §5.3, 002 §11): consecutive holding registers that each
  * point at a word operand; FC03/06/16/22/23 on them act on the operands, one CPU job
  * per operand, the reply after all jobs came back; the access rules of direct access. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* RS232 automatic secondary signals (004 §2.4, 001 §1.6): DTR / RTS outputs, CTS / DSR
  * inputs, data output waiting time, time to RTS off, aborts and their events
  * ((07)08H, (08)18H), and the one-shot timer shared with the link. End to end through

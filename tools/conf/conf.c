@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — INI configuration -> parameter record + controller memory.
  * The schema is documented in docs/parameters.md; keep both in step. */
 #define _POSIX_C_SOURCE 200809L

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp-conf — INI configuration -> binary parameter record / C source.
  *
  *   modcp-conf check FILE              exit 0, or 2 with one line per problem

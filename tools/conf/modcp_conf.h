@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — INI configuration -> parameter record + controller memory.
  * Shared by modcp-conf and modcp-sim (host tools; may use POSIX and the heap).
  * Schema: docs/parameters.md. Lines are read whole, whatever their length; every

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp-sim — one line, several members (see bus.h). */
 #define _GNU_SOURCE
 #include "bus.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp-sim — one RS485 line shared by several members (slaves) and the master.
  *
  * The master's pty is the line's one end; every member has its own pty, whose far

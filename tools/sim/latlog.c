@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp-sim — stage time stamps of every reply (see latlog.h). */
 #include "latlog.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp-sim — stage time stamps of every reply, for latency analysis
  * (tests/bench/sim_latency.py --stages).
  *

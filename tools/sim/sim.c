@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp-sim — the modcp slave on a pseudo-terminal (or a real serial device), or
  * several slaves on one line (a bus, see bus.h).
  *

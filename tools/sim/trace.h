@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp-sim — frame trace: every frame received and sent with a microsecond time
  * stamp and its meaning, decoded in the tool from the bytes (the core is untouched).
  *

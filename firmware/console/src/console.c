@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — monitor console (S7 notation): one command line. Portable C11: no OS, no heap,
  * no globals.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — monitor console: diag (the diagnostic buffer in words) and status (FB, CP,
  * serial-line counters, the CP's status area); names of FB states and events.
  * Portable C11: no OS, no heap, no globals. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the monitor console's internals, shared by its files (not a public header).
  *
  *   console.c       one command line: tokenizer, dispatch, help, pause / resume, start

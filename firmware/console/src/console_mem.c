@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — monitor console: get / set / dump over the controller memory.
  *
  *  - B and W values print as hex and unsigned decimal, D values as hex and signed

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — monitor console: the answer buffer and the scanning of numbers and words.
  * Portable C11: no OS, no heap, no globals. */
 #include "console_internal.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — S7 operands for the monitor console: M1000.3, MB / MW / MD, IB.., QB.., Tn, Cn,
  * DBn.DBX/DBB/DBW/DBD; parsed, named and read / written through the controller memory
  * model (plcmem.c). Portable C11: no OS, no heap, no globals. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the CPU–CP backplane interface (SPEC §6).
  *
  * The only thing the CP side and the CPU side share. Two single-producer /

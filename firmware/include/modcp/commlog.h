@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the Modbus communication event log, event counter, diagnostic register and
  * listen-only state (Modbus Application Protocol V1.1b3 §6.9 FC11, §6.10 FC12, §6.8
  * FC08; Modbus over Serial Line V1.02 §6.1). Part of the diagnostics store

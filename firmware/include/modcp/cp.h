@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the CP side wired together: one object, no globals, several instances
  * possible. A port creates a modcp_cp_t, calls modcp_cp_init() with its HAL and the
  * backplane, and then feeds events:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the CP's diagnostic channels towards the CPU side (004 §7, 001 §8; SPEC §7),
  * besides the diagnostic buffer and the STATUS word that diag.c keeps:
  *

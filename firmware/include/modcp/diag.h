@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — diagnostics store (SPEC §7). Everyone reports events here; nobody else
  * stores them.
  *  - diagnostic buffer: the last 9 events, newest first (001 §8.3)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — event words (class byte << 8 | number byte), as tabled in the manuals.
  * 004 §7.5 (classes 05H, 08H, 0EH), 001 §8.2 (08 16H over-long telegram),
  * 003 §8.5 (08 38H..3AH ASCII). Extensions of modcp are marked "modcp". */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the CPU side's communication FB (FB 80 / FB 180 model, 004 §4, 001 §2).
  *
  * The user program calls modcp_fb_call() once per cycle. The FB

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — build-time feature switches (CMake options of the same names, passed to
  * every user of the core library as compile definitions; default on). A switched-off
  * feature is not compiled into the core, and a PARAMS record that asks for it is

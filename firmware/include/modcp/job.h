@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — CP side of the backplane: turns a request into a job of 32-byte blocks,
  * waits for the CPU side's reply, times out; and receives the PARAMS / INIT messages
  * the CPU side sends (SPEC §6). Polled with the current time; no clock is read. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the CP's LEDs SF / TXD / RXD (004 §7.2, 001 §1.2; SPEC §7).
  *
  *  SF  (group error): on at power-on and whenever the CP is not ready (no or invalid

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — serial link layer: frame boundaries, transmit and RS485 direction.
  * The framing is a backend behind an ops struct (link_internal.h): RTU in rtu.c, ASCII
  * in ascii.c, each with its own receive state (modcp_rtu_t / modcp_ascii_t below);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — mapping engine: Modbus addresses -> controller operands (004 §3, 003 §4).
  * Pure functions over the parameters and the controller's area sizes. */
 /* Public: the mapping functions are internal (firmware/src/map_internal.h); the types are

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the CP's parameter record (SPEC §2).
  *
  * modcp_params_t is the in-memory form. The binary record (what the CPU side hands

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — PDU engine: decode and validate requests, decide between an immediate reply
  * (FC08, exceptions), a CPU job, or silence (broadcast); encode replies. */
 /* Public for layout only: modcp_cp_t embeds modcp_pdu_t, so the type is here; its fields

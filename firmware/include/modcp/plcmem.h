@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — controller memory model (CPU side only): I, Q, M bytes, T and C words and
  * data blocks, with their real sizes and the list of existing DBs. The storage is the
  * caller's (static arrays on a board, anything on the host); this module only checks

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — RS232 automatic secondary signals (004 §2.4, 001 §1.6; SPEC §2).
  *
  * Only with params.rs232_auto (interface RS232; validation refuses it otherwise):

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the hardware abstraction the core sees. A port implements these callbacks
  * (one struct, one context pointer) and feeds the core's event functions from its
  * interrupts: modcp_cp_on_rx(), modcp_cp_on_line_error(), modcp_cp_on_timer(),

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — end-of-frame confirmation shared by the Cortex-M ports (docs/porting.md §4).
  *
  * A port reports an end-of-frame expiry to the core (modcp_cp_on_timer) only after it

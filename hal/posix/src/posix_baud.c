@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — POSIX HAL internal: arbitrary baud rates via termios2 (Linux). Kept apart
  * because <asm/termbits.h> and <termios.h> cannot be included together. */
 #include "posix_baud.h"

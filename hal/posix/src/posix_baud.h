@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — POSIX HAL internal: baud rates without a Bxxx constant (e.g. 76800). */
 #ifndef MODCP_POSIX_BAUD_H
 #define MODCP_POSIX_BAUD_H

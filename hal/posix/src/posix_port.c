@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — POSIX HAL: pty / serial UART, monotonic clock, one-shot timer, threads. */
 #define _GNU_SOURCE
 #include "modcp/hal_posix.h"

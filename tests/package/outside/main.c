@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* An application outside the modcp tree: one CP, its CPU side (FB) and a controller
  * memory with DB800, wired with nothing but modcp's public headers. It starts the FB,
  * sends the manual's FC03 example (slave 5, registers 0x50..0x51 = DB800.DBW160/162)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Test helpers for Modbus ASCII and the 32-bit register extension (003), on top of
  * the world harness (world.h): ASCII frames as text, character timing, the one-shot
  * timer, and a controller laid out for the 003 §4.5 examples. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Test helpers of the extended function set (test_extended.c, test_scanner.c,
  * test_commloss.c): requests and replies as PDUs, the CRC checked and added here. */
 #ifndef MODCP_TEST_EXT_SUPPORT_H

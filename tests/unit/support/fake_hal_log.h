@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Test helper: a fake HAL that records every call in order, with the simulated time
  * at which it happened (the test sets fake_hal_log_t.now before calling the core). */
 #ifndef MODCP_TEST_FAKE_HAL_LOG_H

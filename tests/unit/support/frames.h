@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Test helpers: hex frames with and without CRC. */
 #ifndef MODCP_TEST_FRAMES_H
 #define MODCP_TEST_FRAMES_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Test helper: a world (world.h: CP + FB + memory) on a simulated serial line with
  * exact time. A tiny discrete-event loop delivers, in time order:
  *   - the one-shot timer the core arms (modcp_cp_on_timer at exactly armed + us),

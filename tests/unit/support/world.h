@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Test world: one CP, one FB, the backplane between them, controller memory laid out
  * for the manual's example parameter set (004 §9), and a fake HAL that records what
  * the CP transmits. Time is simulated. */

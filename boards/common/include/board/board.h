@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp boards — what the common application (boards/common/app.c) needs from a board.
  * A board implements these in its board.c on top of its HAL (hal/cmsdk, hal/stm32f4).
  * See docs/porting.md for the order in which to bring them up. */

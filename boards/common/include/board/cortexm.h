@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp boards — the few ARMv7-M core registers the boards use (SCB, NVIC, SysTick)
  * and the interrupt priority plan. Defined here from the ARMv7-M Architecture
  * Reference Manual; no CMSIS. */

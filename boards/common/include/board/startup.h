@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp boards — symbols of the common startup code (boards/common/startup.c). */
 #ifndef MODCP_BOARD_STARTUP_H
 #define MODCP_BOARD_STARTUP_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — a configuration compiled into a firmware image.
  *
  * `modcp-conf c CONFIG.ini -o cfg.c` generates a C source that defines these symbols

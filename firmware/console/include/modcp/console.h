@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — monitor console (S7 notation) over the CPU side's memory, the FB and a
  * snapshot of the CP's diagnostics. Portable C11: no OS, no heap, no globals; only
  * snprintf / strtol / strtoul / strtod from libc. The host simulator feeds it from

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp HAL for ARM CMSDK peripherals (MPS2 AN385 and other CMSDK-based systems).
  *
  *   Modbus port   CMSDK APB UART (RX, TX, overflow interrupts)

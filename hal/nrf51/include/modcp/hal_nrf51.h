@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp HAL for the Nordic nRF51 series (nRF51822: BBC micro:bit), Cortex-M0.
  *
  *   Time base     TIMER0, 32 bit at 1 MHz, free running: its counter is the microsecond

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — POSIX HAL for the host: a UART on a pseudo-terminal (or a real serial
  * device with termios from the parameters), the monotonic clock, the one-shot timer,
  * and threads. It implements modcp_hal_t; it does not call the core: the port's

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* modcp HAL for STM32F4 (STM32F405/407; QEMU netduinoplus2).
  *
  *   Clock         HSI 16 MHz -> PLL 168 MHz (no crystal needed), APB1 42 MHz, APB2 84 MHz
