@@ -8,7 +8,7 @@
  * The line: character k of the request ends (its stop bit) at a chosen time; the core
  * gets modcp_cp_on_rx(byte, end of its stop bit), as a UART receive interrupt sees it.
  * The one-shot timer the core arms (hal.timer_arm) fires at its deadline; at equal
- * times the timer comes before a character (as tools/sim and the ports order them).
+ * times the timer comes before a character (as tools/sim orders them).
  * The reply's first start bit is the moment the core calls hal.uart_tx (the line is
  * idle); its last stop bit ends len x character time later, when the harness calls
  * modcp_cp_on_tx_done (transmission complete). The CPU side's user program calls the
