@@ -87,6 +87,7 @@ typedef struct {
     uint32_t baud;
     bool suppress;
     bool t15;
+    bool modbus_eof; /* eof_timing = modbus (else manual) */
 } row_t;
 
 static int32_t diff(uint32_t a, uint32_t b)
@@ -151,6 +152,7 @@ static void params_of(const row_t *r, modcp_params_t *p)
     p->baud = r->baud;
     p->opmode = r->suppress ? (uint8_t)MODCP_OPMODE_SUPPRESS : (uint8_t)MODCP_OPMODE_NORMAL;
     p->t15_check = r->t15 ? 1u : 0u;
+    p->eof_timing = r->modbus_eof ? (uint8_t)MODCP_EOF_MODBUS : (uint8_t)MODCP_EOF_MANUAL;
     p->iface = (uint8_t)MODCP_IFACE_RS485;
     p->rs485_sel = 1;
     p->turnaround_ms = 0;
@@ -405,10 +407,22 @@ static double manual_t35_us(uint32_t baud)
     return 3.5 * BITS_PER_CHAR * 1e6 / baud;
 }
 
-/* Modbus over Serial Line V1.02 §2.5.1.1: 1.5 characters; above 19200 baud 750 us. */
+/* MODBUS over Serial Line V1.02 §2.5.1.1: 1.5 and 3.5 characters; above 19200 baud
+ * 750 and 1750 us. */
 static double modbus_t15_us(uint32_t baud)
 {
     return baud > 19200u ? 750.0 : 1.5 * BITS_PER_CHAR * 1e6 / baud;
+}
+
+static double modbus_t35_us(uint32_t baud)
+{
+    return baud > 19200u ? 1750.0 : 3.5 * BITS_PER_CHAR * 1e6 / baud;
+}
+
+/* The t3.5 a row is compared with: the manual's, or the Modbus rule (eof_timing). */
+static double t35_rule_us(const row_t *r)
+{
+    return r->modbus_eof ? modbus_t35_us(r->baud) : manual_t35_us(r->baud);
 }
 
 static const char *mode_name(const row_t *r)
@@ -436,16 +450,19 @@ int main(int argc, char **argv)
         return 2;
     }
     static const uint32_t bauds[] = {9600u, 19200u, 115200u};
-    row_t rows[12];
+    row_t rows[15];
     size_t nrows = 0;
     for (size_t b = 0; b < 3u; b++) {
         for (int m = 0; m < 2; m++) {
             for (int t = 0; t < 2; t++) {
-                rows[nrows++] = (row_t){bauds[b], m != 0, t != 0};
+                rows[nrows++] = (row_t){bauds[b], m != 0, t != 0, false};
             }
         }
     }
-    static resp_t rs_of[12];
+    for (size_t b = 0; b < 3u; b++) { /* the Modbus rule, with the t1.5 check it goes with */
+        rows[nrows++] = (row_t){bauds[b], false, true, true};
+    }
+    static resp_t rs_of[15];
     for (size_t i = 0; i < nrows; i++) {
         rs_of[i] = response(&rows[i], cycle_us);
         if (!rs_of[i].ok) {
@@ -456,13 +473,13 @@ int main(int argc, char **argv)
     }
     char e1[32], e2[32], e3[32];
     printf("### End of frame\n\n");
-    printf("| baud | mode | t1.5 check | bit µs | manual t3.5 µs | close rule µs | closed after µs |"
-           " error, bits | eof silence µs | error, bits | t1.5 µs | t1.5 silence µs |"
-           " error, bits |\n");
-    printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    printf("| baud | mode | t1.5 check | eof_timing | bit µs | t3.5 µs | close rule µs |"
+           " closed after µs | error, bits | eof silence µs | error, bits | t1.5 µs |"
+           " t1.5 silence µs | error, bits |\n");
+    printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (size_t i = 0; i < nrows; i++) {
         const row_t *r = &rows[i];
-        const double bit = 1e6 / r->baud, t35 = manual_t35_us(r->baud);
+        const double bit = 1e6 / r->baud, t35 = t35_rule_us(r);
         const resp_t rs = rs_of[i];
         const double close_rule = r->suppress ? 0.0 : t35;
         const uint32_t hi = 2u * (uint32_t)t35 + 1000u;
@@ -474,9 +491,10 @@ int main(int argc, char **argv)
         }
         bits_cell(e1, sizeof e1, (double)rs.close - close_rule, bit);
         bits_cell(e2, sizeof e2, (double)eof - t35, bit);
-        printf("| %lu | %s | %s | %.2f | %.1f | %.1f | %lu | %s | %lu | %s |",
-               (unsigned long)r->baud, mode_name(r), r->t15 ? "on" : "off", bit, t35, close_rule,
-               (unsigned long)rs.close, e1, (unsigned long)eof, e2);
+        printf("| %lu | %s | %s | %s | %.2f | %.1f | %.1f | %lu | %s | %lu | %s |",
+               (unsigned long)r->baud, mode_name(r), r->t15 ? "on" : "off",
+               r->modbus_eof ? "modbus" : "manual", bit, t35, close_rule, (unsigned long)rs.close,
+               e1, (unsigned long)eof, e2);
         if (!r->t15) {
             printf(" — | — | — |\n");
             continue;
@@ -491,19 +509,20 @@ int main(int argc, char **argv)
         }
     }
     printf("\n### Response start and driver enable\n\n");
-    printf("| baud | mode | t1.5 check | model p50 µs | p50 µs | error, bits | model p99 µs |"
-           " p99 µs | error, bits | DE on before µs | DE off after µs |\n");
-    printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+    printf("| baud | mode | t1.5 check | eof_timing | model p50 µs | p50 µs | error, bits |"
+           " model p99 µs | p99 µs | error, bits | DE on before µs | DE off after µs |\n");
+    printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (size_t i = 0; i < nrows; i++) {
         const row_t *r = &rows[i];
         const double bit = 1e6 / r->baud;
-        const double close = r->suppress ? 0.0 : manual_t35_us(r->baud);
+        const double close = r->suppress ? 0.0 : t35_rule_us(r);
         const double m50 = close + 0.50 * cycle_us, m99 = close + 0.99 * cycle_us;
         const resp_t rs = rs_of[i];
         bits_cell(e1, sizeof e1, (double)rs.p50 - m50, bit);
         bits_cell(e2, sizeof e2, (double)rs.p99 - m99, bit);
-        printf("| %lu | %s | %s | %.1f | %lu | %s | %.1f | %lu | %s | %lu | %lu |\n",
-               (unsigned long)r->baud, mode_name(r), r->t15 ? "on" : "off", m50,
+        printf("| %lu | %s | %s | %s | %.1f | %lu | %s | %.1f | %lu | %s | %lu | %lu |\n",
+               (unsigned long)r->baud, mode_name(r), r->t15 ? "on" : "off",
+               r->modbus_eof ? "modbus" : "manual", m50,
                (unsigned long)rs.p50, e1, m99, (unsigned long)rs.p99, e2,
                (unsigned long)rs.de_lead, (unsigned long)rs.de_off);
     }
