@@ -4,12 +4,13 @@
  * their CRC, link, PDU, mapping, job over the backplane, FB against memory, reply out),
  * for the requests named on the command line.
  *
- *   bench_core NAME COUNT [block|bytes]
+ *   bench_core NAME COUNT [bytes|block]
  *
- * block (default): the request arrives as one block of characters back to back
- * (modcp_cp_on_rx_block, a UART with DMA or a FIFO; libmodbus reads it from its socket
- * in one go too); bytes: one modcp_cp_on_rx per character, every timer expiry due
- * between two characters delivered before the next one (a receive interrupt per byte).
+ * bytes (default; what every shipped port runs, tools/bench's headline): one
+ * modcp_cp_on_rx per character, every timer expiry due between two characters delivered
+ * before the next one (a receive interrupt per byte); block: the request arrives as one
+ * block of characters back to back (modcp_cp_on_rx_block, a UART with DMA or a FIFO;
+ * libmodbus reads it from its socket in one go too; the block loop exists only at -O2).
  * tools/bench counts, under callgrind, only what runs inside modcp's entry points
  * (--toggle-collect on modcp_cp_on_rx, modcp_cp_on_rx_block, modcp_cp_on_timer,
  * modcp_cp_poll, modcp_fb_call, modcp_cp_on_tx_done), the HAL callbacks they call
@@ -150,12 +151,16 @@ __attribute__((noinline)) void bench_loop(const uint8_t *req, size_t len, unsign
 int main(int argc, char **argv)
 {
     if (argc < 3) {
-        fprintf(stderr, "usage: bench_core NAME COUNT [block|bytes]\n");
+        fprintf(stderr, "usage: bench_core NAME COUNT [bytes|block]\n");
+        return 2;
+    }
+    if (argc > 3 && strcmp(argv[3], "bytes") != 0 && strcmp(argv[3], "block") != 0) {
+        fprintf(stderr, "bench_core: mode %s: must be bytes or block\n", argv[3]);
         return 2;
     }
     const bench_request_t *r = bench_find(argv[1]);
     unsigned n = (unsigned)strtoul(argv[2], NULL, 0);
-    per_byte = argc > 3 && strcmp(argv[3], "bytes") == 0;
+    per_byte = !(argc > 3 && strcmp(argv[3], "block") == 0);
     uint8_t frame[BENCH_FRAME_MAX];
     size_t len = bench_frame(r, frame);
     setup();
