@@ -665,7 +665,9 @@ static void test_event_exception(void **state)
     assert_int_equal(modcp_event_exception(MODCP_EV_FB_ERROR), 0);
     assert_int_equal(modcp_event_exception(MODCP_EVENT(0x08, 0x32)), 3);
     assert_int_equal(modcp_event_exception(MODCP_EVENT(0x05, 0x32)), 0); /* class matters */
-    /* the handlers' short form for the events of the mapping and the scanner agrees */
+    assert_int_equal(modcp_event_exception(MODCP_EV_MEI_CODE), 3); /* devid.c names 03 too */
+    /* every event the mapping and the scanner refuse with (modcp_pdu_map_err) has a code:
+     * pdu.c answers it with modcp_event_exception(), never with exception 00 */
     static const modcp_event_t map_events[] = {
         MODCP_EV_QUANTITY, MODCP_EV_DB_ACCESS, MODCP_EV_TC_ALIGN, MODCP_EV_NO_WINDOW,
         MODCP_EV_WRITE_DENIED, MODCP_EV_DB_OVERFLOW, MODCP_EV_PAST_END, MODCP_EV_AREA_READONLY,
@@ -676,8 +678,7 @@ static void test_event_exception(void **state)
         assert_int_equal(modcp_pdu_map_err(&s, map_events[i]), MODCP_PDU_FAIL);
         assert_int_equal(s.err, map_events[i]);
         assert_int_equal(s.x.exc, MODCP_EXC_OF_MAP);
-        assert_int_equal(modcp_pdu_map_exception(map_events[i]),
-                         modcp_event_exception(map_events[i]));
+        assert_in_range(modcp_event_exception(map_events[i]), 2, 3);
     }
 }
 
