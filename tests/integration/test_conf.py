@@ -398,8 +398,8 @@ def main():
     t.ok(rc == 0 and len(rec) >= 10, "build: record of %d bytes" % len(rec))
     if len(rec) >= 10:
         magic, version, plen = struct.unpack_from("<4sHH", rec, 0)
-        t.ok(magic == b"MCPR" and version == 2 and plen == len(rec) - 10,
-             "build: header MCPR v2, payload %d bytes" % plen)
+        t.ok(magic == b"MCPR" and version == 3 and plen == len(rec) - 10,
+             "build: header MCPR v3, payload %d bytes" % plen)
         t.ok(crc16(rec[:-2]) == rec[-2:], "build: CRC-16 over the record")
         baud, db, par, sb, slave = struct.unpack_from("<IBBBB", rec, 8)
         t.ok((baud, db, par, sb, slave) == (9600, 8, 2, 1, 5), "build: 9600 8E1 slave 5")

@@ -613,12 +613,17 @@ static void test_003_32bit_events(void **state)
     assert_int_equal(regs_ev(&p, &big_cpu, 3, 0, 1), MODCP_EV_NO_WINDOW);
     assert_int_equal(regs_ev(&p, &big_cpu, 3, 6000, 1), MODCP_EV_NO_WINDOW);
     assert_int_equal(regs_ev(&p, &big_cpu, 6, 10000, 1), MODCP_EV_NO_WINDOW);
-    /* write limits still apply to the resulting DB */
+    /* the DB write limits: not in 32-bit mode (003 §3.7, §5.4) ... */
     p.lim_db = (modcp_limit_t){2, 3};
+    expect_r32(&p, 6, 7002, 1, MODCP_R32_FLOAT, 4, 8, 4);
+    expect_r32(&p, 16, 7000, 2, MODCP_R32_FLOAT, 4, 0, 8);
+    /* ... unless db_in_32bit_mode asks for them (r32_lim_db) */
+    p.r32_lim_db = 1;
     assert_int_equal(regs_ev(&p, &big_cpu, 6, 7002, 1), MODCP_EV_WRITE_DENIED);
     assert_int_equal(regs_ev(&p, &big_cpu, 16, 7000, 2), MODCP_EV_WRITE_DENIED);
     expect_r32(&p, 3, 7002, 1, MODCP_R32_FLOAT, 4, 8, 4);
     expect_r32(&p, 6, 5000, 1, MODCP_R32_INT32, 3, 0, 4);
+    p.r32_lim_db = 0;
     /* and the work DB is never writable */
     modcp_areas_t a = big_cpu;
     a.work_db = 3;
