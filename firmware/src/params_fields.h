@@ -166,7 +166,9 @@ typedef struct {
       "`rs232`, `rs422`, `rs485`", "004 §2.3")                                                    \
     S(turnaround_ms, 2, MODCP_PF_TURNAROUND, 0, 0, 100, 0, MODCP_EV_PARAM_RECORD, 0,              \
       "interface", "turnaround_ms", NUM, none, "must be 0..100 ms",                               \
-      "RS485: delay between the end of the request and enabling the transmitter", "0 … 100",     \
+      "RS485: wait from the moment the reply is ready to its first bit; the transmitter (DE) " \
+      "is enabled at once, when the reply is ready, and drives the idle line during the wait",  \
+      "0 … 100",                                                                                  \
       "SPEC §3.1")                                                                                \
     S(rs232_auto, 1, MODCP_PF_RS232_AUTO, 0, 0, MODCP_WITH_RS232_SIGNALS, 0,                      \
       MODCP_EV_PARAM_RECORD, MODCP_PF_CUSTOM, "interface", "rs232_auto", BOOL, none,              \
