@@ -144,23 +144,30 @@ uint16_t modcp_pdu_exception(uint8_t *pdu, uint8_t fc, uint8_t code)
     return 2;
 }
 
-/* Event word -> Modbus exception code (events.h, 004 ch. 7, SPEC §5.2); 0 for events
- * that name no code (the caller answers 04). The engine itself names the code where it
- * refuses, and fail() answers the mapping's events by modcp_pdu_map_exception, which
- * agrees with this table (test_map.c: test_event_exception). */
+/* Event word -> Modbus exception code, the column exc of the event rows
+ * (modcp/event_rows.h; 004 ch. 7, SPEC §5.2); 0 for events that name no code. The engine
+ * names the code itself where it refuses (modcp_pdu_err); fail() answers the mapping's
+ * events (modcp_pdu_map_err) with this code. Kept as one 16-bit word per row with a code
+ * (exc << 12 | class << 8 | number; the rows with exc 0 leave no entry): 28 bytes and a
+ * loop, smaller than a switch over the rows. */
+#define EXC_ENTRY_0(cls, num)
+#define EXC_ENTRY_1(cls, num) (uint16_t)(1u << 12 | (cls) << 8 | (num)),
+#define EXC_ENTRY_2(cls, num) (uint16_t)(2u << 12 | (cls) << 8 | (num)),
+#define EXC_ENTRY_3(cls, num) (uint16_t)(3u << 12 | (cls) << 8 | (num)),
+#define EXC_ENTRY_4(cls, num) (uint16_t)(4u << 12 | (cls) << 8 | (num)),
+#define EXC_ROW(NAME, cls, num, exc, ...) EXC_ENTRY_##exc(cls, num)
+static const uint16_t exc_rows[] = {MODCP_EVENT_ROWS(EXC_ROW)};
+#undef EXC_ROW
+#define EXC_CLASS_ROW(NAME, cls, num, ...) _Static_assert((cls) < 16u, #NAME ": class < 10H");
+MODCP_EVENT_ROWS(EXC_CLASS_ROW)
+#undef EXC_CLASS_ROW
+
 uint8_t modcp_event_exception(modcp_event_t ev)
 {
-    if (ev == MODCP_EV_ILLEGAL_FC) {
-        return MODCP_EXC_ILLEGAL_FUNCTION; /* (08)31H */
-    }
-    if (ev >= MODCP_EV_QUANTITY && ev <= MODCP_EV_DIAG_SUBFC) {
-        return MODCP_EXC_ILLEGAL_VALUE; /* (08)32H..35H */
-    }
-    if (ev == MODCP_EV_DB_ACCESS || (ev >= MODCP_EV_TC_ALIGN && ev <= MODCP_EV_AREA_READONLY)) {
-        return MODCP_EXC_ILLEGAL_ADDRESS; /* (0E)39H DB boundary, (0E)50H..55H */
-    }
-    if (ev == MODCP_EV_FB_NOT_RUNNING) {
-        return MODCP_EXC_DEVICE_FAILURE; /* (0E)56H */
+    for (size_t i = 0; i < sizeof exc_rows / sizeof exc_rows[0]; i++) {
+        if ((exc_rows[i] & 0x0FFFu) == ev) {
+            return (uint8_t)(exc_rows[i] >> 12);
+        }
     }
     return MODCP_EXC_NONE;
 }
@@ -177,7 +184,7 @@ static modcp_pdu_action_t fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8
     modcp_diag_event(d, ev);
     uint8_t code = s->x.exc;
     if (code == (uint8_t)MODCP_EXC_OF_MAP) {
-        code = modcp_pdu_map_exception(ev);
+        code = modcp_event_exception(ev);
         s->x.exc = code;
     }
 #if MODCP_WITH_EXTENDED
