@@ -1,0 +1,145 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* modcp-sim — the command line. */
+#define _GNU_SOURCE
+#include "sim.h"
+
+/* ---- start-up ------------------------------------------------------------------------------ */
+
+static int usage(void)
+{
+    fprintf(stderr,
+            "usage: modcp-sim CONFIG.ini [CONFIG2.ini ...] [--pty-link PATH] [--device /dev/ttyX]\n"
+            "                 [--trace] [--script FILE] [--cycle-ms N] [--set section.key=value]...\n"
+            "                 [--control FIFO] [--bus] [--fault [@M:]KIND=VALUE]... [--seed N]\n"
+            "                 [--qemu-member PTY]...\n"
+            "  --pty-link PATH   also make PATH a symlink to the pseudo-terminal\n"
+            "  --device PATH     use a real serial device (termios from the parameters)\n"
+            "  --trace           print every frame received and sent, and every event\n"
+            "  --script FILE     run console commands from FILE once the FB is initialised\n"
+            "  --cycle-ms N      cycle time of the user program (default: [cpu] cycle_ms)\n"
+            "  --set [@M:]S.K=V  override a key of the configuration (e.g. serial.baud=115200);\n"
+            "                    on a bus, of every member, or of member M (@2:, @name:)\n"
+            "  --control FIFO    also read console commands from a named pipe (made if missing)\n"
+            "  --bus             run even one config as a bus member (for --fault / fault)\n"
+            "  --fault [@M:]K=V  a fault of member M's replies (default: every member); K: drop,\n"
+            "                    crc, exc06, exc04 (V in %%), delay (MS or MIN-MAX), silent (N\n"
+            "                    requests), noise (N bytes after each reply); implies --bus\n"
+            "  --seed N          seed of the faults' random choices (default 1)\n"
+            "  --qemu-member PTY a QEMU board's Modbus pty (tools/run-qemu) as a member of the\n"
+            "                    bus (@qemu; its console is its own); implies --bus\n"
+            "Several configs: one line (bus), one pty for the master, every member on it.\n"
+            "The console reads stdin; type help. Ctrl-C or SIGTERM stops.\n");
+    return 1;
+}
+
+/* What the value of an option is, for "needs a value" (NULL: the option takes none). */
+static const char *option_value(const char *a)
+{
+    static const char *const opts[][2] = {
+        {"--pty-link", "a path for the symlink to the pty"},
+        {"--device", "a serial device, e.g. /dev/ttyUSB0"},
+        {"--script", "a file of console commands"},
+        {"--control", "a path for the console FIFO"},
+        {"--cycle-ms", "the user program's cycle in ms, 1..60000"},
+        {"--set", "section.key=value"},
+        {"--fault", "[@MEMBER:]KIND=VALUE, e.g. drop=30 or @b:delay=5-20"},
+        {"--seed", "a number"},
+        {"--qemu-member", "the Modbus pty of a QEMU board (tools/run-qemu's MODBUS_TTY)"},
+    };
+    for (size_t i = 0; i < sizeof opts / sizeof opts[0]; i++) {
+        if (strcmp(a, opts[i][0]) == 0) {
+            return opts[i][1];
+        }
+    }
+    return NULL;
+}
+
+int parse_args(sim_t *s, int argc, char **argv)
+{
+    s->cycle_override = -1;
+    s->seed = 1;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *needs = option_value(a);
+        if (needs != NULL && (i + 1 >= argc || (argv[i + 1][0] == '-' && argv[i + 1][1] == '-'))) {
+            fprintf(stderr, "modcp-sim: %s needs a value (%s)\n", a, needs);
+            return 1;
+        }
+        if (strcmp(a, "--pty-link") == 0) {
+            s->pty_link = argv[++i];
+        } else if (strcmp(a, "--device") == 0) {
+            s->device = argv[++i];
+        } else if (strcmp(a, "--trace") == 0) {
+            atomic_store(&s->trace_on, true);
+        } else if (strcmp(a, "--bus") == 0) {
+            s->bus_mode = true;
+        } else if (strcmp(a, "--script") == 0) {
+            s->script = argv[++i];
+        } else if (strcmp(a, "--control") == 0) {
+            s->control = argv[++i];
+        } else if (strcmp(a, "--cycle-ms") == 0) {
+            char *end = NULL;
+            long v = strtol(argv[++i], &end, 10);
+            if (*end != '\0' || v < 1 || v > 60000) {
+                fprintf(stderr, "modcp-sim: --cycle-ms %s: must be 1..60000\n", argv[i]);
+                return 1;
+            }
+            s->cycle_override = v;
+        } else if (strcmp(a, "--seed") == 0) {
+            char *end = NULL;
+            unsigned long v = strtoul(argv[++i], &end, 10);
+            if (*end != '\0' || v > 0xFFFFFFFFul) {
+                fprintf(stderr, "modcp-sim: --seed %s: must be a number\n", argv[i]);
+                return 1;
+            }
+            s->seed = (uint32_t)v;
+        } else if (strcmp(a, "--set") == 0) {
+            if (s->set_count >= MAX_SETS) {
+                fprintf(stderr, "modcp-sim: too many --set\n");
+                return 1;
+            }
+            s->sets[s->set_count++] = argv[++i];
+        } else if (strcmp(a, "--fault") == 0) {
+            if (s->fault_count >= MAX_FAULTS) {
+                fprintf(stderr, "modcp-sim: too many --fault\n");
+                return 1;
+            }
+            s->faults[s->fault_count++] = argv[++i];
+            s->bus_mode = true;
+        } else if (strcmp(a, "--qemu-member") == 0) {
+            if (s->n_ext >= MAX_MEMBERS) {
+                fprintf(stderr, "modcp-sim: too many --qemu-member\n");
+                return 1;
+            }
+            s->ext_tty[s->n_ext++] = argv[++i];
+            s->bus_mode = true;
+        } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            return usage();
+        } else if (a[0] == '-') {
+            fprintf(stderr, "modcp-sim: unexpected argument '%s'\n", a);
+            return usage();
+        } else {
+            if (s->n >= MAX_MEMBERS) {
+                fprintf(stderr, "modcp-sim: at most %d configs (members of one bus)\n",
+                        MAX_MEMBERS);
+                return 1;
+            }
+            s->configs[s->n++] = a;
+        }
+    }
+    if (s->n == 0u) {
+        return usage();
+    }
+    if (s->n + s->n_ext > MAX_MEMBERS) {
+        fprintf(stderr, "modcp-sim: at most %d members on one bus\n", MAX_MEMBERS);
+        return 1;
+    }
+    if (s->n > 1u) {
+        s->bus_mode = true;
+    }
+    if (s->bus_mode && s->device != NULL) {
+        fprintf(stderr, "modcp-sim: --device works with one slave; a bus runs on a pty\n");
+        return 1;
+    }
+    return 0;
+}
