@@ -50,7 +50,7 @@ static void trace_print(void *user, const char *line)
     b->print(b->user, line);
 }
 
-sim_bus_t *sim_bus_new(const sim_line_t *line, size_t n, const char *const names[],
+sim_bus_t *sim_bus_new(const sim_line_cfg_t *line, size_t n, const char *const names[],
                        const uint8_t addr[], int master_fd, const int member_fd[],
                        const int wake_fd[], uint64_t t0_us64,
                        void (*print)(void *user, const char *line), void *user, uint32_t seed)
@@ -129,6 +129,11 @@ void sim_bus_trace(sim_bus_t *b, bool on)
     atomic_store(&b->trace_on, on);
 }
 
+void sim_bus_set_line(sim_bus_t *b, sim_line_t *wire)
+{
+    b->wire = wire;
+}
+
 /* ---- replies onto the line ------------------------------------------------------- */
 
 static sender_t *new_sender(sim_bus_t *b)
@@ -146,6 +151,36 @@ static void trace_line(sim_bus_t *b, const char *label, const uint8_t *buf, size
 {
     if (atomic_load(&b->trace_on)) {
         sim_trace_frame(&b->tr, label, buf, len, true, (uint64_t)(t < 0.0 ? 0.0 : t), note);
+    }
+}
+
+/* The noise fault: f->noise_bytes random characters one t3.5 after member m's reply s
+ * (b->mu held). */
+static void add_noise(sim_bus_t *b, size_t m, const sender_t *s)
+{
+    sim_fault_t *f = &b->fault[m];
+    sender_t *z = new_sender(b);
+    if (z == NULL) {
+        return;
+    }
+    z->who = NOISE;
+    z->len = f->noise_bytes;
+    for (uint16_t i = 0; i < z->len; i++) {
+        z->b[i] = (uint8_t)(rnd(b) >> 7);
+    }
+    z->t0 = end_of(b, s) + (double)b->line.t35_us;
+    z->used = true;
+    f->noise_sent += z->len;
+    sim_line_put_frame(b->wire, SIM_SRC_NOISE, z->b, NULL, z->len, (uint64_t)z->t0);
+    if (atomic_load(&b->trace_on)) {
+        char line[1200];
+        size_t pos = (size_t)snprintf(line, sizeof line, "[%5lu.%06lu] noise (fault of @%s)",
+                                      (unsigned long)((uint64_t)z->t0 / 1000000u),
+                                      (unsigned long)((uint64_t)z->t0 % 1000000u), b->names[m]);
+        for (uint16_t i = 0; i < z->len && pos + 4u < sizeof line; i++) {
+            pos += (size_t)snprintf(line + pos, sizeof line - pos, " %02X", z->b[i]);
+        }
+        b->print(b->user, line);
     }
 }
 
@@ -190,66 +225,13 @@ void sim_bus_tx(sim_bus_t *b, size_t m, const uint8_t *buf, uint16_t len, uint32
     s->who = (int)m;
     s->len = len;
     memcpy(s->b, buf, len);
-    if (chance(b, f->exc06_pct)) {
-        uint16_t k = exception_frame(b, buf, len, 0x06u, s->b);
-        if (k != 0u) {
-            s->len = k;
-            f->exc06++;
-            snprintf(note, sizeof note, "(fault: exception 06 instead)");
-        }
-    } else if (chance(b, f->exc04_pct)) {
-        uint16_t k = exception_frame(b, buf, len, 0x04u, s->b);
-        if (k != 0u) {
-            s->len = k;
-            f->exc04++;
-            snprintf(note, sizeof note, "(fault: exception 04 instead)");
-        }
-    }
-    if (chance(b, f->crc_pct)) {
-        corrupt_check(b, s->b, s->len);
-        f->crc_corrupted++;
-        size_t nl = strlen(note);
-        snprintf(note + nl, sizeof note - nl, "%s(fault: %s corrupted)", nl > 0u ? " " : "",
-                 b->line.ascii ? "LRC" : "CRC");
-    }
-    if (f->delay_max_ms > 0u) {
-        uint32_t d = f->delay_min_ms;
-        if (f->delay_max_ms > f->delay_min_ms) {
-            d += rnd(b) % (f->delay_max_ms - f->delay_min_ms + 1u);
-        }
-        t0 += (double)d * 1000.0;
-        f->delayed++;
-        size_t nl = strlen(note);
-        snprintf(note + nl, sizeof note - nl, "%s(fault: delayed %u ms)", nl > 0u ? " " : "",
-                 (unsigned)d);
-    }
+    t0 += reply_faults(b, f, s->b, &s->len, note, sizeof note);
     s->t0 = t0;
     s->used = true;
+    sim_line_put_frame(b->wire, (int)m, s->b, NULL, s->len, (uint64_t)(t0 < 0.0 ? 0.0 : t0));
     trace_line(b, label, s->b, s->len, t0, note[0] != '\0' ? note : NULL);
     if (f->noise_bytes > 0u) {
-        sender_t *z = new_sender(b);
-        if (z != NULL) {
-            z->who = NOISE;
-            z->len = f->noise_bytes;
-            for (uint16_t i = 0; i < z->len; i++) {
-                z->b[i] = (uint8_t)(rnd(b) >> 7);
-            }
-            z->t0 = end_of(b, s) + (double)b->line.t35_us;
-            z->used = true;
-            f->noise_sent += z->len;
-            char nlabel[48];
-            snprintf(nlabel, sizeof nlabel, "noise (fault of @%s)", b->names[m]);
-            if (atomic_load(&b->trace_on)) {
-                char line[1200];
-                size_t pos = (size_t)snprintf(line, sizeof line, "[%5lu.%06lu] %s",
-                                              (unsigned long)((uint64_t)z->t0 / 1000000u),
-                                              (unsigned long)((uint64_t)z->t0 % 1000000u), nlabel);
-                for (uint16_t i = 0; i < z->len && pos + 4u < sizeof line; i++) {
-                    pos += (size_t)snprintf(line + pos, sizeof line - pos, " %02X", z->b[i]);
-                }
-                b->print(b->user, line);
-            }
-        }
+        add_noise(b, m, s);
     }
     pthread_mutex_unlock(&b->mu);
     wake(b);
@@ -280,6 +262,7 @@ static void external_tx(sim_bus_t *b, size_t m, const uint8_t *buf, size_t n, do
         b->fault[m].replies++;
     }
     memcpy(s->b + s->len, buf, n);
+    sim_line_put_frame(b->wire, (int)m, buf, NULL, n, (uint64_t)(s->t0 + (double)s->len * b->c_us));
     s->len = (uint16_t)(s->len + n);
     pthread_mutex_unlock(&b->mu);
 }
@@ -377,6 +360,110 @@ static double emit_due(sim_bus_t *b, double now, bool *later)
     return -1.0;
 }
 
+/* How long the bus thread may sleep: until SPIN_US before the next character (then it
+ * watches the clock: *spin), or until a later character of a frame, or the 5 ms tick. */
+static double wait_for(const sim_bus_t *b, double now, double next, bool later, bool frame_open,
+                       bool *spin)
+{
+    double wait_us = 5000.0;
+    *spin = false;
+    if (next >= 0.0 && later) { /* a later character of a frame: just sleep until it */
+        double d = next - now;
+        wait_us = d < wait_us ? (d > 0.0 ? d : 0.0) : wait_us;
+    } else if (next >= 0.0) { /* (-1: nothing on the line, the 5 ms tick) */
+        double d = next - now;
+        if (d < wait_us) {
+            wait_us = d > SPIN_US ? d - SPIN_US : 0.0;
+            *spin = true;
+        }
+    }
+    if (frame_open && (double)b->tr.gap_us < wait_us) {
+        wait_us = (double)b->tr.gap_us; /* end the master's frame in the trace */
+    }
+    return wait_us;
+}
+
+static int bus_poll(sim_bus_t *b, struct pollfd *pf, nfds_t nf, double wait_us, bool spin,
+                    double next)
+{
+    struct timespec ts = {(time_t)(wait_us / 1e6),
+                          (long)((long long)(wait_us * 1000.0) % 1000000000LL)};
+    if (b->log != NULL) {
+        char what[64];
+        snprintf(what, sizeof what, "poll %.0f%s", wait_us, spin ? " spin" : "");
+        blog(b, what, NULL, 0);
+    }
+    int pr = ppoll(pf, nf, &ts, NULL);
+    if (b->log != NULL) {
+        char what[80];
+        snprintf(what, sizeof what, "polled %d wake=%x master=%x", pr, (unsigned)pf[0].revents,
+                 (unsigned)pf[1].revents);
+        blog(b, what, NULL, 0);
+    }
+    if (pr == 0 && spin) {
+        const struct timespec zero = {0, 0};
+        while (pr == 0 && now_rel(b) < next) {
+            pr = ppoll(pf, nf, &zero, NULL);
+        }
+    }
+    return pr;
+}
+
+/* The master wrote: every member hears it at once (a pty delivers a request at once, as
+ * to one slave); the line model gets it, its last stop bit ending at t. */
+static void master_read(sim_bus_t *b, double t)
+{
+    uint8_t buf[512];
+    ssize_t n = read(b->master_fd, buf, sizeof buf);
+    if (b->log != NULL) {
+        char what[64];
+        snprintf(what, sizeof what, "master read %zd%s", n, n < 0 ? strerror(errno) : "");
+        blog(b, what, buf, n > 0 ? (size_t)n : 0u);
+    }
+    if (n < 0 && errno == EIO) {
+        struct timespec s1 = {0, 1000000L};
+        nanosleep(&s1, NULL);
+    }
+    if (n <= 0) {
+        return;
+    }
+    double at_[512];
+    for (ssize_t i = 0; i < n; i++) {
+        at_[i] = t;
+    }
+    pthread_mutex_lock(&b->mu);
+    members_flush(b); /* what the line carried before comes first */
+    pthread_mutex_unlock(&b->mu);
+    for (size_t m = 0; m < b->n; m++) {
+        deliver(b, m, buf, at_, (size_t)n);
+    }
+    sim_line_put_arrived(b->wire, SIM_SRC_MASTER, buf, NULL, (size_t)n, (uint64_t)t);
+    if (atomic_load(&b->trace_on)) {
+        pthread_mutex_lock(&b->mu);
+        for (ssize_t i = 0; i < n; i++) {
+            sim_trace_rx(&b->tr, buf[i], 0, (uint64_t)t);
+        }
+        pthread_mutex_unlock(&b->mu);
+    }
+}
+
+/* What the members' ptys gave: an external member's characters go on the line; a
+ * member of ours sends its paced copy of its reply, which the bus has already. */
+static void members_read(sim_bus_t *b, const struct pollfd *pf)
+{
+    for (size_t m = 0; m < b->n; m++) {
+        if ((pf[m].revents & POLLIN) != 0) {
+            uint8_t got[512];
+            ssize_t k;
+            while ((k = read(b->member_fd[m], got, sizeof got)) > 0) {
+                if (b->wake_fd[m] < 0) {
+                    external_tx(b, m, got, (size_t)k, now_rel(b));
+                }
+            }
+        }
+    }
+}
+
 void *sim_bus_thread(void *arg)
 {
     sim_bus_t *b = arg;
@@ -397,42 +484,10 @@ void *sim_bus_thread(void *arg)
         double next = emit_due(b, now, &later);
         bool frame_open = b->tr.rx_len > 0u;
         pthread_mutex_unlock(&b->mu);
-        /* sleep until SPIN_US before the next character, then watch the clock */
-        double wait_us = 5000.0;
+        sim_line_tick(b->wire, (uint64_t)now);
         bool spin = false;
-        if (next >= 0.0 && later) { /* a later character of a frame: just sleep until it */
-            double d = next - now;
-            wait_us = d < wait_us ? (d > 0.0 ? d : 0.0) : wait_us;
-        } else if (next >= 0.0) { /* (-1: nothing on the line, the 5 ms tick) */
-            double d = next - now;
-            if (d < wait_us) {
-                wait_us = d > SPIN_US ? d - SPIN_US : 0.0;
-                spin = true;
-            }
-        }
-        if (frame_open && (double)b->tr.gap_us < wait_us) {
-            wait_us = (double)b->tr.gap_us; /* end the master's frame in the trace */
-        }
-        struct timespec ts = {(time_t)(wait_us / 1e6), (long)((long long)(wait_us * 1000.0) %
-                                                             1000000000LL)};
-        if (b->log != NULL) {
-            char what[64];
-            snprintf(what, sizeof what, "poll %.0f%s", wait_us, spin ? " spin" : "");
-            blog(b, what, NULL, 0);
-        }
-        int pr = ppoll(pf, nf, &ts, NULL);
-        if (b->log != NULL) {
-            char what[80];
-            snprintf(what, sizeof what, "polled %d wake=%x master=%x", pr, (unsigned)pf[0].revents,
-                     (unsigned)pf[1].revents);
-            blog(b, what, NULL, 0);
-        }
-        if (pr == 0 && spin) {
-            const struct timespec zero = {0, 0};
-            while (pr == 0 && now_rel(b) < next) {
-                pr = ppoll(pf, nf, &zero, NULL);
-            }
-        }
+        double wait_us = wait_for(b, now, next, later, frame_open, &spin);
+        int pr = bus_poll(b, pf, nf, wait_us, spin, next);
         if (pr < 0) {
             continue;
         }
@@ -441,49 +496,9 @@ void *sim_bus_thread(void *arg)
             modcp_posix_event_clear(&b->wake);
         }
         if ((pf[1].revents & (POLLIN | POLLHUP | POLLERR)) != 0) {
-            uint8_t buf[512];
-            ssize_t n = read(b->master_fd, buf, sizeof buf);
-            if (b->log != NULL) {
-                char what[64];
-                snprintf(what, sizeof what, "master read %zd%s", n,
-                         n < 0 ? strerror(errno) : "");
-                blog(b, what, buf, n > 0 ? (size_t)n : 0u);
-            }
-            if (n > 0) {
-                double at_[512];
-                for (ssize_t i = 0; i < n; i++) {
-                    at_[i] = t; /* a pty delivers a request at once, as to one slave */
-                }
-                pthread_mutex_lock(&b->mu);
-                members_flush(b); /* what the line carried before comes first */
-                pthread_mutex_unlock(&b->mu);
-                for (size_t m = 0; m < b->n; m++) {
-                    deliver(b, m, buf, at_, (size_t)n);
-                }
-                if (atomic_load(&b->trace_on)) {
-                    pthread_mutex_lock(&b->mu);
-                    for (ssize_t i = 0; i < n; i++) {
-                        sim_trace_rx(&b->tr, buf[i], 0, (uint64_t)t);
-                    }
-                    pthread_mutex_unlock(&b->mu);
-                }
-            } else if (n < 0 && errno == EIO) {
-                struct timespec s1 = {0, 1000000L};
-                nanosleep(&s1, NULL);
-            }
+            master_read(b, t);
         }
-        for (size_t m = 0; m < b->n; m++) {
-            if ((pf[2 + m].revents & POLLIN) != 0) {
-                uint8_t got[512];
-                ssize_t k;
-                while ((k = read(b->member_fd[m], got, sizeof got)) > 0) {
-                    if (b->wake_fd[m] < 0) {
-                        external_tx(b, m, got, (size_t)k, now_rel(b));
-                    }
-                    /* else: the member's paced copy of its reply: the bus has it */
-                }
-            }
-        }
+        members_read(b, pf + 2);
         if (atomic_load(&b->trace_on)) {
             pthread_mutex_lock(&b->mu);
             sim_trace_poll(&b->tr, (uint64_t)now_rel(b));

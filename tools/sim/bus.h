@@ -27,6 +27,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "line.h"
+
 #define SIM_BUS_MAX_MEMBERS 16
 
 typedef struct {
@@ -45,13 +47,6 @@ typedef struct {
     uint32_t collisions;    /* replies that overlapped another sender's on the line */
 } sim_fault_t;
 
-typedef struct {
-    uint8_t data_bits, parity, stop_bits; /* parity: modcp_parity_t */
-    bool ascii;
-    uint32_t char_us;
-    uint32_t t35_us; /* RTU t3.5 (ASCII: the character timeout) for the trace's frame cut */
-} sim_line_t;
-
 typedef struct sim_bus sim_bus_t;
 
 /* master_fd: the pty master the master's side opens; member_fd[i]: the far end of
@@ -62,7 +57,7 @@ typedef struct sim_bus sim_bus_t;
  * the line (paced from its arrival; faults do not apply to it).
  * names[i]: "a" (printed as "@a"), addr[i]: its slave address (for the trace).
  * print: one trace line (thread-safe). */
-sim_bus_t *sim_bus_new(const sim_line_t *line, size_t n, const char *const names[],
+sim_bus_t *sim_bus_new(const sim_line_cfg_t *line, size_t n, const char *const names[],
                        const uint8_t addr[], int master_fd, const int member_fd[],
                        const int wake_fd[], uint64_t t0_us64,
                        void (*print)(void *user, const char *line), void *user, uint32_t seed);
@@ -81,6 +76,8 @@ void sim_bus_free(sim_bus_t *b);
 void *sim_bus_thread(void *bus);
 void sim_bus_stop(sim_bus_t *b);
 void sim_bus_trace(sim_bus_t *b, bool on);
+/* The line model the bus's sources write to (before the bus thread starts). */
+void sim_bus_set_line(sim_bus_t *b, sim_line_t *wire);
 
 /* A member's UART starts a reply (buf as handed to the UART) at now_us (the member's
  * clock as passed to its core). Any thread. */

@@ -202,6 +202,49 @@ void corrupt_check(const sim_bus_t *b, uint8_t *buf, uint16_t len)
     }
 }
 
+/* The transforms of a reply (exception 06 / 04 instead, CRC or LRC corrupted, a delay)
+ * on buf (*len bytes, room for MODCP_POSIX_TX_MAX), counted in f and described in note;
+ * returns the delay in us. b->mu held. */
+double reply_faults(sim_bus_t *b, sim_fault_t *f, uint8_t *buf, uint16_t *len, char *note,
+                    size_t cap)
+{
+    uint8_t orig[MODCP_POSIX_TX_MAX];
+    memcpy(orig, buf, *len);
+    if (chance(b, f->exc06_pct)) {
+        uint16_t k = exception_frame(b, orig, *len, 0x06u, buf);
+        if (k != 0u) {
+            *len = k;
+            f->exc06++;
+            snprintf(note, cap, "(fault: exception 06 instead)");
+        }
+    } else if (chance(b, f->exc04_pct)) {
+        uint16_t k = exception_frame(b, orig, *len, 0x04u, buf);
+        if (k != 0u) {
+            *len = k;
+            f->exc04++;
+            snprintf(note, cap, "(fault: exception 04 instead)");
+        }
+    }
+    if (chance(b, f->crc_pct)) {
+        corrupt_check(b, buf, *len);
+        f->crc_corrupted++;
+        size_t nl = strlen(note);
+        snprintf(note + nl, cap - nl, "%s(fault: %s corrupted)", nl > 0u ? " " : "",
+                 b->line.ascii ? "LRC" : "CRC");
+    }
+    if (f->delay_max_ms == 0u) {
+        return 0.0;
+    }
+    uint32_t d = f->delay_min_ms;
+    if (f->delay_max_ms > f->delay_min_ms) {
+        d += rnd(b) % (f->delay_max_ms - f->delay_min_ms + 1u);
+    }
+    f->delayed++;
+    size_t nl = strlen(note);
+    snprintf(note + nl, cap - nl, "%s(fault: delayed %u ms)", nl > 0u ? " " : "", (unsigned)d);
+    return (double)d * 1000.0;
+}
+
 /* ---- faults from the console ------------------------------------------------------ */
 
 bool sim_bus_fault_set(sim_bus_t *b, size_t m, const char *spec, char *err, size_t cap)

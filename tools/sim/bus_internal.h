@@ -34,7 +34,8 @@ typedef struct {
 } sender_t;
 
 struct sim_bus {
-    sim_line_t line;
+    sim_line_cfg_t line;
+    sim_line_t *wire; /* the line model (observers); NULL: none */
     double c_us;   /* character time */
     double bit_us; /* bit time */
     unsigned nbits;
@@ -105,6 +106,8 @@ bool chance(sim_bus_t *b, uint8_t pct);
 uint16_t exception_frame(const sim_bus_t *b, const uint8_t *in, uint16_t len, uint8_t code,
                          uint8_t *out);
 void corrupt_check(const sim_bus_t *b, uint8_t *buf, uint16_t len);
+double reply_faults(sim_bus_t *b, sim_fault_t *f, uint8_t *buf, uint16_t *len, char *note,
+                    size_t cap);
 
 /* what the receiver heard, to the master and the members (bus_deliver.c) */
 void heard_flush(sim_bus_t *b);

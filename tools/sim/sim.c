@@ -77,10 +77,21 @@ uint64_t since_start(const sim_t *s)
     return modcp_posix_now_us64() - s->t0_us64;
 }
 
+/* A 32-bit clock value (modcp_posix_now_us) as us since start. */
+uint64_t since_start_of(const sim_t *s, uint32_t now_us)
+{
+    uint64_t n64 = modcp_posix_now_us64();
+    return n64 - (uint32_t)((uint32_t)n64 - now_us) - s->t0_us64;
+}
+
 static void on_tx(void *user, const uint8_t *buf, uint16_t len, uint32_t now_us)
 {
     member_t *m = user;
     sim_t *s = m->sim;
+    if (s->bus == NULL) {
+        /* one slave: the UART sends byte k from now + k characters on */
+        sim_line_put_frame(&s->wire, (int)m->index, buf, NULL, len, since_start_of(s, now_us));
+    }
     if (s->bus != NULL) {
         sim_bus_tx(s->bus, m->index, buf, len, now_us); /* the bus traces the line */
     } else if (atomic_load(&s->trace_on)) {
@@ -94,23 +105,9 @@ static void bus_print(void *user, const char *line)
     print_line(user, line);
 }
 
-int main(int argc, char **argv)
+/* Every member's configuration; 0 or the exit code. */
+static int load_members(sim_t *s)
 {
-    sim_t *s = calloc(1, sizeof *s);
-    if (s == NULL) {
-        return 1;
-    }
-    atomic_init(&s->stop, false);
-    atomic_init(&s->trace_on, false);
-    atomic_init(&s->ready_count, 0);
-    int rc = parse_args(s, argc, argv);
-    if (rc != 0) {
-        free(s);
-        return rc;
-    }
-    pthread_mutex_init(&s->print_mu, NULL);
-
-    /* configurations */
     for (size_t i = 0; i < s->n; i++) {
         member_t *m = &s->m[i];
         m->sim = s;
@@ -120,24 +117,47 @@ int main(int argc, char **argv)
         member_name(s, i);
     }
     for (size_t i = 0; i < s->n; i++) {
-        member_t *m = &s->m[i];
-        rc = load_member(s, m);
+        int rc = load_member(s, &s->m[i]);
         if (rc != 0) {
-            free_members(s);
-            free(s);
             return rc;
         }
     }
-    if (s->bus_mode && !same_line(s)) {
-        free_members(s);
-        free(s);
-        return 2;
-    }
-    const modcp_params_t *p0 = &s->m[0].conf->params;
-    uint32_t char_us = modcp_params_char_us(p0);
+    return s->bus_mode && !same_line(s) ? 2 : 0;
+}
 
-    /* the line: the first member's port (one slave), or the master's pty of the bus and
-     * one pty per member */
+static void close_ports(sim_t *s)
+{
+    if (s->bus_mode) {
+        modcp_posix_close(&s->line_port);
+        for (size_t i = 0; i < s->n; i++) {
+            modcp_posix_close(&s->m[i].port);
+        }
+    }
+}
+
+/* --qemu-member ttys, raw; 0 or -1 (message printed). */
+static int open_external(sim_t *s)
+{
+    for (size_t i = 0; i < s->n_ext; i++) {
+        s->ext_fd[i] = open(s->ext_tty[i], O_RDWR | O_NOCTTY | O_NONBLOCK);
+        struct termios tio;
+        if (s->ext_fd[i] < 0 || tcgetattr(s->ext_fd[i], &tio) != 0) {
+            fprintf(stderr, "modcp-sim: --qemu-member %s: %s\n", s->ext_tty[i],
+                    s->ext_fd[i] < 0 ? strerror(errno) : "not a serial device");
+            return -1;
+        }
+        cfmakeraw(&tio);
+        (void)tcsetattr(s->ext_fd[i], TCSANOW, &tio);
+        snprintf(s->ext_name[i], sizeof s->ext_name[i], i == 0u ? "qemu" : "qemu-%u",
+                 (unsigned)(i + 1u) % 100u);
+    }
+    return 0;
+}
+
+/* The line: the first member's port (one slave), or the master's pty of the bus and one
+ * pty per member. 0, or the exit code (message printed). */
+static int open_line(sim_t *s, const modcp_params_t *p0, uint32_t char_us)
+{
     int orc;
     if (!s->bus_mode) {
         orc = s->device != NULL
@@ -149,74 +169,58 @@ int main(int argc, char **argv)
         for (size_t i = 0; orc == 0 && i < s->n; i++) {
             orc = modcp_posix_open_pty(&s->m[i].port, NULL, char_us);
         }
-        for (size_t i = 0; orc == 0 && i < s->n_ext; i++) {
-            s->ext_fd[i] = open(s->ext_tty[i], O_RDWR | O_NOCTTY | O_NONBLOCK);
-            struct termios tio;
-            if (s->ext_fd[i] < 0 || tcgetattr(s->ext_fd[i], &tio) != 0) {
-                fprintf(stderr, "modcp-sim: --qemu-member %s: %s\n", s->ext_tty[i],
-                        s->ext_fd[i] < 0 ? strerror(errno) : "not a serial device");
-                return 1;
-            }
-            cfmakeraw(&tio);
-            (void)tcsetattr(s->ext_fd[i], TCSANOW, &tio);
-            snprintf(s->ext_name[i], sizeof s->ext_name[i], i == 0u ? "qemu" : "qemu-%u",
-                     (unsigned)(i + 1u) % 100u);
+        if (orc == 0 && open_external(s) != 0) {
+            return 1;
         }
     }
     if (orc != 0) {
         open_failed(s->device, s->pty_link, orc);
-        if (s->bus_mode) {
-            modcp_posix_close(&s->line_port);
-            for (size_t i = 0; i < s->n; i++) {
-                modcp_posix_close(&s->m[i].port);
-            }
-        }
-        free_members(s);
-        free(s);
+        close_ports(s);
         return 1;
     }
-    s->t0_us64 = modcp_posix_now_us64();
-    const char *line_path = s->bus_mode ? s->line_port.path : s->m[0].port.path;
-    const char *line_link = s->bus_mode ? s->line_port.link : s->m[0].port.link;
-    if (s->bus_mode) {
-        sim_line_t line = {p0->data_bits, p0->parity, p0->stop_bits,
-                           p0->framing == MODCP_FRAMING_ASCII, char_us,
-                           p0->framing == MODCP_FRAMING_ASCII ? p0->ascii_timeout_ms * 1000u
-                                                              : modcp_params_t35_us(p0)};
-        const char *names[MAX_MEMBERS];
-        uint8_t addr[MAX_MEMBERS];
-        int fds[MAX_MEMBERS], wakes[MAX_MEMBERS];
-        for (size_t i = 0; i < s->n; i++) {
-            names[i] = s->m[i].name;
-            addr[i] = s->m[i].conf->params.slave_addr;
-            fds[i] = s->m[i].port.slave_fd;
-            wakes[i] = s->m[i].port.wake.wr;
-        }
-        for (size_t i = 0; i < s->n_ext; i++) {
-            names[s->n + i] = s->ext_name[i];
-            addr[s->n + i] = 0;
-            fds[s->n + i] = s->ext_fd[i];
-            wakes[s->n + i] = -1;
-        }
-        s->bus = sim_bus_new(&line, s->n + s->n_ext, names, addr, s->line_port.fd, fds, wakes,
-                             s->t0_us64, bus_print, s, s->seed);
-        if (s->bus == NULL || !apply_cli_faults(s)) {
-            if (s->bus == NULL) {
-                fprintf(stderr, "modcp-sim: cannot set up the bus\n");
-            }
-            sim_bus_free(s->bus);
-            modcp_posix_close(&s->line_port);
-            for (size_t i = 0; i < s->n; i++) {
-                modcp_posix_close(&s->m[i].port);
-            }
-            free_members(s);
-            free(s);
-            return 1;
-        }
-        sim_bus_trace(s->bus, atomic_load(&s->trace_on));
-    }
+    return 0;
+}
 
-    /* each member: the two sides and the interface between them */
+/* The bus thread's state; false (message printed) on failure. */
+static bool make_bus(sim_t *s, const modcp_params_t *p0, uint32_t char_us)
+{
+    bool ascii = p0->framing == MODCP_FRAMING_ASCII;
+    sim_line_cfg_t line = {p0->data_bits, (uint8_t)p0->parity, p0->stop_bits, ascii, p0->baud,
+                           char_us, ascii ? p0->ascii_timeout_ms * 1000u : modcp_params_t35_us(p0)};
+    const char *names[MAX_MEMBERS];
+    uint8_t addr[MAX_MEMBERS];
+    int fds[MAX_MEMBERS], wakes[MAX_MEMBERS];
+    for (size_t i = 0; i < s->n; i++) {
+        names[i] = s->m[i].name;
+        addr[i] = s->m[i].conf->params.slave_addr;
+        fds[i] = s->m[i].port.slave_fd;
+        wakes[i] = s->m[i].port.wake.wr;
+    }
+    for (size_t i = 0; i < s->n_ext; i++) {
+        names[s->n + i] = s->ext_name[i];
+        addr[s->n + i] = 0;
+        fds[s->n + i] = s->ext_fd[i];
+        wakes[s->n + i] = -1;
+    }
+    s->bus = sim_bus_new(&line, s->n + s->n_ext, names, addr, s->line_port.fd, fds, wakes,
+                         s->t0_us64, bus_print, s, s->seed);
+    if (s->bus == NULL) {
+        fprintf(stderr, "modcp-sim: cannot set up the bus\n");
+        return false;
+    }
+    sim_bus_set_line(s->bus, &s->wire);
+    if (!apply_cli_faults(s)) {
+        sim_bus_free(s->bus);
+        s->bus = NULL;
+        return false;
+    }
+    sim_bus_trace(s->bus, atomic_load(&s->trace_on));
+    return true;
+}
+
+/* Each member: the two sides and the interface between them. */
+static bool init_sides(sim_t *s)
+{
     pthread_condattr_t ca;
     pthread_condattr_init(&ca);
     pthread_condattr_setclock(&ca, CLOCK_MONOTONIC);
@@ -233,7 +237,7 @@ int main(int argc, char **argv)
         pthread_cond_init(&m->cmd_cv, &ca);
         if (modcp_posix_event_open(&m->cpu_irq) != 0) {
             fprintf(stderr, "modcp-sim: cannot make a pipe\n");
-            return 1;
+            return false;
         }
         modcp_bp_init(&m->bp);
         modcp_cp_init(&m->cp, &m->hal, &m->bp);
@@ -253,28 +257,54 @@ int main(int argc, char **argv)
         cp_snapshot(m);
     }
     pthread_condattr_destroy(&ca);
+    return true;
+}
 
-    /* console FIFO */
-    int control_fd = -1, control_wfd = -1;
-    bool made_fifo = false;
-    if (s->control != NULL) {
-        struct stat st;
-        if (stat(s->control, &st) != 0) {
-            if (mkfifo(s->control, 0600) == 0) {
-                made_fifo = true;
-            }
-        }
-        control_fd = open(s->control, O_RDONLY | O_NONBLOCK);
-        if (control_fd >= 0) {
-            control_wfd = open(s->control, O_WRONLY | O_NONBLOCK); /* never see EOF */
-        } else {
-            fprintf(stderr, "modcp-sim: cannot open %s: %s\n", s->control, strerror(errno));
-        }
+typedef struct {
+    int fd, wfd;
+    bool made;
+} control_t;
+
+/* The console FIFO (--control). */
+static void open_control(const sim_t *s, control_t *c)
+{
+    c->fd = -1;
+    c->wfd = -1;
+    c->made = false;
+    if (s->control == NULL) {
+        return;
     }
+    struct stat st;
+    if (stat(s->control, &st) != 0 && mkfifo(s->control, 0600) == 0) {
+        c->made = true;
+    }
+    c->fd = open(s->control, O_RDONLY | O_NONBLOCK);
+    if (c->fd >= 0) {
+        c->wfd = open(s->control, O_WRONLY | O_NONBLOCK); /* never see EOF */
+    } else {
+        fprintf(stderr, "modcp-sim: cannot open %s: %s\n", s->control, strerror(errno));
+    }
+}
 
-    /* signals: handled by the main thread only */
+static void close_control(const sim_t *s, const control_t *c)
+{
+    if (c->fd >= 0) {
+        close(c->fd);
+    }
+    if (c->wfd >= 0) {
+        close(c->wfd);
+    }
+    if (c->made) {
+        (void)unlink(s->control);
+    }
+}
+
+/* Signals are handled by the main thread only: blocked here (old: the mask before), the
+ * threads started then inherit the block. false: no pipe. */
+static bool install_signals(sigset_t *old)
+{
     if (pipe(g_sigpipe) != 0) {
-        return 1;
+        return false;
     }
     (void)fcntl(g_sigpipe[1], F_SETFL, O_NONBLOCK);
     struct sigaction sa;
@@ -285,13 +315,19 @@ int main(int argc, char **argv)
     sigaction(SIGTERM, &sa, NULL);
     sigaction(SIGHUP, &sa, NULL);
     signal(SIGPIPE, SIG_IGN);
-    sigset_t block, old;
+    sigset_t block;
     sigemptyset(&block);
     sigaddset(&block, SIGINT);
     sigaddset(&block, SIGTERM);
     sigaddset(&block, SIGHUP);
-    pthread_sigmask(SIG_BLOCK, &block, &old);
+    pthread_sigmask(SIG_BLOCK, &block, old);
+    return true;
+}
 
+static void print_startup(sim_t *s, const modcp_params_t *p0)
+{
+    const char *line_path = s->bus_mode ? s->line_port.path : s->m[0].port.path;
+    const char *line_link = s->bus_mode ? s->line_port.link : s->m[0].port.link;
     char settings[48];
     modcp_conf_line_settings(p0, settings, sizeof settings);
     if (!s->bus_mode) {
@@ -313,41 +349,36 @@ int main(int argc, char **argv)
     if (line_link[0] != '\0') {
         printf_line(s, "modcp-sim: link %s -> %s", line_link, line_path);
     }
+}
 
-    modcp_posix_thread_t t_bus;
-    bool ok = true;
+/* The bus thread and every member's two threads; returns how many members started. */
+static size_t start_threads(sim_t *s, modcp_posix_thread_t *t_bus, bool *ok)
+{
+    *ok = true;
     if (s->bus != NULL) {
-        ok = modcp_posix_thread_start(&t_bus, sim_bus_thread, s->bus) == 0;
+        *ok = modcp_posix_thread_start(t_bus, sim_bus_thread, s->bus) == 0;
     }
     s->cpu_t0_us64 = modcp_posix_now_us64();
     size_t started = 0;
-    for (size_t i = 0; ok && i < s->n; i++) {
+    for (size_t i = 0; *ok && i < s->n; i++) {
         member_t *m = &s->m[i];
-        ok = modcp_posix_thread_start(&m->t_cp, cp_thread, m) == 0;
-        if (ok) {
-            ok = modcp_posix_thread_start(&m->t_cpu, cpu_thread, m) == 0;
-            if (!ok) {
+        *ok = modcp_posix_thread_start(&m->t_cp, cp_thread, m) == 0;
+        if (*ok) {
+            *ok = modcp_posix_thread_start(&m->t_cpu, cpu_thread, m) == 0;
+            if (!*ok) {
                 atomic_store(&s->stop, true);
                 modcp_posix_thread_join(&m->t_cp);
             }
         }
-        if (ok) {
+        if (*ok) {
             started++;
         }
     }
-    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    return started;
+}
 
-    bool go_on = ok;
-    if (!ok) {
-        fprintf(stderr, "modcp-sim: cannot start threads\n");
-    }
-    if (go_on && s->script != NULL) {
-        go_on = run_script(s);
-    }
-    if (go_on) {
-        console_loop(s, control_fd);
-    }
-
+static void stop_threads(sim_t *s, size_t started, modcp_posix_thread_t *t_bus)
+{
     atomic_store(&s->stop, true);
     for (size_t i = 0; i < started; i++) {
         member_t *m = &s->m[i];
@@ -363,7 +394,7 @@ int main(int argc, char **argv)
     }
     if (s->bus != NULL) {
         sim_bus_stop(s->bus);
-        modcp_posix_thread_join(&t_bus);
+        modcp_posix_thread_join(t_bus);
         sim_bus_free(s->bus);
         s->bus = NULL;
         modcp_posix_close(&s->line_port);
@@ -373,15 +404,75 @@ int main(int argc, char **argv)
         modcp_posix_event_close(&s->m[i].cpu_irq);
         sim_latlog_close(&s->m[i].lat);
     }
-    if (control_fd >= 0) {
-        close(control_fd);
+}
+
+/* Everything opened and set up; 0 or the exit code (cleaned up but s). */
+static int set_up(sim_t *s)
+{
+    int rc = load_members(s);
+    if (rc != 0) {
+        free_members(s);
+        return rc;
     }
-    if (control_wfd >= 0) {
-        close(control_wfd);
+    const modcp_params_t *p0 = &s->m[0].conf->params;
+    uint32_t char_us = modcp_params_char_us(p0);
+    rc = open_line(s, p0, char_us);
+    if (rc != 0) {
+        free_members(s);
+        return rc;
     }
-    if (made_fifo) {
-        (void)unlink(s->control);
+    s->t0_us64 = modcp_posix_now_us64();
+    if (!open_observers(s, p0) || (s->bus_mode && !make_bus(s, p0, char_us)) || !init_sides(s)) {
+        close_observers(s);
+        close_ports(s);
+        free_members(s);
+        return 1;
     }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    sim_t *s = calloc(1, sizeof *s);
+    if (s == NULL) {
+        return 1;
+    }
+    atomic_init(&s->stop, false);
+    atomic_init(&s->trace_on, false);
+    atomic_init(&s->ready_count, 0);
+    int rc = parse_args(s, argc, argv);
+    if (rc == 0) {
+        pthread_mutex_init(&s->print_mu, NULL);
+        rc = set_up(s);
+    }
+    if (rc != 0) {
+        free(s);
+        return rc;
+    }
+    control_t ctl;
+    open_control(s, &ctl);
+    sigset_t old;
+    if (!install_signals(&old)) {
+        return 1;
+    }
+    print_startup(s, &s->m[0].conf->params);
+    modcp_posix_thread_t t_bus;
+    bool ok = true;
+    size_t started = start_threads(s, &t_bus, &ok);
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    bool go_on = ok;
+    if (!ok) {
+        fprintf(stderr, "modcp-sim: cannot start threads\n");
+    }
+    if (go_on && s->script != NULL) {
+        go_on = run_script(s);
+    }
+    if (go_on) {
+        console_loop(s, ctl.fd);
+    }
+    stop_threads(s, started, &t_bus);
+    close_observers(s);
+    close_control(s, &ctl);
     if (g_signal != 0) {
         printf_line(s, "modcp-sim: stopped (%s)", g_signal == SIGINT ? "SIGINT"
                                                    : g_signal == SIGTERM ? "SIGTERM"

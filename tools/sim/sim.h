@@ -58,6 +58,9 @@
 #include "modcp/hal_posix.h"
 #include "modcp_conf.h"
 #include "bus.h"
+#include "capture.h"
+#include "line.h"
+#include "vcd.h"
 #include "latlog.h"
 #include "trace.h"
 
@@ -154,6 +157,12 @@ struct sim {
     /* the bus (bus_mode): the master's pty and the line */
     modcp_posix_port_t line_port;
     sim_bus_t *bus;
+    /* the line model and its observers (--capture, --vcd) */
+    const char *capture_path;
+    const char *vcd_path;
+    sim_line_t wire;
+    sim_capture_t *capture;
+    sim_vcd_t *vcd;
     /* output */
     pthread_mutex_t print_mu;
 };
@@ -166,6 +175,7 @@ extern int g_sigpipe[2];
 void print_line(sim_t *s, const char *line);
 void printf_line(sim_t *s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 uint64_t since_start(const sim_t *s);
+uint64_t since_start_of(const sim_t *s, uint32_t now_us);
 
 /* CP thread (sim_cp.c) */
 void cp_snapshot(member_t *m);
@@ -188,5 +198,8 @@ void free_members(sim_t *s);
 int load_member(sim_t *s, member_t *m);
 bool same_line(const sim_t *s);
 bool apply_cli_faults(sim_t *s);
+/* the line model and its observers: false (message printed) when a file cannot be made */
+bool open_observers(sim_t *s, const modcp_params_t *p0);
+void close_observers(sim_t *s);
 
 #endif

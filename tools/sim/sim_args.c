@@ -11,7 +11,7 @@ static int usage(void)
             "usage: modcp-sim CONFIG.ini [CONFIG2.ini ...] [--pty-link PATH] [--device /dev/ttyX]\n"
             "                 [--trace] [--script FILE] [--cycle-ms N] [--set section.key=value]...\n"
             "                 [--control FIFO] [--bus] [--fault [@M:]KIND=VALUE]... [--seed N]\n"
-            "                 [--qemu-member PTY]...\n"
+            "                 [--qemu-member PTY]... [--capture FILE.pcap] [--vcd FILE.vcd]\n"
             "  --pty-link PATH   also make PATH a symlink to the pseudo-terminal\n"
             "  --device PATH     use a real serial device (termios from the parameters)\n"
             "  --trace           print every frame received and sent, and every event\n"
@@ -27,6 +27,8 @@ static int usage(void)
             "  --seed N          seed of the faults' random choices (default 1)\n"
             "  --qemu-member PTY a QEMU board's Modbus pty (tools/run-qemu) as a member of the\n"
             "                    bus (@qemu; its console is its own); implies --bus\n"
+            "  --capture FILE    write every frame on the line to FILE (pcap, Wireshark/tshark)\n"
+            "  --vcd FILE        write the line at bit level to FILE (VCD, PulseView/sigrok)\n"
             "Several configs: one line (bus), one pty for the master, every member on it.\n"
             "The console reads stdin; type help. Ctrl-C or SIGTERM stops.\n");
     return 1;
@@ -45,6 +47,8 @@ static const char *option_value(const char *a)
         {"--fault", "[@MEMBER:]KIND=VALUE, e.g. drop=30 or @b:delay=5-20"},
         {"--seed", "a number"},
         {"--qemu-member", "the Modbus pty of a QEMU board (tools/run-qemu's MODBUS_TTY)"},
+        {"--capture", "a file for the Wireshark capture, e.g. line.pcap"},
+        {"--vcd", "a file for the waveform, e.g. line.vcd"},
     };
     for (size_t i = 0; i < sizeof opts / sizeof opts[0]; i++) {
         if (strcmp(a, opts[i][0]) == 0) {
@@ -73,6 +77,10 @@ int parse_args(sim_t *s, int argc, char **argv)
             atomic_store(&s->trace_on, true);
         } else if (strcmp(a, "--bus") == 0) {
             s->bus_mode = true;
+        } else if (strcmp(a, "--capture") == 0) {
+            s->capture_path = argv[++i];
+        } else if (strcmp(a, "--vcd") == 0) {
+            s->vcd_path = argv[++i];
         } else if (strcmp(a, "--script") == 0) {
             s->script = argv[++i];
         } else if (strcmp(a, "--control") == 0) {
