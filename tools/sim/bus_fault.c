@@ -34,22 +34,76 @@ static bool parse_u32(const char *s, uint32_t max, uint32_t *v)
     return true;
 }
 
+/* "off": the settings off, the counters kept. */
+static void faults_off(sim_fault_t *f)
+{
+    sim_fault_t z;
+    memset(&z, 0, sizeof z);
+    z.replies = f->replies;
+    z.dropped = f->dropped;
+    z.crc_corrupted = f->crc_corrupted;
+    z.exc06 = f->exc06;
+    z.exc04 = f->exc04;
+    z.delayed = f->delayed;
+    z.silenced = f->silenced;
+    z.noise_sent = f->noise_sent;
+    z.collisions = f->collisions;
+    *f = z;
+}
+
+/* P or P% with P in 0..100. */
+static bool parse_pct(const char *kind, const char *val, uint8_t *pct, char *err, size_t cap)
+{
+    size_t vl = strlen(val);
+    char num[16];
+    uint32_t v = 0;
+    if (vl > 0u && val[vl - 1u] == '%') {
+        vl--;
+    }
+    if (vl > 0u && vl < sizeof num) {
+        memcpy(num, val, vl);
+        num[vl] = '\0';
+        if (parse_u32(num, 100u, &v)) {
+            *pct = (uint8_t)v;
+            return true;
+        }
+    }
+    snprintf(err, cap, "%s=%s: a share in percent, 0..100", kind, val);
+    return false;
+}
+
+/* MS or MIN-MAX, 0..60000. */
+static bool parse_delay(sim_fault_t *f, const char *val, char *err, size_t cap)
+{
+    uint32_t lo = 0, hi = 0;
+    const char *dash = strchr(val, '-');
+    bool ok;
+    if (dash != NULL) {
+        char a[16];
+        size_t al = (size_t)(dash - val);
+        ok = al > 0u && al < sizeof a;
+        if (ok) {
+            memcpy(a, val, al);
+            a[al] = '\0';
+            ok = parse_u32(a, 60000u, &lo) && parse_u32(dash + 1, 60000u, &hi) && lo <= hi;
+        }
+    } else {
+        ok = parse_u32(val, 60000u, &lo);
+        hi = lo;
+    }
+    if (!ok) {
+        snprintf(err, cap, "delay=%s: MS or MIN-MAX, 0..60000 ms", val);
+        return false;
+    }
+    f->delay_min_ms = lo;
+    f->delay_max_ms = hi;
+    return true;
+}
+
 bool sim_fault_parse(sim_fault_t *f, const char *spec, char *err, size_t cap)
 {
     if (strcmp(spec, "off") == 0) {
-        sim_fault_t z;
-        memset(&z, 0, sizeof z);
-        /* settings off, counters kept */
-        z.replies = f->replies;
-        z.dropped = f->dropped;
-        z.crc_corrupted = f->crc_corrupted;
-        z.exc06 = f->exc06;
-        z.exc04 = f->exc04;
-        z.delayed = f->delayed;
-        z.silenced = f->silenced;
-        z.noise_sent = f->noise_sent;
-        z.collisions = f->collisions;
-        *f = z;
+        faults_off(f);
         return true;
     }
     const char *eq = strchr(spec, '=');
@@ -70,48 +124,10 @@ bool sim_fault_parse(sim_fault_t *f, const char *spec, char *err, size_t cap)
                    : strcmp(kind, "exc04") == 0 ? &f->exc04_pct
                                                 : NULL;
     if (pct != NULL) {
-        size_t vl = strlen(val);
-        char num[16];
-        if (vl > 0u && val[vl - 1u] == '%') {
-            vl--;
-        }
-        if (vl == 0u || vl >= sizeof num) {
-            snprintf(err, cap, "%s=%s: a share in percent, 0..100", kind, val);
-            return false;
-        }
-        memcpy(num, val, vl);
-        num[vl] = '\0';
-        if (!parse_u32(num, 100u, &v)) {
-            snprintf(err, cap, "%s=%s: a share in percent, 0..100", kind, val);
-            return false;
-        }
-        *pct = (uint8_t)v;
-        return true;
+        return parse_pct(kind, val, pct, err, cap);
     }
     if (strcmp(kind, "delay") == 0) {
-        uint32_t lo = 0, hi = 0;
-        const char *dash = strchr(val, '-');
-        bool ok;
-        if (dash != NULL) {
-            char a[16];
-            size_t al = (size_t)(dash - val);
-            ok = al > 0u && al < sizeof a;
-            if (ok) {
-                memcpy(a, val, al);
-                a[al] = '\0';
-                ok = parse_u32(a, 60000u, &lo) && parse_u32(dash + 1, 60000u, &hi) && lo <= hi;
-            }
-        } else {
-            ok = parse_u32(val, 60000u, &lo);
-            hi = lo;
-        }
-        if (!ok) {
-            snprintf(err, cap, "delay=%s: MS or MIN-MAX, 0..60000 ms", val);
-            return false;
-        }
-        f->delay_min_ms = lo;
-        f->delay_max_ms = hi;
-        return true;
+        return parse_delay(f, val, err, cap);
     }
     if (strcmp(kind, "silent") == 0) {
         if (!parse_u32(val, 1000000u, &v)) {

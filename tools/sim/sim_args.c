@@ -58,6 +58,69 @@ static const char *option_value(const char *a)
     return NULL;
 }
 
+/* Appends v to list (count of cap); false (message) when full. */
+static bool push(const char **list, size_t *count, size_t cap, const char *v, const char *opt)
+{
+    if (*count >= cap) {
+        fprintf(stderr, "modcp-sim: too many %s\n", opt);
+        return false;
+    }
+    list[(*count)++] = v;
+    return true;
+}
+
+static int number_option(sim_t *s, const char *a, const char *v)
+{
+    char *end = NULL;
+    if (strcmp(a, "--cycle-ms") == 0) {
+        long x = strtol(v, &end, 10);
+        if (*end != '\0' || x < 1 || x > 60000) {
+            fprintf(stderr, "modcp-sim: --cycle-ms %s: must be 1..60000\n", v);
+            return 1;
+        }
+        s->cycle_override = x;
+        return 0;
+    }
+    unsigned long x = strtoul(v, &end, 10);
+    if (*end != '\0' || x > 0xFFFFFFFFul) {
+        fprintf(stderr, "modcp-sim: --seed %s: must be a number\n", v);
+        return 1;
+    }
+    s->seed = (uint32_t)x;
+    return 0;
+}
+
+/* An option with the value v: 0, the exit code, or -1 when a is not one of them. */
+static int value_option(sim_t *s, const char *a, const char *v)
+{
+    const char **path = strcmp(a, "--pty-link") == 0  ? &s->pty_link
+                        : strcmp(a, "--device") == 0  ? &s->device
+                        : strcmp(a, "--capture") == 0 ? &s->capture_path
+                        : strcmp(a, "--vcd") == 0     ? &s->vcd_path
+                        : strcmp(a, "--script") == 0  ? &s->script
+                        : strcmp(a, "--control") == 0 ? &s->control
+                                                      : NULL;
+    if (path != NULL) {
+        *path = v;
+        return 0;
+    }
+    if (strcmp(a, "--cycle-ms") == 0 || strcmp(a, "--seed") == 0) {
+        return number_option(s, a, v);
+    }
+    if (strcmp(a, "--set") == 0) {
+        return push(s->sets, &s->set_count, MAX_SETS, v, a) ? 0 : 1;
+    }
+    if (strcmp(a, "--fault") == 0) {
+        s->bus_mode = true;
+        return push(s->faults, &s->fault_count, MAX_FAULTS, v, a) ? 0 : 1;
+    }
+    if (strcmp(a, "--qemu-member") == 0) {
+        s->bus_mode = true;
+        return push(s->ext_tty, &s->n_ext, MAX_MEMBERS, v, a) ? 0 : 1;
+    }
+    return -1;
+}
+
 int parse_args(sim_t *s, int argc, char **argv)
 {
     s->cycle_override = -1;
@@ -69,69 +132,24 @@ int parse_args(sim_t *s, int argc, char **argv)
             fprintf(stderr, "modcp-sim: %s needs a value (%s)\n", a, needs);
             return 1;
         }
-        if (strcmp(a, "--pty-link") == 0) {
-            s->pty_link = argv[++i];
-        } else if (strcmp(a, "--device") == 0) {
-            s->device = argv[++i];
+        int rc = needs != NULL ? value_option(s, a, argv[++i]) : -1;
+        if (rc >= 0) {
+            if (rc != 0) {
+                return rc;
+            }
         } else if (strcmp(a, "--trace") == 0) {
             atomic_store(&s->trace_on, true);
         } else if (strcmp(a, "--bus") == 0) {
-            s->bus_mode = true;
-        } else if (strcmp(a, "--capture") == 0) {
-            s->capture_path = argv[++i];
-        } else if (strcmp(a, "--vcd") == 0) {
-            s->vcd_path = argv[++i];
-        } else if (strcmp(a, "--script") == 0) {
-            s->script = argv[++i];
-        } else if (strcmp(a, "--control") == 0) {
-            s->control = argv[++i];
-        } else if (strcmp(a, "--cycle-ms") == 0) {
-            char *end = NULL;
-            long v = strtol(argv[++i], &end, 10);
-            if (*end != '\0' || v < 1 || v > 60000) {
-                fprintf(stderr, "modcp-sim: --cycle-ms %s: must be 1..60000\n", argv[i]);
-                return 1;
-            }
-            s->cycle_override = v;
-        } else if (strcmp(a, "--seed") == 0) {
-            char *end = NULL;
-            unsigned long v = strtoul(argv[++i], &end, 10);
-            if (*end != '\0' || v > 0xFFFFFFFFul) {
-                fprintf(stderr, "modcp-sim: --seed %s: must be a number\n", argv[i]);
-                return 1;
-            }
-            s->seed = (uint32_t)v;
-        } else if (strcmp(a, "--set") == 0) {
-            if (s->set_count >= MAX_SETS) {
-                fprintf(stderr, "modcp-sim: too many --set\n");
-                return 1;
-            }
-            s->sets[s->set_count++] = argv[++i];
-        } else if (strcmp(a, "--fault") == 0) {
-            if (s->fault_count >= MAX_FAULTS) {
-                fprintf(stderr, "modcp-sim: too many --fault\n");
-                return 1;
-            }
-            s->faults[s->fault_count++] = argv[++i];
-            s->bus_mode = true;
-        } else if (strcmp(a, "--qemu-member") == 0) {
-            if (s->n_ext >= MAX_MEMBERS) {
-                fprintf(stderr, "modcp-sim: too many --qemu-member\n");
-                return 1;
-            }
-            s->ext_tty[s->n_ext++] = argv[++i];
             s->bus_mode = true;
         } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             return usage();
         } else if (a[0] == '-') {
             fprintf(stderr, "modcp-sim: unexpected argument '%s'\n", a);
             return usage();
+        } else if (s->n >= MAX_MEMBERS) {
+            fprintf(stderr, "modcp-sim: at most %d configs (members of one bus)\n", MAX_MEMBERS);
+            return 1;
         } else {
-            if (s->n >= MAX_MEMBERS) {
-                fprintf(stderr, "modcp-sim: at most %d configs (members of one bus)\n",
-                        MAX_MEMBERS);
-                return 1;
-            }
             s->configs[s->n++] = a;
         }
     }

@@ -121,67 +121,107 @@ static void member_cmd(member_t *m, const char *line, const char *cmd, bool pref
     }
 }
 
+static void list_members(sim_t *s, const char *indent)
+{
+    for (size_t i = 0; i < s->n; i++) {
+        printf_line(s, "%s@%s = @%zu  slave %u  %s", indent, s->m[i].name, i + 1u,
+                    (unsigned)s->m[i].conf->params.slave_addr, s->m[i].config);
+    }
+}
+
+/* The simulator's own commands (quit, sleep, trace, members): *done when cmd was one;
+ * returns false when the simulator should stop. */
+static bool sim_cmd(sim_t *s, const char *cmd, const char *arg, int k, bool *done)
+{
+    *done = true;
+    if (strcasecmp(cmd, "quit") == 0 || strcasecmp(cmd, "exit") == 0) {
+        return false;
+    }
+    if (strcasecmp(cmd, "sleep") == 0) {
+        char *end = NULL;
+        long ms = strtol(arg, &end, 10);
+        if (k < 2 || *end != '\0' || ms < 0 || ms > 3600000L) {
+            print_line(s, "error: usage: sleep MS");
+        } else {
+            (void)sleep_ms(s, ms);
+        }
+    } else if (strcasecmp(cmd, "trace") == 0) {
+        if (k == 2 && (strcasecmp(arg, "on") == 0 || strcasecmp(arg, "off") == 0)) {
+            atomic_store(&s->trace_on, strcasecmp(arg, "on") == 0);
+            if (s->bus != NULL) {
+                sim_bus_trace(s->bus, strcasecmp(arg, "on") == 0);
+            }
+            printf_line(s, "trace %s", arg);
+        } else {
+            print_line(s, "error: usage: trace on|off");
+        }
+    } else if (strcasecmp(cmd, "members") == 0) {
+        list_members(s, "");
+    } else {
+        *done = false;
+    }
+    return true;
+}
+
+static void sim_help(sim_t *s)
+{
+    print_line(s, "  trace on|off        frame trace (simulator)");
+    print_line(s, "  sleep MS            wait (simulator, for scripts)");
+    print_line(s, "  quit                stop the simulator");
+    if (s->bus != NULL) {
+        print_line(s, "  members             the bus's members (@name = @index, address, config)");
+        print_line(s, "  @M COMMAND          run COMMAND on member M (@b, @2; @* = all); without");
+        print_line(s, "                      @M: status, diag and fault on all, the rest on the first");
+        print_line(s, "  fault [SPEC]...     faults of a member's replies: drop=P crc=P exc06=P");
+        print_line(s, "                      exc04=P (P in %), delay=MS|MIN-MAX, silent=N, noise=N,");
+        print_line(s, "                      off; without SPEC: settings and counters");
+    }
+}
+
+/* "@name" at *rest: its index (MAX_MEMBERS: @*), -1 when there is none such (listed);
+ * -2 without a prefix. *rest moves past it. */
+static int member_prefix(sim_t *s, const char **rest)
+{
+    const char *r = *rest;
+    while (*r == ' ' || *r == '\t') {
+        r++;
+    }
+    *rest = r;
+    if (*r != '@') {
+        return -2;
+    }
+    char name[32];
+    size_t k = 0;
+    r++;
+    while (*r != '\0' && *r != ' ' && *r != '\t' && k + 1u < sizeof name) {
+        name[k++] = *r++;
+    }
+    name[k] = '\0';
+    *rest = r;
+    int target = find_member(s, name);
+    if (target < 0) {
+        printf_line(s, "error: no member @%s; members:", name);
+        list_members(s, "  ");
+    }
+    return target;
+}
+
 /* One console line; returns false when the simulator should stop. */
 static bool handle_line(sim_t *s, const char *line)
 {
     char cmd[32] = "";
     char arg[64] = "";
     const char *rest = line;
-    int target = -2; /* -2: no prefix */
-    while (*rest == ' ' || *rest == '\t') {
-        rest++;
-    }
-    if (*rest == '@') {
-        char name[32];
-        size_t k = 0;
-        rest++;
-        while (*rest != '\0' && *rest != ' ' && *rest != '\t' && k + 1u < sizeof name) {
-            name[k++] = *rest++;
-        }
-        name[k] = '\0';
-        target = find_member(s, name);
-        if (target < 0) {
-            printf_line(s, "error: no member @%s; members:", name);
-            for (size_t i = 0; i < s->n; i++) {
-                printf_line(s, "  @%s = @%zu  slave %u  %s", s->m[i].name, i + 1u,
-                            (unsigned)s->m[i].conf->params.slave_addr, s->m[i].config);
-            }
-            return true;
-        }
+    int target = member_prefix(s, &rest);
+    if (target == -1) {
+        return true;
     }
     int k = sscanf(rest, " %31s %63s", cmd, arg);
     if (k >= 1 && target == -2) {
-        if (strcasecmp(cmd, "quit") == 0 || strcasecmp(cmd, "exit") == 0) {
-            return false;
-        }
-        if (strcasecmp(cmd, "sleep") == 0) {
-            char *end = NULL;
-            long ms = strtol(arg, &end, 10);
-            if (k < 2 || *end != '\0' || ms < 0 || ms > 3600000L) {
-                print_line(s, "error: usage: sleep MS");
-            } else {
-                (void)sleep_ms(s, ms);
-            }
-            return true;
-        }
-        if (strcasecmp(cmd, "trace") == 0) {
-            if (k == 2 && (strcasecmp(arg, "on") == 0 || strcasecmp(arg, "off") == 0)) {
-                atomic_store(&s->trace_on, strcasecmp(arg, "on") == 0);
-                if (s->bus != NULL) {
-                    sim_bus_trace(s->bus, strcasecmp(arg, "on") == 0);
-                }
-                printf_line(s, "trace %s", arg);
-            } else {
-                print_line(s, "error: usage: trace on|off");
-            }
-            return true;
-        }
-        if (strcasecmp(cmd, "members") == 0) {
-            for (size_t i = 0; i < s->n; i++) {
-                printf_line(s, "@%s = @%zu  slave %u  %s", s->m[i].name, i + 1u,
-                            (unsigned)s->m[i].conf->params.slave_addr, s->m[i].config);
-            }
-            return true;
+        bool done = false;
+        bool go_on = sim_cmd(s, cmd, arg, k, &done);
+        if (done) {
+            return go_on;
         }
     }
     if (k < 1 && target != -2) {
@@ -205,17 +245,7 @@ static bool handle_line(sim_t *s, const char *line)
         member_cmd(&s->m[target], rest, cmd, false);
     }
     if (k >= 1 && (strcasecmp(cmd, "help") == 0 || strcmp(cmd, "?") == 0)) {
-        print_line(s, "  trace on|off        frame trace (simulator)");
-        print_line(s, "  sleep MS            wait (simulator, for scripts)");
-        print_line(s, "  quit                stop the simulator");
-        if (s->bus != NULL) {
-            print_line(s, "  members             the bus's members (@name = @index, address, config)");
-            print_line(s, "  @M COMMAND          run COMMAND on member M (@b, @2; @* = all); without");
-            print_line(s, "                      @M: status, diag and fault on all, the rest on the first");
-            print_line(s, "  fault [SPEC]...     faults of a member's replies: drop=P crc=P exc06=P");
-            print_line(s, "                      exc04=P (P in %), delay=MS|MIN-MAX, silent=N, noise=N,");
-            print_line(s, "                      off; without SPEC: settings and counters");
-        }
+        sim_help(s);
     }
     return true;
 }
