@@ -118,7 +118,7 @@ def bus(a, t, tmp):
     cfgs = make_configs(a.config, tmp, [("a", 1), ("b", 1), ("c", 2)])
     pcap = os.path.join(tmp, "bus.pcap")
     vcd = os.path.join(tmp, "bus.vcd")
-    sim = Sim(a.sim, cfgs[0], sets=["serial.baud=115200"], cycle_ms=1,
+    sim = Sim(a.sim, cfgs[0], sets=["serial.baud=115200"], cycle_ms=1, trace=True,
               extra=cfgs[1:] + ["--fault", "@c:noise=3", "--capture", pcap, "--vcd", vcd]).start()
     line = RawLine(sim.device)
     try:
@@ -135,6 +135,8 @@ def bus(a, t, tmp):
     rows = tshark(pcap, "_ws.col.Protocol", "exported_pdu.src_port", "mbrtu.unit_id",
                   "modbus.func_code", "data.data")
     protos = [r[0] for r in rows]
+    if "COLLISION" not in protos:
+        print("\n".join(sim.lines[-40:]))
     coll = sorted(r[1] for r in rows if r[0] == "COLLISION")
     t.ok(coll == ["1", "2"], "bus: the colliding replies of @a and @b are COLLISION records "
          "from source ports 1 and 2 (%s)" % protos)

@@ -136,10 +136,11 @@ void sim_bus_set_line(sim_bus_t *b, sim_line_t *wire)
 
 /* ---- replies onto the line ------------------------------------------------------- */
 
-static sender_t *new_sender(sim_bus_t *b)
+sender_t *new_sender(sim_bus_t *b)
 {
     for (size_t i = 0; i < MAX_SENDERS; i++) {
         if (!b->s[i].used) {
+            memset(&b->s[i], 0, sizeof b->s[i]); /* no faults of its last use */
             return &b->s[i];
         }
     }
@@ -151,6 +152,35 @@ static void trace_line(sim_bus_t *b, const char *label, const uint8_t *buf, size
 {
     if (atomic_load(&b->trace_on)) {
         sim_trace_frame(&b->tr, label, buf, len, true, (uint64_t)(t < 0.0 ? 0.0 : t), note);
+    }
+}
+
+/* A transmission to the line model, with its serial faults as the characters' flags. */
+static void line_put_sender(sim_bus_t *b, const sender_t *s)
+{
+    if (!sim_line_watched(b->wire)) {
+        return;
+    }
+    uint64_t t0 = (uint64_t)(s->t0 < 0.0 ? 0.0 : s->t0);
+    if (s->low_us > 0.0) {
+        sim_char_t c = {t0, (uint32_t)s->low_us, 0, (int16_t)s->who, 0, SIM_CH_BREAK};
+        sim_line_put(b->wire, &c);
+        return;
+    }
+    for (size_t k = 0; k < s->len; k++) {
+        sim_char_t c = {t0 + (uint64_t)((double)k * b->c_us), b->line.char_us, 0, (int16_t)s->who,
+                        s->b[k], 0};
+        if (k + 1u == s->parity_k) {
+            c.flags |= SIM_CH_PARITY;
+        }
+        if (k + 1u == s->framing_k) {
+            c.flags |= SIM_CH_FRAMING;
+        }
+        if (k + 1u == s->len && s->cut_bits != 0u) {
+            c.flags |= SIM_CH_DE_CUT;
+            c.de_off_us = (uint32_t)((double)(b->nbits - s->cut_bits) * b->bit_us);
+        }
+        sim_line_put(b->wire, &c);
     }
 }
 
@@ -228,8 +258,17 @@ void sim_bus_tx(sim_bus_t *b, size_t m, const uint8_t *buf, uint16_t len, uint32
     t0 += reply_faults(b, f, s->b, &s->len, note, sizeof note);
     s->t0 = t0;
     s->used = true;
-    sim_line_put_frame(b->wire, (int)m, s->b, NULL, s->len, (uint64_t)(t0 < 0.0 ? 0.0 : t0));
-    trace_line(b, label, s->b, s->len, t0, note[0] != '\0' ? note : NULL);
+    uint8_t shown[MODCP_POSIX_TX_MAX];
+    uint16_t shown_len = s->len;
+    memcpy(shown, s->b, s->len);
+    sender_t *extra[3];
+    size_t n_extra = serial_faults(b, f, s, extra, note, sizeof note);
+    line_put_sender(b, s);
+    for (size_t i = 0; i < n_extra; i++) {
+        line_put_sender(b, extra[i]);
+    }
+    b->reply_end = end_of(b, n_extra > 0u ? extra[n_extra - 1u] : s);
+    trace_line(b, label, shown, shown_len, t0, note[0] != '\0' ? note : NULL);
     if (f->noise_bytes > 0u) {
         add_noise(b, m, s);
     }
@@ -299,7 +338,7 @@ static double emit_due(sim_bus_t *b, double now, bool *later)
         if (!decode_next(b, &ch)) {
             break;
         }
-        double at = ch.start + b->c_us;
+        double at = ch.start + ch.len_us;
         if (b->mlen > 0u && ch.start > b->heard_end + 0.5 * b->c_us) {
             members_flush(b); /* the line paused: the members get what it carried */
         }
@@ -318,7 +357,7 @@ static double emit_due(sim_bus_t *b, double now, bool *later)
             master_write(b, mo, mol);
             mol = 0;
         }
-        mo[mol++] = ch.byte;
+        mo[mol++] = ch.errors != 0u ? 0u : ch.byte; /* as termios reads it (INPCK, no PARMRK) */
         uint32_t deaf = 0;
         for (size_t m = 0; m < b->n; m++) {
             if (member_sending(b, m, ch.start, at)) {
@@ -326,6 +365,7 @@ static double emit_due(sim_bus_t *b, double now, bool *later)
             }
         }
         b->mbuf[b->mlen] = ch.byte;
+        b->merr[b->mlen] = ch.errors;
         b->mdeaf[b->mlen] = deaf;
         b->mt[b->mlen] = at;
         b->mlen++;
@@ -343,7 +383,9 @@ static double emit_due(sim_bus_t *b, double now, bool *later)
         if (ch.senders > 1u) {
             b->heard_collided = true;
         }
-        b->from = ch.start + ((double)b->nbits - 0.5) * b->bit_us;
+        b->from = (ch.errors & MODCP_LINE_BREAK) != 0u
+                      ? ch.start + ch.len_us
+                      : ch.start + ((double)b->nbits - 0.5) * b->bit_us;
     }
     members_flush(b); /* nothing follows back to back */
     master_write(b, mo, mol);
@@ -427,17 +469,26 @@ static void master_read(sim_bus_t *b, double t)
     if (n <= 0) {
         return;
     }
-    double at_[512];
-    for (ssize_t i = 0; i < n; i++) {
-        at_[i] = t;
-    }
     pthread_mutex_lock(&b->mu);
     members_flush(b); /* what the line carried before comes first */
-    pthread_mutex_unlock(&b->mu);
-    for (size_t m = 0; m < b->n; m++) {
-        deliver(b, m, buf, at_, (size_t)n);
+    const sim_fault_t *f = &b->mfault;
+    bool faulted = (f->parity_k | f->framing_k | f->gap_k | f->de_cut_bits) != 0u ||
+                   (f->break_ms | f->early_us) != 0u;
+    if (faulted) {
+        master_faults(b, buf, (size_t)n, t);
+        (void)master_due(b, t);
     }
-    sim_line_put_arrived(b->wire, SIM_SRC_MASTER, buf, NULL, (size_t)n, (uint64_t)t);
+    pthread_mutex_unlock(&b->mu);
+    if (!faulted) {
+        double at_[512];
+        for (ssize_t i = 0; i < n; i++) {
+            at_[i] = t;
+        }
+        for (size_t m = 0; m < b->n; m++) {
+            deliver(b, m, buf, NULL, at_, (size_t)n);
+        }
+        sim_line_put_arrived(b->wire, SIM_SRC_MASTER, buf, NULL, (size_t)n, (uint64_t)t);
+    }
     if (atomic_load(&b->trace_on)) {
         pthread_mutex_lock(&b->mu);
         for (ssize_t i = 0; i < n; i++) {
@@ -482,8 +533,13 @@ void *sim_bus_thread(void *arg)
         pthread_mutex_lock(&b->mu);
         bool later = false;
         double next = emit_due(b, now, &later);
+        double mnext = master_due(b, now);
         bool frame_open = b->tr.rx_len > 0u;
         pthread_mutex_unlock(&b->mu);
+        if (mnext >= 0.0 && (next < 0.0 || mnext < next)) {
+            next = mnext; /* the master's next character (a gap, a BREAK): on time */
+            later = false;
+        }
         sim_line_tick(b->wire, (uint64_t)now);
         bool spin = false;
         double wait_us = wait_for(b, now, next, later, frame_open, &spin);

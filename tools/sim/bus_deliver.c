@@ -56,7 +56,8 @@ static void write_all(int fd, const uint8_t *p, size_t n)
 
 
 /* Characters for member m, each ending on the line at t (us since the bus's t0). */
-void deliver(sim_bus_t *b, size_t m, const uint8_t *bytes, const double *t, size_t n)
+void deliver(sim_bus_t *b, size_t m, const uint8_t *bytes, const uint8_t *errors, const double *t,
+             size_t n)
 {
     if (n == 0u) {
         return;
@@ -77,6 +78,7 @@ void deliver(sim_bus_t *b, size_t m, const uint8_t *bytes, const double *t, size
             break; /* the member does not read: drop, like an overrun */
         }
         b->rxq[m].b[b->rxq[m].head] = bytes[i];
+        b->rxq[m].e[b->rxq[m].head] = errors != NULL ? errors[i] : 0u;
         b->rxq[m].t[b->rxq[m].head] = (uint32_t)(b->t0_us64 + (uint64_t)(t[i] < 0.0 ? 0.0 : t[i]));
         b->rxq[m].head = next;
     }
@@ -86,14 +88,15 @@ void deliver(sim_bus_t *b, size_t m, const uint8_t *bytes, const double *t, size
     (void)r;
 }
 
-size_t sim_bus_take(sim_bus_t *b, size_t m, uint8_t *bytes, uint32_t *t_us, size_t cap,
-                    uint32_t until_us, bool *more)
+size_t sim_bus_take(sim_bus_t *b, size_t m, uint8_t *bytes, uint8_t *errors, uint32_t *t_us,
+                    size_t cap, uint32_t until_us, bool *more)
 {
     size_t k = 0;
     pthread_mutex_lock(&b->rx_mu);
     while (k < cap && b->rxq[m].tail != b->rxq[m].head &&
            (int32_t)(b->rxq[m].t[b->rxq[m].tail] - until_us) <= 0) {
         bytes[k] = b->rxq[m].b[b->rxq[m].tail];
+        errors[k] = b->rxq[m].e[b->rxq[m].tail];
         t_us[k] = b->rxq[m].t[b->rxq[m].tail];
         k++;
         b->rxq[m].tail = (b->rxq[m].tail + 1u) % 8192u;
@@ -114,16 +117,17 @@ void master_write(sim_bus_t *b, const uint8_t *p, size_t n)
 void members_flush(sim_bus_t *b)
 {
     for (size_t m = 0; m < b->n && b->mlen > 0u; m++) {
-        uint8_t out[SIM_TRACE_MAX];
+        uint8_t out[SIM_TRACE_MAX], err[SIM_TRACE_MAX];
         double t[SIM_TRACE_MAX];
         size_t k = 0;
         for (size_t i = 0; i < b->mlen; i++) {
             if ((b->mdeaf[i] & (1u << m)) == 0u) {
                 t[k] = b->mt[i];
+                err[k] = b->merr[i];
                 out[k++] = b->mbuf[i];
             }
         }
-        deliver(b, m, out, t, k);
+        deliver(b, m, out, err, t, k);
     }
     b->mlen = 0;
 }

@@ -422,7 +422,8 @@ static int set_up(sim_t *s)
         return rc;
     }
     s->t0_us64 = modcp_posix_now_us64();
-    if (!open_observers(s, p0) || (s->bus_mode && !make_bus(s, p0, char_us)) || !init_sides(s)) {
+    if (!load_replay(s) || !open_observers(s, p0) || (s->bus_mode && !make_bus(s, p0, char_us)) ||
+        !init_sides(s)) {
         close_observers(s);
         close_ports(s);
         free_members(s);
@@ -468,8 +469,11 @@ int main(int argc, char **argv)
         go_on = run_script(s);
     }
     if (go_on) {
+        start_replay(s);
         console_loop(s, ctl.fd);
     }
+    atomic_store(&s->stop, true);
+    join_replay(s);
     stop_threads(s, started, &t_bus);
     close_observers(s);
     close_control(s, &ctl);
@@ -481,6 +485,7 @@ int main(int argc, char **argv)
         printf_line(s, "modcp-sim: stopped");
     }
     free_members(s);
+    int rc_end = !ok ? 1 : s->replay.differ > 0u ? 3 : 0;
     free(s);
-    return ok ? 0 : 1;
+    return rc_end;
 }

@@ -60,6 +60,7 @@
 #include "bus.h"
 #include "capture.h"
 #include "line.h"
+#include "replay.h"
 #include "vcd.h"
 #include "latlog.h"
 #include "trace.h"
@@ -76,6 +77,8 @@
 
 #define MAX_MEMBERS SIM_BUS_MAX_MEMBERS
 #define MAX_FAULTS 64
+/* @master: the master's direction of the line (its serial faults) */
+#define MASTER_TARGET (-3)
 
 typedef struct sim sim_t;
 
@@ -163,6 +166,12 @@ struct sim {
     sim_line_t wire;
     sim_capture_t *capture;
     sim_vcd_t *vcd;
+    /* --replay FILE.pcap [--speed F] */
+    const char *replay_path;
+    double speed;
+    sim_replay_t replay;
+    modcp_posix_thread_t t_replay;
+    bool replay_started;
     /* output */
     pthread_mutex_t print_mu;
 };
@@ -187,6 +196,8 @@ void timespec_of(uint64_t us, struct timespec *ts);
 void *cpu_thread(void *arg);
 /* console (sim_console.c) */
 int find_member(const sim_t *s, const char *name);
+/* Waits until every member's FB initialisation has finished (ready or CP_START_ERROR). */
+void wait_init(sim_t *s);
 bool run_script(sim_t *s);
 void console_loop(sim_t *s, int control_fd);
 /* command line (sim_args.c) */
@@ -201,5 +212,10 @@ bool apply_cli_faults(sim_t *s);
 /* the line model and its observers: false (message printed) when a file cannot be made */
 bool open_observers(sim_t *s, const modcp_params_t *p0);
 void close_observers(sim_t *s);
+/* --replay: load the capture (false: message printed), start it after the start-up,
+ * wait for it; the simulator stops when it has played the capture. */
+bool load_replay(sim_t *s);
+void start_replay(sim_t *s);
+void join_replay(sim_t *s);
 
 #endif

@@ -12,6 +12,7 @@ static int usage(void)
             "                 [--trace] [--script FILE] [--cycle-ms N] [--set section.key=value]...\n"
             "                 [--control FIFO] [--bus] [--fault [@M:]KIND=VALUE]... [--seed N]\n"
             "                 [--qemu-member PTY]... [--capture FILE.pcap] [--vcd FILE.vcd]\n"
+            "                 [--replay FILE.pcap [--speed F]]\n"
             "  --pty-link PATH   also make PATH a symlink to the pseudo-terminal\n"
             "  --device PATH     use a real serial device (termios from the parameters)\n"
             "  --trace           print every frame received and sent, and every event\n"
@@ -23,12 +24,17 @@ static int usage(void)
             "  --bus             run even one config as a bus member (for --fault / fault)\n"
             "  --fault [@M:]K=V  a fault of member M's replies (default: every member); K: drop,\n"
             "                    crc, exc06, exc04 (V in %%), delay (MS or MIN-MAX), silent (N\n"
-            "                    requests), noise (N bytes after each reply); implies --bus\n"
+            "                    requests), noise (N bytes after each reply); serial: parity=K,\n"
+            "                    framing=K (byte K), break=MS, gap=K:US, de_cut=BITS; @master:\n"
+            "                    the master's direction (serial kinds, early=US); implies --bus\n"
             "  --seed N          seed of the faults' random choices (default 1)\n"
             "  --qemu-member PTY a QEMU board's Modbus pty (tools/run-qemu) as a member of the\n"
             "                    bus (@qemu; its console is its own); implies --bus\n"
             "  --capture FILE    write every frame on the line to FILE (pcap, Wireshark/tshark)\n"
             "  --vcd FILE        write the line at bit level to FILE (VCD, PulseView/sigrok)\n"
+            "  --replay FILE     play the master's frames of a capture against the slave(s), report\n"
+            "                    the replies that differ, stop (exit 3 when any differs)\n"
+            "  --speed F         the replay's gaps divided by F (default 1)\n"
             "Several configs: one line (bus), one pty for the master, every member on it.\n"
             "The console reads stdin; type help. Ctrl-C or SIGTERM stops.\n");
     return 1;
@@ -49,6 +55,8 @@ static const char *option_value(const char *a)
         {"--qemu-member", "the Modbus pty of a QEMU board (tools/run-qemu's MODBUS_TTY)"},
         {"--capture", "a file for the Wireshark capture, e.g. line.pcap"},
         {"--vcd", "a file for the waveform, e.g. line.vcd"},
+        {"--replay", "a capture of modcp-sim (--capture), e.g. line.pcap"},
+        {"--speed", "a factor > 0 for the replay's gaps, e.g. 2"},
     };
     for (size_t i = 0; i < sizeof opts / sizeof opts[0]; i++) {
         if (strcmp(a, opts[i][0]) == 0) {
@@ -93,15 +101,31 @@ static int number_option(sim_t *s, const char *a, const char *v)
 /* An option with the value v: 0, the exit code, or -1 when a is not one of them. */
 static int value_option(sim_t *s, const char *a, const char *v)
 {
-    const char **path = strcmp(a, "--pty-link") == 0  ? &s->pty_link
-                        : strcmp(a, "--device") == 0  ? &s->device
-                        : strcmp(a, "--capture") == 0 ? &s->capture_path
-                        : strcmp(a, "--vcd") == 0     ? &s->vcd_path
-                        : strcmp(a, "--script") == 0  ? &s->script
-                        : strcmp(a, "--control") == 0 ? &s->control
-                                                      : NULL;
+    const struct {
+        const char *opt;
+        const char **dst;
+    } paths[] = {{"--pty-link", &s->pty_link}, {"--device", &s->device},
+                 {"--capture", &s->capture_path}, {"--vcd", &s->vcd_path},
+                 {"--replay", &s->replay_path}, {"--script", &s->script},
+                 {"--control", &s->control}};
+    const char **path = NULL;
+    for (size_t i = 0; i < sizeof paths / sizeof paths[0]; i++) {
+        if (strcmp(a, paths[i].opt) == 0) {
+            path = paths[i].dst;
+        }
+    }
     if (path != NULL) {
         *path = v;
+        return 0;
+    }
+    if (strcmp(a, "--speed") == 0) {
+        char *end = NULL;
+        double x = strtod(v, &end);
+        if (*end != '\0' || !(x > 0.0 && x <= 1000.0)) {
+            fprintf(stderr, "modcp-sim: --speed %s: must be a factor > 0 (up to 1000)\n", v);
+            return 1;
+        }
+        s->speed = x;
         return 0;
     }
     if (strcmp(a, "--cycle-ms") == 0 || strcmp(a, "--seed") == 0) {
@@ -125,6 +149,7 @@ int parse_args(sim_t *s, int argc, char **argv)
 {
     s->cycle_override = -1;
     s->seed = 1;
+    s->speed = 1.0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *needs = option_value(a);

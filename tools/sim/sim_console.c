@@ -174,7 +174,9 @@ static void sim_help(sim_t *s)
         print_line(s, "                      @M: status, diag and fault on all, the rest on the first");
         print_line(s, "  fault [SPEC]...     faults of a member's replies: drop=P crc=P exc06=P");
         print_line(s, "                      exc04=P (P in %), delay=MS|MIN-MAX, silent=N, noise=N,");
+        print_line(s, "                      serial: parity=K framing=K break=MS gap=K:US de_cut=BITS;");
         print_line(s, "                      off; without SPEC: settings and counters");
+        print_line(s, "  @master fault ...   the master's direction: the serial faults and early=US");
     }
 }
 
@@ -198,12 +200,38 @@ static int member_prefix(sim_t *s, const char **rest)
     }
     name[k] = '\0';
     *rest = r;
+    if (strcmp(name, "master") == 0 && s->bus != NULL) {
+        return MASTER_TARGET;
+    }
     int target = find_member(s, name);
     if (target < 0) {
         printf_line(s, "error: no member @%s; members:", name);
         list_members(s, "  ");
     }
     return target;
+}
+
+/* `@master fault [SPEC]...`: the master's direction. */
+static void master_cmd(sim_t *s, const char *rest, const char *cmd)
+{
+    if (strcasecmp(cmd, "fault") != 0 && strcasecmp(cmd, "faults") != 0) {
+        print_line(s, "error: @master takes fault [SPEC]... (the master's direction of the line)");
+        return;
+    }
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", rest);
+    char *save = NULL;
+    (void)strtok_r(buf, " \t", &save); /* the command */
+    for (char *tok = strtok_r(NULL, " \t", &save); tok != NULL; tok = strtok_r(NULL, " \t", &save)) {
+        char err[200];
+        if (!sim_bus_fault_set(s->bus, SIM_BUS_MASTER, tok, err, sizeof err)) {
+            printf_line(s, "@master error: fault %s", err);
+            return;
+        }
+    }
+    char out[512];
+    sim_bus_fault_describe(s->bus, SIM_BUS_MASTER, out, sizeof out);
+    printf_line(s, "@master %s", out);
 }
 
 /* One console line; returns false when the simulator should stop. */
@@ -228,6 +256,10 @@ static bool handle_line(sim_t *s, const char *line)
         print_line(s, "error: @MEMBER needs a command (e.g. @b status)");
         return true;
     }
+    if (target == MASTER_TARGET) {
+        master_cmd(s, rest, cmd);
+        return true;
+    }
     /* which members: a prefix names one (or @* all); without one, status / diag /
      * fault go to every member, everything else to the first */
     bool all = target == MAX_MEMBERS;
@@ -246,6 +278,12 @@ static bool handle_line(sim_t *s, const char *line)
     }
     if (k >= 1 && (strcasecmp(cmd, "help") == 0 || strcmp(cmd, "?") == 0)) {
         sim_help(s);
+    }
+    if (k >= 1 && s->bus != NULL && strcasecmp(cmd, "status") == 0 &&
+        sim_bus_master_faulted(s->bus)) {
+        char out[512];
+        sim_bus_fault_describe(s->bus, SIM_BUS_MASTER, out, sizeof out);
+        printf_line(s, "@master %s", out); /* the master's direction: its serial faults */
     }
     return true;
 }
@@ -301,9 +339,8 @@ static bool pump(sim_t *s, line_reader_t *r)
     }
 }
 
-bool run_script(sim_t *s)
+void wait_init(sim_t *s)
 {
-    /* after the FB's init has finished (ready or CP_START_ERROR) */
     uint32_t start_ms = 0;
     for (size_t i = 0; i < s->n; i++) {
         if (s->m[i].conf->params.start_time_ms > start_ms) {
@@ -322,6 +359,11 @@ bool run_script(sim_t *s)
         }
         (void)sleep_ms(s, 10);
     }
+}
+
+bool run_script(sim_t *s)
+{
+    wait_init(s); /* after the FB's init has finished (ready or CP_START_ERROR) */
     FILE *f = fopen(s->script, "r");
     if (f == NULL) {
         printf_line(s, "modcp-sim: cannot open script %s: %s", s->script, strerror(errno));

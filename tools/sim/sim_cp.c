@@ -78,7 +78,8 @@ static void bus_tx_done(member_t *m, uint32_t now)
 
 /* On a bus: one character heard at ti (the member's clock), after the timer when it fell
  * due first. */
-static void bus_char(member_t *m, uint8_t byte, uint32_t ti, uint32_t now, bool tr, uint64_t n64)
+static void bus_char(member_t *m, uint8_t byte, uint8_t errors, uint32_t ti, uint32_t now, bool tr,
+                     uint64_t n64)
 {
     if ((int32_t)(ti - m->core_t) < 0) {
         ti = m->core_t; /* never back in time for the core */
@@ -99,9 +100,13 @@ static void bus_char(member_t *m, uint8_t byte, uint32_t ti, uint32_t now, bool 
     m->port.now_us = ti;
     if (tr) {
         uint64_t tb = n64 - (uint32_t)((uint32_t)n64 - ti) - m->sim->t0_us64;
-        sim_trace_rx(&m->tr, byte, 0, tb);
+        sim_trace_rx(&m->tr, byte, errors, tb);
     }
-    modcp_cp_on_rx(&m->cp, byte, ti);
+    if (errors != 0u) {
+        modcp_cp_on_line_error(&m->cp, errors, ti);
+    } else {
+        modcp_cp_on_rx(&m->cp, byte, ti);
+    }
     m->core_t = ti;
 }
 
@@ -118,10 +123,10 @@ static void bus_turn(member_t *m, uint32_t now, bool *tx_done, bool *timer, bool
         bus_tx_done(m, now);
         *tx_done = false;
     }
-    uint8_t bb[RX_CHUNK];
+    uint8_t bb[RX_CHUNK], be[RX_CHUNK];
     uint32_t bt[RX_CHUNK];
     bool more = false;
-    size_t k = sim_bus_take(s->bus, m->index, bb, bt, RX_CHUNK, now, &more);
+    size_t k = sim_bus_take(s->bus, m->index, bb, be, bt, RX_CHUNK, now, &more);
     if (more) {
         /* characters that arrived after `now` was read: the next turn takes them
          * (pulled back to `now` they could precede the end of our own reply: (08)37H,
@@ -129,7 +134,7 @@ static void bus_turn(member_t *m, uint32_t now, bool *tx_done, bool *timer, bool
         modcp_posix_wake(&m->port);
     }
     for (size_t i = 0; i < k; i++) {
-        bus_char(m, bb[i], bt[i], now, tr, n64);
+        bus_char(m, bb[i], be[i], bt[i], now, tr, n64);
     }
     if (m->port.timer_armed && (int32_t)(now - m->port.timer_deadline_us) >= 0) {
         m->port.timer_armed = false;

@@ -51,3 +51,58 @@ void close_observers(sim_t *s)
         printf_line(s, "modcp-sim: waveform %s written", s->vcd_path);
     }
 }
+
+bool load_replay(sim_t *s)
+{
+    char err[200];
+    if (s->replay_path == NULL) {
+        return true;
+    }
+    if (!sim_replay_load(&s->replay, s->replay_path, err, sizeof err)) {
+        fprintf(stderr, "modcp-sim: --replay %s: %s\n", s->replay_path, err);
+        return false;
+    }
+    return true;
+}
+
+static void replay_print(void *user, const char *line)
+{
+    print_line(user, line);
+}
+
+static void *replay_thread(void *arg)
+{
+    sim_t *s = arg;
+    wait_init(s);
+    const modcp_params_t *p0 = &s->m[0].conf->params;
+    uint32_t t35 = p0->framing == MODCP_FRAMING_ASCII ? 20000u : modcp_params_t35_us(p0);
+    const char *path = s->bus_mode ? s->line_port.path : s->m[0].port.path;
+    if (!sim_replay_run(&s->replay, path, s->speed, t35, &s->stop, replay_print, s)) {
+        printf_line(s, "modcp-sim: --replay: cannot open %s", path);
+    } else {
+        printf_line(s, "modcp-sim: replay %s: %zu requests, %zu differ", s->replay_path,
+                    s->replay.requests, s->replay.differ);
+    }
+    if (g_sigpipe[1] >= 0) { /* the console loop ends: the simulator stops */
+        char c = 'r';
+        ssize_t w = write(g_sigpipe[1], &c, 1);
+        (void)w;
+    }
+    return NULL;
+}
+
+void start_replay(sim_t *s)
+{
+    if (s->replay_path != NULL) {
+        s->replay_started = modcp_posix_thread_start(&s->t_replay, replay_thread, s) == 0;
+    }
+}
+
+void join_replay(sim_t *s)
+{
+    if (s->replay_started) {
+        modcp_posix_thread_join(&s->t_replay);
+        s->replay_started = false;
+    }
+    sim_replay_free(&s->replay);
+}

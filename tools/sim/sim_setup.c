@@ -298,18 +298,25 @@ bool apply_cli_faults(sim_t *s)
             }
             memcpy(name, spec + 1, len);
             name[len] = '\0';
-            target = find_member(s, name);
-            if (target < 0) {
+            target = strcmp(name, "master") == 0 ? MASTER_TARGET : find_member(s, name);
+            if (target == -1) {
                 fprintf(stderr, "modcp-sim: --fault %s: no member @%s\n", spec, name);
                 return false;
             }
             spec = colon + 1;
         }
+        char err[160];
+        if (target == MASTER_TARGET) {
+            if (!sim_bus_fault_set(s->bus, SIM_BUS_MASTER, spec, err, sizeof err)) {
+                fprintf(stderr, "modcp-sim: --fault %s: %s\n", s->faults[k], err);
+                return false;
+            }
+            continue;
+        }
         for (size_t i = 0; i < s->n; i++) {
             if (target != MAX_MEMBERS && (size_t)target != i) {
                 continue;
             }
-            char err[160];
             if (!sim_bus_fault_set(s->bus, i, spec, err, sizeof err)) {
                 fprintf(stderr, "modcp-sim: --fault %s: %s\n", s->faults[k], err);
                 return false;
