@@ -422,8 +422,9 @@ static int set_up(sim_t *s)
         return rc;
     }
     s->t0_us64 = modcp_posix_now_us64();
-    if (!load_replay(s) || !open_observers(s, p0) || (s->bus_mode && !make_bus(s, p0, char_us)) ||
-        !init_sides(s)) {
+    if (!load_replay(s) || !listen_tcp(s) || !open_observers(s, p0) ||
+        (s->bus_mode && !make_bus(s, p0, char_us)) || !init_sides(s)) {
+        join_tcp(s);
         close_observers(s);
         close_ports(s);
         free_members(s);
@@ -457,6 +458,7 @@ int main(int argc, char **argv)
         return 1;
     }
     print_startup(s, &s->m[0].conf->params);
+    start_tcp(s);
     modcp_posix_thread_t t_bus;
     bool ok = true;
     size_t started = start_threads(s, &t_bus, &ok);
@@ -474,6 +476,7 @@ int main(int argc, char **argv)
     }
     atomic_store(&s->stop, true);
     join_replay(s);
+    join_tcp(s);
     stop_threads(s, started, &t_bus);
     close_observers(s);
     close_control(s, &ctl);

@@ -61,6 +61,7 @@
 #include "capture.h"
 #include "line.h"
 #include "replay.h"
+#include "tcp.h"
 #include "vcd.h"
 #include "latlog.h"
 #include "trace.h"
@@ -172,6 +173,11 @@ struct sim {
     sim_replay_t replay;
     modcp_posix_thread_t t_replay;
     bool replay_started;
+    /* --tcp [ADDR:]PORT: RTU over TCP */
+    const char *tcp_spec;
+    sim_tcp_t tcp;
+    modcp_posix_thread_t t_tcp;
+    bool tcp_started;
     /* output */
     pthread_mutex_t print_mu;
 };
@@ -217,5 +223,9 @@ void close_observers(sim_t *s);
 bool load_replay(sim_t *s);
 void start_replay(sim_t *s);
 void join_replay(sim_t *s);
+/* --tcp: listen (false: message printed), serve clients on the line's pty, stop. */
+bool listen_tcp(sim_t *s);
+void start_tcp(sim_t *s);
+void join_tcp(sim_t *s);
 
 #endif

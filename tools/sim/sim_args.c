@@ -12,7 +12,7 @@ static int usage(void)
             "                 [--trace] [--script FILE] [--cycle-ms N] [--set section.key=value]...\n"
             "                 [--control FIFO] [--bus] [--fault [@M:]KIND=VALUE]... [--seed N]\n"
             "                 [--qemu-member PTY]... [--capture FILE.pcap] [--vcd FILE.vcd]\n"
-            "                 [--replay FILE.pcap [--speed F]]\n"
+            "                 [--replay FILE.pcap [--speed F]] [--tcp [ADDR:]PORT]\n"
             "  --pty-link PATH   also make PATH a symlink to the pseudo-terminal\n"
             "  --device PATH     use a real serial device (termios from the parameters)\n"
             "  --trace           print every frame received and sent, and every event\n"
@@ -35,6 +35,7 @@ static int usage(void)
             "  --replay FILE     play the master's frames of a capture against the slave(s), report\n"
             "                    the replies that differ, stop (exit 3 when any differs)\n"
             "  --speed F         the replay's gaps divided by F (default 1)\n"
+            "  --tcp [ADDR:]PORT RTU frames over TCP too (127.0.0.1 unless ADDR), a client at a time\n"
             "Several configs: one line (bus), one pty for the master, every member on it.\n"
             "The console reads stdin; type help. Ctrl-C or SIGTERM stops.\n");
     return 1;
@@ -57,6 +58,7 @@ static const char *option_value(const char *a)
         {"--vcd", "a file for the waveform, e.g. line.vcd"},
         {"--replay", "a capture of modcp-sim (--capture), e.g. line.pcap"},
         {"--speed", "a factor > 0 for the replay's gaps, e.g. 2"},
+        {"--tcp", "[ADDR:]PORT for RTU over TCP, e.g. 1502 or 0.0.0.0:1502"},
     };
     for (size_t i = 0; i < sizeof opts / sizeof opts[0]; i++) {
         if (strcmp(a, opts[i][0]) == 0) {
@@ -106,7 +108,8 @@ static int value_option(sim_t *s, const char *a, const char *v)
         const char **dst;
     } paths[] = {{"--pty-link", &s->pty_link}, {"--device", &s->device},
                  {"--capture", &s->capture_path}, {"--vcd", &s->vcd_path},
-                 {"--replay", &s->replay_path}, {"--script", &s->script},
+                 {"--replay", &s->replay_path}, {"--tcp", &s->tcp_spec},
+                 {"--script", &s->script},
                  {"--control", &s->control}};
     const char **path = NULL;
     for (size_t i = 0; i < sizeof paths / sizeof paths[0]; i++) {

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp-sim — the line model's set-up: its settings, its members and the observers the
- * command line asks for (--capture FILE.pcap, --vcd FILE.vcd). */
+/* modcp-sim — the line model's set-up: its settings, its members, the observers the
+ * command line asks for (--capture FILE.pcap, --vcd FILE.vcd) and the sources beside the
+ * master's pty (--replay FILE.pcap, --tcp [ADDR:]PORT). */
 #define _GNU_SOURCE
 #include "sim.h"
 
@@ -105,4 +106,44 @@ void join_replay(sim_t *s)
         s->replay_started = false;
     }
     sim_replay_free(&s->replay);
+}
+
+bool listen_tcp(sim_t *s)
+{
+    char err[200];
+    s->tcp.fd = -1;
+    if (s->tcp_spec == NULL) {
+        return true;
+    }
+    if (!sim_tcp_listen(&s->tcp, s->tcp_spec, err, sizeof err)) {
+        fprintf(stderr, "modcp-sim: --tcp %s: %s\n", s->tcp_spec, err);
+        return false;
+    }
+    return true;
+}
+
+static void *tcp_thread(void *arg)
+{
+    sim_t *s = arg;
+    sim_tcp_run(&s->tcp, s->bus_mode ? s->line_port.path : s->m[0].port.path, &s->stop);
+    return NULL;
+}
+
+void start_tcp(sim_t *s)
+{
+    if (s->tcp.fd >= 0 && s->tcp_spec != NULL) {
+        s->tcp_started = modcp_posix_thread_start(&s->t_tcp, tcp_thread, s) == 0;
+        printf_line(s, "modcp-sim: RTU over TCP on %s", s->tcp.where);
+    }
+}
+
+void join_tcp(sim_t *s)
+{
+    if (s->tcp_started) {
+        modcp_posix_thread_join(&s->t_tcp);
+        s->tcp_started = false;
+    }
+    if (s->tcp_spec != NULL) {
+        sim_tcp_close(&s->tcp);
+    }
 }
