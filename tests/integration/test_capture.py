@@ -10,11 +10,12 @@
    reply's first start bit at least t3.5 after the end of its request's last stop bit;
  - the same run's waveform: sigrok-cli's uart + modbus decoders find the requests and
    replies (slave 5, the functions, the values, CRC correct, none incorrect);
- - a bus at 115200 (two members at address 1, one at 2 with the noise fault): each of
-   the colliding replies is a COLLISION record of its own (from its member's source
-   port), the noise a NOISE record,
-   member @c's reply a Modbus RTU record from source port 3; the waveform has the
-   members' TX and DE signals.
+ - ASCII framing: each frame a record of its own with the protocol column MODBUS/ASCII
+   and the frame as its line of text;
+ - a bus at 9600 (@a and @b at address 1, @b's replies 3 ms late, so that the two
+   overlap; @c at 2 with the noise fault): each colliding reply is a COLLISION record of
+   its own (its member's source port), the noise a NOISE record, @c's reply a Modbus RTU
+   record from source port 3; the waveform has the members' TX and DE signals.
 
     test_capture.py --sim PATH/modcp-sim --config configs/default.ini
 """
@@ -118,17 +119,20 @@ def bus(a, t, tmp):
     cfgs = make_configs(a.config, tmp, [("a", 1), ("b", 1), ("c", 2)])
     pcap = os.path.join(tmp, "bus.pcap")
     vcd = os.path.join(tmp, "bus.vcd")
-    sim = Sim(a.sim, cfgs[0], sets=["serial.baud=115200"], cycle_ms=1, trace=True,
-              extra=cfgs[1:] + ["--fault", "@c:noise=3", "--capture", pcap, "--vcd", vcd]).start()
+    # 9600 baud: a reply of 9 bytes is on the line for 10.3 ms; @b, at @a's address,
+    # answers 3 ms after @a: the two replies overlap whatever the threads' timing
+    sim = Sim(a.sim, cfgs[0], cycle_ms=1, trace=True,
+              extra=cfgs[1:] + ["--fault", "@b:delay=3", "--fault", "@c:noise=3",
+                                "--capture", pcap, "--vcd", vcd]).start()
     line = RawLine(sim.device)
     try:
         rsp = line.xfer(with_crc("01 03 00 50 00 02"), 9, timeout=0.5)
-        t.ok(rsp != bytes.fromhex("010304876543217670")[:len(rsp)] or len(rsp) < 9,
-             "two members at address 1: no clean reply")
-        line.recv(64, 0.1)
+        t.ok(rsp != with_crc("01 03 04 87 65 43 21"), "two members at address 1: no clean reply")
+        time.sleep(0.2)
+        line.recv(1024, 0.1)
         rsp = line.xfer(with_crc("02 03 00 50 00 02"), 9, timeout=1.0)
-        t.ok(rsp[:7].hex() == "02030487654321", "member @c (address 2) answered")
-        line.recv(64, 0.1)
+        t.ok(rsp == with_crc("02 03 04 87 65 43 21"), "member @c (address 2) answered")
+        time.sleep(0.1)
     finally:
         line.close()
         sim.stop()
@@ -140,16 +144,34 @@ def bus(a, t, tmp):
     coll = sorted(r[1] for r in rows if r[0] == "COLLISION")
     t.ok(coll == ["1", "2"], "bus: the colliding replies of @a and @b are COLLISION records "
          "from source ports 1 and 2 (%s)" % protos)
-    t.ok("NOISE" in protos, "bus: a NOISE record")
     noise = [r for r in rows if r[0] == "NOISE"]
-    t.ok(noise and len(noise[0][4]) == 6, "bus: the noise record holds 3 bytes (%s)" % noise)
-    c_reply = [r for r in rows if r[1] == "3" and r[2] == "2" and r[3] == "3"]
+    t.ok(len(noise) == 1 and noise[0][1] == "65535" and len(noise[0][4]) == 6,
+         "bus: a NOISE record of 3 bytes from source port 65535 (%s)" % noise)
+    c_reply = [r for r in rows if r[0] == "Modbus RTU" and r[1] == "3" and r[2] == "2" and r[3] == "3"]
     t.ok(len(c_reply) == 1, "bus: member @c's reply from source port 3 decoded as Modbus RTU")
     with open(vcd) as f:
         head = f.read(2000)
-    for sig in ("line", "master_tx", "slaves", "a_tx", "a_de", "b_tx", "c_de"):
+    for sig in ("line", "master_tx", "slaves", "noise_tx", "a_tx", "a_de", "b_tx", "c_de"):
         t.ok(re.search(r"\$var wire 1 \S+ %s \$end" % sig, head) is not None,
              "waveform declares %s" % sig)
+
+
+def ascii_frames(a, t, tmp):
+    pcap = os.path.join(tmp, "ascii.pcap")
+    sim = Sim(a.sim, a.config, sets=["protocol.framing=ascii", "serial.data_bits=7"],
+              extra=["--capture", pcap]).start()
+    line = RawLine(sim.device)
+    try:
+        rsp = line.xfer(b":050300500002A6\r\n", 19, timeout=2.0)
+        t.ok(rsp == b":05030487654321A4\r\n", "ASCII: FC03 answered (%r)" % rsp)
+    finally:
+        line.close()
+        sim.stop()
+    rows = tshark(pcap, "exported_pdu.p2p_dir", "_ws.col.Protocol", "text")
+    t.ok([r[:2] for r in rows] == [["0", "MODBUS/ASCII"], ["1", "MODBUS/ASCII"]],
+         "ASCII: a request and a reply, protocol column MODBUS/ASCII (%s)" % rows)
+    t.ok(len(rows) == 2 and rows[0][2] == ":050300500002A6\\r\\n" and
+         rows[1][2] == ":05030487654321A4\\r\\n", "ASCII: each frame as its line of text")
 
 
 def main():
@@ -166,6 +188,7 @@ def main():
     try:
         one_slave(a, t, tmp)
         bus(a, t, tmp)
+        ascii_frames(a, t, tmp)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     return t.done()

@@ -10,7 +10,7 @@
  *   a collided frame      "data" with the protocol column "COLLISION": what its sender
  *                         sent while another member (or the noise) sent too (what the
  *                         line carried then is in the trace and the waveform)
- *   noise (the fault)     "data" with the protocol column "NOISE"
+ *   noise (the fault)     "data" with the protocol column "NOISE" (collided or not)
  *   a line event          "data-text-lines" with the protocol column "LINE": parity or
  *                         framing error, BREAK, DE released early, as one line of text
  * A record's time is the start of the first start bit of its first character (a line
@@ -136,10 +136,10 @@ static void record(sim_capture_t *c, uint64_t t, const char *dissector, const ch
 static void flush_frame(sim_capture_t *c, frame_t *fr)
 {
     if (fr->n > 0u) {
-        if (fr->collided) {
-            record(c, fr->t0, "data", "COLLISION", fr->src, fr->b, fr->n);
-        } else if (fr->src == SIM_SRC_NOISE) {
+        if (fr->src == SIM_SRC_NOISE) {
             record(c, fr->t0, "data", "NOISE", fr->src, fr->b, fr->n);
+        } else if (fr->collided) {
+            record(c, fr->t0, "data", "COLLISION", fr->src, fr->b, fr->n);
         } else if (c->line->cfg.ascii) {
             record(c, fr->t0, "data-text-lines", "MODBUS/ASCII", fr->src, fr->b, fr->n);
         } else {
