@@ -65,13 +65,24 @@ def one_slave(a, t, tmp):
         line.close()
         rc, _ = sim.stop()
     t.ok(rc == 0, "simulator stopped cleanly")
-    t.ok(any(re.match(r"modcp-sim: capture .*: 8 records", l) for l in sim.lines),
-         "8 records reported (%s)" % [l for l in sim.lines if "capture" in l])
-    rows = tshark(pcap, "exported_pdu.prot_name", "exported_pdu.p2p_dir", "exported_pdu.src_port",
-                  "mbrtu.unit_id", "modbus.func_code", "modbus.regval_uint16",
-                  "frame.time_epoch", "frame.len")
+    t.ok(any(re.match(r"modcp-sim: capture .*: 16 records", l) for l in sim.lines),
+         "16 records reported: 8 frames, DE on and off around each reply (%s)"
+         % [l for l in sim.lines if "capture" in l])
+    every = tshark(pcap, "exported_pdu.prot_name", "exported_pdu.p2p_dir", "exported_pdu.src_port",
+                   "mbrtu.unit_id", "modbus.func_code", "modbus.regval_uint16",
+                   "frame.time_epoch", "frame.len", "text")
+    rows = [r for r in every if r[0] == "mbrtu"]
+    de = [r for r in every if r[0] == "data-text-lines"]
+    t.ok([r[8] for r in de] == ["DE on (default)\\n", "DE off (default)\\n"] * 4,
+         "DE on / off records around each reply (%s)" % [r[8] for r in de])
+    for k in range(4):
+        on_t, off_t = float(de[2 * k][6]), float(de[2 * k + 1][6])
+        rsp_t = float(rows[2 * k + 1][6])
+        rsp_len = (9, 8, 7, 8)[k]
+        t.ok(abs(on_t - rsp_t) < 1e-6 and abs(off_t - rsp_t - rsp_len * 11 / 9600) < 2e-5,
+             "reply %d: DE on at its first start bit, off at the end of its last stop bit" % (k + 1))
     t.ok(len(rows) == 8, "tshark: 8 frames (got %d)" % len(rows))
-    t.ok(all(r[0] == "mbrtu" for r in rows), "every frame for the Modbus RTU dissector")
+    t.ok(len(every) == 16, "16 records (%d)" % len(every))
     t.ok([r[1] for r in rows] == ["0", "1"] * 4, "directions: master, slave, ... (%s)" %
          [r[1] for r in rows])
     t.ok([r[2] for r in rows] == ["0", "1"] * 4, "source ports: master 0, member 1")
@@ -167,7 +178,8 @@ def ascii_frames(a, t, tmp):
     finally:
         line.close()
         sim.stop()
-    rows = tshark(pcap, "exported_pdu.p2p_dir", "_ws.col.Protocol", "text")
+    rows = [r for r in tshark(pcap, "exported_pdu.p2p_dir", "_ws.col.Protocol", "text")
+            if r[1] != "LINE"]
     t.ok([r[:2] for r in rows] == [["0", "MODBUS/ASCII"], ["1", "MODBUS/ASCII"]],
          "ASCII: a request and a reply, protocol column MODBUS/ASCII (%s)" % rows)
     t.ok(len(rows) == 2 and rows[0][2] == ":050300500002A6\\r\\n" and

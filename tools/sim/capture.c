@@ -12,7 +12,10 @@
  *                         line carried then is in the trace and the waveform)
  *   noise (the fault)     "data" with the protocol column "NOISE" (collided or not)
  *   a line event          "data-text-lines" with the protocol column "LINE": parity or
- *                         framing error, BREAK, DE released early, as one line of text
+ *                         framing error, BREAK, DE released early, as one line of text;
+ *                         and a member's driver enable: "DE on (@a)" at its frame's
+ *                         first start bit, "DE off (@a)" at the end of its last stop bit
+ *                         (or where it was cut)
  * A record's time is the start of the first start bit of its first character (a line
  * event: of its character). The sender is in the record: the exported PDU's P2P
  * direction (0 = sent by the master, 1 = by a slave) and its source port: 0 for the
@@ -47,6 +50,7 @@ typedef struct {
     uint8_t b[MAX_FRAME];
     size_t n;
     uint64_t t0, end;
+    uint64_t de_end; /* a member's driver enable goes off (the end, or where it was cut) */
     bool collided; /* another member or the noise sent at the same time */
     /* line events inside it: written after it */
     char note[MAX_NOTES][96];
@@ -133,8 +137,21 @@ static void record(sim_capture_t *c, uint64_t t, const char *dissector, const ch
     c->records++;
 }
 
+/* "DE on (@a)" / "DE off (@a)": a member's driver enable around its frame. */
+static void de_record(sim_capture_t *c, const frame_t *fr, bool on)
+{
+    char txt[64];
+    snprintf(txt, sizeof txt, "DE %s (%s)\n", on ? "on" : "off", sim_line_src_name(c->line, fr->src));
+    record(c, on ? fr->t0 : fr->de_end, "data-text-lines", "LINE", fr->src, (const uint8_t *)txt,
+           strlen(txt));
+}
+
 static void flush_frame(sim_capture_t *c, frame_t *fr)
 {
+    bool de = fr->src >= 0 && fr->n > 0u;
+    if (de) {
+        de_record(c, fr, true);
+    }
     if (fr->n > 0u) {
         if (fr->src == SIM_SRC_NOISE) {
             record(c, fr->t0, "data", "NOISE", fr->src, fr->b, fr->n);
@@ -149,6 +166,9 @@ static void flush_frame(sim_capture_t *c, frame_t *fr)
     for (size_t i = 0; i < fr->nn; i++) {
         record(c, fr->note_t[i], "data-text-lines", "LINE", fr->src, (const uint8_t *)fr->note[i],
                strlen(fr->note[i]));
+    }
+    if (de) {
+        de_record(c, fr, false);
     }
     fr->n = 0;
     fr->nn = 0;
@@ -226,6 +246,7 @@ static void on_char(sim_observer_t *o, const sim_char_t *ch)
         fr->b[fr->n++] = ch->byte;
     }
     fr->end = ch->t_us + ch->len_us;
+    fr->de_end = (ch->flags & SIM_CH_DE_CUT) != 0u ? ch->t_us + ch->de_off_us : fr->end;
 }
 
 static void on_close(sim_observer_t *o)
