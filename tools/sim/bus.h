@@ -78,9 +78,13 @@ sim_bus_t *sim_bus_new(const sim_line_cfg_t *line, size_t n, const char *const n
  * member's `now`: a character that arrived after the member read its clock belongs to
  * its next turn, after its own transmission-complete and timers due by then); *more
  * says that some are left. errors[i]: MODCP_LINE_* (a parity or framing error, BREAK:
- * the character is lost to the error). Returns how many (at most cap). */
+ * the character is lost to the error). *more: characters due by until_us are left
+ * (cap was reached). Returns how many (at most cap). */
 size_t sim_bus_take(sim_bus_t *b, size_t m, uint8_t *bytes, uint8_t *errors, uint32_t *t_us,
                     size_t cap, uint32_t until_us, bool *more);
+/* The time of the next character member m has not taken (it may lie ahead: the
+ * master's faulted requests are handed over with their times); false: none. */
+bool sim_bus_next_time(sim_bus_t *b, size_t m, uint32_t *t_us);
 void sim_bus_free(sim_bus_t *b);
 
 /* The bus thread's body: runs until sim_bus_stop. */

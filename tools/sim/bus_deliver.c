@@ -101,9 +101,21 @@ size_t sim_bus_take(sim_bus_t *b, size_t m, uint8_t *bytes, uint8_t *errors, uin
         k++;
         b->rxq[m].tail = (b->rxq[m].tail + 1u) % 8192u;
     }
-    *more = b->rxq[m].tail != b->rxq[m].head;
+    *more = b->rxq[m].tail != b->rxq[m].head &&
+            (int32_t)(b->rxq[m].t[b->rxq[m].tail] - until_us) <= 0;
     pthread_mutex_unlock(&b->rx_mu);
     return k;
+}
+
+bool sim_bus_next_time(sim_bus_t *b, size_t m, uint32_t *t_us)
+{
+    pthread_mutex_lock(&b->rx_mu);
+    bool any = b->rxq[m].tail != b->rxq[m].head;
+    if (any) {
+        *t_us = b->rxq[m].t[b->rxq[m].tail];
+    }
+    pthread_mutex_unlock(&b->rx_mu);
+    return any;
 }
 
 void master_write(sim_bus_t *b, const uint8_t *p, size_t n)

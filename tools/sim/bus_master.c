@@ -5,12 +5,13 @@
  * Without a fault, a request read from the master's pty reaches the members at once (a
  * pty delivers it in one piece), every character at the time of the read (bus.c). With
  * one, the request is put on the line as a UART sends it: from the read on, one
- * character after the other, each handed to the members when its stop bit has ended
- * (a member never sees a character before its time: the t1.5 / t3.5 gaps are exact),
- *  a character with a parity or framing error, a BREAK after the first character (the rest after it), a pause after byte k,
- * the last character cut short by DE (its last bits read as 1), or, with early=US, a
- * request that follows a reply put US after the reply's last stop bit. Characters whose
- * time has not come yet wait in b->mq and are handed over when due (master_due). */
+ * character after the other, with a character with a parity or framing error, a BREAK
+ * after the first character (the rest after it), a pause after byte k, the last
+ * character cut short by DE (its last bits read as 1), or, with early=US, a request
+ * that follows a reply put US after the reply's last stop bit. The characters are
+ * handed to the members at once, each with its time (the end of its stop bit): a member
+ * takes a character when its time has come and wakes for it (sim_bus_next_time), so the
+ * t1.5 / t3.5 gaps are exact however late a thread runs. */
 #define _GNU_SOURCE
 #include "bus_internal.h"
 
@@ -113,10 +114,11 @@ void master_faults(sim_bus_t *b, const uint8_t *buf, size_t n, double t)
 
 double master_due(sim_bus_t *b, double now)
 {
-    size_t k = 0;
-    while (k < b->mq_n && b->mq[k].t <= now) {
-        k++;
-    }
+    /* all at once, each with its time: a member takes a character when its time has
+     * come and wakes for it (sim_bus_next_time), so a late bus thread cannot let the
+     * member's t3.5 expire before a character that ends earlier */
+    (void)now;
+    size_t k = b->mq_n;
     if (k > 0u) {
         uint8_t bytes[MQ_MAX], errs[MQ_MAX];
         double t[MQ_MAX];

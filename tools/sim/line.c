@@ -57,11 +57,17 @@ static size_t src_slot(int src)
     return (size_t)(src + 2);
 }
 
+/* The i-th held character (0: the oldest). */
+static sim_char_t *held(sim_line_t *l, size_t i)
+{
+    return &l->q[(l->qh + i) % SIM_LINE_QUEUE];
+}
+
 /* The oldest held character to the observers (l->mu held). */
 static void release_first(sim_line_t *l)
 {
-    sim_char_t c = l->q[0];
-    memmove(&l->q[0], &l->q[1], (l->qn - 1u) * sizeof l->q[0]);
+    sim_char_t c = *held(l, 0);
+    l->qh = (l->qh + 1u) % SIM_LINE_QUEUE;
     l->qn--;
     if (c.t_us < l->released) {
         c.t_us = l->released; /* held too short: never back in time for an observer */
@@ -73,8 +79,8 @@ static void release_first(sim_line_t *l)
         if (l->last_src != c.src && l->last_rel_end > c.t_us) {
             c.flags |= SIM_CH_COLLIDED;
         }
-        for (size_t i = 0; i < l->qn && l->q[i].t_us < end; i++) {
-            if (l->q[i].src != c.src && l->q[i].src != SIM_SRC_MASTER) {
+        for (size_t i = 0; i < l->qn && held(l, i)->t_us < end; i++) {
+            if (held(l, i)->src != c.src && held(l, i)->src != SIM_SRC_MASTER) {
                 c.flags |= SIM_CH_COLLIDED;
             }
         }
@@ -94,12 +100,13 @@ static void put_locked(sim_line_t *l, const sim_char_t *c)
     if (l->qn == SIM_LINE_QUEUE) {
         release_first(l);
     }
+    /* from the newest back: most characters come in time order */
     size_t i = l->qn;
-    while (i > 0u && l->q[i - 1u].t_us > c->t_us) {
+    while (i > 0u && held(l, i - 1u)->t_us > c->t_us) {
+        *held(l, i) = *held(l, i - 1u);
         i--;
     }
-    memmove(&l->q[i + 1u], &l->q[i], (l->qn - i) * sizeof l->q[0]);
-    l->q[i] = *c;
+    *held(l, i) = *c;
     l->qn++;
     size_t slot = src_slot(c->src);
     if (slot < sizeof l->last_end / sizeof l->last_end[0] && c->t_us + c->len_us > l->last_end[slot]) {
@@ -158,7 +165,7 @@ void sim_line_tick(sim_line_t *l, uint64_t now)
         return;
     }
     pthread_mutex_lock(&l->mu);
-    while (l->qn > 0u && l->q[0].t_us + l->q[0].len_us + l->hold_us <= now) {
+    while (l->qn > 0u && held(l, 0)->t_us + held(l, 0)->len_us + l->hold_us <= now) {
         release_first(l);
     }
     pthread_mutex_unlock(&l->mu);

@@ -72,8 +72,8 @@ typedef struct {
     uint64_t t0_real_us; /* wall-clock time of t = 0 (us since the epoch) */
     uint64_t hold_us;
     pthread_mutex_t mu;
-    sim_char_t q[SIM_LINE_QUEUE]; /* held, sorted by t_us */
-    size_t qn;
+    sim_char_t q[SIM_LINE_QUEUE]; /* held, sorted by t_us: a ring from qh, qn of them */
+    size_t qh, qn;
     uint64_t released; /* start of the last character released */
     uint64_t last_end[2 + SIM_LINE_MAX_MEMBERS]; /* end of each source's last character */
     int16_t last_src;  /* the last released character's source */

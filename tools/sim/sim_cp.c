@@ -128,11 +128,12 @@ static void bus_turn(member_t *m, uint32_t now, bool *tx_done, bool *timer, bool
     bool more = false;
     size_t k = sim_bus_take(s->bus, m->index, bb, be, bt, RX_CHUNK, now, &more);
     if (more) {
-        /* characters that arrived after `now` was read: the next turn takes them
-         * (pulled back to `now` they could precede the end of our own reply: (08)37H,
-         * the request lost) */
-        modcp_posix_wake(&m->port);
+        modcp_posix_wake(&m->port); /* more due than one turn takes */
     }
+    /* characters whose time lies after `now` (they arrived after `now` was read, or a
+     * faulted request handed over ahead): a later turn takes them, cp_wait wakes for
+     * them (pulled back to `now` they could precede the end of our own reply: (08)37H,
+     * the request lost) */
     for (size_t i = 0; i < k; i++) {
         bus_char(m, bb[i], be[i], bt[i], now, tr, n64);
     }
@@ -182,8 +183,13 @@ static int cp_wait(member_t *m, modcp_posix_rx_t *rx, bool *tx_done, bool *timer
                            !same_core(atomic_load_explicit(&m->cpu_core, memory_order_relaxed));
     m->port.expect_us = atomic_load_explicit(&m->cpu_due, memory_order_relaxed);
     sim_latlog_before_wait(&m->lat, &m->port);
-    int n = modcp_posix_wait(&m->port, idle ? IDLE_TICK_US : BUSY_TICK_US, rx, RX_CHUNK, tx_done,
-                             timer, now);
+    uint32_t max_us = idle ? IDLE_TICK_US : BUSY_TICK_US;
+    uint32_t next = 0;
+    if (m->sim->bus != NULL && sim_bus_next_time(m->sim->bus, m->index, &next)) {
+        int32_t d = (int32_t)(next - modcp_posix_now_us());
+        max_us = d <= 0 ? 0u : (uint32_t)d < max_us ? (uint32_t)d : max_us;
+    }
+    int n = modcp_posix_wait(&m->port, max_us, rx, RX_CHUNK, tx_done, timer, now);
     sim_latlog_after_wait(&m->lat, &m->port, n, *timer, *now);
     return n;
 }
