@@ -28,6 +28,7 @@
 #define _GNU_SOURCE
 #include "capture.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -265,7 +266,7 @@ sim_capture_t *sim_capture_open(const sim_line_t *line, const char *path, char *
     }
     c->f = fopen(path, "wb");
     if (c->f == NULL) {
-        snprintf(err, cap, "cannot write %s", path);
+        snprintf(err, cap, "cannot write %s: %s", path, strerror(errno));
         free(c);
         return NULL;
     }

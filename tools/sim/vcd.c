@@ -15,6 +15,7 @@
 #define _GNU_SOURCE
 #include "vcd.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -216,7 +217,7 @@ sim_vcd_t *sim_vcd_open(const sim_line_t *line, const char *path, char *err, siz
     }
     v->f = fopen(path, "w");
     if (v->f == NULL) {
-        snprintf(err, cap, "cannot write %s", path);
+        snprintf(err, cap, "cannot write %s: %s", path, strerror(errno));
         free(v);
         return NULL;
     }
