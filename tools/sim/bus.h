@@ -27,6 +27,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "line.h"
+
 #define SIM_BUS_MAX_MEMBERS 16
 
 typedef struct {
@@ -39,18 +41,21 @@ typedef struct {
     uint32_t delay_max_ms;
     uint32_t silent_left;   /* do not answer the next N requests */
     uint16_t noise_bytes;   /* N random bytes on the line one t3.5 after each reply */
+    /* serial-layer faults of every frame (a member's replies; @master: the requests) */
+    uint16_t parity_k;      /* byte k (1-based) with a wrong parity bit */
+    uint16_t framing_k;     /* byte k with its stop bit 0 */
+    uint32_t break_ms;      /* a BREAK of this many ms after the frame's first byte */
+    uint16_t gap_k;         /* a pause of gap_us after byte k */
+    uint32_t gap_us;
+    uint8_t de_cut_bits;    /* DE released this many bits before the last stop bit ends */
+    uint32_t early_us;      /* @master: a request that follows a reply starts this long after
+                               the reply's last stop bit (0: when the master wrote it) */
     /* counters */
-    uint32_t replies;       /* replies the member's CP sent */
+    uint32_t replies;       /* replies the member's CP sent (@master: requests) */
     uint32_t dropped, crc_corrupted, exc06, exc04, delayed, silenced, noise_sent;
     uint32_t collisions;    /* replies that overlapped another sender's on the line */
+    uint32_t parity_errs, framing_errs, breaks_sent, gaps_made, de_cuts, early_sent;
 } sim_fault_t;
-
-typedef struct {
-    uint8_t data_bits, parity, stop_bits; /* parity: modcp_parity_t */
-    bool ascii;
-    uint32_t char_us;
-    uint32_t t35_us; /* RTU t3.5 (ASCII: the character timeout) for the trace's frame cut */
-} sim_line_t;
 
 typedef struct sim_bus sim_bus_t;
 
@@ -62,7 +67,7 @@ typedef struct sim_bus sim_bus_t;
  * the line (paced from its arrival; faults do not apply to it).
  * names[i]: "a" (printed as "@a"), addr[i]: its slave address (for the trace).
  * print: one trace line (thread-safe). */
-sim_bus_t *sim_bus_new(const sim_line_t *line, size_t n, const char *const names[],
+sim_bus_t *sim_bus_new(const sim_line_cfg_t *line, size_t n, const char *const names[],
                        const uint8_t addr[], int master_fd, const int member_fd[],
                        const int wake_fd[], uint64_t t0_us64,
                        void (*print)(void *user, const char *line), void *user, uint32_t seed);
@@ -72,25 +77,37 @@ sim_bus_t *sim_bus_new(const sim_line_t *line, size_t n, const char *const names
  * line's timing, however late its thread runs. Only those that ended by until_us (the
  * member's `now`: a character that arrived after the member read its clock belongs to
  * its next turn, after its own transmission-complete and timers due by then); *more
- * says that some are left. Returns how many (at most cap). */
-size_t sim_bus_take(sim_bus_t *b, size_t m, uint8_t *bytes, uint32_t *t_us, size_t cap,
-                    uint32_t until_us, bool *more);
+ * says that some are left. errors[i]: MODCP_LINE_* (a parity or framing error, BREAK:
+ * the character is lost to the error). *more: characters due by until_us are left
+ * (cap was reached). Returns how many (at most cap). */
+size_t sim_bus_take(sim_bus_t *b, size_t m, uint8_t *bytes, uint8_t *errors, uint32_t *t_us,
+                    size_t cap, uint32_t until_us, bool *more);
+/* The time of the next character member m has not taken (it may lie ahead: the
+ * master's faulted requests are handed over with their times); false: none. */
+bool sim_bus_next_time(sim_bus_t *b, size_t m, uint32_t *t_us);
 void sim_bus_free(sim_bus_t *b);
 
 /* The bus thread's body: runs until sim_bus_stop. */
 void *sim_bus_thread(void *bus);
 void sim_bus_stop(sim_bus_t *b);
 void sim_bus_trace(sim_bus_t *b, bool on);
+/* The line model the bus's sources write to (before the bus thread starts). */
+void sim_bus_set_line(sim_bus_t *b, sim_line_t *wire);
 
 /* A member's UART starts a reply (buf as handed to the UART) at now_us (the member's
  * clock as passed to its core). Any thread. */
 void sim_bus_tx(sim_bus_t *b, size_t member, const uint8_t *buf, uint16_t len, uint32_t now_us);
 
 /* Faults of a member: "KIND=VALUE" (drop=P, crc=P, exc06=P, exc04=P with P in %,
- * delay=MS or delay=MIN-MAX, silent=N, noise=N) or "off". false + err on a bad one. */
+ * delay=MS or delay=MIN-MAX, silent=N, noise=N; serial: parity=K, framing=K, break=MS,
+ * gap=K:US, de_cut=BITS) or "off". member SIM_BUS_MASTER: the master's direction (the
+ * serial kinds and early=US). false + err on a bad one. */
+#define SIM_BUS_MASTER ((size_t)-1)
 bool sim_bus_fault_set(sim_bus_t *b, size_t member, const char *spec, char *err, size_t cap);
 /* "faults: drop=30% ... | replies=12 dropped=4 ..." */
 void sim_bus_fault_describe(sim_bus_t *b, size_t member, char *out, size_t cap);
+/* The master's direction has (or had) a serial fault: `status` shows its line. */
+bool sim_bus_master_faulted(sim_bus_t *b);
 /* Copy of a member's fault state (for tests in the tool). */
 sim_fault_t sim_bus_fault_get(sim_bus_t *b, size_t member);
 

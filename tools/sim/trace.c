@@ -46,51 +46,41 @@ static const char *exc_name(uint8_t code)
     }
 }
 
-void sim_describe_pdu(const uint8_t *pdu, size_t len, bool reply, char *out, size_t cap)
+/* A reply's meaning (not an exception). */
+static void describe_reply(uint8_t fc, const uint8_t *d, size_t n, char *out, size_t cap)
 {
-    if (len == 0u) {
-        snprintf(out, cap, "empty PDU");
+    switch (fc) {
+    case 0x01: case 0x02: case 0x03: case 0x04: case 0x0C: case 0x11: case 0x17:
+        snprintf(out, cap, "FC%02u reply, %u data bytes", (unsigned)fc, n >= 1u ? (unsigned)d[0] : 0u);
         return;
-    }
-    uint8_t fc = pdu[0];
-    if (reply && (fc & 0x80u) != 0u) {
-        uint8_t code = len >= 2u ? pdu[1] : 0u;
-        snprintf(out, cap, "FC%02u exception %02X (%s)", (unsigned)(fc & 0x7Fu), (unsigned)code,
-                 exc_name(code));
-        return;
-    }
-    const uint8_t *d = pdu + 1;
-    size_t n = len - 1u;
-    if (reply) {
-        switch (fc) {
-        case 0x01: case 0x02: case 0x03: case 0x04: case 0x0C: case 0x11: case 0x17:
-            snprintf(out, cap, "FC%02u reply, %u data bytes", (unsigned)fc, n >= 1u ? (unsigned)d[0] : 0u);
+    case 0x05: case 0x06:
+        if (n >= 4u) {
+            snprintf(out, cap, "FC%02u reply addr 0x%04X (%u) value 0x%04X", (unsigned)fc,
+                     be16(d), be16(d), be16(d + 2));
             return;
-        case 0x05: case 0x06:
-            if (n >= 4u) {
-                snprintf(out, cap, "FC%02u reply addr 0x%04X (%u) value 0x%04X", (unsigned)fc,
-                         be16(d), be16(d), be16(d + 2));
-                return;
-            }
-            break;
-        case 0x0F: case 0x10:
-            if (n >= 4u) {
-                snprintf(out, cap, "FC%02u reply addr 0x%04X (%u) qty %u", (unsigned)fc, be16(d),
-                         be16(d), be16(d + 2));
-                return;
-            }
-            break;
-        case 0x08:
-            if (n >= 4u) {
-                snprintf(out, cap, "FC08 reply sub 0x%04X data 0x%04X", be16(d), be16(d + 2));
-                return;
-            }
-            break;
-        default: break;
         }
-        snprintf(out, cap, "FC%02u reply (%s), %zu bytes", (unsigned)fc, fc_name(fc), n);
-        return;
+        break;
+    case 0x0F: case 0x10:
+        if (n >= 4u) {
+            snprintf(out, cap, "FC%02u reply addr 0x%04X (%u) qty %u", (unsigned)fc, be16(d),
+                     be16(d), be16(d + 2));
+            return;
+        }
+        break;
+    case 0x08:
+        if (n >= 4u) {
+            snprintf(out, cap, "FC08 reply sub 0x%04X data 0x%04X", be16(d), be16(d + 2));
+            return;
+        }
+        break;
+    default: break;
     }
+    snprintf(out, cap, "FC%02u reply (%s), %zu bytes", (unsigned)fc, fc_name(fc), n);
+}
+
+/* A request's meaning. */
+static void describe_request(uint8_t fc, const uint8_t *d, size_t n, char *out, size_t cap)
+{
     switch (fc) {
     case 0x01: case 0x02: case 0x03: case 0x04:
         if (n >= 4u) {
@@ -156,6 +146,28 @@ void sim_describe_pdu(const uint8_t *pdu, size_t len, bool reply, char *out, siz
         return;
     }
     snprintf(out, cap, "FC%02u %s, short request (%zu data bytes)", (unsigned)fc, fc_name(fc), n);
+}
+
+void sim_describe_pdu(const uint8_t *pdu, size_t len, bool reply, char *out, size_t cap)
+{
+    if (len == 0u) {
+        snprintf(out, cap, "empty PDU");
+        return;
+    }
+    uint8_t fc = pdu[0];
+    if (reply && (fc & 0x80u) != 0u) {
+        uint8_t code = len >= 2u ? pdu[1] : 0u;
+        snprintf(out, cap, "FC%02u exception %02X (%s)", (unsigned)(fc & 0x7Fu), (unsigned)code,
+                 exc_name(code));
+        return;
+    }
+    const uint8_t *d = pdu + 1;
+    size_t n = len - 1u;
+    if (reply) {
+        describe_reply(fc, d, n, out, cap);
+    } else {
+        describe_request(fc, d, n, out, cap);
+    }
 }
 
 void sim_trace_init(sim_trace_t *t, uint8_t own_addr, bool ascii, uint64_t gap_us,

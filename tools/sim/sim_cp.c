@@ -1,0 +1,263 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* modcp-sim — the CP thread: the UART, the one-shot timer and the paced reply around modcp_cp_*. */
+#define _GNU_SOURCE
+#include "sim.h"
+
+/* ---- CP thread ----------------------------------------------------------------- */
+
+void cp_snapshot(member_t *m)
+{
+    pthread_mutex_lock(&m->snap_mu);
+    m->snap_diag = m->cp.diag;
+    m->snap_configured = m->cp.configured;
+    m->snap_ready = modcp_cp_ready(&m->cp);
+    m->snap_param_event = m->cp.param_event;
+    pthread_mutex_unlock(&m->snap_mu);
+}
+
+static void trace_events(member_t *m)
+{
+    uint32_t total = m->cp.diag.events_total;
+    if (total == m->events_seen) {
+        return;
+    }
+    uint32_t n = total - m->events_seen;
+    m->events_seen = total;
+    if (!atomic_load(&m->sim->trace_on)) {
+        return;
+    }
+    if (n > m->cp.diag.buffer_len) {
+        n = m->cp.diag.buffer_len;
+    }
+    uint64_t t = since_start(m->sim);
+    for (uint32_t i = n; i > 0u; i--) {
+        sim_trace_event(&m->tr, m->cp.diag.buffer[i - 1u], t);
+    }
+}
+
+/* This thread's processor, -1 when unknown. */
+int this_core(void)
+{
+#ifdef __linux__
+    return sched_getcpu();
+#else
+    return -1;
+#endif
+}
+
+/* The calling thread last ran on processor `core` too. Two threads that watch the
+ * clock on one processor take turns: the CP thread watching for the reply there would
+ * hold off the very FB call that makes it (until the scheduler preempts it, ~50 us). */
+static bool same_core(int core)
+{
+    return core >= 0 && core == this_core();
+}
+
+/* Blocks published on a ring and not yet taken by its consumer. */
+bool ring_pending(const modcp_ring_t *r)
+{
+    return atomic_load_explicit(&r->head, memory_order_acquire) !=
+           atomic_load_explicit(&r->tail, memory_order_relaxed);
+}
+
+/* On a bus: our reply ended before anything heard after it (we were deaf while
+ * sending): its end first, at its time on the line. */
+static void bus_tx_done(member_t *m, uint32_t now)
+{
+    uint32_t end = m->port.tx_t0_us + (uint32_t)m->port.tx_len * m->port.char_us;
+    if ((int32_t)(end - m->core_t) < 0) {
+        end = m->core_t;
+    }
+    if ((int32_t)(now - end) < 0) {
+        end = now;
+    }
+    m->port.now_us = end;
+    modcp_cp_on_tx_done(&m->cp, end);
+    m->core_t = end;
+}
+
+/* On a bus: one character heard at ti (the member's clock), after the timer when it fell
+ * due first. */
+static void bus_char(member_t *m, uint8_t byte, uint8_t errors, uint32_t ti, uint32_t now, bool tr,
+                     uint64_t n64)
+{
+    if ((int32_t)(ti - m->core_t) < 0) {
+        ti = m->core_t; /* never back in time for the core */
+    }
+    if ((int32_t)(now - ti) < 0) {
+        ti = now;
+    }
+    while (m->port.timer_armed && (int32_t)(ti - m->port.timer_deadline_us) >= 0) {
+        uint32_t d = m->port.timer_deadline_us;
+        if ((int32_t)(d - m->core_t) < 0) {
+            d = m->core_t;
+        }
+        m->port.timer_armed = false;
+        m->port.now_us = d;
+        modcp_cp_on_timer(&m->cp, d);
+        m->core_t = d;
+    }
+    m->port.now_us = ti;
+    if (tr) {
+        uint64_t tb = n64 - (uint32_t)((uint32_t)n64 - ti) - m->sim->t0_us64;
+        sim_trace_rx(&m->tr, byte, errors, tb);
+    }
+    if (errors != 0u) {
+        modcp_cp_on_line_error(&m->cp, errors, ti);
+    } else {
+        modcp_cp_on_rx(&m->cp, byte, ti);
+    }
+    m->core_t = ti;
+}
+
+/* On a bus: the characters heard, each at its time on the line, and the timer between
+ * them when it fell due first. *timer: the timer is due at now after them. */
+static void bus_turn(member_t *m, uint32_t now, bool *tx_done, bool *timer, bool tr, uint64_t n64)
+{
+    sim_t *s = m->sim;
+    if (*timer) {
+        m->port.timer_armed = true; /* ordered with the characters below */
+        *timer = false;
+    }
+    if (*tx_done) {
+        bus_tx_done(m, now);
+        *tx_done = false;
+    }
+    uint8_t bb[RX_CHUNK], be[RX_CHUNK];
+    uint32_t bt[RX_CHUNK];
+    bool more = false;
+    size_t k = sim_bus_take(s->bus, m->index, bb, be, bt, RX_CHUNK, now, &more);
+    if (more) {
+        modcp_posix_wake(&m->port); /* more due than one turn takes */
+    }
+    /* characters whose time lies after `now` (they arrived after `now` was read, or a
+     * faulted request handed over ahead): a later turn takes them, cp_wait wakes for
+     * them (pulled back to `now` they could precede the end of our own reply: (08)37H,
+     * the request lost) */
+    for (size_t i = 0; i < k; i++) {
+        bus_char(m, bb[i], be[i], bt[i], now, tr, n64);
+    }
+    if (m->port.timer_armed && (int32_t)(now - m->port.timer_deadline_us) >= 0) {
+        m->port.timer_armed = false;
+        *timer = true;
+    }
+    m->core_t = now;
+}
+
+/* One slave on its own line: the characters read at now (t: since start), to the line
+ * model, the trace and the core. */
+static void own_line_rx(member_t *m, const modcp_posix_rx_t *rx, int n, uint32_t now, uint64_t t,
+                        bool tr)
+{
+    if (n > 0 && m->sim->bus == NULL && sim_line_watched(&m->sim->wire)) {
+        uint8_t b[RX_CHUNK], fl[RX_CHUNK];
+        for (int i = 0; i < n; i++) {
+            uint8_t e = rx[i].errors;
+            b[i] = rx[i].byte;
+            fl[i] = (uint8_t)(((e & MODCP_LINE_PARITY) != 0u ? SIM_CH_PARITY : 0u) |
+                              ((e & MODCP_LINE_FRAMING) != 0u ? SIM_CH_FRAMING : 0u) |
+                              ((e & MODCP_LINE_BREAK) != 0u ? SIM_CH_BREAK : 0u));
+        }
+        sim_line_put_arrived(&m->sim->wire, SIM_SRC_MASTER, b, fl, (size_t)n, t);
+    }
+    for (int i = 0; i < n; i++) {
+        if (tr) {
+            sim_trace_rx(&m->tr, rx[i].byte, rx[i].errors, t);
+        }
+        if (rx[i].errors != 0u) {
+            modcp_cp_on_line_error(&m->cp, rx[i].errors, now);
+        } else {
+            modcp_cp_on_rx(&m->cp, rx[i].byte, now);
+        }
+    }
+}
+
+/* Wait for the next event; n characters (< 0: a read error). */
+static int cp_wait(member_t *m, modcp_posix_rx_t *rx, bool *tx_done, bool *timer, uint32_t *now)
+{
+    bool idle = modcp_cp_ready(&m->cp) && !modcp_job_busy(&m->cp.job) && !m->cp.request_pending;
+    /* a job on the backplane: its reply comes at the CPU side's next FB call, watched
+     * for (the backplane interrupt is immediate on a real CP) */
+    m->port.expect_armed = m->cp.request_pending && !ring_pending(&m->bp.to_cp) &&
+                           atomic_load_explicit(&m->cpu_calls, memory_order_relaxed) &&
+                           !same_core(atomic_load_explicit(&m->cpu_core, memory_order_relaxed));
+    m->port.expect_us = atomic_load_explicit(&m->cpu_due, memory_order_relaxed);
+    sim_latlog_before_wait(&m->lat, &m->port);
+    uint32_t max_us = idle ? IDLE_TICK_US : BUSY_TICK_US;
+    uint32_t next = 0;
+    if (m->sim->bus != NULL && sim_bus_next_time(m->sim->bus, m->index, &next)) {
+        int32_t d = (int32_t)(next - modcp_posix_now_us());
+        max_us = d <= 0 ? 0u : (uint32_t)d < max_us ? (uint32_t)d : max_us;
+    }
+    int n = modcp_posix_wait(&m->port, max_us, rx, RX_CHUNK, tx_done, timer, now);
+    sim_latlog_after_wait(&m->lat, &m->port, n, *timer, *now);
+    return n;
+}
+
+/* After the core ran: the backplane interrupt, the trace, the console's snapshot. */
+static void cp_after(member_t *m, uint32_t now, uint64_t t, bool tr)
+{
+    sim_latlog_after_core(&m->lat, &m->cp, &m->port, now);
+    uint32_t put = atomic_load_explicit(&m->bp.to_cpu.head, memory_order_relaxed);
+    if (put != m->cp_put_seen) {
+        m->cp_put_seen = put;
+        modcp_posix_event_signal(&m->cpu_irq); /* the backplane interrupt */
+    }
+    if (tr) {
+        sim_trace_poll(&m->tr, t);
+    }
+    trace_events(m);
+    cp_snapshot(m);
+    if (m->sim->bus == NULL) {
+        sim_line_tick(&m->sim->wire, t);
+    }
+}
+
+void *cp_thread(void *arg)
+{
+    member_t *m = arg;
+    sim_t *s = m->sim;
+    modcp_posix_rx_t rx[RX_CHUNK];
+    /* on a bus, the bus traces the line; MODCP_SIM_MEMBER_RX=1 adds what each member
+     * heard (a debugging aid: "@b heard ...") */
+    bool line_trace = s->bus == NULL || getenv("MODCP_SIM_MEMBER_RX") != NULL;
+    if (s->bus != NULL) {
+        char l[32];
+        snprintf(l, sizeof l, "@%s heard", m->name);
+        sim_trace_labels(&m->tr, l, NULL, NULL);
+    }
+    while (!atomic_load(&s->stop)) {
+        bool tx_done = false, timer = false;
+        uint32_t now = 0;
+        int n = cp_wait(m, rx, &tx_done, &timer, &now);
+        if (n < 0) {
+            printf_line(s, "modcp-sim: read error on %s: %s", m->port.path, strerror(-n));
+            atomic_store(&s->stop, true);
+            break;
+        }
+        bool tr = line_trace && atomic_load(&s->trace_on);
+        /* the trace's time is exactly the core's `now` (widened to 64 bits), so its
+         * t3.5 frame cut agrees with the core's timer: a frame is printed before the
+         * events its end raises */
+        uint64_t n64 = modcp_posix_now_us64();
+        uint64_t t = n64 - (uint32_t)((uint32_t)n64 - now) - s->t0_us64;
+        if (s->bus != NULL) {
+            bus_turn(m, now, &tx_done, &timer, tr, n64);
+        }
+        m->port.now_us = now;
+        bool cts = true, dsr = true;
+        if (modcp_posix_modem_inputs(&m->port, &cts, &dsr)) {
+            modcp_cp_on_signals(&m->cp, cts, dsr, now);
+        }
+        if (tx_done) {
+            modcp_cp_on_tx_done(&m->cp, now);
+        }
+        if (timer) {
+            modcp_cp_on_timer(&m->cp, now);
+        }
+        own_line_rx(m, rx, n, now, t, tr);
+        modcp_cp_poll(&m->cp, now);
+        cp_after(m, now, t, tr);
+    }
+    return NULL;
+}
