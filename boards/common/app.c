@@ -24,6 +24,7 @@
 #include "modcp/cp.h"
 #include "modcp/fb.h"
 #include "modcp/params.h"
+#include "modcp/version.h"
 
 #define LINE_MAX 128u
 
@@ -182,7 +183,7 @@ static uint32_t bp_signature(void)
 int main(void)
 {
     board_init();
-    con_puts("\r\nmodcp ");
+    con_puts("\r\nmodcp " MODCP_VERSION " "); /* modcp/version.h */
     con_puts(board_name());
     con_puts("\r\n");
 

@@ -54,6 +54,7 @@
 #include "modcp/cp.h"
 #include "modcp/fb.h"
 #include "modcp/hal_posix.h"
+#include "modcp/version.h"
 #include "modcp_conf.h"
 #include "bus.h"
 #include "latlog.h"
@@ -934,6 +935,7 @@ static int usage(void)
             "  --seed N          seed of the faults' random choices (default 1)\n"
             "  --qemu-member PTY a QEMU board's Modbus pty (tools/run-qemu) as a member of the\n"
             "                    bus (@qemu; its console is its own); implies --bus\n"
+            "  --version         print modcp-sim's version and exit\n"
             "Several configs: one line (bus), one pty for the master, every member on it.\n"
             "The console reads stdin; type help. Ctrl-C or SIGTERM stops.\n");
     return 1;
@@ -1022,6 +1024,9 @@ static int parse_args(sim_t *s, int argc, char **argv)
             s->bus_mode = true;
         } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             return usage();
+        } else if (strcmp(a, "--version") == 0) {
+            printf("modcp-sim %s\n", MODCP_VERSION); /* modcp/version.h */
+            return -1; /* done: exit 0 */
         } else if (a[0] == '-') {
             fprintf(stderr, "modcp-sim: unexpected argument '%s'\n", a);
             return usage();
@@ -1384,7 +1389,7 @@ int main(int argc, char **argv)
     int rc = parse_args(s, argc, argv);
     if (rc != 0) {
         free(s);
-        return rc;
+        return rc < 0 ? 0 : rc;
     }
     pthread_mutex_init(&s->print_mu, NULL);
 
