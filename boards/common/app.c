@@ -90,7 +90,7 @@ static void board_command(void)
 {
     con_puts("board ");
     con_puts(board_name());
-    con_puts("\r\nconfig ");
+    con_puts("\r\nversion " MODCP_VERSION "\r\nconfig "); /* modcp/version.h, as the banner */
     con_puts(modcp_cfg_name);
     con_puts(", slave ");
     put_u32(modcp_cfg_slave_addr);
