@@ -5,7 +5,8 @@
 #   - CMake: tests/package/outside with find_package(modcp 0.2 CONFIG REQUIRED) (run on
 #     the host: the manual's FC03 example through the public API); the compile definitions
 #     modcp::core gives it are the -D switches of `pkg-config --cflags modcp`;
-#     find_package(modcp 1.0) is refused (SameMajorVersion);
+#     find_package(modcp 1.0) is refused (SameMajorVersion), and so is the host package
+#     in a Cortex-M3 build (pointer size);
 #   - Make: tests/package/make/Makefile with `pkg-config --cflags --libs modcp` (run on
 #     the host);
 #   - the same two for Cortex-M3 against a cross build of modcp (MODCP_BOARD=core, with
@@ -68,6 +69,13 @@ grep "^-- modcp " "$B/arm.log"
 cmake --build "$B/arm" >/dev/null
 ls "$B/arm/liboutside_app.a" >/dev/null
 echo "cortex-m3 (find_package): outside application built against modcp::core and modcp::hal_cmsdk"
+if cmake -S "$ROOT/tests/package/outside" -B "$B/arm-host-pkg" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$TC" \
+         -DMODCP_ARM_CPU=cortex-m3 -DCMAKE_PREFIX_PATH="$B/stage-host" >"$B/arm-host-pkg.log" 2>&1; then
+  fail "a Cortex-M3 build accepted the host package"
+fi
+grep -q "version: [0-9.]* ([0-9]*bit)" "$B/arm-host-pkg.log" ||
+  { cat "$B/arm-host-pkg.log"; fail "the host package was not refused by its version file"; }
+echo "cortex-m3: the host package is refused (pointer size, modcpConfigVersion.cmake)"
 defs_equal "$B/arm" "$B/stage-m3/lib/pkgconfig"
 for d in MODCP_BP_DEPTH=8u MODCP_WITH_ASCII=0; do
   grep -qx "$d" "$B/arm/modcp_core_defs.txt" || fail "cortex-m3: the build's $d did not reach modcp::core"
