@@ -73,8 +73,7 @@ endforeach()
 
 install(TARGETS ${_libs} EXPORT modcpTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 foreach(dir ${PROJECT_SOURCE_DIR}/firmware/include/modcp ${PROJECT_SOURCE_DIR}/hal/include/modcp
             ${PROJECT_SOURCE_DIR}/firmware/console/include/modcp
             ${PROJECT_BINARY_DIR}/firmware/include/modcp)
