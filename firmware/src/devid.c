@@ -11,9 +11,10 @@
  * one space (empty strings left out).
  *
  * FC43/14: conformity level 82H (regular identification, stream and individual
- * access). Objects: 00 vendor name, 01 product code, 02 major/minor revision (basic,
- * always present, possibly empty), 06 user application name (regular; present when
- * the parameter is not empty). 03/04/05 are not provided.
+ * access). Objects: 00 vendor name, 01 product code (basic, always present, possibly
+ * empty), 02 major/minor revision (basic; modcp's version when the parameter is empty),
+ * 06 user application name (regular; present when the parameter is not empty).
+ * 03/04/05 are not provided.
  *   ReadDevId 01 stream basic (00..02), 02 stream regular (00..02, 06), 03 extended:
  *   answered as regular (the CP's conformity level; ReadDevId echoed as requested),
  *   04 one object. Stream access from an object id that is not in the category
