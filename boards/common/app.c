@@ -24,6 +24,7 @@
 #include "modcp/cp.h"
 #include "modcp/fb.h"
 #include "modcp/params.h"
+#include "modcp/version.h"
 
 #define LINE_MAX 128u
 
@@ -89,7 +90,7 @@ static void board_command(void)
 {
     con_puts("board ");
     con_puts(board_name());
-    con_puts("\r\nconfig ");
+    con_puts("\r\nversion " MODCP_VERSION "\r\nconfig "); /* modcp/version.h, as the banner */
     con_puts(modcp_cfg_name);
     con_puts(", slave ");
     put_u32(modcp_cfg_slave_addr);
@@ -182,7 +183,7 @@ static uint32_t bp_signature(void)
 int main(void)
 {
     board_init();
-    con_puts("\r\nmodcp ");
+    con_puts("\r\nmodcp " MODCP_VERSION " "); /* modcp/version.h */
     con_puts(board_name());
     con_puts("\r\n");
 

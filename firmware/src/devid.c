@@ -2,7 +2,8 @@
 /* modcp — identification of the extended set: FC17 report slave ID (Modbus
  * Application Protocol V1.1b3 §6.13) and FC43/14 read device identification (§6.21),
  * both from the parameter record's strings (SPEC §2: vendor, product, revision,
- * user application name; at most 16 characters each).
+ * user application name; at most 16 characters each). An empty revision is modcp's
+ * version, MODCP_VERSION (modcp/version.h, generated from the top-level CMakeLists.txt).
  *
  * FC17 reply: 11, byte count, slave ID (= the slave address), run indicator (FF: the
  * CP is ready and the CPU side answers its jobs; 00: the last CPU job timed out and
@@ -10,9 +11,10 @@
  * one space (empty strings left out).
  *
  * FC43/14: conformity level 82H (regular identification, stream and individual
- * access). Objects: 00 vendor name, 01 product code, 02 major/minor revision (basic,
- * always present, possibly empty), 06 user application name (regular; present when
- * the parameter is not empty). 03/04/05 are not provided.
+ * access). Objects: 00 vendor name, 01 product code (basic, always present, possibly
+ * empty), 02 major/minor revision (basic; modcp's version when the parameter is empty),
+ * 06 user application name (regular; present when the parameter is not empty).
+ * 03/04/05 are not provided.
  *   ReadDevId 01 stream basic (00..02), 02 stream regular (00..02, 06), 03 extended:
  *   answered as regular (the CP's conformity level; ReadDevId echoed as requested),
  *   04 one object. Stream access from an object id that is not in the category
@@ -26,6 +28,7 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "modcp/version.h"
 #include "pdu_internal.h"
 
 #define PDU_MAX 253u
@@ -49,6 +52,8 @@ static bool run_indicator(const modcp_pdu_env_t *env)
  * 06 application name (present when not empty). Their strings are consecutive fields
  * of modcp_params_t. */
 #define ID_FIELD (MODCP_ID_STRING_MAX + 1u)
+_Static_assert(sizeof MODCP_VERSION - 1u <= MODCP_ID_STRING_MAX,
+               "the version fits into the revision object");
 _Static_assert(offsetof(modcp_params_t, product) == offsetof(modcp_params_t, vendor) + ID_FIELD &&
                    offsetof(modcp_params_t, revision) ==
                        offsetof(modcp_params_t, vendor) + 2u * ID_FIELD &&
@@ -56,8 +61,13 @@ _Static_assert(offsetof(modcp_params_t, product) == offsetof(modcp_params_t, ven
                        offsetof(modcp_params_t, vendor) + 3u * ID_FIELD,
                "the identification strings are consecutive");
 
+/* Object i's string; the revision (i = 2) left empty by the configuration is modcp's
+ * version. */
 static const char *obj_value(const modcp_params_t *p, size_t i)
 {
+    if (i == 2u && p->revision[0] == '\0') {
+        return MODCP_VERSION;
+    }
     return (const char *)p + offsetof(modcp_params_t, vendor) + i * ID_FIELD;
 }
 

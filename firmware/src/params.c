@@ -200,7 +200,7 @@ void modcp_params_defaults(modcp_params_t *p)
 #if MODCP_WITH_EXTENDED
     SET_ID(p->vendor, "modcp");
     SET_ID(p->product, "modcp-cp");
-    SET_ID(p->revision, "0.1");
+    /* revision empty: FC17 / FC43 report modcp's version (devid.c) */
 #endif
 }
 

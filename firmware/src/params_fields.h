@@ -278,7 +278,7 @@ typedef struct {
       "product code (object 01)", "≤ 16 characters", "002 §10.5")                                 \
     S(revision, MODCP_PW_STR, MODCP_PF_ID_STRING, 2, 0, 0, 0, MODCP_EV_PARAM_RECORD,              \
       MODCP_PF_CUSTOM, "identification", "revision", STR, none, "at most 16 characters",          \
-      "revision (object 02)", "≤ 16 characters", "002 §10.5")                                     \
+      "revision (object 02); empty: modcp's version", "≤ 16 characters", "002 §10.5")             \
     S(app_name, MODCP_PW_STR, MODCP_PF_ID_STRING, 3, 0, 0, 0, MODCP_EV_PARAM_RECORD,              \
       MODCP_PF_CUSTOM, "identification", "app_name", STR, none, "at most 16 characters",          \
       "user application name (object 06)", "≤ 16 characters", "002 §10.5")                        \

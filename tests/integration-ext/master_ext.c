@@ -28,6 +28,7 @@
 #include <unistd.h>
 
 #include "master_util.h"
+#include "modcp/version.h"
 
 static modbus_t *ctx;
 static int timeout_ms = 1500;
@@ -85,7 +86,7 @@ static void fc17(void)
 {
     uint8_t id[MODBUS_MAX_PDU_LENGTH];
     int n = modbus_report_slave_id(ctx, sizeof id, id);
-    const char *s = "modcp CP341-MODBUS 0.1";
+    const char *s = "modcp CP341-MODBUS " MODCP_VERSION; /* revision empty: the version */
     ok(n == 2 + (int)strlen(s) && id[0] == 5 && id[1] == 0xFF && memcmp(id + 2, s, strlen(s)) == 0,
        "FC17: %d bytes, slave id %02X, run indicator %02X, '%.*s'", n, n > 0 ? id[0] : 0,
        n > 1 ? id[1] : 0, n > 2 ? n - 2 : 0, (const char *)id + 2);
@@ -217,11 +218,18 @@ static void event_log(void)
 
 static void fc43(void)
 {
-    raw_expect("FC43/14 basic stream", "05 2B 0E 01 00",
-               "05 2B 0E 01 82 00 00 03 00 05 6D 6F 64 63 70 01 0C 43 50 33 34 31 2D 4D 4F 44 42 55 "
-               "53 02 03 30 2E 31");
-    raw_expect("FC43/14 regular from 02", "05 2B 0E 02 02",
-               "05 2B 0E 02 82 00 00 02 02 03 30 2E 31 06 0E 6D 61 6E 75 61 6C 20 65 78 61 6D 70 6C 65");
+    /* object 02: the configuration leaves the revision empty, modcp's version answers */
+    char rev[64], want[200];
+    int n = snprintf(rev, sizeof rev, "02 %02X", (unsigned)strlen(MODCP_VERSION));
+    for (const char *c = MODCP_VERSION; *c != '\0' && n > 0 && n < (int)sizeof rev; c++) {
+        n += snprintf(rev + n, sizeof rev - (size_t)n, " %02X", (unsigned)(uint8_t)*c);
+    }
+    snprintf(want, sizeof want, "05 2B 0E 01 82 00 00 03 00 05 6D 6F 64 63 70 01 0C 43 50 33 34 31 "
+             "2D 4D 4F 44 42 55 53 %s", rev);
+    raw_expect("FC43/14 basic stream", "05 2B 0E 01 00", want);
+    snprintf(want, sizeof want, "05 2B 0E 02 82 00 00 02 %s 06 0E 6D 61 6E 75 61 6C 20 65 78 61 "
+             "6D 70 6C 65", rev);
+    raw_expect("FC43/14 regular from 02", "05 2B 0E 02 02", want);
     raw_expect("FC43/14 individual 06", "05 2B 0E 04 06",
                "05 2B 0E 04 82 00 00 01 06 0E 6D 61 6E 75 61 6C 20 65 78 61 6D 70 6C 65");
     raw_expect("FC43/14 individual 05 -> exception 02", "05 2B 0E 04 05", "05 AB 02");

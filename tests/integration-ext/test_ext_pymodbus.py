@@ -26,6 +26,8 @@ def main():
     ap.add_argument("--sim", required=True)
     ap.add_argument("--config", required=True)
     ap.add_argument("--simlib", required=True)
+    ap.add_argument("--modcp-version", required=True,
+                    help="project(modcp VERSION): FC43 object 02 (the revision is left empty)")
     ap.add_argument("--baud", type=int, default=38400)
     a = ap.parse_args()
     sys.path.insert(0, a.simlib)
@@ -155,7 +157,7 @@ def main():
         # -- FC43/14 --------------------------------------------------------------------------------
         rr = c.execute(ReadDeviceInformationRequest(read_code=1, object_id=0, unit=S))
         info = getattr(rr, "information", {})
-        t.ok(not rr.isError() and info == {0: b"modcp", 1: b"CP341-MODBUS", 2: b"0.1"}
+        t.ok(not rr.isError() and info == {0: b"modcp", 1: b"CP341-MODBUS", 2: a.modcp_version.encode()}
              and rr.conformity == 0x82,
              "FC43 basic: %r, conformity %r" % (info, getattr(rr, "conformity", None)))
         rr = c.execute(ReadDeviceInformationRequest(read_code=2, object_id=0, unit=S))

@@ -34,6 +34,7 @@
 #include <unistd.h>
 
 #include "master_util.h"
+#include "modcp/version.h"
 
 /* ---- options and results ------------------------------------------------------- */
 
@@ -499,8 +500,10 @@ static void g_extended(void)
             pos += 2 + len;
         }
     }
-    ok(good && strcmp(v[0], "modcp") == 0 && strcmp(v[1], "CP341-MODBUS") == 0 && strcmp(v[2], "0.1") == 0,
-       "FC43/14 basic objects: '%s' '%s' '%s' (expected modcp, CP341-MODBUS, 0.1)", v[0], v[1], v[2]);
+    ok(good && strcmp(v[0], "modcp") == 0 && strcmp(v[1], "CP341-MODBUS") == 0 &&
+           strcmp(v[2], MODCP_VERSION) == 0, /* revision empty: modcp's version */
+       "FC43/14 basic objects: '%s' '%s' '%s' (expected modcp, CP341-MODBUS, " MODCP_VERSION ")",
+       v[0], v[1], v[2]);
 
     /* FC08 counters: clear (sub 0A, echo), then the CRC error counter (sub 0C) reads 0 and
      * the bus message counter (sub 0B) counts the requests since */

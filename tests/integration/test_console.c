@@ -14,6 +14,7 @@
 #include "modcp/console.h"
 #include "modcp/hal.h"
 #include "modcp/signals.h"
+#include "modcp/version.h"
 #include "diag_internal.h"
 
 typedef struct {
@@ -251,7 +252,7 @@ static void test_missing_env(void **state)
     assert_int_equal(modcp_console_exec(&env, "pause", out, sizeof out), MODCP_CONSOLE_ERROR);
     assert_string_equal(out, "error: pause/resume not available");
     assert_int_equal(modcp_console_exec(&env, "status", out, sizeof out), MODCP_CONSOLE_OK);
-    assert_string_equal(out, "status: cycles=0 cp=not-configured param_event=none");
+    assert_string_equal(out, "status: cycles=0 cp=not-configured param_event=none version=" MODCP_VERSION);
 }
 
 static void test_truncation(void **state)

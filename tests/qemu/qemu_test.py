@@ -86,6 +86,7 @@ class Fail(Exception):
 REPLY_TIMEOUT_S = 5.0     # a request that must be answered
 CONSOLE_TIMEOUT_S = 10.0  # a console command
 START_TIMEOUT_S = 40.0    # QEMU up, console prompt, first FC08 echo
+VERSION = ""              # --version: what the smoke suite's board / status must show
 WATCHDOG_S = 590          # the whole test (ctest's TIMEOUT is 600): never leave QEMU behind
 
 
@@ -499,6 +500,9 @@ def suite_smoke(t, c):
         text = t.console("board")
         c.ok("config " in text and "-qemu" not in text and "qemu-test" not in text,
              "console: board shows the image's own configuration (%s)" % text.replace("\n", " | "))
+        if VERSION:  # the image's modcp/version.h (boards/common/app.c: banner and board)
+            c.ok("\nversion %s\n" % VERSION in text,
+                 "console: board shows version %s (project(modcp VERSION))" % VERSION)
     c.ok(t.transact(adu([0x03, 0x00, 0x50, 0x00, 0x02]), expect_len=9) ==
          bytes.fromhex("05 03 04 87 65 43 21 76 70"), "004 §6.3 FC03 manual example")
     c.ok(t.transact(adu([0x06, 0x01, 0x80, 0x2B, 0x1A]), expect_len=8) == adu([0x06, 0x01, 0x80, 0x2B, 0x1A]),
@@ -515,6 +519,9 @@ def suite_smoke(t, c):
     if c.console(t, "status: FB running, CP ready"):
         status = t.console("status")
         c.ok("fb=RUN" in status and "cp=ready" in status, "status: FB running, CP ready")
+        if VERSION:
+            c.ok(status.endswith(" version=" + VERSION),
+                 "status: version=%s (project(modcp VERSION)) (%s)" % (VERSION, status[-30:]))
 
 
 # ---- masters ----------------------------------------------------------------------------
@@ -572,8 +579,12 @@ def main():
     ap.add_argument("--master", help="master_libmodbus executable or master_pymodbus.py")
     ap.add_argument("--python", default=sys.executable, help="interpreter for pymodbus")
     ap.add_argument("--random", type=int, default=2000)
+    ap.add_argument("--version", default="",
+                    help="project(modcp VERSION): the smoke suite's board / status must show it")
     ap.add_argument("--elf", help="image to run (default: the QEMU test image, else the plain one)")
     args = ap.parse_args()
+    global VERSION
+    VERSION = args.version
 
     t_start = time.time()
 

@@ -15,11 +15,25 @@
 #include "ascii_world.h"
 #include "ext_support.h"
 #include "modcp/hal.h"
+#include "modcp/version.h"
 #include "commlog_internal.h"
 #include "diag_internal.h"
 #include "pdu_internal.h"
 
 #define S 5 /* slave address of the example set */
+
+/* MODCP_VERSION (modcp/version.h, generated from the top-level CMakeLists.txt) as the hex
+ * bytes of an expected reply: the revision object when the parameters leave it empty. */
+#define VLEN ((unsigned)sizeof MODCP_VERSION - 1u)
+static const char *version_hex(void)
+{
+    static char hex[3u * sizeof MODCP_VERSION];
+    size_t n = 0;
+    for (unsigned i = 0; i < VLEN; i++) {
+        n += (size_t)sprintf(hex + n, i == 0u ? "%02X" : " %02X", (unsigned)MODCP_VERSION[i]);
+    }
+    return hex;
+}
 
 /* ---- function set cp341 ------------------------------------------------------------ */
 
@@ -369,21 +383,25 @@ static void test_fc17_report_slave_id(void **state)
 {
     (void)state;
     world_t *w = ext_started(NULL);
-    /* slave id = address 5, run indicator FF, "modcp modcp-cp 0.1" */
-    ext_expect(w, S, "11",
-               "11 14 05 FF 6D 6F 64 63 70 20 6D 6F 64 63 70 2D 63 70 20 30 2E 31");
+    /* slave id = address 5, run indicator FF, "modcp modcp-cp " and, the default revision
+     * being empty, modcp's version */
+    char want[200];
+    sprintf(want, "11 %02X 05 FF 6D 6F 64 63 70 20 6D 6F 64 63 70 2D 63 70 20 %s", 17u + VLEN,
+            version_hex());
+    ext_expect(w, S, "11", want);
     ext_expect_exception(w, S, "11 00", 3, MODCP_EV_BYTE_COUNT);
     ext_expect_silence(w, 0, "11");
     /* the CPU side stops answering: run indicator 00 until a job succeeds again */
     w->fb_paused = true;
     ext_expect_exception(w, S, "03 00 50 00 01", 4, MODCP_EV_XFER_TIMEOUT);
-    ext_expect(w, S, "11",
-               "11 14 05 00 6D 6F 64 63 70 20 6D 6F 64 63 70 2D 63 70 20 30 2E 31");
+    want[9] = '0'; /* run indicator 00 */
+    want[10] = '0';
+    ext_expect(w, S, "11", want);
     ext_expect(w, S, "08 00 02 00 00", "08 00 02 00 04");
     w->fb_paused = false;
     world_run(w, 5000);
     ext_expect(w, S, "03 00 50 00 01", "03 02 00 00");
-    assert_int_equal(ext_request(w, S, "11", 100), 22);
+    assert_int_equal(ext_request(w, S, "11", 100), 19 + (int)VLEN);
     assert_int_equal(w->fake.tx[4], 0xFF);
     world_free(w);
 }
@@ -538,16 +556,22 @@ static void test_fc43_basic_default(void **state)
 {
     (void)state;
     world_t *w = ext_started(NULL);
-    const char *basic = "2B 0E 01 82 00 00 03 00 05 6D 6F 64 63 70 01 08 6D 6F 64 63 70 2D 63 "
-                        "70 02 03 30 2E 31";
+    /* the default revision is empty: object 02 is modcp's version */
+    char basic[200], rev[64];
+    sprintf(rev, "02 %02X %s", VLEN, version_hex());
+    sprintf(basic, "2B 0E 01 82 00 00 03 00 05 6D 6F 64 63 70 01 08 6D 6F 64 63 70 2D 63 70 %s",
+            rev);
     ext_expect(w, S, "2B 0E 01 00", basic);
     ext_expect(w, S, "2B 0E 01 06", basic); /* not a basic object: restart at 00 */
     ext_expect(w, S, "2B 0E 01 7F", basic);
-    ext_expect(w, S, "2B 0E 01 02", "2B 0E 01 82 00 00 01 02 03 30 2E 31");
+    char want[200];
+    sprintf(want, "2B 0E 01 82 00 00 01 %s", rev);
+    ext_expect(w, S, "2B 0E 01 02", want);
+    sprintf(want, "2B 0E 04 82 00 00 01 %s", rev);
+    ext_expect(w, S, "2B 0E 04 02", want);
     /* regular without a user application name: the basic objects */
-    ext_expect(w, S, "2B 0E 02 00",
-               "2B 0E 02 82 00 00 03 00 05 6D 6F 64 63 70 01 08 6D 6F 64 63 70 2D 63 70 02 03 "
-               "30 2E 31");
+    basic[7] = '2';
+    ext_expect(w, S, "2B 0E 02 00", basic);
     ext_expect_exception(w, S, "2B 0E 04 06", 2, MODCP_EV_NO_WINDOW);
     world_free(w);
 }

@@ -8,6 +8,7 @@
  *   modcp-conf fields                  self-check: every parameter field has an INI key
  *   modcp-conf doc-table               the parameter tables of docs/parameters.md
  *   modcp-conf event-table             the event tables of docs/diagnostics.md
+ *   modcp-conf --version               "modcp-conf MAJOR.MINOR.PATCH" (modcp/version.h)
  *
  * Problems go to stderr, one per line:
  *   FILE:LINE: section.key = value: rule (event (0E)23H)
@@ -18,6 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "modcp/version.h"
 #include "modcp_conf.h"
 
 static int usage(void)
@@ -27,7 +29,8 @@ static int usage(void)
                     "       modcp-conf c FILE -o OUT.c [--set section.key=value]...\n"
                     "       modcp-conf fields\n"
                     "       modcp-conf doc-table\n"
-                    "       modcp-conf event-table\n");
+                    "       modcp-conf event-table\n"
+                    "       modcp-conf --version\n");
     return 1;
 }
 
@@ -55,6 +58,10 @@ int main(int argc, char **argv)
             printf("every parameter field has an INI key\n");
         }
         return n == 0u ? 0 : 2;
+    }
+    if (argc == 2 && strcmp(argv[1], "--version") == 0) {
+        printf("modcp-conf %s\n", MODCP_VERSION);
+        return 0;
     }
     if (argc == 2 && strcmp(argv[1], "doc-table") == 0) {
         return modcp_conf_write_doc_table(stdout) ? 0 : 1;

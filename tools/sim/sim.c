@@ -449,7 +449,7 @@ int main(int argc, char **argv)
     }
     if (rc != 0) {
         free(s);
-        return rc;
+        return rc < 0 ? 0 : rc; /* -1: --version printed */
     }
     control_t ctl;
     open_control(s, &ctl);

@@ -3,6 +3,8 @@
 #define _GNU_SOURCE
 #include "sim.h"
 
+#include "modcp/version.h"
+
 /* ---- start-up ------------------------------------------------------------------------------ */
 
 static int usage(void)
@@ -36,6 +38,7 @@ static int usage(void)
             "                    the replies that differ, stop (exit 3 when any differs)\n"
             "  --speed F         the replay's gaps divided by F (default 1)\n"
             "  --tcp [ADDR:]PORT RTU frames over TCP too (127.0.0.1 unless ADDR), a client at a time\n"
+            "  --version         print modcp-sim's version and exit\n"
             "Several configs: one line (bus), one pty for the master, every member on it.\n"
             "The console reads stdin; type help. Ctrl-C or SIGTERM stops.\n");
     return 1;
@@ -171,6 +174,9 @@ int parse_args(sim_t *s, int argc, char **argv)
             s->bus_mode = true;
         } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             return usage();
+        } else if (strcmp(a, "--version") == 0) {
+            printf("modcp-sim %s\n", MODCP_VERSION); /* modcp/version.h */
+            return -1;                                /* done: exit 0 */
         } else if (a[0] == '-') {
             fprintf(stderr, "modcp-sim: unexpected argument '%s'\n", a);
             return usage();

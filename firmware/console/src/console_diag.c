@@ -4,6 +4,7 @@
  * Portable C11: no OS, no heap, no globals. */
 #include "console_internal.h"
 #include "modcp/signals.h"
+#include "modcp/version.h"
 
 #include <stdio.h>
 
@@ -148,6 +149,7 @@ int con_cmd_status(modcp_console_env_t *env, out_t *o)
                        (unsigned)st->diag_irq[3], (unsigned long)st->diag_irq_count);
         }
     }
+    con_printf(o, " version=%s", MODCP_VERSION); /* modcp/version.h */
     return MODCP_CONSOLE_OK;
 }
 
