@@ -91,11 +91,21 @@ static void eof_start(modcp_cmsdk_port_t *p, uint32_t us)
     TIMER_CTRL(t) = TIMER_CTRL_EN | TIMER_CTRL_IRQEN;
 }
 
+static uint32_t eof_mark(void *ctx)
+{
+    const modcp_cmsdk_port_t *p = ctx;
+    return p->rx_bytes + p->overruns;
+}
+
+static void eof_restart(void *ctx, uint32_t us)
+{
+    eof_start(ctx, us);
+}
+
 static void hal_timer_arm(void *ctx, uint32_t us)
 {
     modcp_cmsdk_port_t *p = ctx;
-    p->eof_gen++;
-    modcp_eof_confirm_arm(&p->eof, p->rx_bytes + p->overruns);
+    modcp_eof_arm(&p->eof, eof_mark(p));
     eof_start(p, us);
 }
 
@@ -166,8 +176,9 @@ void modcp_cmsdk_port_start(modcp_cmsdk_port_t *port, modcp_cp_t *cp, const modc
 /* ---- interrupts ---- */
 
 /* Take every received character out of the UART and hand it to the core. */
-static void rx_drain(modcp_cmsdk_port_t *port)
+static void rx_drain(void *ctx)
 {
+    modcp_cmsdk_port_t *port = ctx;
     uintptr_t u = port->cfg->uart;
     while ((UART_STATE(u) & UART_STATE_RXFULL) != 0u) {
         uint8_t b = (uint8_t)UART_DATA(u);
@@ -225,17 +236,15 @@ void modcp_cmsdk_port_overflow_isr(modcp_cmsdk_port_t *port)
     }
 }
 
+static const modcp_eof_ops_t eof_ops = {
+    .drain = rx_drain,
+    .rx_mark = eof_mark,
+    .restart = eof_restart,
+};
+
 /* End-of-frame expiry, reported to the core only after MODCP_CMSDK_EOF_QUIET_ROUNDS
- * expiries in a row (the first one and 1 us confirmation one-shots) found no character
- * in the UART or arriving meanwhile. On silicon that delays the report by a few
- * microseconds. In QEMU it makes the end of frame independent of host load: QEMU moves
- * the next byte of the pty into the UART and raises the timer interrupts in the same
- * main-loop thread, one byte per loop iteration and in each iteration the byte first;
- * a late expiry (the thread was descheduled) would otherwise be taken before a byte
- * the master wrote long before. A confirmation one-shot expires in a later iteration,
- * and two quiet rounds prove that an iteration polled the pty with the UART empty and
- * found nothing (the third is margin). The core gets on_timer only then and decides
- * from its own timestamps. See docs/porting.md. */
+ * expiries in a row found nothing received (modcp/hal_eof.h; docs/porting.md §4: in
+ * QEMU it makes the end of frame independent of host load). */
 void modcp_cmsdk_port_timer_isr(modcp_cmsdk_port_t *port)
 {
     uintptr_t t = port->cfg->timer;
@@ -244,17 +253,8 @@ void modcp_cmsdk_port_timer_isr(modcp_cmsdk_port_t *port)
     }
     TIMER_CTRL(t) = 0u;
     TIMER_INT(t) = 1u;
-    uint32_t gen = port->eof_gen;
-    rx_drain(port); /* a character already received is older than this expiry */
-    if (port->eof_gen != gen) {
-        return; /* the core re-armed for a character: that timer stands */
-    }
-    if (!modcp_eof_confirm_expiry(&port->eof, port->rx_bytes + port->overruns,
-                                  MODCP_CMSDK_EOF_QUIET_ROUNDS)) {
-        eof_start(port, 1u);
-        return;
-    }
-    if (port->cp != NULL) {
+    if (modcp_eof_expired(&port->eof, &eof_ops, port, MODCP_CMSDK_EOF_QUIET_ROUNDS) &&
+        port->cp != NULL) {
         modcp_cp_on_timer(port->cp, port->cfg->now_us());
     }
 }

@@ -24,9 +24,7 @@ bool modcp_nrf51_hfclk_start(void)
 
 static uintptr_t clk_timer;
 static uintptr_t tick_timer;
-static uint32_t ms_last_us;
-static uint32_t ms_rem_us;
-static uint32_t ms_count;
+static modcp_timebase_t ms_tb; /* milliseconds from the microseconds (modcp/hal_timebase.h) */
 
 static void timer_setup(uintptr_t t, uint32_t bitmode)
 {
@@ -46,9 +44,7 @@ void modcp_nrf51_clock_init(uintptr_t timer)
 {
     clk_timer = timer;
     timer_setup(timer, TIMER_BITMODE_32); /* free running, no interrupt */
-    ms_last_us = 0u;
-    ms_rem_us = 0u;
-    ms_count = 0u;
+    modcp_timebase_init(&ms_tb, 1000000u, 32u, false, 0u);
     TIMER_TASKS_START(timer) = 1u;
 }
 
@@ -65,14 +61,8 @@ uint32_t modcp_nrf51_clock_us(void)
 uint32_t modcp_nrf51_clock_ms(void)
 {
     uint32_t pm = nrf51_irq_save();
-    uint32_t now = modcp_nrf51_clock_us();
-    ms_rem_us += now - ms_last_us;
-    ms_last_us = now;
-    if (ms_rem_us >= 1000u) {
-        ms_count += ms_rem_us / 1000u;
-        ms_rem_us %= 1000u;
-    }
-    uint32_t ms = ms_count;
+    modcp_timebase_feed(&ms_tb, modcp_nrf51_clock_us()); /* at least every 71 minutes (the tick does) */
+    uint32_t ms = ms_tb.ms;
     nrf51_irq_restore(pm);
     return ms;
 }

@@ -47,11 +47,32 @@ static void oneshot_start(modcp_nrf51_port_t *p, uint32_t us)
     os_start(p);
 }
 
+static uint32_t eof_mark(void *ctx)
+{
+    const modcp_nrf51_port_t *p = ctx;
+    return p->rx_bytes + p->line_errors;
+}
+
+static void eof_restart(void *ctx, uint32_t us)
+{
+    oneshot_start(ctx, us);
+}
+
+static void eof_drain(void *ctx)
+{
+    modcp_nrf51_port_uart_isr(ctx);
+}
+
+static const modcp_eof_ops_t eof_ops = {
+    .drain = eof_drain,
+    .rx_mark = eof_mark,
+    .restart = eof_restart,
+};
+
 static void hal_timer_arm(void *ctx, uint32_t us)
 {
     modcp_nrf51_port_t *p = ctx;
-    p->eof_gen++;
-    modcp_eof_confirm_arm(&p->eof, p->rx_bytes + p->line_errors);
+    modcp_eof_arm(&p->eof, eof_mark(p));
     oneshot_start(p, us);
 }
 
@@ -72,17 +93,8 @@ void modcp_nrf51_port_timer_isr(modcp_nrf51_port_t *port)
      * section 4). In QEMU the UART model's 6-byte FIFO is filled from the pty and the
      * timers run in the same main-loop iteration, the pty first; a late expiry would
      * otherwise be taken before bytes the master wrote long before. */
-    uint32_t gen = port->eof_gen;
-    modcp_nrf51_port_uart_isr(port); /* a character already received is older than this expiry */
-    if (port->eof_gen != gen) {
-        return; /* the core re-armed for a character: that timer stands */
-    }
-    if (!modcp_eof_confirm_expiry(&port->eof, port->rx_bytes + port->line_errors,
-                                  MODCP_NRF51_EOF_QUIET_ROUNDS)) {
-        oneshot_start(port, 1u);
-        return;
-    }
-    if (port->cp != NULL) {
+    if (modcp_eof_expired(&port->eof, &eof_ops, port, MODCP_NRF51_EOF_QUIET_ROUNDS) &&
+        port->cp != NULL) {
         modcp_cp_on_timer(port->cp, port->cfg->now_us());
     }
 }
@@ -219,6 +231,7 @@ void modcp_nrf51_port_uart_isr(modcp_nrf51_port_t *port)
         }
     }
     uint8_t err = 0u;
+    bool overrun = false;
     if (UART_EVENTS_ERROR(u) != 0u) {
         UART_EVENTS_ERROR(u) = 0u;
         uint32_t src = UART_ERRORSRC(u);
@@ -233,9 +246,7 @@ void modcp_nrf51_port_uart_isr(modcp_nrf51_port_t *port)
                 err |= (uint8_t)MODCP_LINE_PARITY;
             }
         }
-        if ((src & UART_ERRORSRC_OVERRUN) != 0u) {
-            err |= (uint8_t)MODCP_LINE_OVERRUN;
-        }
+        overrun = (src & UART_ERRORSRC_OVERRUN) != 0u;
     }
     bool reported = false;
     while (UART_EVENTS_RXDRDY(u) != 0u) {
@@ -257,5 +268,11 @@ void modcp_nrf51_port_uart_isr(modcp_nrf51_port_t *port)
     if (err != 0u && !reported && port->cp != NULL) {
         port->line_errors++; /* BREAK, or an error without a character */
         modcp_cp_on_line_error(port->cp, err, port->cfg->now_us());
+    }
+    /* OVERRUN: the characters in RXD were received; the one lost came after them, so it
+     * is reported after them (the contract of modcp/hal.h) */
+    if (overrun && port->cp != NULL) {
+        port->line_errors++;
+        modcp_cp_on_line_error(port->cp, MODCP_LINE_OVERRUN, port->cfg->now_us());
     }
 }

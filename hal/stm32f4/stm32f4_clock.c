@@ -113,9 +113,7 @@ void modcp_stm32_pin_set(const modcp_stm32_pin_t *p, bool on)
 /* ---- TIM5: microseconds ---- */
 
 static uintptr_t us_tim;
-static uint32_t ms_last_us;
-static uint32_t ms_rem_us;
-static uint32_t ms_count;
+static modcp_timebase_t ms_tb; /* milliseconds from the microseconds (modcp/hal_timebase.h) */
 
 void modcp_stm32_clock_us_init(uintptr_t tim, uint32_t tim_clk_hz)
 {
@@ -127,9 +125,7 @@ void modcp_stm32_clock_us_init(uintptr_t tim, uint32_t tim_clk_hz)
     TIM_EGR(tim) = TIM_EGR_UG; /* load the prescaler, counter to 0 */
     TIM_SR(tim) = 0u;
     TIM_CR1(tim) = TIM_CR1_CEN;
-    ms_last_us = TIM_CNT(tim);
-    ms_rem_us = 0u;
-    ms_count = 0u;
+    modcp_timebase_init(&ms_tb, 1000000u, 32u, false, TIM_CNT(tim));
 }
 
 uint32_t modcp_stm32_clock_us(void)
@@ -140,14 +136,8 @@ uint32_t modcp_stm32_clock_us(void)
 uint32_t modcp_stm32_clock_ms(void)
 {
     uint32_t pm = stm32_irq_save();
-    uint32_t now = TIM_CNT(us_tim);
-    ms_rem_us += now - ms_last_us; /* called at least every 71 minutes (the tick does) */
-    ms_last_us = now;
-    if (ms_rem_us >= 1000u) {
-        ms_count += ms_rem_us / 1000u;
-        ms_rem_us %= 1000u;
-    }
-    uint32_t ms = ms_count;
+    modcp_timebase_feed(&ms_tb, TIM_CNT(us_tim)); /* at least every 71 minutes (the tick does) */
+    uint32_t ms = ms_tb.ms;
     stm32_irq_restore(pm);
     return ms;
 }

@@ -13,7 +13,7 @@
 
 /* ---- end-of-frame one-shot ---- */
 
-static void rx_drain(modcp_stm32_port_t *port);
+static void rx_drain(void *ctx);
 static void oneshot_fired(void *ctx, uint32_t now_us);
 
 static void tim_setup(const modcp_stm32_cfg_t *cfg)
@@ -47,17 +47,33 @@ static void oneshot_start(modcp_stm32_port_t *p, uint32_t us)
     TIM_CR1(t) = TIM_CR1_OPM | TIM_CR1_URS | TIM_CR1_CEN;
 }
 
+static uint32_t eof_mark(void *ctx)
+{
+    const modcp_stm32_port_t *p = ctx;
+    return p->rx_bytes + p->line_errors;
+}
+
+static void eof_restart(void *ctx, uint32_t us)
+{
+    oneshot_start(ctx, us);
+}
+
+static const modcp_eof_ops_t eof_ops = {
+    .drain = rx_drain,
+    .rx_mark = eof_mark,
+    .restart = eof_restart,
+};
+
 static void hal_timer_arm(void *ctx, uint32_t us)
 {
     modcp_stm32_port_t *p = ctx;
-    p->eof_gen++;
-    modcp_eof_confirm_arm(&p->eof, p->rx_bytes + p->line_errors);
+    modcp_eof_arm(&p->eof, eof_mark(p));
     oneshot_start(p, us);
 }
 
 /* End-of-frame expiry, reported to the core only after MODCP_STM32_EOF_QUIET_ROUNDS
  * expiries in a row (the first one and 1 us confirmation one-shots) found no character
- * in the USART or arriving meanwhile. On silicon that delays the report by a few
+ * in the USART or arriving meanwhile (modcp/hal_eof.h). On silicon that delays the report by a few
  * microseconds. In QEMU it makes the end of frame independent of host load: QEMU moves
  * the next byte of the pty into the USART and raises the timer interrupts in the same
  * main-loop thread, one byte per loop iteration and in each iteration the byte first;
@@ -71,17 +87,7 @@ static void oneshot_fired(void *ctx, uint32_t now_us)
 {
     modcp_stm32_port_t *p = ctx;
     (void)now_us;
-    uint32_t gen = p->eof_gen;
-    rx_drain(p); /* a character already received is older than this expiry */
-    if (p->eof_gen != gen) {
-        return; /* the core re-armed for a character: that timer stands */
-    }
-    if (!modcp_eof_confirm_expiry(&p->eof, p->rx_bytes + p->line_errors,
-                                  MODCP_STM32_EOF_QUIET_ROUNDS)) {
-        oneshot_start(p, 1u);
-        return;
-    }
-    if (p->cp != NULL) {
+    if (modcp_eof_expired(&p->eof, &eof_ops, p, MODCP_STM32_EOF_QUIET_ROUNDS) && p->cp != NULL) {
         modcp_cp_on_timer(p->cp, p->cfg->now_us());
     }
 }
@@ -208,8 +214,9 @@ static void tx_check_complete(modcp_stm32_port_t *port)
  * hand the request's first byte to the core while it still transmits, which drops it
  * and cuts the request. RS485 keeps the order: there the echo of our own last byte
  * arrives with TC. */
-static void rx_drain(modcp_stm32_port_t *port)
+static void rx_drain(void *ctx)
 {
+    modcp_stm32_port_t *port = ctx;
     uintptr_t u = port->cfg->usart;
     uint32_t sr = USART_SR(u);
     while ((sr & (USART_SR_RXNE | USART_SR_ORE)) != 0u) {
@@ -229,9 +236,6 @@ static void rx_drain(modcp_stm32_port_t *port)
                 err |= (uint8_t)MODCP_LINE_PARITY;
             }
         }
-        if ((sr & USART_SR_ORE) != 0u) {
-            err |= (uint8_t)MODCP_LINE_OVERRUN;
-        }
         if (port->cp != NULL) {
             if (err != 0u) {
                 port->line_errors++;
@@ -239,6 +243,12 @@ static void rx_drain(modcp_stm32_port_t *port)
             } else {
                 port->rx_bytes++;
                 modcp_cp_on_rx(port->cp, b, now);
+            }
+            /* ORE: DR holds the character received before the lost one, so that one is
+             * delivered and the lost one reported after it (the contract of modcp/hal.h) */
+            if ((sr & USART_SR_ORE) != 0u) {
+                port->line_errors++;
+                modcp_cp_on_line_error(port->cp, MODCP_LINE_OVERRUN, now);
             }
         }
         sr = USART_SR(u);

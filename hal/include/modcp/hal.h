@@ -11,6 +11,27 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+/* Contracts every port keeps (the ports in hal/ agree; tests/unit/test_hal_contract.c
+ * checks the core's side):
+ *   - uart_tx is never called with len == 0: a frame without a reply calls nothing.
+ *     (A port may still accept 0 and complete it from an interrupt, never from inside
+ *     uart_tx.)
+ *   - CTS / DSR: with automatic secondary signals (params.rs232_auto) the core takes
+ *     both as OFF until the port's first modcp_cp_on_signals() — it receives nothing
+ *     while DSR is OFF. So every port reports them once at start (before or after the
+ *     parameters arrive: the core keeps the last report), and on every change; a UART
+ *     without modem inputs reports CTS = DSR = ON. With rs232_auto off the core
+ *     ignores them: the report is harmless and not needed.
+ *   - Line errors: a character received with a parity / framing error or as a BREAK is
+ *     reported with modcp_cp_on_line_error() in its place, not with modcp_cp_on_rx().
+ *     A character lost to an overrun is reported as MODCP_LINE_OVERRUN in its place,
+ *     and every good character the UART still delivers is given with modcp_cp_on_rx()
+ *     in its order: a UART that keeps the older character and loses the new one (STM32
+ *     ORE, nRF51 ERRORSRC.OVERRUN, CMSDK RX overflow) delivers the held character, then
+ *     reports OVERRUN; a UART that flags the first character after the loss (PL011 OE
+ *     in DR) reports OVERRUN, then delivers that character. One event per character
+ *     on the line keeps the core's timing and frame length right. */
+
 /* Line errors reported with a received character (or alone for BREAK). */
 enum {
     MODCP_LINE_PARITY = 0x01,
@@ -28,7 +49,8 @@ typedef struct modcp_hal {
     /* Start sending len bytes. buf stays valid and unchanged until the port calls
      * modcp_cp_on_tx_done(), which it must do when the last stop bit has left the
      * shift register (transmission complete), not when the data register empties.
-     * Required: must not be NULL (the core calls it without a check). */
+     * Never called with len == 0 (see the contracts above). Required: must not be
+     * NULL (the core calls it without a check). */
     void (*uart_tx)(void *ctx, const uint8_t *buf, uint16_t len);
     /* Arm the one-shot timer to call modcp_cp_on_timer() after `us` microseconds,
      * replacing any armed one; us == 0 disarms. Required: must not be NULL (the core

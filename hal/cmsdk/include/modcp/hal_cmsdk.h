@@ -44,7 +44,9 @@
 
 #include "modcp/cp.h"
 #include "modcp/hal.h"
+#include "modcp/hal_conq.h"
 #include "modcp/hal_eof.h"
+#include "modcp/hal_timebase.h"
 
 /* ---- time base ---------------------------------------------------------------- */
 
@@ -83,8 +85,7 @@ typedef struct {
     uint32_t rx_bytes;
     uint32_t tx_bytes;
     uint32_t overruns;
-    uint32_t eof_gen;      /* end-of-frame arms by the core */
-    modcp_eof_confirm_t eof; /* end-of-frame confirmation (modcp/hal_eof.h), mark = rx_bytes + overruns */
+    modcp_eof_t eof; /* end-of-frame handler (modcp/hal_eof.h), mark = rx_bytes + overruns */
 } modcp_cmsdk_port_t;
 
 /* End-of-frame expiries in a row without a received character before the core hears of
@@ -110,16 +111,10 @@ void modcp_cmsdk_port_txc_isr(modcp_cmsdk_port_t *port);
 
 /* ---- console UART ------------------------------------------------------------- */
 
-#define MODCP_CMSDK_CON_RX 128u  /* power of two */
-#define MODCP_CMSDK_CON_TX 2048u /* power of two */
-
 typedef struct {
     uintptr_t uart;
-    volatile uint32_t rx_head, rx_tail;
-    volatile uint32_t tx_head, tx_tail;
     volatile bool tx_active;
-    uint8_t rx[MODCP_CMSDK_CON_RX];
-    uint8_t tx[MODCP_CMSDK_CON_TX];
+    modcp_conq_t q; /* the shared queues (modcp/hal_conq.h) */
 } modcp_cmsdk_con_t;
 
 void modcp_cmsdk_con_init(modcp_cmsdk_con_t *con, uintptr_t uart, uint32_t pclk_hz,

@@ -23,8 +23,9 @@
  * only. Odd parity, 7 data bits and 2 stop bits cannot be produced: such a record runs
  * the line as 8 data bits with even parity (odd) or none, 1 stop bit, which a master
  * configured as the record says will not understand; use even or none. Receive errors
- * (ERRORSRC: overrun, parity, framing, break) are reported with
- * modcp_cp_on_line_error() in place of the character.
+ * (ERRORSRC: parity, framing, break) are reported with modcp_cp_on_line_error() in
+ * place of the character; an overrun (a character lost while RXD was full) as
+ * MODCP_LINE_OVERRUN after the characters RXD still delivers (modcp/hal.h).
  *
  * RS232 secondary signals: RTS / CTS exist as pins but only for hardware flow control;
  * set_signal is NULL and CTS and DSR are reported permanently ON at start (3-wire line).
@@ -41,6 +42,7 @@
 #include "modcp/cp.h"
 #include "modcp/hal.h"
 #include "modcp/hal_eof.h"
+#include "modcp/hal_timebase.h"
 
 #define MODCP_NRF51_TIMER0 0x40008000u
 #define MODCP_NRF51_TIMER1 0x40009000u
@@ -110,8 +112,7 @@ typedef struct {
     uint32_t rx_bytes;
     uint32_t tx_bytes;
     uint32_t line_errors;
-    uint32_t eof_gen;        /* end-of-frame arms by the core */
-    modcp_eof_confirm_t eof; /* end-of-frame confirmation (modcp/hal_eof.h), mark = rx_bytes + line_errors */
+    modcp_eof_t eof; /* end-of-frame handler (modcp/hal_eof.h), mark = rx_bytes + line_errors */
 } modcp_nrf51_port_t;
 
 /* Expiries in a row without a received character before one reaches the core

@@ -28,8 +28,9 @@
  *
  * Line errors: PE -> MODCP_LINE_PARITY, FE -> MODCP_LINE_FRAMING, or MODCP_LINE_BREAK
  * when the character read with FE is 0x00 (a BREAK is an all-zero frame without stop
- * bit), ORE -> MODCP_LINE_OVERRUN. The character that carries an error is reported as
- * the error, in its place. NF (noise) alone is not an error: the majority vote's value
+ * bit). The character that carries an error is reported as the error, in its place.
+ * ORE: DR holds the character received before the lost one; it is delivered, then the
+ * lost one reported as MODCP_LINE_OVERRUN (modcp/hal.h). NF (noise) alone is not an error: the majority vote's value
  * is taken.
  *
  * RS232 secondary signals: this port wires no RTS / DTR outputs and no CTS / DSR
@@ -50,7 +51,9 @@
 
 #include "modcp/cp.h"
 #include "modcp/hal.h"
+#include "modcp/hal_conq.h"
 #include "modcp/hal_eof.h"
+#include "modcp/hal_timebase.h"
 
 /* Peripheral bases and interrupt numbers of the STM32F405/407 (RM0090). */
 #define STM32_GPIOA 0x40020000u
@@ -151,8 +154,7 @@ typedef struct {
     uint32_t rx_bytes;
     uint32_t tx_bytes;
     uint32_t line_errors;
-    uint32_t eof_gen;      /* end-of-frame arms by the core */
-    modcp_eof_confirm_t eof; /* end-of-frame confirmation (modcp/hal_eof.h), mark = rx_bytes + line_errors */
+    modcp_eof_t eof; /* end-of-frame handler (modcp/hal_eof.h), mark = rx_bytes + line_errors */
 } modcp_stm32_port_t;
 
 /* End-of-frame expiries in a row without a received character before the core hears of
@@ -172,16 +174,10 @@ void modcp_stm32_port_tim_isr(modcp_stm32_port_t *port);
 
 /* ---- console USART --------------------------------------------------------------- */
 
-#define MODCP_STM32_CON_RX 128u  /* power of two */
-#define MODCP_STM32_CON_TX 2048u /* power of two */
-
 typedef struct {
     uintptr_t usart;
     uint8_t irq;
-    volatile uint32_t rx_head, rx_tail;
-    volatile uint32_t tx_head, tx_tail;
-    uint8_t rx[MODCP_STM32_CON_RX];
-    uint8_t tx[MODCP_STM32_CON_TX];
+    modcp_conq_t q; /* the shared queues (modcp/hal_conq.h) */
 } modcp_stm32_con_t;
 
 void modcp_stm32_con_init(modcp_stm32_con_t *con, uintptr_t usart, uint8_t irq, uint32_t clk_hz,
