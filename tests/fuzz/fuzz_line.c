@@ -378,13 +378,25 @@ static void fb_cycle(void)
     (void)fb_call(true);
 }
 
-/* The user program runs on; after CP_START_ERROR (e.g. START_TIME ran out while the
- * input stalled the CPU side during an initialisation) it starts the CP again, as the
- * manual's programs do: CP_START low for one cycle, then high. */
+/* Long enough for a frame to end and its reply to be out: t3.5 twice, turnaround, RTS
+ * delays, a reply's characters. */
+static uint32_t quiet_us(void)
+{
+    const modcp_params_t *p = &W.p;
+    return 40000u + 2u * W.t35_us + 30u * W.char_us +
+           1000u * ((uint32_t)p->turnaround_ms + p->rts_on_delay_ms + p->rts_off_delay_ms);
+}
+
+/* The user program runs on (one FB cycle per ms) until every frame has ended, its jobs
+ * are done and its reply is out (quiet_us, at least 80 cycles); after CP_START_ERROR
+ * (e.g. START_TIME ran out while the input stalled the CPU side during an
+ * initialisation) it starts the CP again, as the manual's programs do: CP_START low for
+ * one cycle, then high. */
 static void settle(void)
 {
     bool error = false;
-    for (int k = 0; k < 80; k++) {
+    uint32_t cycles = 80u + quiet_us() / 1000u;
+    for (uint32_t k = 0; k < cycles; k++) {
         error = fb_call(!error);
     }
 }
@@ -407,15 +419,6 @@ static void check_memory(void)
         if ((!writable(&W.p.lim_db, db_numbers[d]) || db_numbers[d] == W.mem.work_db) &&
             memcmp(W.db_data[d], SNAP.db_data[d], sizeof W.db_data[d]) != 0)
             die("DB outside limits (or the work DB) changed");
-}
-
-/* Long enough for a frame to end and its reply to be out: t3.5 twice, turnaround, RTS
- * delays, a reply's characters. */
-static uint32_t quiet_us(void)
-{
-    const modcp_params_t *p = &W.p;
-    return 40000u + 2u * W.t35_us + 30u * W.char_us +
-           1000u * ((uint32_t)p->turnaround_ms + p->rts_on_delay_ms + p->rts_off_delay_ms);
 }
 
 /* Send a diagnostic request FC08 with sub-function sub and data. */
@@ -586,9 +589,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
     }
     flush_block();
-    advance(10000);
     settle();
-    advance(quiet_us()); /* a reply still in its turnaround or RTS delays goes out */
     check_memory();
     good_request_answered();
     return 0;
