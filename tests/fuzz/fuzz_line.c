@@ -394,10 +394,11 @@ static uint32_t quiet_us(void)
  * one cycle, then high. */
 static void settle(void)
 {
-    bool error = false;
+    bool low = false; /* CP_START low in this cycle */
     uint32_t cycles = 80u + quiet_us() / 1000u;
     for (uint32_t k = 0; k < cycles; k++) {
-        error = fb_call(!error);
+        bool error = fb_call(!low);
+        low = error && !low; /* CP_START_ERROR stays set until the next rising edge */
     }
 }
 
