@@ -14,7 +14,7 @@ if(MODCP_FUZZ)
                       -fno-sanitize-recover=all -fno-omit-frame-pointer)
   add_link_options(-fsanitize=${MODCP_FUZZ_SANITIZERS})
   # clang's -Wconversion includes implicit enum -> uint8_t conversions gcc accepts
-  # (tools/conf/conf.c); the gcc builds keep them errors, here they stay warnings.
+  # (tools/conf/conf_keys.c); the gcc builds keep them errors, here they stay warnings.
 endif()
 
 # modcp_fuzz_target(<name> SOURCES <src...> LIBS <lib...> [DEFS <def...>]):

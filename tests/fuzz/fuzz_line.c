@@ -1,36 +1,46 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* Fuzz target: arbitrary bytes, gaps and line errors on the serial line of a running
- * CP + FB (the manual's example parameter set). Invariants checked after every input:
+ * CP + FB, under a parameter set and a controller memory the input builds.
+ * Invariants checked after every input:
  *   - every transmitted frame is a well-formed reply: our address, valid CRC,
  *     length <= 264, function code = request's or | 0x80 with code 1..4;
  *   - nothing outside the writable windows and limits changes: I, T, C, the work DB,
- *     M outside MB 1000..1255, Q outside QB 256..319, DBs outside 800..899;
+ *     M, Q and DBs outside the set's write limits (the manual's example: MB 1000..1255,
+ *     QB 256..319, DB 800..899);
+ *   - the parameter record decodes to the set it was encoded from;
  *   - the CP keeps answering a good request afterwards.
- * Input encoding: each input byte b is a line event:
- *   0xF0..0xF7  gap of (b & 7) * 1 ms (0xF0 = end of frame: a full t3.5)
- *   0xF8        parity error, 0xF9 framing error, 0xFA overrun, 0xFB BREAK
+ * Input encoding: in the fuzz targets the first FUZZ_CFG_BYTES bytes build the CP's
+ * parameter set and the controller's memory field by field (fuzz_cfg.c: character
+ * frame, normal or modem mode, RS485 / RS232 signals, t1.5, windows and their bases,
+ * write limits, 32-bit ranges, function set, quantity limits, job limit, timing,
+ * scanner, DBs, ID strings); what the core's validation refuses falls back to the base
+ * set, the manual's example (all bytes 0; tests/fuzz/make_seeds.py has the headers of
+ * the five sets the targets once had fixed). Each further byte b is a line event:
+ *   0xF0..0xF6  a gap of (b & 7) quarters of t3.5, 0xF0 five quarters (end of frame;
+ *               at 9600 baud with f_MUL 1: 1..6 ms and 5 ms)
+ *   0xF7        a long silence (longer than the comm-loss time, the CPU job timeout and
+ *               the ASCII timeout), then the CP polls without an FB call in between
+ *               (a stalled CPU side)
+ *   0xF8        parity error, 0xF9 framing error, 0xFA overrun, 0xFB BREAK; with RS232
+ *               automatic secondary signals (DSR ON, CTS following RTS, or always ON
+ *               with a data output waiting time of 0) 0xF8 toggles "CTS stuck OFF"
+ *               and 0xF9 DSR instead (both are ON again before the closing request)
  *   0xFC        run one FB cycle (1 ms), 0xFD next byte is a literal
  *   0xFE        the frame's check: RTU: the CRC of the bytes received since the last
  *               gap or line error; ASCII: the LRC of the hex pairs since the last ':'
  *               as two hex digits, then CR LF (so mutations reach the PDU, not only
  *               the CRC / LRC check)
- *   anything else: a received byte, 100 us after the previous one; in an input of
- *               odd length the received bytes between two other events arrive as one
- *               block instead (modcp_cp_on_rx_block: DMA / FIFO, up to 64 characters
- *               back to back, one character time apart; a timer due meanwhile fires
- *               late, after the block), so that the block path runs too.
- * In the fuzz targets the first input byte selects the CP's parameter set (cfg_params):
- * 0 the manual's example, 1 + 32-bit registers, scanner, comm loss, 2 RS485 with
- * reply suppression, t1.5 check, Modbus end-of-frame timing, DB bit windows,
- * CP 441 job limit, 3 the CP 341 function set 8N2 f_MUL 3, 4 RS232 automatic secondary
- * signals: DSR is ON and CTS follows RTS unless the input says otherwise -- in this
- * set 0xF8 toggles "CTS stuck OFF" and 0xF9 toggles DSR instead of parity / framing
- * errors (both are ON again before the closing good request).
+ *   anything else: a received byte, one character time after the previous one; in an
+ *               input of odd length the received bytes between two other events arrive
+ *               as one block instead (modcp_cp_on_rx_block: DMA / FIFO, up to 64
+ *               characters back to back; a timer due meanwhile fires late, after the
+ *               block), so that the block path runs too.
  * Both framings: built with MODCP_FUZZ_FRAMING = 0 (RTU: fuzz_rtu) or 1 (ASCII:
  * fuzz_ascii) the whole input is one framing -- as libFuzzer targets with clang
  * (-DMODCP_FUZZ=ON) and as replays of tests/fuzz/corpus/<target> (replay_main.c).
  * Without MODCP_FUZZ_FRAMING it is the deterministic generator fuzz_replay, which runs
- * every kind of input in RTU and in ASCII; ctest runs it on every build. */
+ * every kind of input in RTU and in ASCII under the base set; ctest runs it on every
+ * build. */
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -42,6 +52,7 @@
 #include "modcp/fb.h"
 #include "modcp/params.h"
 #include "modcp/plcmem.h"
+#include "fuzz_cfg.h"
 
 #define NDB 5
 static const uint16_t db_numbers[NDB] = {80, 700, 800, 801, 900};
@@ -50,7 +61,7 @@ typedef struct {
     modcp_backplane_t bp;
     modcp_cp_t cp;
     modcp_fb_t fb;
-    modcp_plcmem_t mem;
+    modcp_plcmem_t plc;
     modcp_db_t dbs[NDB];
     uint8_t db_data[NDB][1024];
     uint8_t i[256], q[320], m[2600];
@@ -65,14 +76,18 @@ typedef struct {
     uint8_t tx[600];
     uint16_t tx_len;
     int tx_pending;
-    int rts, cts_stuck_off, dsr_off, signals_changed; /* cfg 4 */
+    int rts, cts_stuck_off, dsr_off, signals_changed; /* RS232 automatic signals */
+    modcp_params_t p; /* the parameter set the CP runs */
+    fuzz_mem_t mem;   /* DB sizes, M size, work DB */
+    uint32_t char_us, t35_us;
+    unsigned fb_calls; /* FB cycles the input asked for (CP_START drops: mem.restart_every) */
 } fworld_t;
 
 static fworld_t W;
 static fworld_t SNAP; /* memory image before the input */
-static int ascii_mode; /* Modbus ASCII framing instead of RTU (test code) */
-#define NCFG 5
-static unsigned cfg; /* parameter set 0 .. NCFG-1 (cfg_params) */
+static int target_ascii; /* the target's framing (the base set's): ASCII instead of RTU */
+static int ascii_mode;   /* the framing of the set in force (W.p.framing) */
+static uint8_t cfg_bytes[FUZZ_CFG_BYTES]; /* the input's parameter bytes (0: the example) */
 
 static int hexval(uint8_t c)
 {
@@ -168,54 +183,6 @@ static void f_arm(void *ctx, uint32_t us)
     }
 }
 
-/* The variations of the example parameter set (same address, windows and limits). */
-static void cfg_params(modcp_params_t *p)
-{
-    switch (cfg) {
-    case 1:
-        p->regs32 = 1;
-        p->r32[MODCP_R32_INT16] = (modcp_r32range_t){3000, 3199, 800};
-        p->r32[MODCP_R32_INT32] = (modcp_r32range_t){5000, 5099, 801};
-        p->r32[MODCP_R32_FLOAT] = (modcp_r32range_t){7000, 7199, 900};
-        p->scan_start = 40000;
-        p->scan_count = 5;
-        p->scan[0] = (modcp_operand_ref_t){MODCP_AREA_M, 0, 1000};
-        p->scan[1] = (modcp_operand_ref_t){MODCP_AREA_I, 0, 4};
-        p->scan[2] = (modcp_operand_ref_t){MODCP_AREA_DB, 800, 10};
-        p->scan[3] = (modcp_operand_ref_t){MODCP_AREA_T, 0, 7};
-        p->scan[4] = (modcp_operand_ref_t){MODCP_AREA_Q, 0, 256};
-        p->commloss_ms = 100;
-        p->diag_irq = 1;
-        break;
-    case 2:
-        p->iface = MODCP_IFACE_RS485;
-        p->turnaround_ms = 2;
-        p->opmode = MODCP_OPMODE_SUPPRESS;
-        p->t15_check = 1;
-        p->eof_timing = MODCP_EOF_MODBUS;
-        p->baud = 19200;
-        p->cpu_model = MODCP_CPU_CP441;
-        p->coils[4] = (modcp_bitwin_t){MODCP_AREA_DB, 8192, 8991, 0, 800};
-        p->inputs[2] = (modcp_bitwin_t){MODCP_AREA_DB, 8192, 8991, 0, 900};
-        break;
-    case 4:
-        p->rs232_auto = 1;
-        p->rts_on_delay_ms = 1;
-        p->rts_off_delay_ms = 1;
-        p->baud = 38400;
-        break;
-    case 3:
-        p->fset = MODCP_FSET_CP341;
-        p->parity = MODCP_PARITY_NONE;
-        p->stop_bits = 2;
-        p->f_mul = 3;
-        p->baud = 2400;
-        break;
-    default:
-        break;
-    }
-}
-
 static void f_signal(void *ctx, modcp_signal_t sig, bool on)
 {
     fworld_t *w = ctx;
@@ -225,49 +192,83 @@ static void f_signal(void *ctx, modcp_signal_t sig, bool on)
     }
 }
 
-/* cfg 4: the modem's CTS follows RTS (one step later), DSR as the input sets it. */
+/* RS232 automatic signals: the modem's CTS follows RTS (one step later) -- or, with a
+ * data output waiting time of 0, is always ON (a partner that is always ready: nothing
+ * else can work without a waiting time) -- and DSR is ON, unless the input says
+ * otherwise. */
 static void signals(void)
 {
     if (W.signals_changed) {
         W.signals_changed = 0;
-        modcp_cp_on_signals(&W.cp, W.rts && !W.cts_stuck_off, !W.dsr_off, W.now_us);
+        bool cts = (W.p.rts_on_delay_ms == 0u || W.rts) && !W.cts_stuck_off;
+        modcp_cp_on_signals(&W.cp, cts, !W.dsr_off, W.now_us);
+    }
+}
+
+/* The base parameter set: the manual's example (slave 5, windows onto M, Q, T, C and I,
+ * holding registers from DB 700, input registers from DB 900, write limits), with the
+ * 32-bit ranges and scanner entries the input can switch on. */
+static void base_params(modcp_params_t *p)
+{
+    modcp_params_defaults(p);
+    p->slave_addr = 5;
+    p->coils[0] = (modcp_bitwin_t){MODCP_AREA_M, 0, 2047, 1000, 0};
+    p->coils[1] = (modcp_bitwin_t){MODCP_AREA_Q, 2048, 2559, 256, 0};
+    p->coils[2] = (modcp_bitwin_t){MODCP_AREA_T, 4096, 4607, 100, 0};
+    p->coils[3] = (modcp_bitwin_t){MODCP_AREA_C, 4608, 5119, 200, 0};
+    p->inputs[0] = (modcp_bitwin_t){MODCP_AREA_M, 0, 4095, 2000, 0};
+    p->inputs[1] = (modcp_bitwin_t){MODCP_AREA_I, 4096, 5119, 128, 0};
+    p->hr_base_db = 700; /* registers 0..511 -> DB 700 (not writable), 512.. -> DB 701 (missing) */
+    p->ir_base_db = 900;
+    p->lim_db = (modcp_limit_t){800, 899};
+    p->lim_m = (modcp_limit_t){1000, 1255};
+    p->lim_q = (modcp_limit_t){256, 319};
+    p->cpu_timeout_ms = 50;
+    p->r32[MODCP_R32_INT16] = (modcp_r32range_t){3000, 3199, 800};
+    p->r32[MODCP_R32_INT32] = (modcp_r32range_t){5000, 5099, 801};
+    p->r32[MODCP_R32_FLOAT] = (modcp_r32range_t){7000, 7199, 900};
+#if MODCP_WITH_EXTENDED
+    p->scan_start = 40000;
+    static const modcp_operand_ref_t scan[5] = {{MODCP_AREA_M, 0, 1000}, {MODCP_AREA_I, 0, 4},
+                                                {MODCP_AREA_DB, 800, 10}, {MODCP_AREA_T, 0, 7},
+                                                {MODCP_AREA_Q, 0, 256}};
+    memcpy(p->scan, scan, sizeof scan);
+#endif
+    if (target_ascii) {
+        p->framing = MODCP_FRAMING_ASCII;
+        p->data_bits = 7;
+        p->ascii_timeout_ms = 20;
     }
 }
 
 static void setup_world(void)
 {
     memset(&W, 0, sizeof W);
-    modcp_params_t p;
-    modcp_params_defaults(&p);
-    p.slave_addr = 5;
-    p.coils[0] = (modcp_bitwin_t){MODCP_AREA_M, 0, 2047, 1000, 0};
-    p.coils[1] = (modcp_bitwin_t){MODCP_AREA_Q, 2048, 2559, 256, 0};
-    p.coils[2] = (modcp_bitwin_t){MODCP_AREA_T, 4096, 4607, 100, 0};
-    p.coils[3] = (modcp_bitwin_t){MODCP_AREA_C, 4608, 5119, 200, 0};
-    p.inputs[0] = (modcp_bitwin_t){MODCP_AREA_M, 0, 4095, 2000, 0};
-    p.inputs[1] = (modcp_bitwin_t){MODCP_AREA_I, 4096, 5119, 128, 0};
-    p.hr_base_db = 700; /* registers 0..511 -> DB 700 (not writable), 512.. -> DB 701 (missing) */
-    p.ir_base_db = 900;
-    p.lim_db = (modcp_limit_t){800, 899};
-    p.lim_m = (modcp_limit_t){1000, 1255};
-    p.lim_q = (modcp_limit_t){256, 319};
-    p.cpu_timeout_ms = 50;
-    cfg_params(&p);
-    if (ascii_mode) {
-        p.framing = MODCP_FRAMING_ASCII;
-        p.data_bits = 7;
-        p.ascii_timeout_ms = 20;
-    }
+    modcp_params_t base;
+    base_params(&base);
+    fuzz_cfg_stats_t st;
+    fuzz_cfg_build(cfg_bytes, &base, &W.p, &W.mem, &st);
+    const modcp_params_t *p = &W.p;
+    W.char_us = modcp_params_char_us(p);
+    W.t35_us = modcp_params_t35_us(p);
+    uint16_t ndb = 0;
     for (unsigned k = 0; k < NDB; k++) {
-        W.dbs[k] = (modcp_db_t){db_numbers[k], k == 0 ? 64 : 1024, W.db_data[k]};
+        if (W.mem.db_size[k] != 0u) {
+            W.dbs[ndb++] = (modcp_db_t){db_numbers[k], W.mem.db_size[k], W.db_data[k]};
+        }
     }
-    W.mem = (modcp_plcmem_t){.i = W.i, .q = W.q, .m = W.m, .t = W.t, .c = W.c,
-                             .i_size = sizeof W.i, .q_size = sizeof W.q, .m_size = sizeof W.m,
-                             .t_count = 240, .c_count = 240, .dbs = W.dbs, .db_count = NDB};
+    W.plc = (modcp_plcmem_t){.i = W.i, .q = W.q, .m = W.m, .t = W.t, .c = W.c,
+                             .i_size = sizeof W.i, .q_size = sizeof W.q, .m_size = W.mem.m_size,
+                             .t_count = 240, .c_count = 240, .dbs = W.dbs, .db_count = ndb};
     W.hal = (modcp_hal_t){.ctx = &W, .uart_tx = f_tx, .timer_arm = f_arm, .set_signal = f_signal};
-    W.record_len = (uint16_t)modcp_params_encode(&p, W.record, sizeof W.record);
+    W.record_len = (uint16_t)modcp_params_encode(p, W.record, sizeof W.record);
+    modcp_params_t back;
+    if (W.record_len == 0u || modcp_params_decode(W.record, W.record_len, &back) != MODCP_EV_NONE ||
+        memcmp(&back, p, sizeof back) != 0) {
+        die("the parameter record does not decode to the set it was encoded from");
+    }
     modcp_bp_init(&W.bp);
-    modcp_fb_init(&W.fb, &W.bp, &W.mem, W.record, W.record_len, 80, 5000);
+    modcp_fb_init(&W.fb, &W.bp, &W.plc, W.record, W.record_len, W.mem.work_db, 5000);
     modcp_cp_init(&W.cp, &W.hal, &W.bp);
     W.now_us = 5000000;
     modcp_cp_on_signals(&W.cp, false, true, W.now_us); /* CTS OFF (RTS is), DSR ON */
@@ -277,7 +278,7 @@ static void setup_world(void)
     for (unsigned k = 0; k < sizeof W.q; k++) W.q[k] = (uint8_t)(k * 5u);
     for (unsigned k = 0; k < 240; k++) { W.t[k] = (uint16_t)(k * 257u); W.c[k] = (uint16_t)~k; }
     for (unsigned d = 0; d < NDB; d++)
-        for (unsigned k = 0; k < W.dbs[d].size; k++) W.db_data[d][k] = (uint8_t)(k ^ d);
+        for (unsigned k = 0; k < sizeof W.db_data[d]; k++) W.db_data[d][k] = (uint8_t)(k ^ d);
     modcp_fb_in_t in = {true};
     modcp_fb_out_t out;
     for (int k = 0; k < 50 && !modcp_cp_ready(&W.cp); k++) {
@@ -288,21 +289,37 @@ static void setup_world(void)
     if (!modcp_cp_ready(&W.cp)) {
         die("CP did not start");
     }
+    W.signals_changed = 1; /* the partner's CTS and DSR as the model says */
 }
 
-/* The started world, once per framing, then copied: every pointer in W points into W
- * itself (HAL context, memory areas, record), so a copy back is the same world. */
+/* Started worlds, the last few parameter sets (an input's mutations mostly keep its
+ * set), copied into W: every pointer in W points into W itself (HAL context, memory
+ * areas, record), so a copy is the same world. */
+#define NCACHE 8
+static struct {
+    int used, ascii;
+    uint8_t key[FUZZ_CFG_BYTES];
+    fworld_t w;
+} cache[NCACHE];
+static unsigned cache_next;
+
 static void setup(void)
 {
-    static fworld_t started[2 * NCFG];
-    static int have[2 * NCFG];
-    unsigned k = (ascii_mode != 0) * NCFG + cfg;
-    if (!have[k]) {
-        setup_world();
-        started[k] = W;
-        have[k] = 1;
+    for (unsigned k = 0; k < NCACHE; k++) {
+        if (cache[k].used && cache[k].ascii == target_ascii &&
+            memcmp(cache[k].key, cfg_bytes, sizeof cfg_bytes) == 0) {
+            W = cache[k].w;
+            ascii_mode = W.p.framing == MODCP_FRAMING_ASCII;
+            return;
+        }
     }
-    W = started[k];
+    setup_world();
+    unsigned k = cache_next++ % NCACHE;
+    cache[k].used = 1;
+    cache[k].ascii = target_ascii;
+    memcpy(cache[k].key, cfg_bytes, sizeof cfg_bytes);
+    cache[k].w = W;
+    ascii_mode = W.p.framing == MODCP_FRAMING_ASCII;
 }
 
 static void advance(uint32_t us)
@@ -341,23 +358,63 @@ static void flush_block(void)
     W.now_us = end;
     modcp_cp_on_rx_block(&W.cp, blk, blk_n, end);
     blk_n = 0;
-    advance(100);
+    advance(W.char_us);
 }
 
-static void fb_cycle(void)
+/* One cycle of the user program: the FB call, the CP's poll, 1 ms. True when the FB
+ * reports CP_START_ERROR. */
+static bool fb_call(bool cp_start)
 {
-    modcp_fb_in_t in = {true};
+    modcp_fb_in_t in = {cp_start};
     modcp_fb_out_t out;
     modcp_fb_call(&W.fb, &in, &out, W.now_us / 1000u);
     modcp_cp_poll(&W.cp, W.now_us);
     advance(1000);
+    return out.cp_start_error;
 }
 
+static void fb_cycle(void)
+{
+    (void)fb_call(true);
+}
+
+/* Long enough for a frame to end and its reply to be out: t3.5 twice, turnaround, RTS
+ * delays, a reply's characters. */
+static uint32_t quiet_us(void)
+{
+    const modcp_params_t *p = &W.p;
+    return 40000u + 2u * W.t35_us + 30u * W.char_us +
+           1000u * ((uint32_t)p->turnaround_ms + p->rts_on_delay_ms + p->rts_off_delay_ms);
+}
+
+/* The user program runs on (one FB cycle per ms) until every frame has ended, its jobs
+ * are done and its reply is out (quiet_us, at least 80 cycles); after CP_START_ERROR
+ * (e.g. START_TIME ran out while the input stalled the CPU side during an
+ * initialisation) it starts the CP again, as the manual's programs do: CP_START low for
+ * one cycle, then high. */
 static void settle(void)
 {
-    for (int k = 0; k < 80; k++) {
-        fb_cycle();
+    bool low = false; /* CP_START low in this cycle */
+    uint32_t cycles = 80u + quiet_us() / 1000u;
+    for (uint32_t k = 0; k < cycles; k++) {
+        bool error = fb_call(!low);
+        low = error && !low; /* CP_START_ERROR stays set until the next rising edge */
     }
+}
+
+static int writable(const modcp_limit_t *l, unsigned k)
+{
+    return l->max != 0u && k >= l->min && k <= l->max;
+}
+
+/* In 32-bit mode the DB limits are standard mode's: the 32-bit ranges' DBs stay writable
+ * unless [limits] db_in_32bit_mode (r32_lim_db) keeps them (003 §3.7, §5.4). */
+static int r32_db_free(unsigned db)
+{
+    if (W.p.regs32 == 0u || W.p.r32_lim_db != 0u) return 0;
+    for (unsigned k = 0; k < 3u; k++)
+        if (W.p.r32[k].db == db) return 1;
+    return 0;
 }
 
 static void check_memory(void)
@@ -366,15 +423,14 @@ static void check_memory(void)
     if (memcmp(W.t, SNAP.t, sizeof W.t) != 0) die("T changed");
     if (memcmp(W.c, SNAP.c, sizeof W.c) != 0) die("C changed");
     for (unsigned k = 0; k < sizeof W.m; k++)
-        if ((k < 1000 || k > 1255) && W.m[k] != SNAP.m[k]) die("M outside limits changed");
+        if (!writable(&W.p.lim_m, k) && W.m[k] != SNAP.m[k]) die("M outside limits changed");
     for (unsigned k = 0; k < sizeof W.q; k++)
-        if (k < 256 && W.q[k] != SNAP.q[k]) die("Q outside limits changed");
-    /* the DB limits 800..899; in 32-bit mode (cfg 1) also the float range's DB 900, which
-     * the limits do not cover there (003 §3.7, db_in_32bit_mode = off) */
+        if (!writable(&W.p.lim_q, k) && W.q[k] != SNAP.q[k]) die("Q outside limits changed");
     for (unsigned d = 0; d < NDB; d++)
-        if ((db_numbers[d] < 800 || db_numbers[d] > 899) && !(cfg == 1 && db_numbers[d] == 900) &&
+        if ((!(writable(&W.p.lim_db, db_numbers[d]) || r32_db_free(db_numbers[d])) ||
+             db_numbers[d] == W.mem.work_db) &&
             memcmp(W.db_data[d], SNAP.db_data[d], sizeof W.db_data[d]) != 0)
-            die("DB outside limits changed");
+            die("DB outside limits (or the work DB) changed");
 }
 
 /* Send a diagnostic request FC08 with sub-function sub and data. */
@@ -391,13 +447,13 @@ static size_t send_fc08(uint16_t sub, uint16_t data, uint8_t *req)
         bin[7] = (uint8_t)(crc >> 8);
         memcpy(req, bin, 8);
     }
-    advance(40000); /* silence: whatever was going on is over */
+    advance(quiet_us()); /* silence: whatever was going on is over */
     fb_cycle();
     for (size_t k = 0; k < n; k++) {
         modcp_cp_on_rx(&W.cp, req[k], W.now_us);
-        advance(100);
+        advance(W.char_us);
     }
-    advance(60000); /* t3.5 x f_MUL at 2400 baud, turnaround, RTS delays: the reply is out */
+    advance(quiet_us()); /* end of frame, turnaround, RTS delays: the reply is out */
     fb_cycle();
     return n;
 }
@@ -412,7 +468,7 @@ static void good_request_answered(void)
     W.cts_stuck_off = 0;
     W.dsr_off = 0;
     W.signals_changed = 1;
-    if (cfg != 3) {
+    if (W.p.fset != MODCP_FSET_CP341) {
         (void)send_fc08(0x0001, 0x0000, req);
     }
     unsigned before = W.replies;
@@ -449,10 +505,50 @@ static void send_check(uint8_t *fr, size_t *fr_len, size_t cap)
     }
     for (size_t j = 0; j < n; j++) {
         modcp_cp_on_rx(&W.cp, chk[j], W.now_us);
-        advance(100);
+        advance(W.char_us);
         if (*fr_len < cap) {
             fr[(*fr_len)++] = chk[j];
         }
+    }
+}
+
+/* Silence longer than every timeout of the set, then the CP's poll without an FB call. */
+static void long_silence(void)
+{
+    const modcp_params_t *p = &W.p;
+    uint32_t ms = p->commloss_ms > p->cpu_timeout_ms ? p->commloss_ms : p->cpu_timeout_ms;
+    ms = p->ascii_timeout_ms > ms ? p->ascii_timeout_ms : ms;
+    advance(ms * 1000u + W.t35_us + 1000u);
+    modcp_cp_poll(&W.cp, W.now_us);
+}
+
+/* An input byte 0xF0..0xFC other than 0xFE: gap, long silence, RS232 signal, line
+ * error or FB cycle. */
+static void event(uint8_t b, size_t *fr_len)
+{
+    if (b == 0xF7) {
+        *fr_len = 0;
+        long_silence();
+    } else if (b <= 0xF6) {
+        *fr_len = 0;
+        advance((b == 0xF0 ? 5u : (uint32_t)(b & 7u)) * (W.t35_us / 4u));
+    } else if (W.p.rs232_auto && (b == 0xF8 || b == 0xF9)) {
+        if (b == 0xF8) {
+            W.cts_stuck_off = !W.cts_stuck_off;
+        } else {
+            W.dsr_off = !W.dsr_off;
+        }
+        W.signals_changed = 1;
+        advance(100);
+    } else if (b <= 0xFB) {
+        static const uint8_t errs[4] = {MODCP_LINE_PARITY, MODCP_LINE_FRAMING,
+                                        MODCP_LINE_OVERRUN, MODCP_LINE_BREAK};
+        *fr_len = 0;
+        modcp_cp_on_line_error(&W.cp, errs[b - 0xF8], W.now_us);
+        advance(W.char_us);
+    } else { /* 0xFC: CP_START dropped in every n-th cycle, raised again in the next */
+        W.fb_calls++;
+        fb_call(W.mem.restart_every == 0u || W.fb_calls % W.mem.restart_every != 0u);
     }
 }
 
@@ -460,13 +556,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
 #ifdef MODCP_FUZZ_FRAMING
-    ascii_mode = MODCP_FUZZ_FRAMING;
-    if (size == 0) {
-        return 0;
-    }
-    cfg = data[0] % NCFG;
-    data++;
-    size--;
+    target_ascii = MODCP_FUZZ_FRAMING;
+    size_t nh = size < FUZZ_CFG_BYTES ? size : FUZZ_CFG_BYTES;
+    memset(cfg_bytes, 0, sizeof cfg_bytes);
+    memcpy(cfg_bytes, data, nh);
+    data += nh;
+    size -= nh;
 #endif
     setup();
     SNAP = W;
@@ -497,33 +592,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 blk[blk_n++] = b;
             } else {
                 modcp_cp_on_rx(&W.cp, b, W.now_us);
-                advance(100);
+                advance(W.char_us);
             }
         } else if (b == 0xFE) {
             send_check(fr, &fr_len, sizeof fr);
-        } else if (b <= 0xF7) {
-            fr_len = 0;
-            advance(b == 0xF0 ? 5000u : (uint32_t)(b & 7u) * 1000u);
-        } else if (cfg == 4 && (b == 0xF8 || b == 0xF9)) {
-            if (b == 0xF8) {
-                W.cts_stuck_off = !W.cts_stuck_off;
-            } else {
-                W.dsr_off = !W.dsr_off;
-            }
-            W.signals_changed = 1;
-            advance(100);
-        } else if (b <= 0xFB) {
-            static const uint8_t errs[4] = {MODCP_LINE_PARITY, MODCP_LINE_FRAMING,
-                                            MODCP_LINE_OVERRUN, MODCP_LINE_BREAK};
-            fr_len = 0;
-            modcp_cp_on_line_error(&W.cp, errs[b - 0xF8], W.now_us);
-            advance(100);
-        } else { /* 0xFC */
-            fb_cycle();
+        } else {
+            event(b, &fr_len);
         }
     }
     flush_block();
-    advance(10000);
     settle();
     check_memory();
     good_request_answered();
@@ -568,7 +645,7 @@ int main(int argc, char **argv)
     unsigned runs = 0, m_changed = 0;
     unsigned long total_replies = 0, ascii_replies = 0;
     for (unsigned it = 0; it < 2u * iterations; it++) {
-        ascii_mode = it >= iterations; /* first RTU, then the same kind of input in ASCII */
+        target_ascii = ascii_mode = it >= iterations; /* first RTU, then the same in ASCII */
         size_t n = 0;
         unsigned frames = 1 + next() % 4;
         for (unsigned f = 0; f < frames && n < 600; f++) {

@@ -45,19 +45,75 @@ static void print_problems(const modcp_conf_t *c)
     }
 }
 
+/* modcp-conf fields: schema self-check, every parameter field has an INI key */
+static int cmd_fields(void)
+{
+    uint8_t f[MODCP_PF_COUNT];
+    size_t n = modcp_conf_uncovered(f, sizeof f);
+    for (size_t i = 0; i < n && i < sizeof f; i++) {
+        printf("parameter field %u (modcp_param_field_t) has no INI key\n", (unsigned)f[i]);
+    }
+    if (n == 0u) {
+        printf("every parameter field has an INI key\n");
+    }
+    return n == 0u ? 0 : 2;
+}
+
+/* The record (build) or the C source (c) of a loaded configuration into out. */
+static int write_out(const modcp_conf_t *c, bool is_build, const char *out, const uint8_t *rec,
+                     size_t rlen)
+{
+    FILE *f = fopen(out, is_build ? "wb" : "w");
+    if (f == NULL) {
+        perror(out);
+        return 1;
+    }
+    bool ok = is_build ? fwrite(rec, 1, rlen, f) == rlen : modcp_conf_write_c(c, f);
+    if (fclose(f) != 0 || !ok) {
+        fprintf(stderr, "%s: write error\n", out);
+        remove(out);
+        return 1;
+    }
+    return 0;
+}
+
+/* check, build or c (out == NULL: check) */
+static int convert(const char *file, const char *out, bool is_build, const char *const *sets,
+                   size_t nsets)
+{
+    modcp_conf_t *c = malloc(sizeof *c);
+    if (c == NULL) {
+        fprintf(stderr, "modcp-conf: out of memory\n");
+        return 1;
+    }
+    size_t fatal = modcp_conf_load_ex(c, file, sets, nsets);
+    print_problems(c);
+    if (fatal > 0u) {
+        free(c);
+        return 2;
+    }
+    uint8_t rec[MODCP_PARAMS_RECORD_MAX];
+    size_t rlen = modcp_conf_record(c, rec, sizeof rec);
+    int rc = 0;
+    if (rlen == 0u) {
+        fprintf(stderr, "%s: cannot encode the parameter record\n", file);
+        rc = 1;
+    } else if (out == NULL) {
+        char settings[48];
+        modcp_conf_line_settings(&c->params, settings, sizeof settings);
+        printf("%s: ok: slave %u, %s, record %zu bytes\n", file, (unsigned)c->params.slave_addr,
+               settings, rlen);
+    } else {
+        rc = write_out(c, is_build, out, rec, rlen);
+    }
+    free(c);
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
     if (argc == 2 && strcmp(argv[1], "fields") == 0) {
-        /* schema self-check: every parameter field has an INI key */
-        uint8_t f[MODCP_PF_COUNT];
-        size_t n = modcp_conf_uncovered(f, sizeof f);
-        for (size_t i = 0; i < n && i < sizeof f; i++) {
-            printf("parameter field %u (modcp_param_field_t) has no INI key\n", (unsigned)f[i]);
-        }
-        if (n == 0u) {
-            printf("every parameter field has an INI key\n");
-        }
-        return n == 0u ? 0 : 2;
+        return cmd_fields();
     }
     if (argc == 2 && strcmp(argv[1], "--version") == 0) {
         printf("modcp-conf %s\n", MODCP_VERSION);
@@ -95,44 +151,5 @@ int main(int argc, char **argv)
     if ((is_build || is_c) && out == NULL) {
         return usage();
     }
-    modcp_conf_t *c = malloc(sizeof *c);
-    if (c == NULL) {
-        fprintf(stderr, "modcp-conf: out of memory\n");
-        return 1;
-    }
-    size_t fatal = modcp_conf_load_ex(c, file, sets, nsets);
-    print_problems(c);
-    if (fatal > 0u) {
-        free(c);
-        return 2;
-    }
-    uint8_t rec[MODCP_PARAMS_RECORD_MAX];
-    size_t rlen = modcp_conf_record(c, rec, sizeof rec);
-    if (rlen == 0u) {
-        fprintf(stderr, "%s: cannot encode the parameter record\n", file);
-        free(c);
-        return 1;
-    }
-    int rc = 0;
-    if (is_check) {
-        char settings[48];
-        modcp_conf_line_settings(&c->params, settings, sizeof settings);
-        printf("%s: ok: slave %u, %s, record %zu bytes\n", file, (unsigned)c->params.slave_addr,
-               settings, rlen);
-    } else {
-        FILE *f = fopen(out, is_build ? "wb" : "w");
-        if (f == NULL) {
-            perror(out);
-            free(c);
-            return 1;
-        }
-        bool ok = is_build ? fwrite(rec, 1, rlen, f) == rlen : modcp_conf_write_c(c, f);
-        if (fclose(f) != 0 || !ok) {
-            fprintf(stderr, "%s: write error\n", out);
-            remove(out);
-            rc = 1;
-        }
-    }
-    free(c);
-    return rc;
+    return convert(file, is_check ? NULL : out, is_build, sets, nsets);
 }

@@ -59,6 +59,82 @@ static int cmd_start(modcp_console_env_t *env, const args_t *a, out_t *o)
     return MODCP_CONSOLE_OK;
 }
 
+/* Split buf (a copy of line) into a->tok in place; a->rest: line from the second token
+ * on (echo prints it as typed). False when there are too many arguments. */
+static bool tokenize(char *buf, const char *line, args_t *a)
+{
+    a->n = 0;
+    a->rest = "";
+    char *p = buf;
+    while (*p != '\0') {
+        while (*p == ' ' || *p == '\t') {
+            p++;
+        }
+        if (*p == '\0') {
+            break;
+        }
+        if (a->n == 1u) {
+            a->rest = line + (p - buf);
+        }
+        if (a->n == MAX_TOKENS) {
+            return con_ieq(a->tok[0], "echo");
+        }
+        a->tok[a->n++] = p;
+        while (*p != '\0' && *p != ' ' && *p != '\t') {
+            p++;
+        }
+        if (*p != '\0') {
+            *p++ = '\0';
+        }
+    }
+    return true;
+}
+
+static int cmd_echo(const args_t *a, out_t *o)
+{
+    size_t rl = strlen(a->rest);
+    while (rl > 0u && (a->rest[rl - 1u] == '\n' || a->rest[rl - 1u] == '\r')) {
+        rl--;
+    }
+    con_printf(o, "%.*s", (int)rl, a->rest);
+    return MODCP_CONSOLE_OK;
+}
+
+static int dispatch(modcp_console_env_t *env, const args_t *a, out_t *o)
+{
+    const char *c = a->tok[0];
+    if (con_ieq(c, "get")) {
+        return con_cmd_get(env, a, o);
+    }
+    if (con_ieq(c, "set")) {
+        return con_cmd_set(env, a, o);
+    }
+    if (con_ieq(c, "dump")) {
+        return con_cmd_dump(env, a, o);
+    }
+    if (con_ieq(c, "diag")) {
+        return a->n == 1u ? con_cmd_diag(env, o) : con_fail(o, "usage: diag");
+    }
+    if (con_ieq(c, "status")) {
+        return a->n == 1u ? con_cmd_status(env, o) : con_fail(o, "usage: status");
+    }
+    if (con_ieq(c, "pause") || con_ieq(c, "resume")) {
+        return a->n == 1u ? cmd_pause(env, con_ieq(c, "pause"), o) : con_fail(o, "usage: %s", c);
+    }
+    if (con_ieq(c, "start")) {
+        return cmd_start(env, a, o);
+    }
+    if (con_ieq(c, "echo")) {
+        return cmd_echo(a, o);
+    }
+    if (con_ieq(c, "help") || con_ieq(c, "?")) {
+        return cmd_help(o);
+    }
+    char name[40];
+    (void)snprintf(name, sizeof name, "%s", c);
+    return con_fail(o, "unknown command '%s' (try help)", name);
+}
+
 int modcp_console_exec(modcp_console_env_t *env, const char *line, char *out, size_t cap)
 {
     out_t o;
@@ -77,68 +153,13 @@ int modcp_console_exec(modcp_console_env_t *env, const char *line, char *out, si
     }
     memcpy(buf, line, len);
     buf[len] = '\0';
-
-    /* tokenize in place */
-    a.n = 0;
-    a.rest = "";
-    char *p = buf;
-    while (*p != '\0') {
-        while (*p == ' ' || *p == '\t') {
-            p++;
-        }
-        if (*p == '\0') {
-            break;
-        }
-        if (a.n == 1u) {
-            a.rest = line + (p - buf);
-        }
-        if (a.n == MAX_TOKENS) {
-            if (a.n > 0u && con_ieq(a.tok[0], "echo")) {
-                break;
-            }
-            return con_fail(&o, "too many arguments");
-        }
-        a.tok[a.n++] = p;
-        while (*p != '\0' && *p != ' ' && *p != '\t') {
-            p++;
-        }
-        if (*p != '\0') {
-            *p++ = '\0';
-        }
+    if (!tokenize(buf, line, &a)) {
+        return con_fail(&o, "too many arguments");
     }
     if (a.n == 0u || a.tok[0][0] == '#' || a.tok[0][0] == ';') {
         return MODCP_CONSOLE_OK; /* blank line or comment */
     }
-    const char *c = a.tok[0];
-    int rc;
-    if (con_ieq(c, "get")) {
-        rc = con_cmd_get(env, &a, &o);
-    } else if (con_ieq(c, "set")) {
-        rc = con_cmd_set(env, &a, &o);
-    } else if (con_ieq(c, "dump")) {
-        rc = con_cmd_dump(env, &a, &o);
-    } else if (con_ieq(c, "diag")) {
-        rc = a.n == 1u ? con_cmd_diag(env, &o) : con_fail(&o, "usage: diag");
-    } else if (con_ieq(c, "status")) {
-        rc = a.n == 1u ? con_cmd_status(env, &o) : con_fail(&o, "usage: status");
-    } else if (con_ieq(c, "pause") || con_ieq(c, "resume")) {
-        rc = a.n == 1u ? cmd_pause(env, con_ieq(c, "pause"), &o) : con_fail(&o, "usage: %s", c);
-    } else if (con_ieq(c, "start")) {
-        rc = cmd_start(env, &a, &o);
-    } else if (con_ieq(c, "echo")) {
-        size_t rl = strlen(a.rest);
-        while (rl > 0u && (a.rest[rl - 1u] == '\n' || a.rest[rl - 1u] == '\r')) {
-            rl--;
-        }
-        con_printf(&o, "%.*s", (int)rl, a.rest);
-        rc = MODCP_CONSOLE_OK;
-    } else if (con_ieq(c, "help") || con_ieq(c, "?")) {
-        rc = cmd_help(&o);
-    } else {
-        char name[40];
-        (void)snprintf(name, sizeof name, "%s", c);
-        rc = con_fail(&o, "unknown command '%s' (try help)", name);
-    }
+    int rc = dispatch(env, &a, &o);
     if (rc == MODCP_CONSOLE_OK) {
         con_finish(&o);
     }

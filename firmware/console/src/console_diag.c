@@ -72,17 +72,83 @@ int con_cmd_diag(modcp_console_env_t *env, out_t *o)
     return MODCP_CONSOLE_OK;
 }
 
+static void status_fb(const modcp_fb_t *fb, out_t *o)
+{
+    con_printf(o, " fb=%s cp_start_ok=%u cp_start_error=%u cp_start_ndr=%u error_nr=%u"
+                  " error_info=0x%04X jobs=%lu",
+               modcp_console_fb_state(fb->state), fb->out.cp_start_ok ? 1u : 0u,
+               fb->out.cp_start_error ? 1u : 0u, fb->out.cp_start_ndr ? 1u : 0u,
+               (unsigned)fb->out.error_nr, (unsigned)fb->out.error_info,
+               (unsigned long)fb->jobs_done);
+}
+
+static void status_counters(const modcp_console_env_t *env, const modcp_diag_t *d, out_t *o)
+{
+    con_printf(o, " bus_msg=%u bus_crc=%u exceptions=%u slave_msg=%u no_response=%u nak=%u"
+                  " busy=%u overrun=%u events=%lu char_errors=%u breaks=%u too_long=%u t15=%u",
+               (unsigned)d->counters[MODCP_CNT_BUS_MSG], (unsigned)d->counters[MODCP_CNT_BUS_CRC],
+               (unsigned)d->counters[MODCP_CNT_EXCEPTION],
+               (unsigned)d->counters[MODCP_CNT_SLAVE_MSG],
+               (unsigned)d->counters[MODCP_CNT_NO_RESPONSE], (unsigned)d->counters[MODCP_CNT_NAK],
+               (unsigned)d->counters[MODCP_CNT_BUSY],
+               (unsigned)d->counters[MODCP_CNT_CHAR_OVERRUN], (unsigned long)d->events_total,
+               (unsigned)d->char_errors, (unsigned)d->breaks, (unsigned)d->frames_too_long,
+               (unsigned)d->t15_discards);
+#if MODCP_WITH_EXTENDED
+    /* extended set: FC08 sub 04 listen-only, comm-loss supervision (MODCP_CPST_*) */
+    con_printf(o, " listen_only=%u commloss=%u comm_events=%u", d->comm.listen_only ? 1u : 0u,
+               (env->cp_status != NULL && (env->cp_status->flags & MODCP_CPST_COMMLOSS)) ? 1u : 0u,
+               (unsigned)d->comm.event_count);
+#else
+    (void)env;
+#endif
+}
+
+/* The names of the bits set in bits ("off" when none). */
+static void status_bits(out_t *o, uint8_t bits, const uint8_t *mask, const char *const *names,
+                        unsigned n)
+{
+    bool any = false;
+    for (unsigned k = 0; k < n; k++) {
+        if ((bits & mask[k]) != 0u) {
+            con_printf(o, "%s%s", any ? "," : "", names[k]);
+            any = true;
+        }
+    }
+    if (!any) {
+        con_printf(o, "off");
+    }
+}
+
+static void status_cp(const modcp_cp_status_t *st, out_t *o)
+{
+    static const uint8_t led_bits[3] = {1u, 2u, 4u};
+    static const char *const led_names[3] = {"SF", "TXD", "RXD"};
+    static const uint8_t sig_bits[4] = {MODCP_SIGBIT_RTS, MODCP_SIGBIT_DTR, MODCP_SIGBIT_CTS,
+                                        MODCP_SIGBIT_DSR};
+    static const char *const sig_names[4] = {"RTS", "DTR", "CTS", "DSR"};
+    con_printf(o, " leds=");
+    status_bits(o, st->leds, led_bits, led_names, 3u);
+    con_printf(o, " signals=");
+    status_bits(o, st->signals, sig_bits, sig_names, 4u);
+    con_printf(o, "%s line=%s signal_aborts=%u diag_irq=",
+               (st->signals & MODCP_SIGBIT_AUTO) != 0u ? "(auto)" : "",
+               (st->flags & MODCP_CPST_WIRE_BREAK) != 0u ? "wire-break" : "ok",
+               (unsigned)st->signal_aborts);
+    if (st->diag_irq_count == 0u) {
+        con_printf(o, "none");
+    } else {
+        con_printf(o, "%02X.%02X.%02X.%02X(#%lu)", (unsigned)st->diag_irq[0],
+                   (unsigned)st->diag_irq[1], (unsigned)st->diag_irq[2],
+                   (unsigned)st->diag_irq[3], (unsigned long)st->diag_irq_count);
+    }
+}
+
 int con_cmd_status(modcp_console_env_t *env, out_t *o)
 {
     con_printf(o, "status:");
     if (env->fb != NULL) {
-        const modcp_fb_t *fb = env->fb;
-        con_printf(o, " fb=%s cp_start_ok=%u cp_start_error=%u cp_start_ndr=%u error_nr=%u"
-                      " error_info=0x%04X jobs=%lu",
-                   modcp_console_fb_state(fb->state), fb->out.cp_start_ok ? 1u : 0u,
-                   fb->out.cp_start_error ? 1u : 0u, fb->out.cp_start_ndr ? 1u : 0u,
-                   (unsigned)fb->out.error_nr, (unsigned)fb->out.error_info,
-                   (unsigned long)fb->jobs_done);
+        status_fb(env->fb, o);
     }
     if (env->paused != NULL) {
         con_printf(o, " paused=%u", *env->paused ? 1u : 0u);
@@ -93,61 +159,11 @@ int con_cmd_status(modcp_console_env_t *env, out_t *o)
     con_printf(o, " cp=%s param_event=%s",
                env->cp_ready ? "ready" : (env->cp_configured ? "configured" : "not-configured"),
                env->cp_param_event == MODCP_EV_NONE ? "none" : en);
-    const modcp_diag_t *d = env->diag;
-    if (d != NULL) {
-        con_printf(o, " bus_msg=%u bus_crc=%u exceptions=%u slave_msg=%u no_response=%u nak=%u"
-                      " busy=%u overrun=%u events=%lu char_errors=%u breaks=%u too_long=%u t15=%u",
-                   (unsigned)d->counters[MODCP_CNT_BUS_MSG], (unsigned)d->counters[MODCP_CNT_BUS_CRC],
-                   (unsigned)d->counters[MODCP_CNT_EXCEPTION],
-                   (unsigned)d->counters[MODCP_CNT_SLAVE_MSG],
-                   (unsigned)d->counters[MODCP_CNT_NO_RESPONSE], (unsigned)d->counters[MODCP_CNT_NAK],
-                   (unsigned)d->counters[MODCP_CNT_BUSY],
-                   (unsigned)d->counters[MODCP_CNT_CHAR_OVERRUN], (unsigned long)d->events_total,
-                   (unsigned)d->char_errors, (unsigned)d->breaks, (unsigned)d->frames_too_long,
-                   (unsigned)d->t15_discards);
-#if MODCP_WITH_EXTENDED
-        /* extended set: FC08 sub 04 listen-only, comm-loss supervision (MODCP_CPST_*) */
-        con_printf(o, " listen_only=%u commloss=%u comm_events=%u",
-                   d->comm.listen_only ? 1u : 0u,
-                   (env->cp_status != NULL && (env->cp_status->flags & MODCP_CPST_COMMLOSS)) ? 1u : 0u,
-                   (unsigned)d->comm.event_count);
-#endif
+    if (env->diag != NULL) {
+        status_counters(env, env->diag, o);
     }
-    const modcp_cp_status_t *st = env->cp_status;
-    if (st != NULL) {
-        static const char *const led_names[3] = {"SF", "TXD", "RXD"};
-        static const struct {
-            uint8_t bit;
-            const char *name;
-        } sig_names[4] = {{MODCP_SIGBIT_RTS, "RTS"}, {MODCP_SIGBIT_DTR, "DTR"},
-                          {MODCP_SIGBIT_CTS, "CTS"}, {MODCP_SIGBIT_DSR, "DSR"}};
-        con_printf(o, " leds=");
-        bool any = false;
-        for (unsigned k = 0; k < 3u; k++) {
-            if ((st->leds & (1u << k)) != 0u) {
-                con_printf(o, "%s%s", any ? "," : "", led_names[k]);
-                any = true;
-            }
-        }
-        con_printf(o, "%s signals=", any ? "" : "off");
-        any = false;
-        for (unsigned k = 0; k < 4u; k++) {
-            if ((st->signals & sig_names[k].bit) != 0u) {
-                con_printf(o, "%s%s", any ? "," : "", sig_names[k].name);
-                any = true;
-            }
-        }
-        con_printf(o, "%s%s line=%s signal_aborts=%u diag_irq=", any ? "" : "off",
-                   (st->signals & MODCP_SIGBIT_AUTO) != 0u ? "(auto)" : "",
-                   (st->flags & MODCP_CPST_WIRE_BREAK) != 0u ? "wire-break" : "ok",
-                   (unsigned)st->signal_aborts);
-        if (st->diag_irq_count == 0u) {
-            con_printf(o, "none");
-        } else {
-            con_printf(o, "%02X.%02X.%02X.%02X(#%lu)", (unsigned)st->diag_irq[0],
-                       (unsigned)st->diag_irq[1], (unsigned)st->diag_irq[2],
-                       (unsigned)st->diag_irq[3], (unsigned long)st->diag_irq_count);
-        }
+    if (env->cp_status != NULL) {
+        status_cp(env->cp_status, o);
     }
     con_printf(o, " version=%s", MODCP_VERSION); /* modcp/version.h */
     return MODCP_CONSOLE_OK;

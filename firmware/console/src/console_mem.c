@@ -213,6 +213,54 @@ static bool parse_num16(const char *s, uint16_t *v)
     return true;
 }
 
+/* M, I, Q, T, C or DBn */
+static bool parse_dump_area(const char *ar, uint8_t *area, uint16_t *dbno)
+{
+    static const struct {
+        const char *name;
+        uint8_t area;
+    } names[5] = {{"M", MODCP_AREA_M}, {"I", MODCP_AREA_I}, {"Q", MODCP_AREA_Q},
+                  {"T", MODCP_AREA_T}, {"C", MODCP_AREA_C}};
+    for (unsigned k = 0; k < 5u; k++) {
+        if (con_ieq(ar, names[k].name)) {
+            *area = names[k].area;
+            return true;
+        }
+    }
+    if (up(ar[0]) != 'D' || up(ar[1]) != 'B') {
+        return false;
+    }
+    const char *p = ar + 2;
+    *area = MODCP_AREA_DB;
+    return con_parse_u16(&p, dbno) && *p == '\0' && *dbno != 0u;
+}
+
+/* One line per DUMP_PER_LINE bytes from start: "MB10: 01 02 ..", "T3: 0001 ..". */
+static void dump_lines(out_t *o, uint8_t area, uint16_t dbno, uint16_t start, uint16_t len,
+                       const uint8_t *bytes, const uint16_t *elems)
+{
+    bool words = elems != NULL;
+    uint32_t per = words ? DUMP_PER_LINE / 2u : DUMP_PER_LINE;
+    for (uint32_t i = 0; i < len; i += per) {
+        con_nl(o);
+        uint32_t at = (uint32_t)start + i;
+        if (area == MODCP_AREA_DB) {
+            con_printf(o, "DB%u.DBB%lu:", (unsigned)dbno, (unsigned long)at);
+        } else if (words) {
+            con_printf(o, "%s%lu:", area_name(area), (unsigned long)at);
+        } else {
+            con_printf(o, "%sB%lu:", area_name(area), (unsigned long)at);
+        }
+        for (uint32_t k = i; k < len && k < i + per; k++) {
+            if (words) {
+                con_printf(o, " %04X", (unsigned)elems[start + k]);
+            } else {
+                con_printf(o, " %02X", (unsigned)bytes[start + k]);
+            }
+        }
+    }
+}
+
 int con_cmd_dump(modcp_console_env_t *env, const args_t *a, out_t *o)
 {
     modcp_plcmem_t *mem = env->mem;
@@ -223,25 +271,9 @@ int con_cmd_dump(modcp_console_env_t *env, const args_t *a, out_t *o)
         return con_fail(o, "usage: dump M|I|Q|T|C|DBn [START [LEN]]");
     }
     const char *ar = a->tok[1];
-    uint8_t area;
+    uint8_t area = MODCP_AREA_NONE;
     uint16_t dbno = 0;
-    if (con_ieq(ar, "M")) {
-        area = MODCP_AREA_M;
-    } else if (con_ieq(ar, "I")) {
-        area = MODCP_AREA_I;
-    } else if (con_ieq(ar, "Q")) {
-        area = MODCP_AREA_Q;
-    } else if (con_ieq(ar, "T")) {
-        area = MODCP_AREA_T;
-    } else if (con_ieq(ar, "C")) {
-        area = MODCP_AREA_C;
-    } else if (up(ar[0]) == 'D' && up(ar[1]) == 'B') {
-        const char *p = ar + 2;
-        if (!con_parse_u16(&p, &dbno) || *p != '\0' || dbno == 0u) {
-            return con_fail(o, "bad area '%s' (M, I, Q, T, C or DBn)", ar);
-        }
-        area = MODCP_AREA_DB;
-    } else {
+    if (!parse_dump_area(ar, &area, &dbno)) {
         return con_fail(o, "bad area '%s' (M, I, Q, T, C or DBn)", ar);
     }
     uint16_t start = 0;
@@ -285,24 +317,6 @@ int con_cmd_dump(modcp_console_env_t *env, const args_t *a, out_t *o)
                     (unsigned)((uint32_t)start + len - 1u), (unsigned)size,
                     words ? "elements" : "bytes");
     }
-    uint32_t per = words ? DUMP_PER_LINE / 2u : DUMP_PER_LINE;
-    for (uint32_t i = 0; i < len; i += per) {
-        con_nl(o);
-        uint32_t at = (uint32_t)start + i;
-        if (area == MODCP_AREA_DB) {
-            con_printf(o, "DB%u.DBB%lu:", (unsigned)dbno, (unsigned long)at);
-        } else if (words) {
-            con_printf(o, "%s%lu:", area_name(area), (unsigned long)at);
-        } else {
-            con_printf(o, "%sB%lu:", area_name(area), (unsigned long)at);
-        }
-        for (uint32_t k = i; k < len && k < i + per; k++) {
-            if (words) {
-                con_printf(o, " %04X", (unsigned)elems[start + k]);
-            } else {
-                con_printf(o, " %02X", (unsigned)bytes[start + k]);
-            }
-        }
-    }
+    dump_lines(o, area, dbno, start, len, bytes, words ? elems : NULL);
     return MODCP_CONSOLE_OK;
 }

@@ -32,6 +32,51 @@ static uint8_t width_of(char c)
 
 /* ---- operands --------------------------------------------------------------- */
 
+/* "DBn.DBXm.b", "DBn.DBBm", "DBn.DBWm", "DBn.DBDm" from p = after "DB" */
+static bool parse_db_operand(const char *p, modcp_s7op_t *r)
+{
+    r->area = MODCP_AREA_DB;
+    if (!con_parse_u16(&p, &r->db) || r->db == 0u) {
+        return false;
+    }
+    if (p[0] != '.' || up(p[1]) != 'D' || up(p[2]) != 'B') {
+        return false;
+    }
+    r->width = width_of(p[3]);
+    if (r->width == 0xFFu) {
+        return false;
+    }
+    p += 4;
+    if (!con_parse_u16(&p, &r->offset)) {
+        return false;
+    }
+    if (r->width == MODCP_S7_BIT && !parse_bit(&p, &r->bit)) {
+        return false;
+    }
+    return *p == '\0';
+}
+
+/* "1000.3", "B1000", "W4", "D8" from p = after the area letter M, I or Q */
+static bool parse_area_operand(const char *p, modcp_s7op_t *r)
+{
+    if (is_digit(*p)) {
+        r->width = MODCP_S7_BIT;
+        if (!con_parse_u16(&p, &r->offset) || !parse_bit(&p, &r->bit)) {
+            return false;
+        }
+    } else {
+        r->width = width_of(*p);
+        if (r->width == 0xFFu || r->width == MODCP_S7_BIT) {
+            return false;
+        }
+        p++;
+        if (!con_parse_u16(&p, &r->offset)) {
+            return false;
+        }
+    }
+    return *p == '\0';
+}
+
 bool modcp_s7op_parse(const char *s, modcp_s7op_t *op)
 {
     modcp_s7op_t r;
@@ -40,67 +85,22 @@ bool modcp_s7op_parse(const char *s, modcp_s7op_t *op)
         return false;
     }
     char a = up(s[0]);
+    bool ok = false;
     if (a == 'D' && up(s[1]) == 'B') {
-        const char *p = s + 2;
-        r.area = MODCP_AREA_DB;
-        if (!con_parse_u16(&p, &r.db) || r.db == 0u) {
-            return false;
-        }
-        if (p[0] != '.' || up(p[1]) != 'D' || up(p[2]) != 'B') {
-            return false;
-        }
-        r.width = width_of(p[3]);
-        if (r.width == 0xFFu) {
-            return false;
-        }
-        p += 4;
-        if (!con_parse_u16(&p, &r.offset)) {
-            return false;
-        }
-        if (r.width == MODCP_S7_BIT && !parse_bit(&p, &r.bit)) {
-            return false;
-        }
-        if (*p != '\0') {
-            return false;
-        }
-        *op = r;
-        return true;
-    }
-    if (a == 'T' || a == 'C') {
+        ok = parse_db_operand(s + 2, &r);
+    } else if (a == 'T' || a == 'C') {
         const char *p = s + 1;
         r.area = a == 'T' ? MODCP_AREA_T : MODCP_AREA_C;
         r.width = MODCP_S7_WORD;
-        if (!con_parse_u16(&p, &r.offset) || *p != '\0') {
-            return false;
-        }
-        *op = r;
-        return true;
-    }
-    if (a == 'M' || a == 'I' || a == 'Q') {
-        const char *p = s + 1;
+        ok = con_parse_u16(&p, &r.offset) && *p == '\0';
+    } else if (a == 'M' || a == 'I' || a == 'Q') {
         r.area = a == 'M' ? MODCP_AREA_M : (a == 'I' ? MODCP_AREA_I : MODCP_AREA_Q);
-        if (is_digit(*p)) {
-            r.width = MODCP_S7_BIT;
-            if (!con_parse_u16(&p, &r.offset) || !parse_bit(&p, &r.bit)) {
-                return false;
-            }
-        } else {
-            r.width = width_of(*p);
-            if (r.width == 0xFFu || r.width == MODCP_S7_BIT) {
-                return false;
-            }
-            p++;
-            if (!con_parse_u16(&p, &r.offset)) {
-                return false;
-            }
-        }
-        if (*p != '\0') {
-            return false;
-        }
-        *op = r;
-        return true;
+        ok = parse_area_operand(s + 1, &r);
     }
-    return false;
+    if (ok) {
+        *op = r;
+    }
+    return ok;
 }
 
 static char width_letter(uint8_t w)
