@@ -106,11 +106,6 @@ static void line_reply(modcp_cp_t *cp, uint16_t out_len, uint32_t now_us)
 static void line_params(modcp_cp_t *cp, bool ok, int irq)
 {
     modcp_cpdiag_params(&cp->cpdiag, ok, irq);
-#if MODCP_WITH_RS232_SIGNALS
-    if (ok) {
-        modcp_sig_configure(&cp->sig, &cp->params);
-    }
-#endif
 }
 
 /* CP task: SYSTAT requests of the CPU side, LEDs (from the link's receive / transmit
@@ -348,20 +343,59 @@ static void unconfigure(modcp_cp_t *cp)
 /* A PARAMS record starts and will be stored in the frame buffer: nothing may use the
  * buffer any more. A reply on the line is sent from it, so the record waits until
  * its transmission is complete (false); a request being received or processed, or a
- * reply not yet started, is dropped. */
+ * reply not yet started, is dropped. The line is off until the record is taken; the
+ * rest (FB initialised, diagnostics) stays until take_params finds the record changed. */
 static bool params_start(modcp_cp_t *cp)
 {
     if (cp->link.state == MODCP_LINK_TX) {
         return false;
     }
-    unconfigure(cp);
+    if (cp->request_pending) {
+        modcp_job_abort(&cp->job);
+        cp->request_pending = false;
+    }
+    modcp_link_disable(&cp->link);
+#if MODCP_WITH_RS232_SIGNALS
+    modcp_sig_disable(&cp->sig);
+#endif
+    cp->configured = false;
+    cp->publish_all = true;
     return true;
 }
 #endif
 
-/* A PARAMS record arrived: validate and apply, or stay not ready. */
+/* The parameters in force, on the line: link, job limits, RS232 signals. */
+static void configure(modcp_cp_t *cp)
+{
+    cp->configured = true;
+    modcp_job_configure(&cp->job, modcp_params_job_limit(&cp->params),
+                        (uint32_t)cp->params.cpu_timeout_ms * 1000u);
+    modcp_link_configure(&cp->link, &cp->params);
+#if MODCP_WITH_EXTENDED && MODCP_WITH_ASCII
+    cp->link.ascii_delim = cp->ext.ascii_delimiter; /* FC08 sub 03's, kept */
+#endif
+#if MODCP_WITH_RS232_SIGNALS
+    modcp_sig_configure(&cp->sig, &cp->params);
+#endif
+}
+
+/* A PARAMS record arrived: validate and apply, or stay not ready. The record the CP
+ * holds already (the same identity and length: the CPU side re-sends it at an FB
+ * restart, 004 §4.2, §5.5) is no re-parameterisation (VIPA CP 341 manual §7.2, (00)04H
+ * "parameters already on the CP"): the request in progress, the diagnostic buffer, a
+ * wire break, comm-loss arming and listen-only mode stay; with the record in the frame
+ * buffer (features.h) the request in progress was dropped and the line comes back on. */
 static MODCP_NOINLINE void take_params(modcp_cp_t *cp)
 {
+    const uint8_t *record = cp->job.msgbuf; /* cp->record, or cp->buf (features.h) */
+    uint16_t id = modcp_bp_record_id(record, cp->job.msglen);
+    if (cp->param_event == MODCP_EV_NONE && id == cp->record_crc &&
+        cp->job.msglen == cp->record_len) {
+        if (!cp->configured) { /* MODCP_SHARED_PARAMS_BUFFER: params_start stopped it */
+            configure(cp);
+        }
+        return;
+    }
     unconfigure(cp);
     modcp_diag_clear_buffer(&cp->diag); /* 001 §8.3: re-parameterisation clears it */
 #if MODCP_WITH_EXTENDED
@@ -370,7 +404,6 @@ static MODCP_NOINLINE void take_params(modcp_cp_t *cp)
 
     /* decoded and validated in place: the CP is not configured while it runs, and a
      * record that does not validate whole leaves the defaults (below) */
-    const uint8_t *record = cp->job.msgbuf; /* cp->record, or cp->buf (features.h) */
     modcp_event_t ev = modcp_params_decode(record, cp->job.msglen, &cp->params);
     int irq = -1;
     modcp_event_t warning = MODCP_EV_NONE;
@@ -386,11 +419,9 @@ static MODCP_NOINLINE void take_params(modcp_cp_t *cp)
         line_params(cp, false, irq);
         return;
     }
-    cp->record_crc = modcp_crc16(record, cp->job.msglen);
-    cp->configured = true;
-    modcp_job_configure(&cp->job, modcp_params_job_limit(&cp->params),
-                        (uint32_t)cp->params.cpu_timeout_ms * 1000u);
-    modcp_link_configure(&cp->link, &cp->params);
+    cp->record_crc = id;
+    cp->record_len = cp->job.msglen;
+    configure(cp);
     line_params(cp, true, irq);
 }
 

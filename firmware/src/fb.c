@@ -3,7 +3,9 @@
  *
  * One call per CPU cycle does, in this order:
  *   1. CP_START edge: clear the outputs (ERROR_NR / ERROR_INFO included) and start the
- *      initialisation (PARAMS + INIT); a failed initialisation resets CP_START (in/out);
+ *      initialisation (INIT, preceded by PARAMS unless the CP holds the record: it
+ *      acknowledged an INIT for it before); a failed initialisation resets CP_START
+ *      (in/out);
  *   2. continue pushing a pending REPLY (as many blocks as there are free slots);
  *   3. read CP blocks in place: INIT_ACK while waiting for it; a JOB header is checked
  *      completely (operation, amount, area, range) before any data: a READ is answered
@@ -414,6 +416,7 @@ static void rx_ack(modcp_fb_t *fb, const modcp_block_t *b)
 {
     if (fb->state == MODCP_FBST_INIT_WAIT) {
         modcp_event_t ev = b->len >= 2u ? modcp_bp_get16(b->data) : MODCP_EV_XFER_STATE;
+        fb->cp_has_params = ev == MODCP_EV_NONE;
         if (ev == MODCP_EV_NONE) {
             fb->state = MODCP_FBST_RUN;
             fb->out.cp_start_ok = true;
@@ -487,10 +490,11 @@ static void rx_blocks(modcp_fb_t *fb)
 
 /* ---- initialisation --------------------------------------------------------------- */
 
-static void start_attempt(modcp_fb_t *fb, uint32_t now_ms)
+/* An attempt: PARAMS (with_params) then INIT. */
+static void start_attempt(modcp_fb_t *fb, uint32_t now_ms, bool with_params)
 {
     fb->state = MODCP_FBST_INIT_SEND;
-    fb->params_pending = fb->record_len > 0u;
+    fb->params_pending = with_params && fb->record_len > 0u;
     fb->params_pos = 0;
     fb->init_sent = false;
     fb->retry_t0_ms = now_ms;
@@ -521,7 +525,7 @@ static void send_init(modcp_fb_t *fb)
     modcp_bp_init_t init;
     modcp_plcmem_areas(fb->mem, &init.areas); /* the real area sizes */
     init.areas.work_db = fb->work_db;
-    init.record_crc = fb->record_len > 0u ? modcp_crc16(fb->record, fb->record_len) : 0u;
+    init.record_crc = fb->record_len > 0u ? modcp_bp_record_id(fb->record, fb->record_len) : 0u;
     uint8_t d[MODCP_BLOCK_SIZE];
     uint8_t n = modcp_bp_init_encode(&init, d);
     if (put_block(fb, MODCP_BP_INIT, MODCP_BLK_FIRST | MODCP_BLK_LAST, 0, d, n)) {
@@ -550,7 +554,8 @@ static bool run_init(modcp_fb_t *fb, uint32_t now_ms)
     }
     if (fb->state == MODCP_FBST_INIT_WAIT &&
         (uint32_t)(now_ms - fb->retry_t0_ms) >= MODCP_FB_RETRY_MS) {
-        start_attempt(fb, now_ms);
+        fb->cp_has_params = false; /* not ready or silent: the record goes again */
+        start_attempt(fb, now_ms, true);
     }
     if (fb->state == MODCP_FBST_INIT_SEND && push_params(fb) && !fb->init_sent) {
         send_init(fb);
@@ -566,7 +571,8 @@ void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint3
         memset(&fb->out, 0, sizeof fb->out);
         fb->init_event = MODCP_EV_NONE;
         fb->init_t0_ms = now_ms;
-        start_attempt(fb, now_ms);
+        /* the PARAMS of the first call may still be going out (params_pending) */
+        start_attempt(fb, now_ms, !fb->cp_has_params);
     }
     fb->last_start = start;
 

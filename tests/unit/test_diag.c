@@ -185,7 +185,10 @@ static void test_diag_buffer_cleared_on_reparameterisation_8_3(void **state)
     assert_int_equal(w->cp.diag.buffer_len, 1);
     assert_int_equal(w->cp.diag.buffer[0], MODCP_EV_CRC);
 
-    /* a new CP_START edge re-parameterises the CP with a valid record: buffer empty */
+    /* a changed valid record and a CP_START edge re-parameterise the CP: buffer empty
+     * (the same record would not: test_fb_restart.c) */
+    w->params.cpu_timeout_ms = 1500;
+    w->record_len = (uint16_t)modcp_params_encode(&w->params, w->record, sizeof w->record);
     modcp_fb_in_t in = {false};
     modcp_fb_call(&w->fb, &in, &w->fb_out, w->now_us / 1000u);
     w->now_us += 1000;

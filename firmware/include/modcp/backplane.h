@@ -135,8 +135,14 @@ typedef struct {
 /* INIT payload. */
 typedef struct {
     modcp_areas_t areas;
-    uint16_t record_crc; /* CRC of the PARAMS record the CP must hold */
+    uint16_t record_crc; /* modcp_bp_record_id() of the PARAMS record the CP must hold */
 } modcp_bp_init_t;
+
+/* Both sides: the identity of a PARAMS record, as the manual's CP tells "parameters
+ * already on the CP" by their time stamp (VIPA CP 341 manual §7.2, (00)04H): the CRC-16
+ * of the record without its last two bytes, i.e. an MCPR record's own CRC (the CRC over
+ * a record that ends in its own CRC is always 0, so it cannot be the whole record's). */
+uint16_t modcp_bp_record_id(const uint8_t *record, uint16_t len);
 
 /* INIT_ACK payload. */
 typedef struct {

@@ -6,7 +6,9 @@
  *    the CP parameters at every start;
  *  - on a rising edge of CP_START: clears its outputs (ERROR_NR / ERROR_INFO included:
  *    "a rising edge also clears the errors", 001 FB table), records the real area
- *    sizes, sends PARAMS + INIT and waits for INIT_ACK; retries every retry interval
+ *    sizes, sends INIT (preceded by PARAMS unless the CP acknowledged an INIT for this
+ *    record before: an FB restart is no re-parameterisation, 004 §4.2 step 4) and waits
+ *    for INIT_ACK; retries (PARAMS + INIT) every retry interval
  *    while the CP answers "not ready" or does not answer, until START_TIME; then
  *    CP_START_OK, or CP_START_ERROR with ERROR_NR 2 / ERROR_INFO = the CP's event, and
  *    CP_START reset (004 §5.5: "CP_START is reset and CP_START_ERROR = 1"), so that the
@@ -88,6 +90,7 @@ typedef struct {
     bool params_pending; /* PARAMS still to send */
     uint16_t params_pos;
     bool init_sent;
+    bool cp_has_params; /* the CP acknowledged an INIT with this record's identity */
     uint32_t init_t0_ms;  /* CP_START edge */
     uint32_t retry_t0_ms; /* last attempt */
     modcp_fb_out_t out;
