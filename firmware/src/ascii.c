@@ -41,7 +41,7 @@
  * message"). With 7 data bits the eighth bit of a received character is masked.
  *
  * While a request is processed or its reply pending (BUSY / TURNAROUND / TX / EOF)
- * characters are not stored; a ':' followed by our address reports (08)37H, and the
+ * characters are not stored; a ':' followed by our address or 00 (broadcast) reports (08)37H, and the
  * frame is followed to its delimiter so that link.c knows whether a frame is still
  * arriving when the reply is out (RS485: our own echo while sending is ignored).
  *
@@ -250,7 +250,7 @@ static void busy_track(modcp_link_t *l, uint8_t c, uint32_t now_us)
         return; /* not a hex digit, or half a pair */
     }
     a->count = 1;
-    if ((uint8_t)v == l->own_addr) {
+    if ((uint8_t)v == l->own_addr || v == 0) { /* for us or broadcast: see rtu_busy_track */
         link_event(l, MODCP_EV_SEQUENCE);
     }
 }
@@ -264,7 +264,7 @@ static void ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
             frame_start(l, now_us);
             break;
         }
-        if (!l->suppress) {
+        if (!l->suppress && !l->rs485) { /* RS485: between frames (000 §5.6.5) */
             link_event(l, MODCP_EV_ASCII_START);
         }
         l->state = MODCP_LINK_SKIP; /* ignore the rest of the stray characters */
@@ -295,6 +295,12 @@ static void ascii_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us
     discard(l, MODCP_EV_NONE); /* link.c reported it (normal mode) */
     l->fr.ascii.got_cr = false;
     l->last_us = now_us;
+}
+
+/* RS485 normal mode (link.c error_reported): a ':' started what is followed. */
+static bool ascii_in_frame(const modcp_link_t *l)
+{
+    return l->fr.ascii.in_frame;
 }
 
 /* EOF: hand the frame over. RX / SKIP: the character delay time has passed since the
@@ -347,6 +353,7 @@ static uint16_t ascii_encode(modcp_link_t *l, uint16_t pdu_len)
 
 static const modcp_framing_ops_t ascii_ops = {.on_byte = ascii_on_byte,
                                               .on_error = ascii_on_error,
+                                              .in_frame = ascii_in_frame,
                                               .on_timer = ascii_on_timer,
                                               .encode = ascii_encode};
 

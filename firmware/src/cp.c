@@ -269,8 +269,8 @@ void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us
         return;
     }
     sig_on_rx(cp, now_us);
-    modcp_cpdiag_line_error(&cp->cpdiag, line_errors, cp->link.enabled && !cp->link.suppress);
-    modcp_link_on_error(&cp->link, line_errors, now_us);
+    bool reported = modcp_link_on_error(&cp->link, line_errors, now_us);
+    modcp_cpdiag_line_error(&cp->cpdiag, line_errors, reported); /* wire break */
     cp->err_mark_us = cp->link.last_us; /* a character after this one ends a wire break */
     cp->published = false;
 }

@@ -137,7 +137,9 @@ typedef struct {
       "(interference suppression, the 2009 manual's modem mode) silently discards a frame with " \
       "an error, starts a frame at the own address and ignores errors after the CRC. With "     \
       "`interface.type = rs485` (two-wire) the default is `suppress`, and `normal` needs "      \
-      "`rs485_mode_select = on`", /* custom: RS485 needs rs485_sel for normal */                 \
+      "`rs485_mode_select = on`; it then reports errors and BREAK inside a frame and ignores "  \
+      "those before, after and between frames (000 §5.6.5)",                                    \
+      /* custom: RS485 needs rs485_sel for normal */                                              \
       "`normal`, `suppress` (`interference_suppression`, `modem`)",                               \
       "004 §2.2, 000 Table 5-2")                                                                  \
     S(f_mul, 1, MODCP_PF_FMUL, 0, 1, 10, 1, MODCP_EV_FMUL, MODCP_PF_WARN, "protocol", "f_mul",    \
@@ -161,8 +163,9 @@ typedef struct {
       "1 … 6500 (outside: warning, the CP runs with 1000)", "003")                                \
     S(iface, 1, MODCP_PF_IFACE, 0, 0, 2, MODCP_IFACE_RS232, MODCP_EV_PARAM_RECORD, 0,             \
       "interface", "type", ENUM, iface, "must be rs232, rs422 or rs485",                          \
-      "physical interface; `rs485` = two-wire half duplex with direction switching (behaves "    \
-      "like interference suppression)",                                                           \
+      "physical interface; `rs485` = two-wire half duplex with direction switching (errors "     \
+      "and BREAK between frames ignored; interference suppression unless "                      \
+      "`rs485_mode_select = on` and `mode = normal`)",                                          \
       "`rs232`, `rs422`, `rs485`", "004 §2.3")                                                    \
     S(turnaround_ms, 2, MODCP_PF_TURNAROUND, 0, 0, 100, 0, MODCP_EV_PARAM_RECORD, 0,              \
       "interface", "turnaround_ms", NUM, none, "must be 0..100 ms",                               \
@@ -218,7 +221,8 @@ typedef struct {
       "rs485_mode_select", BOOL, none, "must be on or off",                                       \
       "enable operating-mode selection for RS485: `off` = two-wire RS485 runs in interference " \
       "suppression (modem) mode only, `mode = normal` there is refused with (0E)22H; `on` "     \
-      "allows `mode = normal` on two-wire RS485 too",                                            \
+      "allows `mode = normal` on two-wire RS485 too: errors inside a frame are reported "       \
+      "((08)0CH / (08)0DH, wire break)",                                                         \
       "`on`, `off`", "000 Table 5-2")                                                             \
     S(qty_limits, 1, MODCP_PF_QTY_LIMITS, 0, 0, 1, MODCP_QLIMITS_MANUAL, MODCP_EV_PARAM_RECORD,   \
       0, "protocol", "quantity_limits", ENUM, qlimits, "must be manual or spec",                  \

@@ -455,6 +455,11 @@ static void test_sequence_error(void **state)
     assert_int_equal(w->cp.diag.buffer_len, 0);
     ascii_feed(w, ":05080000A5C38B\r\n", ASCII_CHAR_US);
     assert_int_equal(world_last_event(w), MODCP_EV_SEQUENCE);
+    /* a broadcast in the same position (004 §7.5): (08)37H too, not executed */
+    ascii_feed(w, ":000600001234B4\r\n", ASCII_CHAR_US);
+    assert_int_equal(w->cp.diag.buffer_len, 2);
+    assert_int_equal(world_last_event(w), MODCP_EV_SEQUENCE);
+    assert_int_equal(world_db(w, 800)[0], 0);
     w->fb_paused = false;
     assert_int_equal(ascii_finish(w, 200), 19);
     assert_string_equal(ascii_reply(w), ":05030487654321A4\r\n");
