@@ -64,6 +64,7 @@ void modcp_fb_init(modcp_fb_t *fb, modcp_backplane_t *bp, modcp_plcmem_t *mem,
     fb->start_time_ms = start_time_ms;
     fb->state = MODCP_FBST_STOPPED;
     fb->params_pending = fb->record_len > 0u; /* the CPU sends the CP parameters at start */
+    fb->err_changed = true; /* the first call writes ERROR_NR / ERROR_INFO (0) */
 }
 
 static bool put_block(modcp_fb_t *fb, uint8_t kind, uint8_t flags, uint8_t tag,
@@ -157,6 +158,7 @@ static void reply_fb_error(modcp_fb_t *fb, uint16_t error_nr, uint32_t info)
 {
     fb->out.error_nr = error_nr;
     fb->out.error_info = (uint16_t)(info > 0xFFFFu ? 0xFFFFu : info);
+    fb->err_changed = true;
     reply(fb, MODCP_EV_FB_ERROR, error_nr, 0);
 }
 
@@ -550,6 +552,7 @@ static bool run_init(modcp_fb_t *fb, uint32_t now_ms)
         fb->out.cp_start_error = true;
         fb->out.error_nr = MODCP_FB_ERR_INIT;
         fb->out.error_info = fb->init_event;
+        fb->err_changed = true;
         return false;
     }
     if (fb->state == MODCP_FBST_INIT_WAIT &&
@@ -569,6 +572,7 @@ void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint3
     fb->out.cp_start_ndr = false;
     if (start && !fb->last_start) {
         memset(&fb->out, 0, sizeof fb->out);
+        fb->err_changed = true;
         fb->init_event = MODCP_EV_NONE;
         fb->init_t0_ms = now_ms;
         /* the PARAMS of the first call may still be going out (params_pending) */
@@ -585,6 +589,13 @@ void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint3
     }
 
     if (out != NULL) {
-        *out = fb->out;
+        out->cp_start_ok = fb->out.cp_start_ok;
+        out->cp_start_error = fb->out.cp_start_error;
+        out->cp_start_ndr = fb->out.cp_start_ndr;
+        if (fb->err_changed) { /* else the user program's value stays (it may clear it) */
+            out->error_nr = fb->out.error_nr;
+            out->error_info = fb->out.error_info;
+            fb->err_changed = false;
+        }
     }
 }

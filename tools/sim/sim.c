@@ -511,7 +511,7 @@ static void *cpu_thread(void *arg)
             break;
         }
         if (!m->paused) {
-            modcp_fb_out_t out;
+            modcp_fb_out_t out = {0}; /* ERROR_NR / INFO read only when the FB wrote them */
             uint32_t moved0 = bp_moves(&m->bp);
             uint32_t fb_t0 = modcp_posix_now_us();
             atomic_store_explicit(&m->cpu_core, this_core(), memory_order_relaxed);
