@@ -22,8 +22,9 @@
  *
  * Registers, 32-bit scheme (003 §4.5; params.regs32, FC03/06/16/23):
  * the range holding reg (an all-zero range is unused) -> else (0E)51H;
- * reg + qty - 1 > to -> (0E)54H; writes: lim_db / work DB -> (0E)52H (SPEC §4 again
- * applies the DB limits in this mode too, where 003 leaves the three DBs writable).
+ * reg + qty - 1 > to -> (0E)54H; writes: the work DB -> (0E)52H; lim_db only with
+ * params.r32_lim_db (003 §3.7, §5.4: the DB limits are the standard mode's, the three
+ * DBs stay writable; r32_lim_db = 1 keeps modcp's earlier, stricter rule).
  * int16: DBW = (reg - from) * 2, 2 bytes per register; int32 / float:
  * DBD = (reg - from) * 4, 4 bytes per register. out->bit = kind + 1.
  * FC22 (mask write, a 16-bit operation) with regs32 set: decision of modcp, the
@@ -202,8 +203,10 @@ modcp_event_t modcp_map_regs_kind(const modcp_params_t *p, const modcp_areas_t *
     uint32_t db;
     uint32_t offset;
     uint32_t bytes;
+    bool db_limits = true; /* writes: lim_db applies (else only the work DB is refused) */
     if (fc != 4u && p->regs32 != 0u) { /* the 32-bit scheme (never FC04, 003 §4.4) */
         const uint8_t k1 = out->bit;    /* the range's kind + 1, 0: none */
+        db_limits = p->r32_lim_db != 0u; /* 003 §3.7, §5.4: the DB limits are standard mode's */
 #if MODCP_WITH_EXTENDED
         if (fc == 22u && k1 != MODCP_R32_INT16 + 1u) {
             return MODCP_EV_NO_WINDOW;
@@ -238,7 +241,8 @@ modcp_event_t modcp_map_regs_kind(const modcp_params_t *p, const modcp_areas_t *
         offset = word * 2u;
         bytes = (uint32_t)qty * 2u;
     }
-    if (is_write_fc(fc) && !modcp_map_db_write_ok(p, a, db)) {
+    if (is_write_fc(fc) && (db_limits ? !modcp_map_db_write_ok(p, a, db)
+                                      : a != NULL && db == a->work_db)) {
         return MODCP_EV_WRITE_DENIED;
     }
     out->area = MODCP_AREA_DB;

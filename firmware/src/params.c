@@ -41,7 +41,8 @@
  *                  parameter file"): baud not in the table, parity > 2, stop bits
  *                  not 1/2, framing > 1, eof_timing > 1, t15_check > 1, iface > 2,
  *                  turnaround > 100 ms, rs232_auto > 1 or with an interface other
- *                  than RS232, regs32 > 1, fset > 1, rs485_sel > 1, cpu_model > 1, job_limit not 0
+ *                  than RS232, regs32 > 1, r32_lim_db > 1, fset > 1, rs485_sel > 1, cpu_model > 1,
+ *                  job_limit not 0
  *                  and not 32..model limit, cpu_timeout 0, start_time 0, commloss
  *                  not 0 and not 100..30000, scanner count > 16 or first + count
  *                  beyond 65535 (index 0xFF), an enabled scanner entry (index <

@@ -169,7 +169,9 @@ typedef struct {
       "`rs232`, `rs422`, `rs485`", "004 §2.3")                                                    \
     S(turnaround_ms, 2, MODCP_PF_TURNAROUND, 0, 0, 100, 0, MODCP_EV_PARAM_RECORD, 0,              \
       "interface", "turnaround_ms", NUM, none, "must be 0..100 ms",                               \
-      "RS485: delay between the end of the request and enabling the transmitter", "0 … 100",     \
+      "RS485: wait from the moment the reply is ready to its first bit; the transmitter (DE) " \
+      "is enabled at once, when the reply is ready, and drives the idle line during the wait",  \
+      "0 … 100",                                                                                  \
       "SPEC §3.1")                                                                                \
     S(rs232_auto, 1, MODCP_PF_RS232_AUTO, 0, 0, MODCP_WITH_RS232_SIGNALS, 0,                      \
       MODCP_EV_PARAM_RECORD, MODCP_PF_CUSTOM, "interface", "rs232_auto", BOOL, none,              \
@@ -211,6 +213,12 @@ typedef struct {
     G(lim_db, 3, modcp_limit_t, 2, MODCP_PF_LIM_DB) /* lim_db, lim_m, lim_q */                    \
     M(modcp_limit_t, min, 2, 3)                                                                   \
     M(modcp_limit_t, max, 2, 3)                                                                   \
+    S(r32_lim_db, 1, MODCP_PF_R32_LIM_DB, 0, 0, 1, 0, MODCP_EV_PARAM_RECORD, 0, "limits",         \
+      "db_in_32bit_mode", BOOL, none, "must be on or off",                                        \
+      "with `with_32bit_registers = on`: `off` = the manual's rule, `db` limits FC06/16 in the " \
+      "standard DB scheme only and the three 32-bit ranges' DBs stay writable; `on` = `db` "     \
+      "limits their writes too",                                                                  \
+      "`on`, `off`", "003 §3.7, §5.4")                                                            \
     S(fset, 1, MODCP_PF_FSET, 0, 0, MODCP_WITH_EXTENDED, MODCP_WITH_EXTENDED,                     \
       MODCP_EV_PARAM_RECORD, 0, "protocol", "function_set", ENUM, fset,                           \
       "must be cp341 or extended",                                                                \

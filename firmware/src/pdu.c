@@ -144,25 +144,19 @@ uint16_t modcp_pdu_exception(uint8_t *pdu, uint8_t fc, uint8_t code)
     return 2;
 }
 
-/* Event word -> Modbus exception code (events.h, 004 ch. 7, SPEC §5.2); 0 for events
- * that name no code (the caller answers 04). The engine itself names the code where it
- * refuses, and fail() answers the mapping's events by modcp_pdu_map_exception, which
- * agrees with this table (test_map.c: test_event_exception). */
+/* Event word -> Modbus exception code, the column exc of the event rows
+ * (modcp/event_rows.h; 004 ch. 7, SPEC §5.2); 0 for events that name no code. The engine
+ * names the code itself where it refuses (modcp_pdu_err); fail() answers the mapping's
+ * events (modcp_pdu_map_err) with this code. */
 uint8_t modcp_event_exception(modcp_event_t ev)
 {
-    if (ev == MODCP_EV_ILLEGAL_FC) {
-        return MODCP_EXC_ILLEGAL_FUNCTION; /* (08)31H */
+    switch (ev) {
+#define EXC_ROW(NAME, cls, num, exc, ...)                                                         \
+    case MODCP_EV_##NAME: return (exc);
+        MODCP_EVENT_ROWS(EXC_ROW)
+#undef EXC_ROW
+    default: return MODCP_EXC_NONE;
     }
-    if (ev >= MODCP_EV_QUANTITY && ev <= MODCP_EV_DIAG_SUBFC) {
-        return MODCP_EXC_ILLEGAL_VALUE; /* (08)32H..35H */
-    }
-    if (ev == MODCP_EV_DB_ACCESS || (ev >= MODCP_EV_TC_ALIGN && ev <= MODCP_EV_AREA_READONLY)) {
-        return MODCP_EXC_ILLEGAL_ADDRESS; /* (0E)39H DB boundary, (0E)50H..55H */
-    }
-    if (ev == MODCP_EV_FB_NOT_RUNNING) {
-        return MODCP_EXC_DEVICE_FAILURE; /* (0E)56H */
-    }
-    return MODCP_EXC_NONE;
 }
 
 /* A refused request (s->err, s->x.exc): record the event, count the exception (also
@@ -177,7 +171,7 @@ static modcp_pdu_action_t fail(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8
     modcp_diag_event(d, ev);
     uint8_t code = s->x.exc;
     if (code == (uint8_t)MODCP_EXC_OF_MAP) {
-        code = modcp_pdu_map_exception(ev);
+        code = modcp_event_exception(ev);
         s->x.exc = code;
     }
 #if MODCP_WITH_EXTENDED

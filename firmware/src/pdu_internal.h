@@ -71,17 +71,11 @@ static inline modcp_pdu_action_t modcp_pdu_err(modcp_pdu_t *s, modcp_event_t ev,
 }
 
 /* Refuse the request with event ev of the mapping (map.c, scanner.c); pdu.c answers
- * (08)32H with 03, the others ((0E)39H, (0E)50H..55H) with 02, as
- * modcp_event_exception() says (modcp_pdu_map_exception). */
+ * with the exception of the event's row, modcp_event_exception() ((08)32H: 03; (0E)39H,
+ * (0E)50H..55H: 02). */
 static inline modcp_pdu_action_t modcp_pdu_map_err(modcp_pdu_t *s, modcp_event_t ev)
 {
     return modcp_pdu_err(s, ev, MODCP_EXC_OF_MAP);
-}
-
-/* The exception of a mapping event (modcp_pdu_map_err). */
-static inline uint8_t modcp_pdu_map_exception(modcp_event_t ev)
-{
-    return ev == MODCP_EV_QUANTITY ? MODCP_EXC_ILLEGAL_VALUE : MODCP_EXC_ILLEGAL_ADDRESS;
 }
 
 static inline uint16_t modcp_get16(const uint8_t *p)

@@ -689,6 +689,28 @@ static void test_status_area_published_on_change(void **state)
     world_free(w);
 }
 
+/* Issue 27 item 9: every event row gives its event a text, a remedy and a class name;
+ * the manual's words for (0E)56H; an event that has no row is "unknown". */
+static void test_event_rows_give_text_remedy_and_class(void **state)
+{
+    (void)state;
+#define ROW(NAME, cls, num, ...)                                                                  \
+    assert_int_equal(MODCP_EV_##NAME, MODCP_EVENT(cls, num));                                     \
+    assert_string_not_equal(modcp_event_text(MODCP_EV_##NAME), "unknown event");                 \
+    assert_true(modcp_event_remedy(MODCP_EV_##NAME)[0] != '\0');                                  \
+    assert_string_not_equal(modcp_event_class_text(cls), "other event");
+    MODCP_EVENT_ROWS(ROW)
+#undef ROW
+    assert_string_equal(modcp_event_text(MODCP_EV_FB_NOT_RUNNING),
+                        "data link not possible: communication FB not running");
+    assert_string_equal(modcp_event_class_text(0x07), "send error");
+    assert_string_equal(modcp_event_class_text(0x08), "receive error");
+    assert_string_equal(modcp_event_class_text(0x0E), "driver processing error");
+    assert_string_equal(modcp_event_text(MODCP_EVENT(0x0E, 0x32)), "unknown event"); /* n/a */
+    assert_string_equal(modcp_event_remedy(MODCP_EVENT(0x0E, 0x32)), "");
+    assert_string_equal(modcp_event_class_text(0x1E), "other event");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -708,6 +730,7 @@ int main(void)
         cmocka_unit_test(test_leds_long_frames),
         cmocka_unit_test(test_leds_rs485_echo),
         cmocka_unit_test(test_internal_receive_error),
+        cmocka_unit_test(test_event_rows_give_text_remedy_and_class),
         cmocka_unit_test(test_backplane_protocol_events),
         cmocka_unit_test(test_backplane_error_kinds),
         cmocka_unit_test(test_status_area_fields),

@@ -15,7 +15,7 @@
 #include "params_fields.h"
 #include "params_internal.h"
 
-#define RECORD_LEN 318u /* 8 header + 308 payload + 2 CRC */
+#define RECORD_LEN 319u /* 8 header + 309 payload + 2 CRC */
 
 static void set_win(modcp_bitwin_t *w, uint8_t area, uint16_t from, uint16_t to, uint16_t start,
                     uint16_t db)
@@ -788,6 +788,7 @@ static void params_all_fields(modcp_params_t *p)
     p->fset = MODCP_FSET_CP341;
     p->rs485_sel = 1;
     p->qty_limits = MODCP_QLIMITS_SPEC;
+    p->r32_lim_db = 1;
     p->cpu_model = MODCP_CPU_CP441;
     p->job_limit = 0x01C2;
     p->cpu_timeout_ms = 0xEEEE;
@@ -843,6 +844,7 @@ static void assert_params_equal(const modcp_params_t *a, const modcp_params_t *b
     assert_int_equal(a->hr_base_db, b->hr_base_db);
     assert_int_equal(a->ir_base_db, b->ir_base_db);
     assert_int_equal(a->regs32, b->regs32);
+    assert_int_equal(a->r32_lim_db, b->r32_lim_db);
     for (size_t i = 0; i < 3; i++) {
         assert_int_equal(a->r32[i].from, b->r32[i].from);
         assert_int_equal(a->r32[i].to, b->r32[i].to);

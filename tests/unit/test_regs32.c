@@ -289,20 +289,54 @@ static void test_broadcast(void **state)
     ascii_world_free(w);
 }
 
-/* write limits (SPEC §4 decides over 003 §4.6: the DB limits apply in this mode too) */
-static void test_write_limits(void **state)
+/* 003 §3.7, §5.4 (default, db_in_32bit_mode = off): the DB MIN/MAX limits are the
+ * standard mode's; in 32-bit mode the three ranges' DBs stay writable whatever lim_db says.
+ * The FB's work DB stays refused (004 §3.5). FC06/16 in the DB scheme of a standard-mode
+ * CP still obey lim_db (test_map.c, test_cp_examples.c). */
+static void test_003_s3_7_32bit_ranges_writable_outside_db_limits(void **state)
 {
     (void)state;
     modcp_params_t p;
     world_example_params(&p);
     regs32_example_ranges(&p);
-    p.lim_db = (modcp_limit_t){3, 899}; /* DB2 (int16) read-only */
+    p.lim_db = (modcp_limit_t){600, 699}; /* none of DB2, DB3, DB4 */
+    assert_int_equal(p.r32_lim_db, 0);    /* the default */
     world_t *w = ascii_world_started(&p);
+    rtu_expect(w, "05 06 0D 37 2B 1A", "05 06 0D 37 2B 1A"); /* int16 3383 -> DB2.DBW766 */
+    assert_memory_equal(world_db(w, 2) + 766, "\x2B\x1A", 2);
+    rtu_expect(w, "05 10 13 8B 00 02 08 3A 09 DE 1A 01 02 03 04", "05 10 13 8B 00 02");
+    assert_memory_equal(world_db(w, 3) + 12, "\x3A\x09\xDE\x1A\x01\x02\x03\x04", 8);
+    rtu_expect(w, "05 06 1B 5A 12 23 34 45", "05 06 1B 5A 12 23 34 45"); /* float 7002 */
+    assert_memory_equal(world_db(w, 4) + 8, "\x12\x23\x34\x45", 4);
+    ascii_world_free(w);
+
+    /* a range on the FB's work DB: written never, whatever the limits */
+    p.r32[MODCP_R32_INT16].db = WORLD_WORK_DB;
+    p.lim_db = (modcp_limit_t){1, 65535};
+    w = ascii_world_started(&p);
+    uint8_t work[] = {5, 6, 0x0B, 0xB8, 0x12, 0x34}; /* 3000 -> DB80.DBW0 */
+    rtu_expect_exception(w, work, sizeof work, 2, MODCP_EV_WRITE_DENIED);
+    assert_memory_equal(world_db(w, WORLD_WORK_DB), "\0\0", 2);
+    ascii_world_free(w);
+}
+
+/* db_in_32bit_mode = on (r32_lim_db 1): modcp's stricter rule, the DB limits apply to the
+ * three ranges' DBs too: exception 02, (0E)52H, nothing written. */
+static void test_32bit_db_limits_option_refuses_writes_outside_db_limits(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    world_example_params(&p);
+    regs32_example_ranges(&p);
+    p.r32_lim_db = 1;
+    p.lim_db = (modcp_limit_t){3, 899}; /* DB2 (int16) outside */
+    world_t *w = ascii_world_started(&p);
+    memcpy(world_db(w, 2) + 766, "\x55\x66", 2);
     uint8_t a[] = {5, 6, 0x0D, 0x37, 0x2B, 0x1A};
     rtu_expect_exception(w, a, sizeof a, 2, MODCP_EV_WRITE_DENIED);
-    memcpy(world_db(w, 2) + 766, "\x55\x66", 2);
-    rtu_expect(w, "05 03 0D 37 00 01", "05 03 02 55 66");
-    rtu_expect(w, "05 06 1B 5A 12 23 34 45", "05 06 1B 5A 12 23 34 45");
+    assert_memory_equal(world_db(w, 2) + 766, "\x55\x66", 2);   /* not written */
+    rtu_expect(w, "05 03 0D 37 00 01", "05 03 02 55 66");        /* reads are not limited */
+    rtu_expect(w, "05 06 1B 5A 12 23 34 45", "05 06 1B 5A 12 23 34 45"); /* DB4 inside */
     ascii_world_free(w);
 }
 
@@ -451,7 +485,8 @@ int main(void)
         cmocka_unit_test(test_byte_counts),
         cmocka_unit_test(test_fc04_unchanged),
         cmocka_unit_test(test_broadcast),
-        cmocka_unit_test(test_write_limits),
+        cmocka_unit_test(test_003_s3_7_32bit_ranges_writable_outside_db_limits),
+        cmocka_unit_test(test_32bit_db_limits_option_refuses_writes_outside_db_limits),
         cmocka_unit_test(test_limits_ascii),
         cmocka_unit_test(test_limits_rtu),
         cmocka_unit_test(test_quantity_table),

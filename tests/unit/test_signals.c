@@ -112,6 +112,29 @@ static void test_outputs_power_on_and_configure(void **state)
     assert_int_equal(is[0].field, MODCP_PF_RS232_AUTO);
 }
 
+/* 001 §1.6 "DTR: CP is ready for operation": DTR goes ON with a valid parameter record,
+ * already before the FB's INIT (the CP is parameterised; requests still get exception
+ * 04, (0E)56H until INIT, test_cp_examples.c: test_exception_04_not_initialised). */
+static void test_dtr_on_with_parameters_before_fb_init(void **state)
+{
+    (void)state;
+    modcp_params_t p = auto_params();
+    lw_t *x = lw_new_unstarted(&p);
+    world_t *w = x->w;
+    modcp_fb_in_t in = {false}; /* the FB hands over PARAMS, no CP_START: no INIT */
+    for (int k = 0; k < 20; k++) {
+        modcp_fb_call(&w->fb, &in, &w->fb_out, w->now_us / 1000u);
+        modcp_cp_poll(&w->cp, w->now_us);
+        w->now_us += 1000;
+    }
+    assert_true(w->cp.configured);
+    assert_false(w->cp.env.fb_ready);
+    assert_true(x->sig[MODCP_SIG_DTR]);
+    assert_false(x->sig[MODCP_SIG_RTS]);
+    assert_int_equal(lw_last(x, LW_SIG)->value, SIG_DTR_ON);
+    lw_free(x);
+}
+
 /* ---- the send sequence ----------------------------------------------------------- */
 
 /* RTS ON when the reply is ready; the reply leaves exactly when the data output
@@ -444,6 +467,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_outputs_power_on_and_configure),
+        cmocka_unit_test(test_dtr_on_with_parameters_before_fb_init),
         cmocka_unit_test(test_send_sequence_thresholds),
         cmocka_unit_test(test_request_during_rts_off_time),
         cmocka_unit_test(test_zero_delays),

@@ -1248,6 +1248,62 @@ bool modcp_conf_write_doc_table(FILE *f)
     return ferror(f) == 0;
 }
 
+/* ---- the event tables of docs/diagnostics.md ------------------------------------------- */
+
+typedef struct {
+    modcp_event_t ev;
+    uint8_t exc;
+    const char *answer, *text, *remedy, *cause, *path, *test;
+} doc_event_t;
+
+#define DOC_EVENT_ROW(NAME, cls, num, exc, answer, text, remedy, cause, path, test)               \
+    {MODCP_EV_##NAME, (exc), answer, text, remedy, cause, path, test},
+static const doc_event_t doc_events[] = {MODCP_EVENT_ROWS(DOC_EVENT_ROW)};
+#undef DOC_EVENT_ROW
+
+bool modcp_conf_write_event_table(FILE *f)
+{
+    static const struct {
+        uint8_t cls;
+        const char *heading;
+    } classes[] = {
+#define DOC_CLASS_ROW(cls, name, heading) {(cls), heading},
+        MODCP_EVENT_CLASS_ROWS(DOC_CLASS_ROW)
+#undef DOC_CLASS_ROW
+    };
+    for (size_t c = 0; c < sizeof classes / sizeof classes[0]; c++) {
+        fprintf(f, "%s### Class %02XH — %s\n\n"
+                   "| event | text | cause in modcp | remedy | exc. | path | test |\n"
+                   "|---|---|---|---|---|---|---|\n",
+                c == 0u ? "" : "\n", (unsigned)classes[c].cls, classes[c].heading);
+        for (size_t i = 0; i < sizeof doc_events / sizeof doc_events[0]; i++) {
+            const doc_event_t *e = &doc_events[i];
+            if (MODCP_EVENT_CLASS(e->ev) != classes[c].cls) {
+                continue;
+            }
+            char exc[48];
+            if (e->exc != 0u) {
+                (void)snprintf(exc, sizeof exc, "%02u%s", (unsigned)e->exc, e->answer);
+            } else {
+                copy_str(exc, sizeof exc, e->answer);
+            }
+            char en[16];
+            event_name(e->ev, en, sizeof en);
+            fprintf(f, "| %s | %s | %s | %s | %s | %s | %s |\n", en, e->text, e->cause, e->remedy,
+                    exc, e->path, e->test);
+        }
+    }
+    fprintf(f, "\n### Not applicable\n\n"
+               "| event | manual | manual text | why it cannot happen in modcp |\n"
+               "|---|---|---|---|\n");
+#define DOC_NA_ROW(cls, num, source, text, reason)                                                \
+    fprintf(f, "| (%02X)%02XH | %s | %s | %s |\n", (unsigned)(cls), (unsigned)(num), source, text,  \
+            reason);
+    MODCP_EVENT_NA_ROWS(DOC_NA_ROW)
+#undef DOC_NA_ROW
+    return ferror(f) == 0;
+}
+
 /* ---- validation issues -> problems ---------------------------------------------------------- */
 
 static const char *default_key(uint8_t field, unsigned index, const char **section)

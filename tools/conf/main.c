@@ -7,6 +7,7 @@
  *   ... --set section.key=value        override / add a key (repeatable)
  *   modcp-conf fields                  self-check: every parameter field has an INI key
  *   modcp-conf doc-table               the parameter tables of docs/parameters.md
+ *   modcp-conf event-table             the event tables of docs/diagnostics.md
  *
  * Problems go to stderr, one per line:
  *   FILE:LINE: section.key = value: rule (event (0E)23H)
@@ -25,7 +26,8 @@ static int usage(void)
                     "       modcp-conf build FILE -o OUT.bin [--set section.key=value]...\n"
                     "       modcp-conf c FILE -o OUT.c [--set section.key=value]...\n"
                     "       modcp-conf fields\n"
-                    "       modcp-conf doc-table\n");
+                    "       modcp-conf doc-table\n"
+                    "       modcp-conf event-table\n");
     return 1;
 }
 
@@ -56,6 +58,9 @@ int main(int argc, char **argv)
     }
     if (argc == 2 && strcmp(argv[1], "doc-table") == 0) {
         return modcp_conf_write_doc_table(stdout) ? 0 : 1;
+    }
+    if (argc == 2 && strcmp(argv[1], "event-table") == 0) {
+        return modcp_conf_write_event_table(stdout) ? 0 : 1;
     }
     if (argc < 3) {
         return usage();

@@ -123,6 +123,9 @@ size_t modcp_conf_uncovered(uint8_t *fields, size_t cap);
  * (`modcp-conf doc-table` prints them; the integration.conf test compares them with the
  * document.) Returns false on a write error. */
 bool modcp_conf_write_doc_table(FILE *f);
+/* The event tables of docs/diagnostics.md ("### Class ..." to "### Not applicable" and its
+ * table), from the event rows (modcp/event_rows.h). */
+bool modcp_conf_write_event_table(FILE *f);
 
 /* "9600 8E1 RTU" */
 void modcp_conf_line_settings(const modcp_params_t *p, char *out, size_t cap);

@@ -384,10 +384,7 @@ void sim_trace_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us)
 static void print_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us)
 {
     char line[512];
-    const char *cls = MODCP_EVENT_CLASS(ev) == 0x08u   ? "receive error"
-                      : MODCP_EVENT_CLASS(ev) == 0x0Eu ? "driver processing error"
-                      : MODCP_EVENT_CLASS(ev) == 0x05u ? "CPU job error"
-                                                       : "event";
+    const char *cls = modcp_event_class_text(MODCP_EVENT_CLASS(ev));
     snprintf(line, sizeof line, "[%5lu.%06lu] %sevent (%02X)%02XH %s: %s",
              (unsigned long)(t_us / 1000000u), (unsigned long)(t_us % 1000000u), t->ev_label,
              (unsigned)MODCP_EVENT_CLASS(ev), (unsigned)MODCP_EVENT_NUMBER(ev), cls,

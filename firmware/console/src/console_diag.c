@@ -35,16 +35,6 @@ size_t modcp_console_event_name(modcp_event_t ev, char *out, size_t cap)
     return (size_t)n < cap ? (size_t)n : cap - 1u;
 }
 
-static const char *class_text(uint8_t cls)
-{
-    switch (cls) {
-    case 0x05u: return "CPU job error";
-    case 0x08u: return "receive error";
-    case 0x0Eu: return "driver processing error";
-    default: return "other";
-    }
-}
-
 int con_cmd_diag(modcp_console_env_t *env, out_t *o)
 {
     const modcp_diag_t *d = env->diag;
@@ -75,7 +65,7 @@ int con_cmd_diag(modcp_console_env_t *env, out_t *o)
         (void)modcp_console_event_name(ev, en, sizeof en);
         con_nl(o);
         con_printf(o, "event %u: %s class %02XH %s, number %02XH: %s. Remedy: %s", i + 1u, en,
-                   (unsigned)MODCP_EVENT_CLASS(ev), class_text(MODCP_EVENT_CLASS(ev)),
+                   (unsigned)MODCP_EVENT_CLASS(ev), modcp_event_class_text(MODCP_EVENT_CLASS(ev)),
                    (unsigned)MODCP_EVENT_NUMBER(ev), modcp_event_text(ev), modcp_event_remedy(ev));
     }
     return MODCP_CONSOLE_OK;

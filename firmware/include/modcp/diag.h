@@ -59,7 +59,9 @@ typedef struct {
 
 /* Text of an event in English (simulator / console; "unknown event" if unknown). */
 const char *modcp_event_text(modcp_event_t ev);
-/* Remedy of an event in English (simulator / console; "unknown event" if unknown). */
+/* Remedy of an event in English (simulator / console; "" if unknown). */
 const char *modcp_event_remedy(modcp_event_t ev);
+/* Name of an event class in English ("receive error"; "other event" if unknown). */
+const char *modcp_event_class_text(uint8_t cls);
 
 #endif

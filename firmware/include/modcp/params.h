@@ -19,7 +19,8 @@
 #include "modcp/events.h"
 #include "modcp/features.h"
 
-#define MODCP_PARAMS_VERSION 2u /* 2: rs485_mode_select (000 Table 5-2), quantity_limits */
+#define MODCP_PARAMS_VERSION 3u /* 2: rs485_mode_select (000 Table 5-2), quantity_limits;
+                                   3: db_in_32bit_mode (003 §3.7) */
 #define MODCP_PARAMS_RECORD_MAX 320u /* upper bound of the serialised record (checked at compile time) */
 
 typedef enum { MODCP_PARITY_NONE = 0, MODCP_PARITY_ODD = 1, MODCP_PARITY_EVEN = 2 } modcp_parity_t;
@@ -128,6 +129,8 @@ typedef struct {
     uint8_t rs232_auto; /* RS232 automatic secondary signals: 0 off, 1 on */
     /* mapping */
     uint8_t regs32; /* 32-bit registers on (replaces the DB offset scheme of FC03/06/16) */
+    uint8_t r32_lim_db; /* with regs32: 0 (default, 003 §3.7, §5.4) the DB write limits lim_db
+                           do not apply to the three 32-bit ranges' DBs; 1: they do */
     /* function set and CPU link */
     uint8_t fset;           /* modcp_fset_t */
     uint8_t rs485_sel;      /* 000 Table 5-2 "enable operating-mode selection for RS485":
@@ -212,6 +215,7 @@ typedef enum {
     MODCP_PF_DIAG_IRQ,
     MODCP_PF_RS485_SEL,
     MODCP_PF_QTY_LIMITS,
+    MODCP_PF_R32_LIM_DB,
     MODCP_PF_COUNT
 } modcp_param_field_t;
 
