@@ -394,6 +394,7 @@ static MODCP_NOINLINE void take_params(modcp_cp_t *cp)
         if (!cp->configured) { /* MODCP_SHARED_PARAMS_BUFFER: params_start stopped it */
             configure(cp);
         }
+        modcp_diag_event(&cp->diag, MODCP_EV_PARAMS_SAME); /* (00)04H */
         return;
     }
     unconfigure(cp);
@@ -410,6 +411,9 @@ static MODCP_NOINLINE void take_params(modcp_cp_t *cp)
     if (ev == MODCP_EV_NONE) {
         irq = cp->params.diag_irq;
         ev = modcp_params_apply(&cp->params, &cp->params, &warning);
+    }
+    if (ev == MODCP_EV_NONE) {
+        modcp_diag_event(&cp->diag, MODCP_EV_PARAMS_TAKEN); /* (00)03H, 001 §7.2 */
     }
     modcp_diag_event(&cp->diag, warning);
     cp->param_event = ev;

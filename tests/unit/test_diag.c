@@ -48,8 +48,9 @@ static void test_status_word(void **state)
     assert_int_equal(d.status, 0x0836);
     modcp_diag_event(&d, MODCP_EV_FB_NOT_RUNNING);
     assert_int_equal(d.status, 0x0E56);
-    modcp_diag_event(&d, MODCP_EV_JOB_LENGTH);
-    assert_int_equal(d.status, 0x0518);
+    modcp_diag_event(&d, MODCP_EV_JOB_LENGTH); /* 001 §8.2: (05)17H, "transfer length
+                                                  > 1 kByte is too large for the CP" */
+    assert_int_equal(d.status, 0x0517);
     modcp_diag_event(&d, MODCP_EV_CTS_TIMEOUT);
     assert_int_equal(d.status, 0x0708);
     modcp_diag_event(&d, MODCP_EVENT(0xFF, 0x01)); /* class wider than 5 bits: masked */

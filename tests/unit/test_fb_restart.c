@@ -123,8 +123,10 @@ static void test_same_record_keeps_request_in_progress(void **state)
     modcp_cp_poll(&w->cp, w->now_us);
     assert_true(w->cp.configured);
     assert_true(modcp_cp_ready(&w->cp));
-    assert_int_equal(w->cp.diag.buffer_len, 1);
-    assert_int_equal(w->cp.diag.buffer[0], MODCP_EV_CRC);
+    assert_int_equal(w->cp.diag.buffer_len, 2); /* kept, and (00)04H on top */
+    assert_int_equal(w->cp.diag.buffer[0], MODCP_EV_PARAMS_SAME);
+    assert_int_equal(w->cp.diag.buffer[0], 0x0004);
+    assert_int_equal(w->cp.diag.buffer[1], MODCP_EV_CRC);
 #if MODCP_SHARED_PARAMS_BUFFER
     assert_false(w->cp.request_pending);
     (void)sent;
@@ -161,6 +163,45 @@ static void test_changed_record_reparameterises(void **state)
     world_free(w);
 }
 
+/* VIPA CP 341 manual §7.2 / §8.2 class 00H: (00)03H "parameters taken over" after a good
+ * parameter set, the first entry of the emptied buffer, before the record's warnings;
+ * a start-up event is no error: not in SYSTAT (F clear, no event), not in the STATUS
+ * word. */
+static void test_start_up_events(void **state)
+{
+    (void)state;
+    world_t *w = world_new(NULL);
+    assert_true(world_start_keep(w, 2000));
+    assert_int_equal(w->cp.diag.buffer_len, 1);
+    assert_int_equal(w->cp.diag.buffer[0], 0x0003);
+    assert_int_equal(w->cp.diag.buffer[0], MODCP_EV_PARAMS_TAKEN);
+    assert_int_equal(w->cp.diag.status, 0);
+    assert_int_equal(w->cp.diag.systat_len, 0);
+    assert_int_equal(w->cp.diag.systat_flags, 0);
+    world_free(w);
+
+    modcp_params_t p;
+    world_example_params(&p);
+    p.f_mul = 11; /* (0E)21H: warning, runs with 1 */
+    w = world_new(&p);
+    assert_true(world_start_keep(w, 2000));
+    assert_int_equal(w->cp.diag.buffer_len, 2);
+    assert_int_equal(w->cp.diag.buffer[0], MODCP_EV_FMUL);
+    assert_int_equal(w->cp.diag.buffer[1], MODCP_EV_PARAMS_TAKEN);
+    world_free(w);
+
+    /* a rejected record: no (00)03H */
+    world_example_params(&p);
+    p.slave_addr = 0;
+    p.start_time_ms = 300;
+    w = world_new(&p);
+    assert_false(world_start_keep(w, 1000));
+    for (unsigned i = 0; i < w->cp.diag.buffer_len; i++) {
+        assert_int_equal(w->cp.diag.buffer[i], MODCP_EV_SLAVE_ADDR);
+    }
+    world_free(w);
+}
+
 /* The record identity the INIT carries: the CRC of the record without its own CRC (the
  * whole record's CRC would be 0 for every record). */
 static void test_record_identity(void **state)
@@ -184,6 +225,7 @@ int main(void)
         cmocka_unit_test(test_same_record_keeps_request_in_progress),
         cmocka_unit_test(test_changed_record_reparameterises),
         cmocka_unit_test(test_record_identity),
+        cmocka_unit_test(test_start_up_events),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

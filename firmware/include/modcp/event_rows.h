@@ -33,17 +33,32 @@
 #define MODCP_EVENT_ROWS_H
 
 #define MODCP_EVENT_CLASS_ROWS(C)                                                                 \
+    C(0x00, "CP start-up", "CP start-up (001 §8.2; in the diagnostic buffer only)")              \
     C(0x05, "CPU job error", "CPU job errors (004 §7.5, 001 §8.2)")                              \
     C(0x07, "send error", "send errors (001 §8.2; used by the RS232 signals)")                   \
     C(0x08, "receive error", "receive errors (004 §7.5, 001 §8.2, 003 §8.5)")                    \
     C(0x0E, "driver processing error", "general processing errors (004 §7.5)")
 
 #define MODCP_EVENT_ROWS(E)                                                                       \
+    /* ---- class 00H: CP start-up (not errors: diagnostic buffer only, diag.c) ---- */        \
+    E(PARAMS_TAKEN, 0x00, 0x03, 0, "—",                                                           \
+      "parameters taken over", "none",                                                            \
+      "a valid parameter record was applied (after the buffer was cleared: the first entry "      \
+      "of a new parameterisation, before its warnings)",                                          \
+      "`cp.c take_params`",                                                                       \
+      "`test_fb_restart.c: test_start_up_events`")                                                \
+    E(PARAMS_SAME, 0x00, 0x04, 0, "—",                                                            \
+      "parameters already on the CP", "none",                                                     \
+      "the CPU side sent the record the CP holds (the same identity and length): nothing "        \
+      "changes (an FB retry; the FB sends no record at a restart)",                               \
+      "`cp.c take_params`",                                                                       \
+      "`test_fb_restart.c: test_same_record_keeps_request_in_progress`")                          \
     /* ---- class 05H: CPU job errors ---- */                                                      \
-    E(JOB_LENGTH, 0x05, 0x18, 0, "04",                                                            \
-      "job longer than the CPU transfer limit",                                                   \
+    E(JOB_LENGTH, 0x05, 0x17, 0, "04",                                                            \
+      "job longer than the CP transfer limit",                                                    \
       "read or write fewer bits/registers per request, or raise job_limit",                       \
-      "a request needs more bytes than `job_limit` (1024 / 450)",                                 \
+      "a request needs more bytes than `job_limit` (1024 / 450); 001 §8.2 \"transfer length > "   \
+      "1 kByte is too large for the CP\" ((05)18H is the master driver's send length)",          \
       "`job.c modcp_job_start` → `cp.c advance` → `pdu.c modcp_pdu_complete`",                    \
       "`test_cp_examples.c: test_exception_04_cpu_errors`; `test_job_fb.c: test_job_limit_450`")  \
     /* ---- class 07H: send errors ---- */                                                         \
@@ -331,6 +346,9 @@
       "`commloss.c`", "`test_extended.c`")
 
 #define MODCP_EVENT_NA_ROWS(N)                                                                    \
+    N(0x05, 0x18, "001 §8.2", "send transfer length too large (> 4 kByte) or too small",         \
+      "a Modbus master driver's event (\"Modbus master only\"); the slave's job over its "      \
+      "transfer limit is (05)17H")                                                                \
     N(0x0E, 0x01, "004 §7.5", "error initialising the driver-specific SCC process",               \
       "modcp is one firmware image, not a driver loaded into a CP operating system. There is "    \
       "no SCC process to start.")                                                                 \
