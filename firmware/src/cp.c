@@ -82,10 +82,18 @@ static bool sig_on_tx_done(modcp_cp_t *cp, uint32_t now_us)
 
 /* ---- line discipline and diagnostics (signals.c, leds.c, cpdiag.c) ---------- */
 
-/* SF: not ready (no / bad parameters, FB not initialised) or a wire break. */
+/* SF (004 §7.2, 003 §10.1): no or invalid parameters (on at power-on until the CP is
+ * parameterised), a wire break, or RS232 automatic signals with CTS / DSR not asserted.
+ * An FB not (yet) initialised does not light it: the CP is parameterised and fine, the
+ * requests get exception 04 / (0E)56H. */
 static bool sf_on(const modcp_cp_t *cp)
 {
-    return !modcp_cp_ready(cp) || cp->cpdiag.wire_break;
+#if MODCP_WITH_RS232_SIGNALS
+    if (modcp_sig_fault(&cp->sig)) {
+        return true;
+    }
+#endif
+    return !cp->configured || cp->cpdiag.wire_break;
 }
 
 /* Hand a reply to the link; with RS232 automatic signals it waits for RTS / CTS. */
@@ -115,7 +123,8 @@ static void line_poll(modcp_cp_t *cp, uint32_t now_us)
     /* (the poll always has its backplane: modcp_job_poll and publish() use it too) */
     uint32_t req = atomic_load_explicit(&cp->job.bp->systat_req, memory_order_acquire);
     if (req != cp->cpdiag.systat_ack) { /* a new SYSTAT request */
-        modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, modcp_cp_ready(cp));
+        /* byte 0 (004 §7.4): RUN once parameterised, fault without valid parameters */
+        modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, cp->configured);
     }
     if (cp->job.new_errors != 0u) { /* new backplane errors */
         modcp_cpdiag_backplane(&cp->diag, cp->job.new_errors);
@@ -307,7 +316,7 @@ void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
  * receive (the signals' timer), unless they leave it to the link. */
 static MODCP_NOINLINE void tx_done_signals(modcp_cp_t *cp, uint32_t now_us)
 {
-    modcp_link_tx_complete(&cp->link); /* TXD: the last stop bit is out */
+    modcp_link_tx_complete(&cp->link, now_us); /* TXD: the last stop bit is out */
     if (!sig_on_tx_done(cp, now_us)) {
         modcp_link_on_tx_done(&cp->link, now_us);
     }

@@ -293,14 +293,18 @@ void modcp_link_done(modcp_link_t *l)
     resume_rx(l, 0, false);
 }
 
-void modcp_link_tx_complete(modcp_link_t *l)
+void modcp_link_tx_complete(modcp_link_t *l, uint32_t now_us)
 {
     l->tx_on = false;
+    l->tx_end_us = now_us;
 }
 
 void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us)
 {
-    l->tx_on = false;
+    if (l->tx_on) { /* (with RS232 signals: already at modcp_link_tx_complete) */
+        l->tx_on = false;
+        l->tx_end_us = now_us;
+    }
     if (l->state != MODCP_LINK_TX) {
         return;
     }

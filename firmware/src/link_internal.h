@@ -171,7 +171,7 @@ void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us);
 /* Transmission complete of the last stop bit, recorded for the TXD LED; with RS232
  * automatic signals the link receives again only later (modcp_link_on_tx_done at RTS
  * OFF). */
-void modcp_link_tx_complete(modcp_link_t *l);
+void modcp_link_tx_complete(modcp_link_t *l, uint32_t now_us);
 /* RS232 automatic signals (signals.c): a reply held in TURNAROUND is sent now (send)
  * or dropped (!send, back to receiving). */
 void modcp_link_tx_release(modcp_link_t *l, bool send, uint32_t now_us);
