@@ -31,7 +31,7 @@
  *   not 0-9 / A-F (lower case a-f is accepted), an odd number of hex characters
  *   before CR, or CR not followed by the delimiter ... (08)3AH
  *   LRC wrong, or fewer than 3 bytes (address, function, LRC) ... (08)36H
- *   more bytes than the receive buffer (MODCP_ADU_MAX) ... (08)16H
+ *   more than 2 x 252 data characters (003 §8.1: 255 bytes from address to LRC) ... (08)16H
  *   parity / framing / overrun / BREAK ... (08)0CH / 0DH, reported by link.c (normal
  *   mode only); the frame is discarded in both modes
  *   character delay time exceeded ... (08)06H
@@ -60,6 +60,9 @@
 #define ASCII_COLON 0x3Au
 #define ASCII_CR 0x0Du
 #define ASCII_MIN_FRAME 3u /* address, function, LRC */
+/* The longest frame (003 §8.1): address, function, at most 2 x 252 data characters (252
+ * bytes), LRC; one more byte is an over-long frame, (08)16H. */
+#define ASCII_MAX_FRAME (1u + 1u + 252u + 1u)
 #define HEX_BAD 0xFFu
 
 /* The upper-case hex digit of d (0 ... 15). */
@@ -173,7 +176,7 @@ static void frame_byte(modcp_link_t *l, uint8_t b)
         l->state = MODCP_LINK_SKIP; /* another slave's frame: not checked, not answered */
         return;
     }
-    if (l->len < l->cap) { /* no buffer: cap 0 */
+    if (l->len < l->cap && l->len < ASCII_MAX_FRAME) { /* no buffer: cap 0 */
         l->buf[l->len] = b;
         l->len++;
     } else {

@@ -373,9 +373,26 @@ static bool params_start(modcp_cp_t *cp)
 }
 #endif
 
-/* The parameters in force, on the line: link, job limits, RS232 signals. */
+/* The receive-line preset in force (000 Table 5-8): `default` is BREAK detection on
+ * RS422, HIGH on RS485 (the manual's recommendation for the bus), none on RS232. */
+static uint8_t rx_preset(const modcp_params_t *p)
+{
+    if (p->rx_preset != (uint8_t)MODCP_RXP_DEFAULT) {
+        return p->rx_preset;
+    }
+    return p->iface == (uint8_t)MODCP_IFACE_RS485   ? (uint8_t)MODCP_RXP_HIGH
+           : p->iface == (uint8_t)MODCP_IFACE_RS422 ? (uint8_t)MODCP_RXP_BREAK
+                                                    : (uint8_t)MODCP_RXP_NONE;
+}
+
+/* The parameters in force, on the line: link, job limits, RS232 signals, receive-line
+ * preset. */
 static void configure(modcp_cp_t *cp)
 {
+    const modcp_hal_t *hal = cp->link.hal;
+    if (hal->set_rx_preset != NULL) {
+        hal->set_rx_preset(hal->ctx, rx_preset(&cp->params));
+    }
     cp->configured = true;
     modcp_job_configure(&cp->job, modcp_params_job_limit(&cp->params),
                         (uint32_t)cp->params.cpu_timeout_ms * 1000u);
@@ -577,8 +594,10 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
     line_poll(cp, now_us);
 #if MODCP_WITH_EXTENDED
     /* comm-loss time; the flags are published from ext / diag (ext_flags) */
-    if (cp->params.commloss_ms != 0u || cp->ext.cl_armed || cp->ext.cl_lost) {
-        modcp_commloss_poll(&cp->ext, &cp->params, &cp->diag, now_us);
+    uint32_t reset = atomic_load_explicit(&cp->job.bp->commloss_reset, memory_order_acquire);
+    if (cp->params.commloss_ms != 0u || cp->ext.cl_armed || cp->ext.cl_lost ||
+        reset != cp->ext.cl_reset_seen) {
+        modcp_commloss_poll(&cp->ext, &cp->params, &cp->diag, reset, now_us);
     }
 #endif
     publish(cp);

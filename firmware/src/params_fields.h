@@ -178,12 +178,25 @@ typedef struct {
       "must be on or off, and on only with interface.type = rs232",                              \
       "RS232 automatic secondary signals (RTS/CTS/DTR/DSR)", /* custom: RS232 only */            \
       "`on`, `off`; on only with `type = rs232`", "004 §2.4, 001")                                \
-    S(rts_on_delay_ms, 2, MODCP_PF_RTS_ON_DELAY, 0, 0, 65535, 0, MODCP_EV_PARAM_RECORD, 0,        \
-      "interface", "rts_on_delay_ms", NUM, none, "must be 0..65535 ms",                           \
-      "data output waiting time: RTS on → CTS expected", "0 … 65535", "004 §2.4")                 \
-    S(rts_off_delay_ms, 2, MODCP_PF_RTS_OFF_DELAY, 0, 0, 65535, 0, MODCP_EV_PARAM_RECORD, 0,      \
-      "interface", "rts_off_delay_ms", NUM, none, "must be 0..65535 ms",                          \
-      "time to RTS off after the last character", "0 … 65535", "004 §2.4")                        \
+    S(rts_on_delay_ms, 2, MODCP_PF_RTS_ON_DELAY, 0, 0, 65530, 10, MODCP_EV_PARAM_RECORD,          \
+      MODCP_PF_CUSTOM, "interface", "rts_on_delay_ms", NUM, none,                                 \
+      "must be 0..65530 ms in steps of 10 ms",                                                    \
+      "data output waiting time: RTS on → CTS expected", /* custom: steps of 10 ms */          \
+      "0 … 65530, steps of 10 ms", "001 §1.6, §7.1 (004 §2.4, 000: no values)")                  \
+    S(rts_off_delay_ms, 2, MODCP_PF_RTS_OFF_DELAY, 0, 0, 65530, 10, MODCP_EV_PARAM_RECORD,        \
+      MODCP_PF_CUSTOM, "interface", "rts_off_delay_ms", NUM, none,                                \
+      "must be 0..65530 ms in steps of 10 ms",                                                    \
+      "time to RTS off after the last character", /* custom: steps of 10 ms */                  \
+      "0 … 65530, steps of 10 ms", "001 §1.6, §7.1 (004 §2.4, 000: no values)")                  \
+    S(rx_preset, 1, MODCP_PF_RX_PRESET, 0, 0, 3, MODCP_RXP_DEFAULT, MODCP_EV_PARAM_RECORD,        \
+      MODCP_PF_CUSTOM, "interface", "receive_preset", ENUM, rxpreset,                             \
+      "must be default, none, break or high; break only with type = rs232 or rs422",             \
+      "receive-line preset of RS422 / RS485 (through the HAL's `set_rx_preset`): `break` = "    \
+      "R(A) 5 V / R(B) 0 V, a broken line is a BREAK level ((08)0DH, wire break); `high` = "     \
+      "R(A) 0 V / R(B) 5 V, a broken line looks idle and BREAK cannot be recognised; `none` = "  \
+      "no bias (the partner provides it); `default` = `break` on RS422, `high` on RS485",       \
+      /* custom: break not on RS485 (000 Table 5-8 note 1) */                                    \
+      "`default`, `none`, `break`, `high`", "000 Table 5-8, 004 §2.3")                           \
     G(coils, MODCP_COIL_WINDOWS, modcp_bitwin_t, 5, MODCP_PF_COILS)                               \
     M(modcp_bitwin_t, area, 1, MODCP_COIL_WINDOWS)                                                \
     M(modcp_bitwin_t, from, 2, MODCP_COIL_WINDOWS)                                                \
@@ -264,6 +277,12 @@ typedef struct {
       "comm-loss supervision: no valid request for our address within this time (armed after "   \
       "the first master write) raises an event and a flag the CPU side sees",                    \
       "0 (off) or 100 … 30000", "002 §7")                                                         \
+    S(commloss_auto, 1, MODCP_PF_COMMLOSS_AUTO, 0, 0, MODCP_WITH_EXTENDED, 0,                     \
+      MODCP_EV_PARAM_RECORD, 0, "supervision", "commloss_auto_clear", BOOL, none,                 \
+      "must be on or off", "`off`: a comm loss stays latched until the CPU side resets it "      \
+      "(`modcp_bp_commloss_reset`) or new parameters arrive, as the Altivar's fault SLF1; "      \
+      "`on`: the next valid request for our address clears it",                                 \
+      "`on`, `off`", "002 §7")                                                                    \
     S(scan_start, 2, MODCP_PF_SCANNER, 0xFF, 0, 65535, 0, MODCP_EV_PARAM_RECORD,                  \
       MODCP_PF_CUSTOM, "scanner", "start", NUM, none, "must be 0..65535",                         \
       "first scanner register address", /* custom: with the entries */                          \

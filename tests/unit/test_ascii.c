@@ -469,25 +469,43 @@ static void test_sequence_error(void **state)
 }
 
 /* more bytes than the receive buffer: (08)16H, no reply */
-static void test_frame_too_long(void **state)
+/* ":05" + function + n data bytes + LRC (all "08": not a valid request, only its
+ * length matters) */
+static void long_frame(char *req, unsigned data_bytes)
 {
-    (void)state;
-    world_t *w = ascii_started();
-    char req[2 * 300 + 8];
     size_t o = 0;
     req[o++] = ':';
     req[o++] = '0';
     req[o++] = '5';
-    for (unsigned k = 0; k < MODCP_ADU_MAX; k++) {
+    for (unsigned k = 0; k < 1u + data_bytes + 1u; k++) { /* function, data, LRC */
         req[o++] = '0';
         req[o++] = '8';
     }
     req[o++] = '\r';
     req[o++] = '\n';
     req[o] = 0;
+}
+
+/* CP 341 MODBUS ASCII slave manual §8.1: the data field holds 0 up to 2 x 252
+ * characters; a frame with more is over-long, (08)16H, not answered. 252 data bytes are
+ * still a frame (here: its LRC is wrong, (08)36H). */
+static void test_frame_too_long(void **state)
+{
+    (void)state;
+    world_t *w = ascii_started();
+    char req[2 * 300 + 8];
+    long_frame(req, 252);
+    expect_ascii_silence(w, req);
+    assert_int_equal(world_last_event(w), MODCP_EV_CRC);
+    assert_int_equal(w->cp.diag.frames_too_long, 0);
+    long_frame(req, 253);
     expect_ascii_silence(w, req);
     assert_int_equal(world_last_event(w), MODCP_EV_FRAME_TOO_LONG);
     assert_int_equal(w->cp.diag.frames_too_long, 1);
+    long_frame(req, MODCP_ADU_MAX);
+    expect_ascii_silence(w, req);
+    assert_int_equal(world_last_event(w), MODCP_EV_FRAME_TOO_LONG);
+    assert_int_equal(w->cp.diag.frames_too_long, 2);
     expect_ascii(w, ":05080000A5C38B\r\n", ":05080000A5C38B\r\n");
     ascii_world_free(w);
 }
@@ -546,9 +564,12 @@ static void test_limits_bits(void **state)
     assert_int_equal(ascii_request(w, ascii_frame(wr, 7 + 247), 200), 17);
     assert_int_equal(w->m[1246], 0xFF);
     assert_int_equal(w->m[1247], 0xA5); /* the byte after the 1976 bits: untouched */
+    /* 1977 bits need 248 data bytes: 253 with start, quantity and byte count, more than
+     * a frame holds (003 §8.1, 2 x 252 characters): over-long, (08)16H, no reply */
     wr[5] = 0xB9;
     wr[6] = 0xF8;
-    expect_ascii_exception(w, wr, 7 + 248, 3, MODCP_EV_QUANTITY);
+    assert_int_equal(ascii_request(w, ascii_frame(wr, 7 + 248), 200), 0);
+    assert_int_equal(world_last_event(w), MODCP_EV_FRAME_TOO_LONG);
     ascii_world_free(w);
 }
 
@@ -570,9 +591,10 @@ static void test_limits_registers(void **state)
     }
     assert_int_equal(ascii_request(w, ascii_frame(wr, 7 + 246), 200), 17);
     assert_int_equal(world_db(w, 800)[245], 245);
-    wr[5] = 0x7C;
+    wr[5] = 0x7C; /* 124 registers: 253 data bytes, over-long (003 §8.1) */
     wr[6] = 0xF8;
-    expect_ascii_exception(w, wr, 7 + 248, 3, MODCP_EV_QUANTITY);
+    assert_int_equal(ascii_request(w, ascii_frame(wr, 7 + 248), 200), 0);
+    assert_int_equal(world_last_event(w), MODCP_EV_FRAME_TOO_LONG);
     ascii_world_free(w);
 }
 

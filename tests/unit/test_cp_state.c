@@ -142,12 +142,45 @@ static void test_rxd_retriggered_per_frame(void **state)
     lw_free(x);
 }
 
+/* Siemens MODBUS slave driver manual (2009) Table 5-8: the receive-line preset reaches
+ * the port with every valid parameter set (set_rx_preset); `default` is R(A) 5 V / R(B)
+ * 0 V with BREAK detection on four-wire RS422 and R(A) 0 V / R(B) 5 V on two-wire RS485
+ * (the manual's defaults), none on RS232. */
+static void test_receive_preset_reaches_port(void **state)
+{
+    (void)state;
+    static const struct {
+        uint8_t iface, preset;
+        int want;
+    } cases[] = {
+        {MODCP_IFACE_RS232, MODCP_RXP_DEFAULT, MODCP_RXP_NONE},
+        {MODCP_IFACE_RS422, MODCP_RXP_DEFAULT, MODCP_RXP_BREAK},
+        {MODCP_IFACE_RS485, MODCP_RXP_DEFAULT, MODCP_RXP_HIGH},
+        {MODCP_IFACE_RS422, MODCP_RXP_NONE, MODCP_RXP_NONE},
+        {MODCP_IFACE_RS422, MODCP_RXP_HIGH, MODCP_RXP_HIGH},
+        {MODCP_IFACE_RS485, MODCP_RXP_NONE, MODCP_RXP_NONE},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        modcp_params_t p;
+        world_example_params(&p);
+        p.iface = cases[k].iface;
+        p.opmode = p.iface == MODCP_IFACE_RS485 ? MODCP_OPMODE_SUPPRESS : MODCP_OPMODE_NORMAL;
+        p.rx_preset = cases[k].preset;
+        world_t *w = world_new(&p);
+        assert_int_equal(w->fake.rx_preset, -1); /* nothing before the parameters */
+        assert_true(world_start(w, 2000));
+        assert_int_equal(w->fake.rx_preset, cases[k].want);
+        world_free(w);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_parameterised_cp_runs_before_fb_init),
         cmocka_unit_test(test_sf_cts_dsr_not_asserted),
         cmocka_unit_test(test_rxd_retriggered_per_frame),
+        cmocka_unit_test(test_receive_preset_reaches_port),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

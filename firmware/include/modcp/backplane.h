@@ -105,6 +105,8 @@ typedef struct {
     _Atomic uint32_t status_seq; /* seqlock: odd while the CP writes `status` */
     modcp_cp_status_t status;
     _Atomic uint32_t systat_req; /* CPU side: number of the last SYSTAT request */
+    _Atomic uint32_t commloss_reset; /* CPU side: counts comm-loss resets (a latched loss
+                                        is cleared when the CP sees it change) */
 } modcp_backplane_t;
 
 /* Job operations. */
@@ -157,6 +159,10 @@ bool modcp_bp_read_status(const modcp_backplane_t *bp, modcp_cp_status_t *out);
 /* CPU side: ask for the SYSTAT image (reading clears SYSTAT in the CP, as SFB STATUS
  * does, 004 §7.4). Returns the request number; the CP answers at its next poll. */
 uint32_t modcp_bp_systat_request(modcp_backplane_t *bp);
+/* CPU side: reset a latched comm loss (MODCP_CPST_COMMLOSS, params.commloss_auto off;
+ * the Altivar's "fault reset" of SLF1, 002 §7); the CP clears it at its next poll and
+ * times the supervision from then. */
+void modcp_bp_commloss_reset(modcp_backplane_t *bp);
 /* CPU side: true when request `req` has been answered; copies the 16-byte image
  * (byte 0 state 02H RUN / 05H fault, byte 2 flags F U B, bytes 4..15 six events). */
 bool modcp_bp_systat_result(const modcp_backplane_t *bp, uint32_t req, uint8_t out[16]);

@@ -97,8 +97,9 @@
     E(FRAME_TOO_LONG, 0x08, 0x16, 0, "—",                                                         \
       "received telegram longer than the receive buffer",                                         \
       "check the master's request length and the line for interference",                          \
-      "a frame for us longer than the 264-byte receive buffer (ASCII: more than 264 decoded "    \
-      "bytes, address to LRC, i.e. more than 528 hex characters between `:` and CR)",             \
+      "a frame for us longer than the 264-byte receive buffer (ASCII: more than 2 × 252 data "   \
+      "characters, 003 §8.1: more than 255 decoded bytes from address to LRC, i.e. more than "   \
+      "510 hex characters between `:` and CR)",                                                   \
       "`rtu.c rtu_on_timer`; `ascii.c`",                                                          \
       "`test_link.c: test_frame_too_long`; `test_ascii.c: test_frame_too_long`")                  \
     E(SIGNAL_OFF, 0x08, 0x18, 0, "—",                                                             \

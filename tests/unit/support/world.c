@@ -36,6 +36,11 @@ static void fake_de(void *ctx, bool on)
     }
 }
 
+static void fake_rx_preset(void *ctx, uint8_t preset)
+{
+    ((fake_hal_t *)ctx)->rx_preset = preset;
+}
+
 void world_example_params(modcp_params_t *p)
 {
     modcp_params_defaults(p);
@@ -72,7 +77,8 @@ world_t *world_new(const modcp_params_t *p)
                               .t_count = 240, .c_count = 240, .dbs = w->dbs,
                               .db_count = WORLD_DBS};
     w->hal = (modcp_hal_t){.ctx = &w->fake, .uart_tx = fake_tx, .timer_arm = fake_arm,
-                           .set_de = fake_de};
+                           .set_de = fake_de, .set_rx_preset = fake_rx_preset};
+    w->fake.rx_preset = -1;
     size_t n = modcp_params_encode(&w->params, w->record, sizeof w->record);
     assert_true(n > 0);
     w->record_len = (uint16_t)n;

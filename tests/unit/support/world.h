@@ -25,6 +25,7 @@ typedef struct {
     uint32_t timer_us;
     bool de;
     unsigned de_on_count;
+    int rx_preset; /* the last set_rx_preset, -1 before any */
 } fake_hal_t;
 
 typedef struct {
