@@ -425,6 +425,7 @@ static void exec_console(member_t *m)
     env.fb = &m->fb;
     env.paused = &m->paused;
     env.cp_start = &m->fb_in.cp_start;
+    env.bp = &m->bp;
     env.cycles = m->cycles;
     /* the CP's status area, read from the backplane like any user program would */
     modcp_cp_status_t cst;

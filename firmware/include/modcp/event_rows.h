@@ -342,7 +342,7 @@
       "`test_job_fb.c: test_reply_checks` (`expect_fb_error`)")                                   \
     E(COMMLOSS, 0x0E, 0x60, 0, "—",                                                               \
       "communication loss: no valid request for this slave within the supervision time",          \
-      "check the master and the line; the flag clears with the next valid request",               \
+      "check the master and the line; the CPU side resets the latched flag (modcp_bp_commloss_reset)",               \
       "*modcp extension*: no valid request within `commloss_ms` after the first write",           \
       "`commloss.c`", "`test_extended.c`")
 
