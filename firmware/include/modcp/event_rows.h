@@ -83,17 +83,20 @@
       "transmission error (parity, framing or overrun) in a character",                           \
       "check the line for interference; check that baud, data bits, parity and stop bits match "  \
       "the master",                                                                               \
-      "parity, framing or overrun reported by the UART (normal mode)",                            \
+      "parity, framing or overrun reported by the UART (normal mode; on two-wire RS485 in "      \
+      "normal mode only inside a frame)",                                                         \
       "`link.c modcp_link_on_error`",                                                             \
-      "`test_line.c: test_parity_error_normal`; `test_link.c: test_parity_error_normal_mode`; "   \
-      "`test_ascii.c: test_line_errors`")                                                         \
+      "`test_line.c: test_parity_error_normal, test_rs485_normal_reports_errors_inside_frame`; "  \
+      "`test_link.c: test_parity_error_normal_mode`; `test_ascii.c: test_line_errors`")           \
     E(BREAK, 0x08, 0x0D, 0, "—",                                                                  \
       "BREAK: receive line to the partner interrupted",                                           \
       "reconnect or switch on the partner; RS422/485: check the receive wires R(A)/R(B)",         \
-      "BREAK reported by the UART (normal mode); also a wire break (SF, interrupt)",              \
+      "BREAK reported by the UART (normal mode; on two-wire RS485 in normal mode only inside a "  \
+      "frame; never with receive_preset = high, which holds a broken line idle); also a wire "    \
+      "break (SF, interrupt)",                                                                    \
       "`link.c modcp_link_on_error`; `cpdiag.c modcp_cpdiag_line_error`",                         \
-      "`test_link.c: test_break_idle`; `test_line.c: test_error_after_crc`; `test_diag.c: "       \
-      "test_diag_irq_wire_break`")                                                                \
+      "`test_link.c: test_break_idle`; `test_line.c: test_error_after_crc, "                      \
+      "test_rs485_normal_reports_errors_inside_frame`; `test_diag.c: test_diag_irq_wire_break`")  \
     E(FRAME_TOO_LONG, 0x08, 0x16, 0, "—",                                                         \
       "received telegram longer than the receive buffer",                                         \
       "check the master's request length and the line for interference",                          \
@@ -162,9 +165,12 @@
     E(SEQUENCE, 0x08, 0x37, 0, "none",                                                            \
       "new request before the last reply was sent",                                               \
       "increase the master's reply timeout",                                                      \
-      "the master did not wait for our reply", "`rtu.c busy_track`",                              \
+      "the master did not wait for our reply: a request for us or a broadcast started while "    \
+      "the previous one was processed or its reply pending (neither is executed)",                \
+      "`rtu.c rtu_busy_track`; `ascii.c`",                                                        \
       "`test_link.c: test_sequence_error_while_busy`; `test_line.c: "                             \
-      "test_sequence_error_during_turnaround, test_sequence_error_while_job_pending`")            \
+      "test_sequence_error_during_turnaround, test_sequence_error_while_job_pending, "            \
+      "test_sequence_error_broadcast_while_job_pending`; `test_ascii.c: test_sequence_error`")    \
     E(ASCII_START, 0x08, 0x38, 0, "—",                                                            \
       "wrong start character (not ':')", "check the framing settings (ASCII/RTU)",                \
       "ASCII: a frame that does not start with ':' (003 §8.5)", "`ascii.c`",                      \
