@@ -200,8 +200,8 @@ static void cfg_params(modcp_params_t *p)
         break;
     case 4:
         p->rs232_auto = 1;
-        p->rts_on_delay_ms = 1;
-        p->rts_off_delay_ms = 1;
+        p->rts_on_delay_ms = 10; /* steps of 10 ms (VIPA CP 341 §1.6) */
+        p->rts_off_delay_ms = 10;
         p->baud = 38400;
         break;
     case 3:
