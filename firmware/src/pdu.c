@@ -147,16 +147,29 @@ uint16_t modcp_pdu_exception(uint8_t *pdu, uint8_t fc, uint8_t code)
 /* Event word -> Modbus exception code, the column exc of the event rows
  * (modcp/event_rows.h; 004 ch. 7, SPEC §5.2); 0 for events that name no code. The engine
  * names the code itself where it refuses (modcp_pdu_err); fail() answers the mapping's
- * events (modcp_pdu_map_err) with this code. */
+ * events (modcp_pdu_map_err) with this code. Kept as one 16-bit word per row with a code
+ * (exc << 12 | class << 8 | number; the rows with exc 0 leave no entry): 28 bytes and a
+ * loop, smaller than a switch over the rows. */
+#define EXC_ENTRY_0(cls, num)
+#define EXC_ENTRY_1(cls, num) (uint16_t)(1u << 12 | (cls) << 8 | (num)),
+#define EXC_ENTRY_2(cls, num) (uint16_t)(2u << 12 | (cls) << 8 | (num)),
+#define EXC_ENTRY_3(cls, num) (uint16_t)(3u << 12 | (cls) << 8 | (num)),
+#define EXC_ENTRY_4(cls, num) (uint16_t)(4u << 12 | (cls) << 8 | (num)),
+#define EXC_ROW(NAME, cls, num, exc, ...) EXC_ENTRY_##exc(cls, num)
+static const uint16_t exc_rows[] = {MODCP_EVENT_ROWS(EXC_ROW)};
+#undef EXC_ROW
+#define EXC_CLASS_ROW(NAME, cls, num, ...) _Static_assert((cls) < 16u, #NAME ": class < 10H");
+MODCP_EVENT_ROWS(EXC_CLASS_ROW)
+#undef EXC_CLASS_ROW
+
 uint8_t modcp_event_exception(modcp_event_t ev)
 {
-    switch (ev) {
-#define EXC_ROW(NAME, cls, num, exc, ...)                                                         \
-    case MODCP_EV_##NAME: return (exc);
-        MODCP_EVENT_ROWS(EXC_ROW)
-#undef EXC_ROW
-    default: return MODCP_EXC_NONE;
+    for (size_t i = 0; i < sizeof exc_rows / sizeof exc_rows[0]; i++) {
+        if ((exc_rows[i] & 0x0FFFu) == ev) {
+            return (uint8_t)(exc_rows[i] >> 12);
+        }
     }
+    return MODCP_EXC_NONE;
 }
 
 /* A refused request (s->err, s->x.exc): record the event, count the exception (also

@@ -280,6 +280,24 @@ def quantity_limits(t, a, tmp):
          and err == "", "check spec-limits.ini: exit 0, no problems (%r %r)" % (out.strip(), err))
 
 
+def db_in_32bit_mode(t, a, tmp):
+    """Issue 27 item 4: [limits] db_in_32bit_mode = off (default, 003 §3.7) | on, one byte
+    of the record; configs/regs32.ini says off."""
+    with open(os.path.join(a.configs, "regs32.ini")) as f:
+        text = f.read()
+    rc1, l1, off, p = record_of(a, tmp, text)
+    rc2, l2, on, p = record_of(a, tmp, text, "limits.db_in_32bit_mode=on")
+    rc3, l3, dflt, p = record_of(a, tmp, text.replace("db_in_32bit_mode = off\n", ""))
+    diff = [i for i in range(min(len(off), len(on)) - 2) if off[i] != on[i]]
+    t.ok(rc1 == 0 and rc2 == 0 and rc3 == 0 and len(off) == len(on) and len(diff) == 1 and
+         off[diff[0]] == 0 and on[diff[0]] == 1 and dflt == off,
+         "db_in_32bit_mode: off (default) 0, on 1, one byte of the record (%r)" % diff)
+    rc, lines, rec, p = record_of(a, tmp, text, "limits.db_in_32bit_mode=maybe")
+    t.ok(rc == 2 and lines == ["--set:1: limits.db_in_32bit_mode = maybe: must be on or off "
+                               "(event (0E)2EH)"],
+         "db_in_32bit_mode = maybe: refused (%r)" % lines)
+
+
 def doc_tables(path):
     """The "| key | meaning | values | default | source | event |" table of each
     "## [section]" of docs/parameters.md, as modcp-conf doc-table prints them."""
@@ -390,6 +408,7 @@ def main():
     rs485_mode_select(t, a, tmp)
     ascii_frame(t, a, tmp)
     quantity_limits(t, a, tmp)
+    db_in_32bit_mode(t, a, tmp)
 
     # binary record
     binf = os.path.join(tmp, "default.bin")

@@ -711,6 +711,15 @@ static void test_event_rows_give_text_remedy_and_class(void **state)
     assert_string_not_equal(modcp_event_class_text(cls), "other event");
     MODCP_EVENT_ROWS(ROW)
 #undef ROW
+    /* one row per event word */
+#define WORD(NAME, ...) MODCP_EV_##NAME,
+    static const modcp_event_t words[] = {MODCP_EVENT_ROWS(WORD)};
+#undef WORD
+    for (size_t i = 0; i < sizeof words / sizeof words[0]; i++) {
+        for (size_t j = i + 1; j < sizeof words / sizeof words[0]; j++) {
+            assert_int_not_equal(words[i], words[j]);
+        }
+    }
     assert_string_equal(modcp_event_text(MODCP_EV_FB_NOT_RUNNING),
                         "data link not possible: communication FB not running");
     assert_string_equal(modcp_event_class_text(0x07), "send error");
