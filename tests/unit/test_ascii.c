@@ -300,6 +300,34 @@ static void test_line_errors(void **state)
     ascii_world_free(w);
 }
 
+/* RS485 two-wire in normal mode (Siemens driver manual 2009, Table 5-2, §5.6.5), ASCII: an
+ * error inside a frame (after ':') is reported, (08)0CH, the frame discarded; an error
+ * or BREAK between frames and a wrong start character are ignored. */
+static void test_rs485_normal_line_errors(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    ascii_example_params(&p);
+    p.iface = MODCP_IFACE_RS485;
+    p.rs485_sel = 1;
+    p.opmode = MODCP_OPMODE_NORMAL;
+    world_t *w = ascii_world_started(&p);
+    ascii_feed(w, ":050800", ASCII_CHAR_US);
+    modcp_cp_on_line_error(&w->cp, MODCP_LINE_PARITY, w->now_us += ASCII_CHAR_US);
+    expect_ascii_silence(w, "00A5C38B\r\n");
+    assert_int_equal(world_last_event(w), MODCP_EV_CHAR_ERROR);
+    assert_int_equal(w->cp.diag.buffer_len, 1);
+    world_run(w, 5000);
+    modcp_cp_on_line_error(&w->cp, MODCP_LINE_BREAK, w->now_us); /* between frames */
+    world_run(w, 5000);
+    ascii_feed(w, "x", ASCII_CHAR_US); /* a stray character: no (08)38H on RS485 */
+    world_run(w, 200000);
+    assert_int_equal(w->cp.diag.buffer_len, 1);
+    assert_false(w->cp.cpdiag.wire_break);
+    expect_ascii(w, ":05080000A5C38B\r\n", ":05080000A5C38B\r\n");
+    ascii_world_free(w);
+}
+
 /* character delay time (003 §3.2): a gap longer than the ASCII timeout inside a frame
  * discards it with (08)06H; a gap just shorter does not */
 static void test_character_delay_time(void **state)
@@ -721,6 +749,7 @@ int main(void)
         cmocka_unit_test(test_broadcast),
         cmocka_unit_test(test_sequence_error),
         cmocka_unit_test(test_frame_too_long),
+        cmocka_unit_test(test_rs485_normal_line_errors),
         cmocka_unit_test(test_input_delimiter),
         cmocka_unit_test(test_limits_bits),
         cmocka_unit_test(test_limits_registers),
