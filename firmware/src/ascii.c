@@ -31,7 +31,7 @@
  *   not 0-9 / A-F (lower case a-f is accepted), an odd number of hex characters
  *   before CR, or CR not followed by the delimiter ... (08)3AH
  *   LRC wrong, or fewer than 3 bytes (address, function, LRC) ... (08)36H
- *   more bytes than the receive buffer (MODCP_ADU_MAX) ... (08)16H
+ *   more than 2 x 252 data characters (003 §8.1: 255 bytes from address to LRC) ... (08)16H
  *   parity / framing / overrun / BREAK ... (08)0CH / 0DH, reported by link.c (normal
  *   mode only); the frame is discarded in both modes
  *   character delay time exceeded ... (08)06H
@@ -41,7 +41,7 @@
  * message"). With 7 data bits the eighth bit of a received character is masked.
  *
  * While a request is processed or its reply pending (BUSY / TURNAROUND / TX / EOF)
- * characters are not stored; a ':' followed by our address reports (08)37H, and the
+ * characters are not stored; a ':' followed by our address or 00 (broadcast) reports (08)37H, and the
  * frame is followed to its delimiter so that link.c knows whether a frame is still
  * arriving when the reply is out (RS485: our own echo while sending is ignored).
  *
@@ -60,6 +60,9 @@
 #define ASCII_COLON 0x3Au
 #define ASCII_CR 0x0Du
 #define ASCII_MIN_FRAME 3u /* address, function, LRC */
+/* The longest frame (003 §8.1): address, function, at most 2 x 252 data characters (252
+ * bytes), LRC; one more byte is an over-long frame, (08)16H. */
+#define ASCII_MAX_FRAME (1u + 1u + 252u + 1u)
 #define HEX_BAD 0xFFu
 
 /* The upper-case hex digit of d (0 ... 15). */
@@ -173,7 +176,7 @@ static void frame_byte(modcp_link_t *l, uint8_t b)
         l->state = MODCP_LINK_SKIP; /* another slave's frame: not checked, not answered */
         return;
     }
-    if (l->len < l->cap) { /* no buffer: cap 0 */
+    if (l->len < l->cap && l->len < ASCII_MAX_FRAME) { /* no buffer: cap 0 */
         l->buf[l->len] = b;
         l->len++;
     } else {
@@ -250,7 +253,7 @@ static void busy_track(modcp_link_t *l, uint8_t c, uint32_t now_us)
         return; /* not a hex digit, or half a pair */
     }
     a->count = 1;
-    if ((uint8_t)v == l->own_addr) {
+    if ((uint8_t)v == l->own_addr || v == 0) { /* for us or broadcast: see rtu_busy_track */
         link_event(l, MODCP_EV_SEQUENCE);
     }
 }
@@ -264,7 +267,7 @@ static void ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
             frame_start(l, now_us);
             break;
         }
-        if (!l->suppress) {
+        if (!l->suppress && !l->rs485) { /* RS485: between frames (000 §5.6.5) */
             link_event(l, MODCP_EV_ASCII_START);
         }
         l->state = MODCP_LINK_SKIP; /* ignore the rest of the stray characters */
@@ -295,6 +298,12 @@ static void ascii_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us
     discard(l, MODCP_EV_NONE); /* link.c reported it (normal mode) */
     l->fr.ascii.got_cr = false;
     l->last_us = now_us;
+}
+
+/* RS485 normal mode (link.c error_reported): a ':' started what is followed. */
+static bool ascii_in_frame(const modcp_link_t *l)
+{
+    return l->fr.ascii.in_frame;
 }
 
 /* EOF: hand the frame over. RX / SKIP: the character delay time has passed since the
@@ -347,6 +356,7 @@ static uint16_t ascii_encode(modcp_link_t *l, uint16_t pdu_len)
 
 static const modcp_framing_ops_t ascii_ops = {.on_byte = ascii_on_byte,
                                               .on_error = ascii_on_error,
+                                              .in_frame = ascii_in_frame,
                                               .on_timer = ascii_on_timer,
                                               .encode = ascii_encode};
 

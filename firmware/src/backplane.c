@@ -28,6 +28,8 @@
 #include "modcp/backplane.h"
 
 #include <string.h>
+
+#include "modcp/crc.h"
 #include "backplane_internal.h"
 
 #define BP_INIT_LEN 14u
@@ -81,6 +83,11 @@ _Static_assert(sizeof(modcp_bp_init_t) == BP_INIT_LEN &&
                    offsetof(modcp_bp_init_t, record_crc) == 12u,
                "modcp_bp_init_t is the INIT payload's layout");
 #endif
+
+uint16_t modcp_bp_record_id(const uint8_t *record, uint16_t len)
+{
+    return modcp_crc16(record, len > 2u ? len - 2u : len);
+}
 
 uint8_t modcp_bp_init_encode(const modcp_bp_init_t *i, uint8_t *d)
 {

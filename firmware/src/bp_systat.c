@@ -15,6 +15,12 @@ uint32_t modcp_bp_systat_request(modcp_backplane_t *bp)
     return req;
 }
 
+void modcp_bp_commloss_reset(modcp_backplane_t *bp)
+{
+    uint32_t n = atomic_load_explicit(&bp->commloss_reset, memory_order_relaxed) + 1u;
+    atomic_store_explicit(&bp->commloss_reset, n, memory_order_release);
+}
+
 bool modcp_bp_systat_result(const modcp_backplane_t *bp, uint32_t req, uint8_t out[16])
 {
     modcp_cp_status_t st;

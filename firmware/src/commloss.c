@@ -9,8 +9,11 @@
  * address (CRC good, addressed to us, not broadcast; answered normally, with an
  * exception, or not at all in listen-only mode) restarts the time. When the time runs
  * out: event (0E)60H once and MODCP_CPST_COMMLOSS in the backplane status area,
- * which the CPU side's user program reads with modcp_bp_read_status(). The next valid
- * request for our address clears the flag; the supervision stays armed.
+ * which the CPU side's user program reads with modcp_bp_read_status(). The flag stays
+ * latched, as the Altivar's resettable fault SLF1 (002 §7), until the CPU side resets it
+ * (modcp_bp_commloss_reset, seen at the CP's next poll; the time then starts afresh) or
+ * new parameters arrive; with params.commloss_auto the next valid request for our
+ * address clears it instead. The supervision stays armed either way.
  * Like the Altivar (002 §7 pitfall), any request keeps it alive, also reads.
  * The comm-loss state is x->cl_lost and nowhere else: cp.c publishes
  * MODCP_CPST_COMMLOSS from it, the console reads that flag of the status area. */
@@ -39,8 +42,15 @@ void modcp_ext_reset(modcp_ext_t *x, modcp_diag_t *d)
 }
 
 void modcp_commloss_poll(modcp_ext_t *x, const modcp_params_t *p, modcp_diag_t *d,
-                         uint32_t now_us)
+                         uint32_t reset, uint32_t now_us)
 {
+    if (reset != x->cl_reset_seen) { /* the CPU side reset it (modcp_bp_commloss_reset) */
+        x->cl_reset_seen = reset;
+        if (x->cl_lost) {
+            x->cl_lost = false;
+            x->cl_last_us = now_us;
+        }
+    }
     if (p->commloss_ms == 0u) {
         x->cl_armed = false;
         x->cl_lost = false;

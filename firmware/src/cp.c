@@ -21,71 +21,23 @@
 #include "link_internal.h"
 #include "params_internal.h"
 #include "pdu_internal.h"
+#include "cp_signals_internal.h"
 #include "signals_internal.h"
-
-/* ---- RS232 automatic secondary signals (signals.c), or none in this build ------ */
-
-#if MODCP_WITH_RS232_SIGNALS
-static bool sig_enabled(const modcp_cp_t *cp)
-{
-    return cp->sig.enabled;
-}
-static bool sig_rx_allowed(const modcp_cp_t *cp)
-{
-    return modcp_sig_rx_allowed(&cp->sig);
-}
-static void sig_on_rx(modcp_cp_t *cp, uint32_t now_us)
-{
-    modcp_sig_on_rx(&cp->sig, &cp->link, now_us);
-}
-/* Disabled signals are idle (modcp_sig_configure / _disable): no timer of their own,
- * transmission complete goes to the link; so the calls are skipped then. */
-static bool sig_on_timer(modcp_cp_t *cp, uint32_t now_us)
-{
-    return cp->sig.enabled && modcp_sig_on_timer(&cp->sig, &cp->link, now_us);
-}
-static bool sig_on_tx_done(modcp_cp_t *cp, uint32_t now_us)
-{
-    return cp->sig.enabled && modcp_sig_on_tx_done(&cp->sig, &cp->link, now_us);
-}
-#else
-/* Built without RS232 signals: reception always allowed, no timer or transmit
- * complete of their own, RTS / DTR never driven (rs232_auto is refused, params.c). */
-static bool sig_enabled(const modcp_cp_t *cp)
-{
-    (void)cp;
-    return false;
-}
-static bool sig_rx_allowed(const modcp_cp_t *cp)
-{
-    (void)cp;
-    return true;
-}
-static void sig_on_rx(modcp_cp_t *cp, uint32_t now_us)
-{
-    (void)cp;
-    (void)now_us;
-}
-static bool sig_on_timer(modcp_cp_t *cp, uint32_t now_us)
-{
-    (void)cp;
-    (void)now_us;
-    return false;
-}
-static bool sig_on_tx_done(modcp_cp_t *cp, uint32_t now_us)
-{
-    (void)cp;
-    (void)now_us;
-    return false;
-}
-#endif
 
 /* ---- line discipline and diagnostics (signals.c, leds.c, cpdiag.c) ---------- */
 
-/* SF: not ready (no / bad parameters, FB not initialised) or a wire break. */
+/* SF (004 §7.2, 003 §10.1): no or invalid parameters (on at power-on until the CP is
+ * parameterised), a wire break, or RS232 automatic signals with CTS / DSR not asserted.
+ * An FB not (yet) initialised does not light it: the CP is parameterised and fine, the
+ * requests get exception 04 / (0E)56H. */
 static bool sf_on(const modcp_cp_t *cp)
 {
-    return !modcp_cp_ready(cp) || cp->cpdiag.wire_break;
+#if MODCP_WITH_RS232_SIGNALS
+    if (modcp_sig_fault(&cp->sig)) {
+        return true;
+    }
+#endif
+    return !cp->configured || cp->cpdiag.wire_break;
 }
 
 /* Hand a reply to the link; with RS232 automatic signals it waits for RTS / CTS. */
@@ -106,11 +58,6 @@ static void line_reply(modcp_cp_t *cp, uint16_t out_len, uint32_t now_us)
 static void line_params(modcp_cp_t *cp, bool ok, int irq)
 {
     modcp_cpdiag_params(&cp->cpdiag, ok, irq);
-#if MODCP_WITH_RS232_SIGNALS
-    if (ok) {
-        modcp_sig_configure(&cp->sig, &cp->params);
-    }
-#endif
 }
 
 /* CP task: SYSTAT requests of the CPU side, LEDs (from the link's receive / transmit
@@ -120,7 +67,8 @@ static void line_poll(modcp_cp_t *cp, uint32_t now_us)
     /* (the poll always has its backplane: modcp_job_poll and publish() use it too) */
     uint32_t req = atomic_load_explicit(&cp->job.bp->systat_req, memory_order_acquire);
     if (req != cp->cpdiag.systat_ack) { /* a new SYSTAT request */
-        modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, modcp_cp_ready(cp));
+        /* byte 0 (004 §7.4): RUN once parameterised, fault without valid parameters */
+        modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, cp->configured);
     }
     if (cp->job.new_errors != 0u) { /* new backplane errors */
         modcp_cpdiag_backplane(&cp->diag, cp->job.new_errors);
@@ -274,8 +222,8 @@ void modcp_cp_on_line_error(modcp_cp_t *cp, uint8_t line_errors, uint32_t now_us
         return;
     }
     sig_on_rx(cp, now_us);
-    modcp_cpdiag_line_error(&cp->cpdiag, line_errors, cp->link.enabled && !cp->link.suppress);
-    modcp_link_on_error(&cp->link, line_errors, now_us);
+    bool reported = modcp_link_on_error(&cp->link, line_errors, now_us);
+    modcp_cpdiag_line_error(&cp->cpdiag, line_errors, reported); /* wire break */
     cp->err_mark_us = cp->link.last_us; /* a character after this one ends a wire break */
     cp->published = false;
 }
@@ -312,7 +260,7 @@ void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
  * receive (the signals' timer), unless they leave it to the link. */
 static MODCP_NOINLINE void tx_done_signals(modcp_cp_t *cp, uint32_t now_us)
 {
-    modcp_link_tx_complete(&cp->link); /* TXD: the last stop bit is out */
+    modcp_link_tx_complete(&cp->link, now_us); /* TXD: the last stop bit is out */
     if (!sig_on_tx_done(cp, now_us)) {
         modcp_link_on_tx_done(&cp->link, now_us);
     }
@@ -348,20 +296,77 @@ static void unconfigure(modcp_cp_t *cp)
 /* A PARAMS record starts and will be stored in the frame buffer: nothing may use the
  * buffer any more. A reply on the line is sent from it, so the record waits until
  * its transmission is complete (false); a request being received or processed, or a
- * reply not yet started, is dropped. */
+ * reply not yet started, is dropped. The line is off until the record is taken; the
+ * rest (FB initialised, diagnostics) stays until take_params finds the record changed. */
 static bool params_start(modcp_cp_t *cp)
 {
     if (cp->link.state == MODCP_LINK_TX) {
         return false;
     }
-    unconfigure(cp);
+    if (cp->request_pending) {
+        modcp_job_abort(&cp->job);
+        cp->request_pending = false;
+    }
+    modcp_link_disable(&cp->link);
+#if MODCP_WITH_RS232_SIGNALS
+    modcp_sig_disable(&cp->sig);
+#endif
+    cp->configured = false;
+    cp->publish_all = true;
     return true;
 }
 #endif
 
-/* A PARAMS record arrived: validate and apply, or stay not ready. */
+/* The receive-line preset in force (000 Table 5-8): `default` is BREAK detection on
+ * RS422, HIGH on RS485 (the manual's recommendation for the bus), none on RS232. */
+static uint8_t rx_preset(const modcp_params_t *p)
+{
+    if (p->rx_preset != (uint8_t)MODCP_RXP_DEFAULT) {
+        return p->rx_preset;
+    }
+    return p->iface == (uint8_t)MODCP_IFACE_RS485   ? (uint8_t)MODCP_RXP_HIGH
+           : p->iface == (uint8_t)MODCP_IFACE_RS422 ? (uint8_t)MODCP_RXP_BREAK
+                                                    : (uint8_t)MODCP_RXP_NONE;
+}
+
+/* The parameters in force, on the line: link, job limits, RS232 signals, receive-line
+ * preset. */
+static void configure(modcp_cp_t *cp)
+{
+    const modcp_hal_t *hal = cp->link.hal;
+    if (hal->set_rx_preset != NULL) {
+        hal->set_rx_preset(hal->ctx, rx_preset(&cp->params));
+    }
+    cp->configured = true;
+    modcp_job_configure(&cp->job, modcp_params_job_limit(&cp->params),
+                        (uint32_t)cp->params.cpu_timeout_ms * 1000u);
+    modcp_link_configure(&cp->link, &cp->params);
+#if MODCP_WITH_EXTENDED && MODCP_WITH_ASCII
+    cp->link.ascii_delim = cp->ext.ascii_delimiter; /* FC08 sub 03's, kept */
+#endif
+#if MODCP_WITH_RS232_SIGNALS
+    modcp_sig_configure(&cp->sig, &cp->params);
+#endif
+}
+
+/* A PARAMS record arrived: validate and apply, or stay not ready. The record the CP
+ * holds already (the same identity and length: the CPU side re-sends it at an FB
+ * restart, 004 §4.2, §5.5) is no re-parameterisation (VIPA CP 341 manual §7.2, (00)04H
+ * "parameters already on the CP"): the request in progress, the diagnostic buffer, a
+ * wire break, comm-loss arming and listen-only mode stay; with the record in the frame
+ * buffer (features.h) the request in progress was dropped and the line comes back on. */
 static MODCP_NOINLINE void take_params(modcp_cp_t *cp)
 {
+    const uint8_t *record = cp->job.msgbuf; /* cp->record, or cp->buf (features.h) */
+    uint16_t id = modcp_bp_record_id(record, cp->job.msglen);
+    if (cp->param_event == MODCP_EV_NONE && id == cp->record_crc &&
+        cp->job.msglen == cp->record_len) {
+        if (!cp->configured) { /* MODCP_SHARED_PARAMS_BUFFER: params_start stopped it */
+            configure(cp);
+        }
+        modcp_diag_event(&cp->diag, MODCP_EV_PARAMS_SAME); /* (00)04H */
+        return;
+    }
     unconfigure(cp);
     modcp_diag_clear_buffer(&cp->diag); /* 001 §8.3: re-parameterisation clears it */
 #if MODCP_WITH_EXTENDED
@@ -370,13 +375,15 @@ static MODCP_NOINLINE void take_params(modcp_cp_t *cp)
 
     /* decoded and validated in place: the CP is not configured while it runs, and a
      * record that does not validate whole leaves the defaults (below) */
-    const uint8_t *record = cp->job.msgbuf; /* cp->record, or cp->buf (features.h) */
     modcp_event_t ev = modcp_params_decode(record, cp->job.msglen, &cp->params);
     int irq = -1;
     modcp_event_t warning = MODCP_EV_NONE;
     if (ev == MODCP_EV_NONE) {
         irq = cp->params.diag_irq;
         ev = modcp_params_apply(&cp->params, &cp->params, &warning);
+    }
+    if (ev == MODCP_EV_NONE) {
+        modcp_diag_event(&cp->diag, MODCP_EV_PARAMS_TAKEN); /* (00)03H, 001 §7.2 */
     }
     modcp_diag_event(&cp->diag, warning);
     cp->param_event = ev;
@@ -386,11 +393,9 @@ static MODCP_NOINLINE void take_params(modcp_cp_t *cp)
         line_params(cp, false, irq);
         return;
     }
-    cp->record_crc = modcp_crc16(record, cp->job.msglen);
-    cp->configured = true;
-    modcp_job_configure(&cp->job, modcp_params_job_limit(&cp->params),
-                        (uint32_t)cp->params.cpu_timeout_ms * 1000u);
-    modcp_link_configure(&cp->link, &cp->params);
+    cp->record_crc = id;
+    cp->record_len = cp->job.msglen;
+    configure(cp);
     line_params(cp, true, irq);
 }
 
@@ -533,8 +538,10 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
     line_poll(cp, now_us);
 #if MODCP_WITH_EXTENDED
     /* comm-loss time; the flags are published from ext / diag (ext_flags) */
-    if (cp->params.commloss_ms != 0u || cp->ext.cl_armed || cp->ext.cl_lost) {
-        modcp_commloss_poll(&cp->ext, &cp->params, &cp->diag, now_us);
+    uint32_t reset = atomic_load_explicit(&cp->job.bp->commloss_reset, memory_order_acquire);
+    if (cp->params.commloss_ms != 0u || cp->ext.cl_armed || cp->ext.cl_lost ||
+        reset != cp->ext.cl_reset_seen) {
+        modcp_commloss_poll(&cp->ext, &cp->params, &cp->diag, reset, now_us);
     }
 #endif
     publish(cp);

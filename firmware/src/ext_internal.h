@@ -14,12 +14,15 @@ void modcp_ext_restart(modcp_ext_t *x, modcp_diag_t *d, bool clear_log);
 void modcp_ext_clear_counters(modcp_diag_t *d);
 /* Diagnostic register (FC08 sub 02): latched bits plus the live ones. */
 uint16_t modcp_ext_diag_register(const modcp_ext_t *x, const modcp_diag_t *d);
-/* A valid request for our address (not broadcast) arrived: restart the time, clear
- * the comm-loss state. */
-static inline void modcp_commloss_request(modcp_ext_t *x, uint32_t now_us)
+/* A valid request for our address (not broadcast) arrived: restart the time; clear the
+ * comm-loss state when it is not latched (params.commloss_auto). */
+static inline void modcp_commloss_request(modcp_ext_t *x, const modcp_params_t *p,
+                                          uint32_t now_us)
 {
     x->cl_last_us = now_us;
-    x->cl_lost = false;
+    if (p->commloss_auto != 0u) {
+        x->cl_lost = false;
+    }
 }
 /* An accepted (executed, no exception) write for our address: arms the supervision. */
 static inline void modcp_commloss_write(modcp_ext_t *x, const modcp_params_t *p,
@@ -32,10 +35,11 @@ static inline void modcp_commloss_write(modcp_ext_t *x, const modcp_params_t *p,
     x->cl_lost = false;
     x->cl_last_us = now_us;
 }
-/* Expiry check (the CP's poll): reports MODCP_EV_COMMLOSS once per loss. The state
- * is x->cl_lost alone; the CP publishes MODCP_CPST_COMMLOSS from it. */
+/* Expiry check (the CP's poll): reports MODCP_EV_COMMLOSS once per loss; reset: the
+ * backplane's commloss_reset count (a change clears a latched loss). The state is
+ * x->cl_lost alone; the CP publishes MODCP_CPST_COMMLOSS from it. */
 void modcp_commloss_poll(modcp_ext_t *x, const modcp_params_t *p, modcp_diag_t *d,
-                         uint32_t now_us);
+                         uint32_t reset, uint32_t now_us);
 /* True when the scanner is on (function set extended, scan_count > 0) and the register
  * range [reg, reg + qty) touches it (qty 0: never). */
 bool modcp_scan_touches(const modcp_params_t *p, uint16_t reg, uint16_t qty);

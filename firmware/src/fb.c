@@ -3,7 +3,9 @@
  *
  * One call per CPU cycle does, in this order:
  *   1. CP_START edge: clear the outputs (ERROR_NR / ERROR_INFO included) and start the
- *      initialisation (PARAMS + INIT); a failed initialisation resets CP_START (in/out);
+ *      initialisation (INIT, preceded by PARAMS unless the CP holds the record: it
+ *      acknowledged an INIT for it before); a failed initialisation resets CP_START
+ *      (in/out);
  *   2. continue pushing a pending REPLY (as many blocks as there are free slots);
  *   3. read CP blocks in place: INIT_ACK while waiting for it; a JOB header is checked
  *      completely (operation, amount, area, range) before any data: a READ is answered
@@ -26,20 +28,19 @@
  * longer job whenever the other side keeps pace during the call.
  *
  * Job validation by the FB (004 §7.6), replied as (0E)57H + ERROR_NR and shown on
- * ERROR_NR / ERROR_INFO (they stay until the next CP_START edge):
- *   10 unknown op (INFO = op) · 12 count or len 0 (INFO = count) · 13 len above
- *   MODCP_FB_JOB_MAX, or fewer data bytes than the bit count needs (INFO = len / count),
- *   or a MASKWRITE (FC22) that is not 4 data bytes on one word (INFO = len)
- *   · 18 area not allowed for the op: READ I Q M T C DB, WRITE / MASKWRITE Q M DB,
- *   BITWRITE M Q DB (INFO 0) · 11 BITWRITE start bit > 7 (INFO = start byte) · 14 / 15 BITWRITE past
- *   the end of M / Q (INFO = last byte addressed).
+ * ERROR_NR / ERROR_INFO (they stay until the next CP_START edge): 10 unknown op (INFO =
+ * op) · 12 count or len 0 (INFO = count) · 13 len above MODCP_FB_JOB_MAX, or fewer data
+ * bytes than the bit count needs (INFO = len / count), or a MASKWRITE (FC22) that is not
+ * 4 data bytes on one word (INFO = len) · 18 area not allowed for the op: READ I Q M T C
+ * DB, WRITE / MASKWRITE Q M DB, BITWRITE M Q DB (INFO 0) · 11 BITWRITE start bit > 7
+ * (INFO = start byte) · 14 / 15 BITWRITE past the end of M / Q (INFO = last byte).
  * Other replies: (0E)56H FB not in RUN, (0E)3AH BITWRITE with the work DB missing,
  * (0E)38H / (0E)39H from plcmem (checked on the header: nothing is written), (0E)33H
  * write data not as announced (a data block of another size than announced, a header
  * flagged LAST for a write without exactly its data after it, or not LAST for a read:
- * nothing more of the job is written). A job whose tag is the backplane's abort_tag was given up by the CP:
- * nothing (more) of it is executed and it is not answered; a job that loses a block
- * (sequence gap) is not continued and not answered (the CP times out). */
+ * nothing more of the job is written). A job whose tag is the backplane's abort_tag was
+ * given up by the CP: nothing (more) of it is executed and it is not answered; a job that
+ * loses a block (sequence gap) is not continued and not answered (the CP times out). */
 #include "modcp/fb.h"
 
 #include <stddef.h>
@@ -62,6 +63,7 @@ void modcp_fb_init(modcp_fb_t *fb, modcp_backplane_t *bp, modcp_plcmem_t *mem,
     fb->start_time_ms = start_time_ms;
     fb->state = MODCP_FBST_STOPPED;
     fb->params_pending = fb->record_len > 0u; /* the CPU sends the CP parameters at start */
+    fb->err_changed = true; /* the first call writes ERROR_NR / ERROR_INFO (0) */
 }
 
 static bool put_block(modcp_fb_t *fb, uint8_t kind, uint8_t flags, uint8_t tag,
@@ -155,6 +157,7 @@ static void reply_fb_error(modcp_fb_t *fb, uint16_t error_nr, uint32_t info)
 {
     fb->out.error_nr = error_nr;
     fb->out.error_info = (uint16_t)(info > 0xFFFFu ? 0xFFFFu : info);
+    fb->err_changed = true;
     reply(fb, MODCP_EV_FB_ERROR, error_nr, 0);
 }
 
@@ -414,6 +417,7 @@ static void rx_ack(modcp_fb_t *fb, const modcp_block_t *b)
 {
     if (fb->state == MODCP_FBST_INIT_WAIT) {
         modcp_event_t ev = b->len >= 2u ? modcp_bp_get16(b->data) : MODCP_EV_XFER_STATE;
+        fb->cp_has_params = ev == MODCP_EV_NONE;
         if (ev == MODCP_EV_NONE) {
             fb->state = MODCP_FBST_RUN;
             fb->out.cp_start_ok = true;
@@ -487,10 +491,11 @@ static void rx_blocks(modcp_fb_t *fb)
 
 /* ---- initialisation --------------------------------------------------------------- */
 
-static void start_attempt(modcp_fb_t *fb, uint32_t now_ms)
+/* An attempt: PARAMS (with_params) then INIT. */
+static void start_attempt(modcp_fb_t *fb, uint32_t now_ms, bool with_params)
 {
     fb->state = MODCP_FBST_INIT_SEND;
-    fb->params_pending = fb->record_len > 0u;
+    fb->params_pending = with_params && fb->record_len > 0u;
     fb->params_pos = 0;
     fb->init_sent = false;
     fb->retry_t0_ms = now_ms;
@@ -521,7 +526,7 @@ static void send_init(modcp_fb_t *fb)
     modcp_bp_init_t init;
     modcp_plcmem_areas(fb->mem, &init.areas); /* the real area sizes */
     init.areas.work_db = fb->work_db;
-    init.record_crc = fb->record_len > 0u ? modcp_crc16(fb->record, fb->record_len) : 0u;
+    init.record_crc = fb->record_len > 0u ? modcp_bp_record_id(fb->record, fb->record_len) : 0u;
     uint8_t d[MODCP_BLOCK_SIZE];
     uint8_t n = modcp_bp_init_encode(&init, d);
     if (put_block(fb, MODCP_BP_INIT, MODCP_BLK_FIRST | MODCP_BLK_LAST, 0, d, n)) {
@@ -546,11 +551,13 @@ static bool run_init(modcp_fb_t *fb, uint32_t now_ms)
         fb->out.cp_start_error = true;
         fb->out.error_nr = MODCP_FB_ERR_INIT;
         fb->out.error_info = fb->init_event;
+        fb->err_changed = true;
         return false;
     }
     if (fb->state == MODCP_FBST_INIT_WAIT &&
         (uint32_t)(now_ms - fb->retry_t0_ms) >= MODCP_FB_RETRY_MS) {
-        start_attempt(fb, now_ms);
+        fb->cp_has_params = false; /* not ready or silent: the record goes again */
+        start_attempt(fb, now_ms, true);
     }
     if (fb->state == MODCP_FBST_INIT_SEND && push_params(fb) && !fb->init_sent) {
         send_init(fb);
@@ -564,9 +571,11 @@ void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint3
     fb->out.cp_start_ndr = false;
     if (start && !fb->last_start) {
         memset(&fb->out, 0, sizeof fb->out);
+        fb->err_changed = true;
         fb->init_event = MODCP_EV_NONE;
         fb->init_t0_ms = now_ms;
-        start_attempt(fb, now_ms);
+        /* the PARAMS of the first call may still be going out (params_pending) */
+        start_attempt(fb, now_ms, !fb->cp_has_params);
     }
     fb->last_start = start;
 
@@ -579,6 +588,13 @@ void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint3
     }
 
     if (out != NULL) {
-        *out = fb->out;
+        out->cp_start_ok = fb->out.cp_start_ok;
+        out->cp_start_error = fb->out.cp_start_error;
+        out->cp_start_ndr = fb->out.cp_start_ndr;
+        if (fb->err_changed) { /* else the user program's value stays (it may clear it) */
+            out->error_nr = fb->out.error_nr;
+            out->error_info = fb->out.error_info;
+            fb->err_changed = false;
+        }
     }
 }

@@ -139,7 +139,9 @@ void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
     stop(l);
     l->own_addr = p->slave_addr;
     l->rs485 = p->iface == (uint8_t)MODCP_IFACE_RS485;
-    l->suppress = p->opmode == (uint8_t)MODCP_OPMODE_SUPPRESS || l->rs485;
+    /* two-wire RS485 is interference suppression unless its mode selection is on (000
+     * Table 5-2; params.c refuses mode = normal without it) */
+    l->suppress = p->opmode == (uint8_t)MODCP_OPMODE_SUPPRESS || (l->rs485 && p->rs485_sel == 0u);
     l->t35_us = modcp_params_t35_us(p);
     l->t15_us = p->t15_check != 0u ? modcp_params_t15_us(p) : 0u;
     l->char_us = modcp_params_char_us(p);
@@ -199,21 +201,41 @@ void modcp_link_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
     block_bytes(l, b, n, end_us); /* for speed out of line: the RTU path needs no stack frame */
 }
 
-void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
+/* Whether a line error is reported ((08)0CH / (08)0DH): in normal mode; never in
+ * interference suppression (the frame is discarded silently); on two-wire RS485 in
+ * normal mode (mode selection on, 000 Table 5-2) only inside a frame — ours before its
+ * CRC is complete, or another slave's — never before, after or between frames (000
+ * §5.6.5: "all transmission errors or BREAKs detected before and after received
+ * telegrams are ignored ... a BREAK level during the pauses too"). */
+static bool error_reported(const modcp_link_t *l, uint32_t now_us)
+{
+    if (l->suppress) {
+        return false;
+    }
+    if (!l->rs485) {
+        return true;
+    }
+    return (l->state == MODCP_LINK_RX || l->state == MODCP_LINK_SKIP) &&
+           now_us - l->last_us < LINK_SILENCE(l) && l->ops->in_frame(l);
+}
+
+bool modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
     if (!l->enabled || line_errors == 0u) {
-        return;
+        return false;
     }
     const bool brk = (line_errors & MODCP_LINE_BREAK) != 0u;
     uint16_t *n = brk ? &l->diag->breaks : &l->diag->char_errors;
     *n = (uint16_t)(*n + 1u);
-    if (!l->suppress) {
+    const bool report = error_reported(l, now_us);
+    if (report) {
         link_event(l, brk ? MODCP_EV_BREAK : MODCP_EV_CHAR_ERROR);
     }
     if ((line_errors & MODCP_LINE_OVERRUN) != 0u) {
         link_count(l, MODCP_CNT_CHAR_OVERRUN);
     }
     l->ops->on_error(l, line_errors, now_us);
+    return report;
 }
 
 bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
@@ -271,14 +293,18 @@ void modcp_link_done(modcp_link_t *l)
     resume_rx(l, 0, false);
 }
 
-void modcp_link_tx_complete(modcp_link_t *l)
+void modcp_link_tx_complete(modcp_link_t *l, uint32_t now_us)
 {
     l->tx_on = false;
+    l->tx_end_us = now_us;
 }
 
 void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us)
 {
-    l->tx_on = false;
+    if (l->tx_on) { /* (with RS232 signals: already at modcp_link_tx_complete) */
+        l->tx_on = false;
+        l->tx_end_us = now_us;
+    }
     if (l->state != MODCP_LINK_TX) {
         return;
     }

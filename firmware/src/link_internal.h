@@ -21,6 +21,10 @@ typedef struct modcp_framing_ops {
     void (*on_byte)(modcp_link_t *l, uint8_t b, uint32_t now_us);
     /* A line error in place of a character (counted and reported by link.c). */
     void (*on_error)(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
+    /* RS485 two-wire in normal mode only (link.c error_reported): in RX / SKIP, less than
+     * the silence after the last character, is a frame still arriving (not complete:
+     * RTU our frame with its CRC in, ASCII stray characters are no frame)? */
+    bool (*in_frame)(const modcp_link_t *l);
     /* A timer expiry the link did not claim: in RX / SKIP only once the silence has
      * passed since the last character (the frame has ended). True: a frame for us is
      * in *f and the state is BUSY. */
@@ -152,7 +156,9 @@ void modcp_link_disable(modcp_link_t *l);
 void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
 /* n characters back to back, the last one ended at end_us (modcp_cp_on_rx_block). */
 void modcp_link_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us);
-void modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
+/* Returns whether it was reported ((08)0CH / (08)0DH): never in interference
+ * suppression, on RS485 two-wire in normal mode only inside a frame. */
+bool modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
 /* Timer expiry. Returns true when a valid frame for us or broadcast is ready in *f (f
  * never NULL); the link is then BUSY until modcp_link_reply() or modcp_link_done(). */
 bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f);
@@ -165,7 +171,7 @@ void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us);
 /* Transmission complete of the last stop bit, recorded for the TXD LED; with RS232
  * automatic signals the link receives again only later (modcp_link_on_tx_done at RTS
  * OFF). */
-void modcp_link_tx_complete(modcp_link_t *l);
+void modcp_link_tx_complete(modcp_link_t *l, uint32_t now_us);
 /* RS232 automatic signals (signals.c): a reply held in TURNAROUND is sent now (send)
  * or dropped (!send, back to receiving). */
 void modcp_link_tx_release(modcp_link_t *l, bool send, uint32_t now_us);

@@ -460,6 +460,9 @@ static CHECK_INLINE bool custom_ok(const modcp_params_t *p, const modcp_param_ro
     case MODCP_PF_BAUD: return baud_ok(*v);
     case MODCP_PF_DATA_BITS: return p->framing == MODCP_FRAMING_ASCII || *v == 8u;
     case MODCP_PF_RS232_AUTO: return *v == 0u || p->iface == MODCP_IFACE_RS232;
+    case MODCP_PF_RTS_ON_DELAY:
+    case MODCP_PF_RTS_OFF_DELAY: return *v % 10u == 0u; /* 001 §1.6: steps of 10 ms */
+    case MODCP_PF_RX_PRESET: return *v != MODCP_RXP_BREAK || p->iface != MODCP_IFACE_RS485;
     case MODCP_PF_JOB_LIMIT: return *v <= model_limit(p->cpu_model);
     case MODCP_PF_SCANNER: return MODCP_PARAM_WIDTH(r) != 1u || scan_count_ok(p);
 #if MODCP_WITH_EXTENDED

@@ -137,7 +137,9 @@ typedef struct {
       "(interference suppression, the 2009 manual's modem mode) silently discards a frame with " \
       "an error, starts a frame at the own address and ignores errors after the CRC. With "     \
       "`interface.type = rs485` (two-wire) the default is `suppress`, and `normal` needs "      \
-      "`rs485_mode_select = on`", /* custom: RS485 needs rs485_sel for normal */                 \
+      "`rs485_mode_select = on`; it then reports errors and BREAK inside a frame and ignores "  \
+      "those before, after and between frames (000 §5.6.5)",                                    \
+      /* custom: RS485 needs rs485_sel for normal */                                              \
       "`normal`, `suppress` (`interference_suppression`, `modem`)",                               \
       "004 §2.2, 000 Table 5-2")                                                                  \
     S(f_mul, 1, MODCP_PF_FMUL, 0, 1, 10, 1, MODCP_EV_FMUL, MODCP_PF_WARN, "protocol", "f_mul",    \
@@ -161,8 +163,9 @@ typedef struct {
       "1 … 6500 (outside: warning, the CP runs with 1000)", "003")                                \
     S(iface, 1, MODCP_PF_IFACE, 0, 0, 2, MODCP_IFACE_RS232, MODCP_EV_PARAM_RECORD, 0,             \
       "interface", "type", ENUM, iface, "must be rs232, rs422 or rs485",                          \
-      "physical interface; `rs485` = two-wire half duplex with direction switching (behaves "    \
-      "like interference suppression)",                                                           \
+      "physical interface; `rs485` = two-wire half duplex with direction switching (errors "     \
+      "and BREAK between frames ignored; interference suppression unless "                      \
+      "`rs485_mode_select = on` and `mode = normal`)",                                          \
       "`rs232`, `rs422`, `rs485`", "004 §2.3")                                                    \
     S(turnaround_ms, 2, MODCP_PF_TURNAROUND, 0, 0, 100, 0, MODCP_EV_PARAM_RECORD, 0,              \
       "interface", "turnaround_ms", NUM, none, "must be 0..100 ms",                               \
@@ -175,12 +178,25 @@ typedef struct {
       "must be on or off, and on only with interface.type = rs232",                              \
       "RS232 automatic secondary signals (RTS/CTS/DTR/DSR)", /* custom: RS232 only */            \
       "`on`, `off`; on only with `type = rs232`", "004 §2.4, 001")                                \
-    S(rts_on_delay_ms, 2, MODCP_PF_RTS_ON_DELAY, 0, 0, 65535, 0, MODCP_EV_PARAM_RECORD, 0,        \
-      "interface", "rts_on_delay_ms", NUM, none, "must be 0..65535 ms",                           \
-      "data output waiting time: RTS on → CTS expected", "0 … 65535", "004 §2.4")                 \
-    S(rts_off_delay_ms, 2, MODCP_PF_RTS_OFF_DELAY, 0, 0, 65535, 0, MODCP_EV_PARAM_RECORD, 0,      \
-      "interface", "rts_off_delay_ms", NUM, none, "must be 0..65535 ms",                          \
-      "time to RTS off after the last character", "0 … 65535", "004 §2.4")                        \
+    S(rts_on_delay_ms, 2, MODCP_PF_RTS_ON_DELAY, 0, 0, 65530, 10, MODCP_EV_PARAM_RECORD,          \
+      MODCP_PF_CUSTOM, "interface", "rts_on_delay_ms", NUM, none,                                 \
+      "must be 0..65530 ms in steps of 10 ms",                                                    \
+      "data output waiting time: RTS on → CTS expected", /* custom: steps of 10 ms */          \
+      "0 … 65530, steps of 10 ms", "001 §1.6, §7.1 (004 §2.4, 000: no values)")                  \
+    S(rts_off_delay_ms, 2, MODCP_PF_RTS_OFF_DELAY, 0, 0, 65530, 10, MODCP_EV_PARAM_RECORD,        \
+      MODCP_PF_CUSTOM, "interface", "rts_off_delay_ms", NUM, none,                                \
+      "must be 0..65530 ms in steps of 10 ms",                                                    \
+      "time to RTS off after the last character", /* custom: steps of 10 ms */                  \
+      "0 … 65530, steps of 10 ms", "001 §1.6, §7.1 (004 §2.4, 000: no values)")                  \
+    S(rx_preset, 1, MODCP_PF_RX_PRESET, 0, 0, 3, MODCP_RXP_DEFAULT, MODCP_EV_PARAM_RECORD,        \
+      MODCP_PF_CUSTOM, "interface", "receive_preset", ENUM, rxpreset,                             \
+      "must be default, none, break or high; break only with type = rs232 or rs422",             \
+      "receive-line preset of RS422 / RS485 (through the HAL's `set_rx_preset`): `break` = "    \
+      "R(A) 5 V / R(B) 0 V, a broken line is a BREAK level ((08)0DH, wire break); `high` = "     \
+      "R(A) 0 V / R(B) 5 V, a broken line looks idle and BREAK cannot be recognised; `none` = "  \
+      "no bias (the partner provides it); `default` = `break` on RS422, `high` on RS485",       \
+      /* custom: break not on RS485 (000 Table 5-8 note 1) */                                    \
+      "`default`, `none`, `break`, `high`", "000 Table 5-8, 004 §2.3")                           \
     G(coils, MODCP_COIL_WINDOWS, modcp_bitwin_t, 5, MODCP_PF_COILS)                               \
     M(modcp_bitwin_t, area, 1, MODCP_COIL_WINDOWS)                                                \
     M(modcp_bitwin_t, from, 2, MODCP_COIL_WINDOWS)                                                \
@@ -226,7 +242,8 @@ typedef struct {
       "rs485_mode_select", BOOL, none, "must be on or off",                                       \
       "enable operating-mode selection for RS485: `off` = two-wire RS485 runs in interference " \
       "suppression (modem) mode only, `mode = normal` there is refused with (0E)22H; `on` "     \
-      "allows `mode = normal` on two-wire RS485 too",                                            \
+      "allows `mode = normal` on two-wire RS485 too: errors inside a frame are reported "       \
+      "((08)0CH / (08)0DH, wire break)",                                                         \
       "`on`, `off`", "000 Table 5-2")                                                             \
     S(qty_limits, 1, MODCP_PF_QTY_LIMITS, 0, 0, 1, MODCP_QLIMITS_MANUAL, MODCP_EV_PARAM_RECORD,   \
       0, "protocol", "quantity_limits", ENUM, qlimits, "must be manual or spec",                  \
@@ -260,6 +277,12 @@ typedef struct {
       "comm-loss supervision: no valid request for our address within this time (armed after "   \
       "the first master write) raises an event and a flag the CPU side sees",                    \
       "0 (off) or 100 … 30000", "002 §7")                                                         \
+    S(commloss_auto, 1, MODCP_PF_COMMLOSS_AUTO, 0, 0, MODCP_WITH_EXTENDED, 0,                     \
+      MODCP_EV_PARAM_RECORD, 0, "supervision", "commloss_auto_clear", BOOL, none,                 \
+      "must be on or off", "`off`: a comm loss stays latched until the CPU side resets it "      \
+      "(`modcp_bp_commloss_reset`) or new parameters arrive, as the Altivar's fault SLF1; "      \
+      "`on`: the next valid request for our address clears it",                                 \
+      "`on`, `off`", "002 §7")                                                                    \
     S(scan_start, 2, MODCP_PF_SCANNER, 0xFF, 0, 65535, 0, MODCP_EV_PARAM_RECORD,                  \
       MODCP_PF_CUSTOM, "scanner", "start", NUM, none, "must be 0..65535",                         \
       "first scanner register address", /* custom: with the entries */                          \

@@ -387,7 +387,7 @@ void modcp_pdu_finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_pdu_ac
     modcp_diag_t *d = env->diag;
     modcp_ext_t *x = env->ext;
     if (x != NULL && !s->broadcast) {
-        modcp_commloss_request(x, now_us); /* a valid request for our address */
+        modcp_commloss_request(x, env->p, now_us); /* a valid request for our address */
     }
     if (s->x.quiet == 0u) {
         modcp_comm_log(&d->comm, send_event(s, &d->comm));

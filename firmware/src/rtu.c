@@ -168,6 +168,8 @@ void rtu_internal_error(modcp_link_t *l)
 
 /* A character (or line error) while a request is processed or its reply is pending:
  * not stored; only frame starts are followed, for (08)37H and for the return to idle.
+ * A frame for us or a broadcast (address 0) starting then is a message sequence error
+ * (08)37H (004 §7.5): neither is executed, and no request is lost without a trace.
  * A line error that is not inside a frame (modem mode: after the CRC) with
  * interference suppression (or RS485) is ignored, as between messages. */
 void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
@@ -177,10 +179,10 @@ void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
     }
     if (!l->busy_rx || now_us - l->last_us >= l->t35_us) {
         if (error) {
-            if (l->suppress) {
+            if (l->suppress || l->rs485) { /* RS485 normal: between frames (link.c) */
                 return;
             }
-        } else if (b == l->own_addr) {
+        } else if (b == l->own_addr || b == 0u) {
             link_event(l, MODCP_EV_SEQUENCE);
         }
         l->busy_rx = true;
@@ -243,7 +245,7 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
             }
         }
     start:
-        if (err && l->suppress) {
+        if (err && (l->suppress || l->rs485)) { /* RS485 normal mode too (link.c) */
             return; /* between messages: ignored, a frame starts only with a good character */
         }
         frame_start(l, b, now_us, err);
@@ -356,6 +358,14 @@ static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
 }
 #endif
 
+/* RS485 normal mode (link.c error_reported): RX / SKIP within t3.5 is inside a frame,
+ * unless our frame is complete (its CRC in: what follows is "after the telegram"). */
+static bool rtu_in_frame(const modcp_link_t *l)
+{
+    return !(l->state == MODCP_LINK_RX && !l->rx_bad && !l->rx_overflow &&
+             l->len >= RTU_MIN_FRAME && l->fr.rtu.crc == 0u);
+}
+
 void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
     (void)line_errors; /* every kind of error has the same effect on framing */
@@ -440,9 +450,10 @@ const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *
 #define RTU_ON_BLOCK .on_block = rtu_on_block,
 #endif
 static const modcp_framing_ops_t rtu_ops = {.on_byte = rtu_on_byte, .on_error = rtu_on_error,
-                                            .on_timer = rtu_on_timer, .encode = rtu_encode,
+                                            .in_frame = rtu_in_frame, .on_timer = rtu_on_timer, .encode = rtu_encode,
                                             RTU_ON_BLOCK};
 static const modcp_framing_ops_t rtu_t15_ops = {.on_byte = rtu_on_byte_t15,
                                                 .on_error = rtu_on_error,
+                                                .in_frame = rtu_in_frame,
                                                 .on_timer = rtu_on_timer,
                                                 .encode = rtu_encode, RTU_ON_BLOCK};

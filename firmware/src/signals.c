@@ -41,6 +41,7 @@ static MODCP_SIZE_NOINLINE void count_abort(modcp_sig_t *s)
 static void reset(modcp_sig_t *s)
 {
     s->state = MODCP_SIGST_IDLE;
+    s->cts_missing = false;
     out(s, MODCP_SIG_RTS, false);
     out(s, MODCP_SIG_DTR, s->enabled);
 }
@@ -85,6 +86,7 @@ static void decide(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us)
     }
     if (s->dsr) {
         event(s, MODCP_EV_CTS_TIMEOUT); /* DSR OFF was reported at its edge */
+        s->cts_missing = true;
     }
     count_abort(s);
     s->state = MODCP_SIGST_IDLE;
@@ -202,6 +204,9 @@ void modcp_sig_on_inputs(modcp_sig_t *s, modcp_link_t *l, bool cts, bool dsr, ui
     bool dsr_fell = s->dsr && !dsr;
     s->cts = cts;
     s->dsr = dsr;
+    if (cts) {
+        s->cts_missing = false;
+    }
     if (!s->enabled) {
         return;
     }
@@ -215,6 +220,7 @@ void modcp_sig_on_inputs(modcp_sig_t *s, modcp_link_t *l, bool cts, bool dsr, ui
         return;
     }
     if (cts_fell && s->state == MODCP_SIGST_SENDING) {
+        s->cts_missing = true;
         event(s, MODCP_EV_SIGNAL_OFF);
         abort_send(s, l, now_us);
     }

@@ -73,7 +73,7 @@ EXPECTED = [
 
 BAUD_RULE = ("must be one of 300, 600, 1200, 2400, 4800, 9600, 19200, 38400, 57600, 76800, 115200 "
              "(event (0E)2EH)")
-START_RULE = ("must be more than %d ms (2 x cycle_ms %d): the FB sends the record and INIT as 11 "
+START_RULE = ("must be more than %d ms (2 x cycle_ms %d): the FB sends the record and INIT as 12 "
               "blocks, 4 per cycle, and sees the CP's answer at the earliest 3 cycles after "
               "CP_START; a shorter START_TIME always ends in CP_START_ERROR (ERROR_NR 2, "
               "ERROR_INFO (00)00H)")
@@ -148,7 +148,7 @@ def loses_nothing(t, a, tmp):
                                                "line %d)" % (p, nlines, head + 11)],
          "duplicate key after %d keys: refused, both lines named (%r)" % (nkeys, lines))
 
-    # START_TIME the FB's initialisation cannot meet (3 cycles: 11 blocks through 4 slots)
+    # START_TIME the FB's initialisation cannot meet (3 cycles: 12 blocks through 4 slots)
     p, rc, out, lines = check_text(a, tmp, "start.ini", default, "cpu.start_time_ms=20")
     t.ok(rc == 2 and lines == ["--set:1: cpu.start_time_ms = 20: " + START_RULE % (20, 10)],
          "start_time_ms = 20 with cycle_ms = 10: refused with the rule (%r)" % lines)
@@ -417,8 +417,8 @@ def main():
     t.ok(rc == 0 and len(rec) >= 10, "build: record of %d bytes" % len(rec))
     if len(rec) >= 10:
         magic, version, plen = struct.unpack_from("<4sHH", rec, 0)
-        t.ok(magic == b"MCPR" and version == 3 and plen == len(rec) - 10,
-             "build: header MCPR v3, payload %d bytes" % plen)
+        t.ok(magic == b"MCPR" and version == 4 and plen == len(rec) - 10,
+             "build: header MCPR v4, payload %d bytes" % plen)
         t.ok(crc16(rec[:-2]) == rec[-2:], "build: CRC-16 over the record")
         baud, db, par, sb, slave = struct.unpack_from("<IBBBB", rec, 8)
         t.ok((baud, db, par, sb, slave) == (9600, 8, 2, 1, 5), "build: 9600 8E1 slave 5")

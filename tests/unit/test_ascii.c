@@ -300,6 +300,34 @@ static void test_line_errors(void **state)
     ascii_world_free(w);
 }
 
+/* RS485 two-wire in normal mode (Siemens driver manual 2009, Table 5-2, §5.6.5), ASCII: an
+ * error inside a frame (after ':') is reported, (08)0CH, the frame discarded; an error
+ * or BREAK between frames and a wrong start character are ignored. */
+static void test_rs485_normal_line_errors(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    ascii_example_params(&p);
+    p.iface = MODCP_IFACE_RS485;
+    p.rs485_sel = 1;
+    p.opmode = MODCP_OPMODE_NORMAL;
+    world_t *w = ascii_world_started(&p);
+    ascii_feed(w, ":050800", ASCII_CHAR_US);
+    modcp_cp_on_line_error(&w->cp, MODCP_LINE_PARITY, w->now_us += ASCII_CHAR_US);
+    expect_ascii_silence(w, "00A5C38B\r\n");
+    assert_int_equal(world_last_event(w), MODCP_EV_CHAR_ERROR);
+    assert_int_equal(w->cp.diag.buffer_len, 1);
+    world_run(w, 5000);
+    modcp_cp_on_line_error(&w->cp, MODCP_LINE_BREAK, w->now_us); /* between frames */
+    world_run(w, 5000);
+    ascii_feed(w, "x", ASCII_CHAR_US); /* a stray character: no (08)38H on RS485 */
+    world_run(w, 200000);
+    assert_int_equal(w->cp.diag.buffer_len, 1);
+    assert_false(w->cp.cpdiag.wire_break);
+    expect_ascii(w, ":05080000A5C38B\r\n", ":05080000A5C38B\r\n");
+    ascii_world_free(w);
+}
+
 /* character delay time (003 §3.2): a gap longer than the ASCII timeout inside a frame
  * discards it with (08)06H; a gap just shorter does not */
 static void test_character_delay_time(void **state)
@@ -455,6 +483,11 @@ static void test_sequence_error(void **state)
     assert_int_equal(w->cp.diag.buffer_len, 0);
     ascii_feed(w, ":05080000A5C38B\r\n", ASCII_CHAR_US);
     assert_int_equal(world_last_event(w), MODCP_EV_SEQUENCE);
+    /* a broadcast in the same position (004 §7.5): (08)37H too, not executed */
+    ascii_feed(w, ":000600001234B4\r\n", ASCII_CHAR_US);
+    assert_int_equal(w->cp.diag.buffer_len, 2);
+    assert_int_equal(world_last_event(w), MODCP_EV_SEQUENCE);
+    assert_int_equal(world_db(w, 800)[0], 0);
     w->fb_paused = false;
     assert_int_equal(ascii_finish(w, 200), 19);
     assert_string_equal(ascii_reply(w), ":05030487654321A4\r\n");
@@ -464,25 +497,43 @@ static void test_sequence_error(void **state)
 }
 
 /* more bytes than the receive buffer: (08)16H, no reply */
-static void test_frame_too_long(void **state)
+/* ":05" + function + n data bytes + LRC (all "08": not a valid request, only its
+ * length matters) */
+static void long_frame(char *req, unsigned data_bytes)
 {
-    (void)state;
-    world_t *w = ascii_started();
-    char req[2 * 300 + 8];
     size_t o = 0;
     req[o++] = ':';
     req[o++] = '0';
     req[o++] = '5';
-    for (unsigned k = 0; k < MODCP_ADU_MAX; k++) {
+    for (unsigned k = 0; k < 1u + data_bytes + 1u; k++) { /* function, data, LRC */
         req[o++] = '0';
         req[o++] = '8';
     }
     req[o++] = '\r';
     req[o++] = '\n';
     req[o] = 0;
+}
+
+/* CP 341 MODBUS ASCII slave manual §8.1: the data field holds 0 up to 2 x 252
+ * characters; a frame with more is over-long, (08)16H, not answered. 252 data bytes are
+ * still a frame (here: its LRC is wrong, (08)36H). */
+static void test_frame_too_long(void **state)
+{
+    (void)state;
+    world_t *w = ascii_started();
+    char req[2 * 300 + 8];
+    long_frame(req, 252);
+    expect_ascii_silence(w, req);
+    assert_int_equal(world_last_event(w), MODCP_EV_CRC);
+    assert_int_equal(w->cp.diag.frames_too_long, 0);
+    long_frame(req, 253);
     expect_ascii_silence(w, req);
     assert_int_equal(world_last_event(w), MODCP_EV_FRAME_TOO_LONG);
     assert_int_equal(w->cp.diag.frames_too_long, 1);
+    long_frame(req, MODCP_ADU_MAX);
+    expect_ascii_silence(w, req);
+    assert_int_equal(world_last_event(w), MODCP_EV_FRAME_TOO_LONG);
+    assert_int_equal(w->cp.diag.frames_too_long, 2);
     expect_ascii(w, ":05080000A5C38B\r\n", ":05080000A5C38B\r\n");
     ascii_world_free(w);
 }
@@ -541,9 +592,12 @@ static void test_limits_bits(void **state)
     assert_int_equal(ascii_request(w, ascii_frame(wr, 7 + 247), 200), 17);
     assert_int_equal(w->m[1246], 0xFF);
     assert_int_equal(w->m[1247], 0xA5); /* the byte after the 1976 bits: untouched */
+    /* 1977 bits need 248 data bytes: 253 with start, quantity and byte count, more than
+     * a frame holds (003 §8.1, 2 x 252 characters): over-long, (08)16H, no reply */
     wr[5] = 0xB9;
     wr[6] = 0xF8;
-    expect_ascii_exception(w, wr, 7 + 248, 3, MODCP_EV_QUANTITY);
+    assert_int_equal(ascii_request(w, ascii_frame(wr, 7 + 248), 200), 0);
+    assert_int_equal(world_last_event(w), MODCP_EV_FRAME_TOO_LONG);
     ascii_world_free(w);
 }
 
@@ -565,9 +619,10 @@ static void test_limits_registers(void **state)
     }
     assert_int_equal(ascii_request(w, ascii_frame(wr, 7 + 246), 200), 17);
     assert_int_equal(world_db(w, 800)[245], 245);
-    wr[5] = 0x7C;
+    wr[5] = 0x7C; /* 124 registers: 253 data bytes, over-long (003 §8.1) */
     wr[6] = 0xF8;
-    expect_ascii_exception(w, wr, 7 + 248, 3, MODCP_EV_QUANTITY);
+    assert_int_equal(ascii_request(w, ascii_frame(wr, 7 + 248), 200), 0);
+    assert_int_equal(world_last_event(w), MODCP_EV_FRAME_TOO_LONG);
     ascii_world_free(w);
 }
 
@@ -694,6 +749,7 @@ int main(void)
         cmocka_unit_test(test_broadcast),
         cmocka_unit_test(test_sequence_error),
         cmocka_unit_test(test_frame_too_long),
+        cmocka_unit_test(test_rs485_normal_line_errors),
         cmocka_unit_test(test_input_delimiter),
         cmocka_unit_test(test_limits_bits),
         cmocka_unit_test(test_limits_registers),

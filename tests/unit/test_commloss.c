@@ -1,8 +1,10 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* Comm-loss supervision (SPEC §2, §5.3; 002 §7): armed by the first accepted write for
  * our address; no valid request for our address within commloss_ms -> event (0E)60H
- * once and MODCP_CPST_COMMLOSS in the backplane status area; the next valid request
- * for our address clears the flag. Time is simulated: the CP is polled every 1 ms. */
+ * once and MODCP_CPST_COMMLOSS in the backplane status area, latched until the CPU side
+ * resets it (the Altivar's resettable fault SLF1); with commloss_auto_clear the next
+ * valid request for our address clears it. Time is simulated: the CP is polled every
+ * 1 ms. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -14,12 +16,18 @@
 
 #define S 5
 
-static world_t *cl_world(uint16_t ms)
+static world_t *cl_world_mode(uint16_t ms, uint8_t auto_clear)
 {
     modcp_params_t p;
     world_example_params(&p);
     p.commloss_ms = ms;
+    p.commloss_auto = auto_clear;
     return ext_started(&p);
+}
+
+static world_t *cl_world(uint16_t ms)
+{
+    return cl_world_mode(ms, 0);
 }
 
 static bool lost(world_t *w)
@@ -57,11 +65,12 @@ static void test_not_armed_before_first_write(void **state)
 }
 
 /* The exact threshold: lost when commloss_ms have passed since the last valid request
- * (the moment its reply was handed to the line). */
+ * (the moment its reply was handed to the line); commloss_auto_clear = on: the next
+ * valid request clears it. */
 static void test_threshold_and_refresh(void **state)
 {
     (void)state;
-    world_t *w = cl_world(200);
+    world_t *w = cl_world_mode(200, 1);
     ext_expect(w, S, "06 01 80 2B 1A", "06 01 80 2B 1A"); /* arms */
     world_run(w, 150000);
     ext_expect(w, S, "03 00 50 00 01", "03 02 00 00"); /* a read restarts the time */
@@ -91,7 +100,7 @@ static void test_threshold_and_refresh(void **state)
 static void test_what_refreshes(void **state)
 {
     (void)state;
-    world_t *w = cl_world(300);
+    world_t *w = cl_world_mode(300, 1);
     ext_expect(w, S, "10 00 00 00 01 02 12 34", "10 00 00 00 01");
     for (int k = 0; k < 4; k++) {
         world_run(w, 80000);
@@ -114,6 +123,43 @@ static void test_what_refreshes(void **state)
     world_run(w, 300000);
     assert_true(lost(w));
     assert_true(ext_status(w).flags & MODCP_CPST_LISTEN_ONLY);
+    world_free(w);
+}
+
+/* Altivar 71 integrated Modbus guide §7: the communication fault SLF1 is a resettable
+ * fault. By default the loss stays latched: valid requests (which still restart the
+ * time) do not clear it; the CPU side's reset (modcp_bp_commloss_reset) clears it at the
+ * CP's next poll, the supervision stays armed and times from the reset. */
+static void test_002_s7_latched_until_reset(void **state)
+{
+    (void)state;
+    world_t *w = cl_world(200);
+    ext_expect(w, S, "06 01 80 2B 1A", "06 01 80 2B 1A"); /* arms */
+    world_run(w, 200000);
+    assert_true(lost(w));
+    ext_expect(w, S, "03 00 50 00 01", "03 02 00 00");
+    ext_expect(w, S, "08 00 02 00 00", "08 00 02 00 02"); /* still shown */
+    world_run(w, 100000);
+    assert_true(lost(w));
+    assert_int_equal(commloss_events(w), 1);
+    modcp_bp_commloss_reset(&w->bp);
+    world_run(w, 1000); /* the CP's next poll */
+    assert_false(w->cp.ext.cl_lost);
+    assert_false(lost(w));
+    ext_expect(w, S, "08 00 02 00 00", "08 00 02 00 00");
+    world_run(w, 199000); /* timed from the last request */
+    assert_false(w->cp.ext.cl_lost);
+    world_run(w, 1000);
+    assert_true(lost(w)); /* armed still: it comes back */
+    assert_int_equal(commloss_events(w), 2);
+    modcp_bp_commloss_reset(&w->bp); /* reset again */
+    world_run(w, 1000);
+    assert_false(w->cp.ext.cl_lost);
+    world_run(w, 199000); /* timed from the reset (no request since) */
+    assert_false(w->cp.ext.cl_lost);
+    world_run(w, 1000);
+    assert_true(w->cp.ext.cl_lost);
+    assert_int_equal(commloss_events(w), 3);
     world_free(w);
 }
 
@@ -154,6 +200,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_not_armed_before_first_write),
         cmocka_unit_test(test_threshold_and_refresh),
+        cmocka_unit_test(test_002_s7_latched_until_reset),
         cmocka_unit_test(test_what_refreshes),
         cmocka_unit_test(test_off),
         cmocka_unit_test(test_armed_by_fc22_fc23_long_time),

@@ -663,7 +663,9 @@ static void test_shared_record_during_reply(void **state)
     push_rest(w, &k);
     assert_true(w->cp.configured); /* the record was taken */
     assert_int_equal(w->cp.param_event, MODCP_EV_NONE);
-    assert_false(w->cp.env.fb_ready);  /* and waits for the FB's INIT */
+    /* the record the CP holds already: no re-parameterisation (004 §4.2 step 4), the
+     * FB's initialisation stays */
+    assert_true(w->cp.env.fb_ready);
     assert_int_equal(w->fake.tx_count, sent + 1);
     restart(w);
     expect_reply(w, "05 08 00 00 A5 C3 DA 8E", "05 08 00 00 A5 C3 DA 8E");

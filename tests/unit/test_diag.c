@@ -48,8 +48,9 @@ static void test_status_word(void **state)
     assert_int_equal(d.status, 0x0836);
     modcp_diag_event(&d, MODCP_EV_FB_NOT_RUNNING);
     assert_int_equal(d.status, 0x0E56);
-    modcp_diag_event(&d, MODCP_EV_JOB_LENGTH);
-    assert_int_equal(d.status, 0x0518);
+    modcp_diag_event(&d, MODCP_EV_JOB_LENGTH); /* 001 §8.2: (05)17H, "transfer length
+                                                  > 1 kByte is too large for the CP" */
+    assert_int_equal(d.status, 0x0517);
     modcp_diag_event(&d, MODCP_EV_CTS_TIMEOUT);
     assert_int_equal(d.status, 0x0708);
     modcp_diag_event(&d, MODCP_EVENT(0xFF, 0x01)); /* class wider than 5 bits: masked */
@@ -185,7 +186,10 @@ static void test_diag_buffer_cleared_on_reparameterisation_8_3(void **state)
     assert_int_equal(w->cp.diag.buffer_len, 1);
     assert_int_equal(w->cp.diag.buffer[0], MODCP_EV_CRC);
 
-    /* a new CP_START edge re-parameterises the CP with a valid record: buffer empty */
+    /* a changed valid record and a CP_START edge re-parameterise the CP: buffer empty
+     * (the same record would not: test_fb_restart.c) */
+    w->params.cpu_timeout_ms = 1500;
+    w->record_len = (uint16_t)modcp_params_encode(&w->params, w->record, sizeof w->record);
     modcp_fb_in_t in = {false};
     modcp_fb_call(&w->fb, &in, &w->fb_out, w->now_us / 1000u);
     w->now_us += 1000;
@@ -406,8 +410,10 @@ static void test_leds_power_on(void **state)
     lw_free(x);
 }
 
-/* RXD on at the first character of a frame, TXD on when the reply starts; each stays
- * on exactly 200 ms from switching on (off at 200 ms, not at 200 ms - 1 us). */
+/* Altivar 71 Modbus guide §8 ("each LED lights for 200 ms when a frame travels",
+ * retriggered): RXD on at the first character of a frame, TXD on when the reply
+ * starts; each stays on exactly 200 ms after the frame — RXD after its last character,
+ * TXD after transmission complete (off at 200 ms, not at 200 ms - 1 us). */
 static void test_leds_min_on_time(void **state)
 {
     (void)state;
@@ -432,20 +438,21 @@ static void test_leds_min_on_time(void **state)
     lw_poll(x);
     assert_true(x->led[MODCP_LED_TXD]);
 
-    lw_advance(x, t0 + 200000 - 1);
+    lw_advance(x, last + 200000 - 1);
     lw_poll(x);
     assert_true(x->led[MODCP_LED_RXD]);
-    lw_advance(x, t0 + 200000);
+    lw_advance(x, last + 200000);
     lw_poll(x);
     assert_false(x->led[MODCP_LED_RXD]);
-    assert_int_equal(lw_last(x, LW_LED)->at, t0 + 200000);
-    lw_advance(x, t_ready + 200000 - 1);
+    assert_int_equal(lw_last(x, LW_LED)->at, last + 200000);
+    uint32_t t_done = t_ready + 8 * CHAR_US;
+    lw_advance(x, t_done + 200000 - 1);
     lw_poll(x);
     assert_true(x->led[MODCP_LED_TXD]);
-    lw_advance(x, t_ready + 200000);
+    lw_advance(x, t_done + 200000);
     lw_poll(x);
     assert_false(x->led[MODCP_LED_TXD]);
-    assert_int_equal(lw_last(x, LW_LED)->at, t_ready + 200000);
+    assert_int_equal(lw_last(x, LW_LED)->at, t_done + 200000);
     assert_int_equal(lw_count(x, LW_LED), 4); /* RXD on/off, TXD on/off: no repeats */
     modcp_cp_status_t st;
     assert_true(modcp_bp_read_status(&x->w->bp, &st));
@@ -475,9 +482,9 @@ static void test_leds_late_poll(void **state)
     lw_free(x);
 }
 
-/* 300 baud: a frame longer than 200 ms keeps RXD on until it has ended (t3.5 = 128 ms
- * after its last character); a reply longer than 200 ms keeps TXD on until
- * transmission complete. */
+/* 300 baud: a frame longer than 200 ms keeps RXD on until 200 ms after its last
+ * character (its end, t3.5 = 128 ms after it, is earlier); a reply longer than 200 ms
+ * keeps TXD on until 200 ms after transmission complete. */
 static void test_leds_long_frames(void **state)
 {
     (void)state;
@@ -501,16 +508,22 @@ static void test_leds_long_frames(void **state)
     uint32_t t_ready = last + 128000; /* the timer ends the frame and the reply starts */
     lw_advance(x, t_ready);
     lw_poll(x);
-    assert_false(x->led[MODCP_LED_RXD]);
+    assert_true(x->led[MODCP_LED_RXD]);
     assert_true(x->led[MODCP_LED_TXD]);
+    lw_advance(x, last + 200000 - 1);
+    lw_poll(x);
+    assert_true(x->led[MODCP_LED_RXD]);
+    lw_advance(x, last + 200000);
+    lw_poll(x);
+    assert_false(x->led[MODCP_LED_RXD]);
     uint32_t t_done = t_ready + 8u * x->char_us; /* 293336 us later */
-    lw_advance(x, t_done - 1);
+    lw_advance(x, t_done + 200000 - 1);
     lw_poll(x);
     assert_true(x->led[MODCP_LED_TXD]);
-    lw_advance(x, t_done);
+    lw_advance(x, t_done + 200000);
     lw_poll(x);
     assert_false(x->led[MODCP_LED_TXD]);
-    assert_int_equal(lw_last(x, LW_LED)->at, t_done);
+    assert_int_equal(lw_last(x, LW_LED)->at, t_done + 200000);
     lw_free(x);
 }
 

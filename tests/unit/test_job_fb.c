@@ -185,7 +185,7 @@ static void test_init_happy_path(void **state)
     assert_int_equal(f->init.areas.timers, 256);
     assert_int_equal(f->init.areas.counters, 200);
     assert_int_equal(f->init.areas.work_db, WORK_DB);
-    assert_int_equal(f->init.record_crc, modcp_crc16(f->record, RECORD_LEN));
+    assert_int_equal(f->init.record_crc, modcp_crc16(f->record, RECORD_LEN - 2u)); /* record id */
     assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
     assert_int_equal(f->job.proto_errors, 0);
 
@@ -858,6 +858,35 @@ static void test_fb_outputs_001_rising_edge_clears_errors(void **state)
     assert_false(f->out.cp_start_error);
 }
 
+/* Siemens MODBUS slave driver manual ch. 10 (FB diagnostics, "Clearing"): "the user may
+ * also clear them [ERROR_NR / ERROR_INFO] at any time". Cleared by the user program, they
+ * stay cleared through later calls and successful jobs; the next error writes them
+ * again (the same error number too). */
+static void test_fb_outputs_ch10_user_clears_error(void **state)
+{
+    fx_t *f = *state;
+    init_ok(f);
+    f->ndr_calls = 0;
+    assert_int_equal(start(f, 9, MODCP_AREA_M, 0, 0, 0, 1, 1, 1024), MODCP_EV_NONE);
+    expect_fb_error(f, MODCP_FB_ERR_PROC_CODE, 9);
+    f->out.error_nr = 0; /* the user program clears them */
+    f->out.error_info = 0;
+    for (int k = 0; k < 20; k++) {
+        fb(f, true);
+    }
+    memset(f->wbuf, 0x5A, 4);
+    assert_int_equal(start(f, MODCP_JOB_WRITE, MODCP_AREA_DB, 800, 0, 0, 4, 4, 1024),
+                     MODCP_EV_NONE);
+    run_job(f);
+    assert_int_equal(f->job.event, MODCP_EV_NONE);
+    assert_int_equal(f->out.error_nr, 0);
+    assert_int_equal(f->out.error_info, 0);
+    assert_true(f->out.cp_start_ok); /* the other outputs are written at every call */
+    f->ndr_calls = 0;
+    assert_int_equal(start(f, 9, MODCP_AREA_M, 0, 0, 0, 1, 1, 1024), MODCP_EV_NONE);
+    expect_fb_error(f, MODCP_FB_ERR_PROC_CODE, 9); /* the next error: written again */
+}
+
 /* (0E)38H / (0E)39H come from the memory model and are not FB error numbers. */
 static void test_access_errors(void **state)
 {
@@ -1396,6 +1425,7 @@ int main(void)
         T(test_fb_outputs_5_5_init_failure_resets_cp_start),
         T(test_fb_outputs_5_5_error_info_kept_until_edge),
         T(test_fb_outputs_001_rising_edge_clears_errors),
+        T(test_fb_outputs_ch10_user_clears_error),
         T(test_access_errors),
         T(test_work_db_missing),
         T(test_reply_checks),

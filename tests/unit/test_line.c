@@ -127,18 +127,89 @@ static void test_parity_error_suppression(void **state)
     lw_free(x);
 }
 
-/* 004 §2.3 RS485 two-wire behaves like interference suppression, whatever the mode. */
-static void test_parity_error_rs485(void **state)
+/* RS485 two-wire in normal mode (Siemens MODBUS slave driver manual, 2009 edition,
+ * Table 5-2 "enable operating-mode selection for RS485" and §5.6.5): an error inside a
+ * frame is reported as on four-wire RS422 — (08)0CH, or (08)0DH with wire break, SF
+ * and the SYSTAT B flag —, the frame discarded, the next one served. */
+static void test_rs485_normal_reports_errors_inside_frame(void **state)
 {
     (void)state;
     modcp_params_t p = example();
     p.iface = MODCP_IFACE_RS485;
-    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 (000 Table 5-2) */
+    p.rs485_sel = 1;
+    p.opmode = MODCP_OPMODE_NORMAL;
     lw_t *x = start(&p);
     uint32_t last = fc03_with_error(x, MODCP_LINE_PARITY);
     lw_advance(x, last + 100000);
     assert_int_equal(x->tx_calls, 0);
+    assert_int_equal(x->w->cp.diag.buffer_len, 1);
+    assert_int_equal(last_event(x), MODCP_EV_CHAR_ERROR);
+    assert_int_equal(request(x, FC03_REQ, 50), 1);
+    assert_string_equal(lw_tx_hex(x), FC03_RSP);
+
+    lw_advance(x, lw_now(x) + 10000);
+    last = lw_send(x, "05 03 00"); /* the line breaks inside the frame */
+    lw_advance(x, last + CHAR_US);
+    lw_error(x, MODCP_LINE_BREAK | MODCP_LINE_FRAMING);
+    lw_advance(x, lw_now(x) + 20000); /* nothing received since */
+    assert_int_equal(x->tx_calls, 1);
+    modcp_cp_status_t st = lw_status(x);
+    assert_int_equal(last_event(x), MODCP_EV_BREAK);
+    assert_true(st.flags & MODCP_CPST_WIRE_BREAK);
+    assert_true(st.flags & MODCP_CPST_SF);
+    assert_true(x->w->cp.diag.systat_flags & MODCP_SYSTAT_B);
+    lw_free(x);
+}
+
+/* ... and ignores errors and BREAK before, after and between frames (§5.6.5: "all
+ * transmission errors or BREAKs detected before and after received telegrams are
+ * ignored; a BREAK level during the pauses between telegrams is also ignored"): on the
+ * idle line, right after a request's CRC, while the request is processed. */
+static void test_rs485_normal_ignores_errors_between_frames(void **state)
+{
+    (void)state;
+    modcp_params_t p = example();
+    p.iface = MODCP_IFACE_RS485;
+    p.rs485_sel = 1;
+    p.opmode = MODCP_OPMODE_NORMAL;
+    lw_t *x = start(&p);
+    lw_error(x, MODCP_LINE_BREAK); /* idle line */
+    lw_advance(x, lw_now(x) + 10000);
+    lw_error(x, MODCP_LINE_PARITY);
+    lw_advance(x, lw_now(x) + 10000);
+    x->w->fb_paused = true;
+    uint32_t last = lw_send(x, FC03_REQ);
+    lw_advance(x, last + 300);
+    lw_error(x, MODCP_LINE_FRAMING); /* after the CRC: the master releasing the line */
+    lw_advance(x, last + T35_US + 1000);
+    lw_error(x, MODCP_LINE_BREAK); /* while the request is processed */
+    x->w->fb_paused = false;
+    lw_advance(x, lw_now(x) + 50000);
+    assert_int_equal(x->tx_calls, 1);
+    assert_string_equal(lw_tx_hex(x), FC03_RSP);
+    modcp_cp_status_t st = lw_status(x);
     assert_int_equal(x->w->cp.diag.buffer_len, 0);
+    assert_false(st.flags & (MODCP_CPST_WIRE_BREAK | MODCP_CPST_SF));
+    assert_int_equal(st.breaks, 2); /* counted, not reported */
+    assert_int_equal(st.char_errors, 2);
+    lw_free(x);
+}
+
+/* Without the mode selection two-wire RS485 is interference suppression (004 §2.3):
+ * an error inside a frame discards it silently. */
+static void test_rs485_without_selection_suppresses(void **state)
+{
+    (void)state;
+    modcp_params_t p = example();
+    p.iface = MODCP_IFACE_RS485;
+    p.rs485_sel = 0;
+    p.opmode = MODCP_OPMODE_SUPPRESS;
+    lw_t *x = start(&p);
+    uint32_t last = fc03_with_error(x, MODCP_LINE_BREAK);
+    lw_advance(x, last + 100000);
+    assert_int_equal(x->tx_calls, 0);
+    assert_int_equal(x->w->cp.diag.buffer_len, 0);
+    assert_false(lw_status(x).flags & MODCP_CPST_WIRE_BREAK);
     assert_int_equal(request(x, FC03_REQ, 50), 1);
     assert_string_equal(lw_tx_hex(x), FC03_RSP);
     lw_free(x);
@@ -483,12 +554,48 @@ static void test_sequence_error_while_job_pending(void **state)
     lw_free(x);
 }
 
+/* 004 §7.5 (08)37H "the master sent a new request before the last reply had been
+ * transferred": a broadcast (address 0) in that position is a request too. It is not
+ * executed (DB800.DBW0 untouched) and not lost without a trace: (08)37H, as for a
+ * request for us. The same broadcast once the reply is out is executed. */
+static void test_sequence_error_broadcast_while_job_pending(void **state)
+{
+    (void)state;
+    modcp_params_t p = example();
+    lw_t *x = start(&p);
+    uint8_t *dbw0 = world_db(x->w, 800);
+    dbw0[0] = 0xAB;
+    dbw0[1] = 0xCD;
+    x->w->fb_paused = true;
+    uint32_t last = lw_send(x, FC03_REQ);
+    lw_advance(x, last + 10000);
+    lw_send(x, "00 06 00 00 12 34 85 6C"); /* broadcast FC06 while the FC03 waits */
+    assert_int_equal(last_event(x), MODCP_EV_SEQUENCE);
+    assert_int_equal(x->w->cp.diag.buffer_len, 1);
+    x->w->fb_paused = false;
+    lw_advance(x, lw_now(x) + 10000);
+    assert_int_equal(x->tx_calls, 1);
+    assert_string_equal(lw_tx_hex(x), FC03_RSP);
+    lw_advance(x, lw_now(x) + 50000);
+    assert_int_equal(dbw0[0], 0xAB); /* not executed */
+    assert_int_equal(dbw0[1], 0xCD);
+    lw_send(x, "00 06 00 00 12 34 85 6C"); /* now: executed, not answered */
+    lw_advance(x, lw_now(x) + 50000);
+    assert_int_equal(dbw0[0], 0x12);
+    assert_int_equal(dbw0[1], 0x34);
+    assert_int_equal(x->tx_calls, 1);
+    assert_int_equal(x->w->cp.diag.buffer_len, 1);
+    lw_free(x);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_parity_error_normal),
         cmocka_unit_test(test_parity_error_suppression),
-        cmocka_unit_test(test_parity_error_rs485),
+        cmocka_unit_test(test_rs485_normal_reports_errors_inside_frame),
+        cmocka_unit_test(test_rs485_normal_ignores_errors_between_frames),
+        cmocka_unit_test(test_rs485_without_selection_suppresses),
         cmocka_unit_test(test_frame_start_by_own_address),
         cmocka_unit_test(test_glitch_while_busy_suppression),
         cmocka_unit_test(test_error_after_crc),
@@ -500,6 +607,7 @@ int main(void)
         cmocka_unit_test(test_rs485_turnaround_after_job),
         cmocka_unit_test(test_sequence_error_during_turnaround),
         cmocka_unit_test(test_sequence_error_while_job_pending),
+        cmocka_unit_test(test_sequence_error_broadcast_while_job_pending),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

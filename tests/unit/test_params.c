@@ -15,7 +15,7 @@
 #include "params_fields.h"
 #include "params_internal.h"
 
-#define RECORD_LEN 319u /* 8 header + 309 payload + 2 CRC */
+#define RECORD_LEN 321u /* 8 header + 311 payload + 2 CRC */
 
 static void set_win(modcp_bitwin_t *w, uint8_t area, uint16_t from, uint16_t to, uint16_t start,
                     uint16_t db)
@@ -87,8 +87,10 @@ static void test_defaults(void **state)
     assert_int_equal(p.iface, MODCP_IFACE_RS232);
     assert_int_equal(p.turnaround_ms, 0);
     assert_int_equal(p.rs232_auto, 0);
-    assert_int_equal(p.rts_on_delay_ms, 0);
-    assert_int_equal(p.rts_off_delay_ms, 0);
+    assert_int_equal(p.rts_on_delay_ms, 10); /* VIPA CP 341 manual §1.6: 10 ms each */
+    assert_int_equal(p.rts_off_delay_ms, 10);
+    assert_int_equal(p.rx_preset, MODCP_RXP_DEFAULT); /* 000 Table 5-8: by interface */
+    assert_int_equal(p.commloss_auto, 0); /* latched, as the Altivar's SLF1 */
     for (size_t i = 0; i < MODCP_COIL_WINDOWS; i++) {
         assert_int_equal(p.coils[i].area, MODCP_AREA_NONE);
     }
@@ -643,6 +645,39 @@ static void test_record_field_errors(void **state)
     expect_one(&p, MODCP_PF_COMMLOSS, 0, rec, true, 30001);
 }
 
+/* VIPA CP 341 manual §1.6 / §7.1: RTS off delay and data output waiting time 0 ... 65535
+ * ms in steps of 10 ms, default 10 ms (004 §2.4 and 000 give no values); the receive-line
+ * preset of 000 Table 5-8: R(A) 5 V / R(B) 0 V (BREAK detection) only on four-wire RS422
+ * (note 1), refused on two-wire RS485. Each with (0E)2EH naming the field and value. */
+static void test_rts_steps_and_receive_preset(void **state)
+{
+    (void)state;
+    const modcp_event_t rec = MODCP_EV_PARAM_RECORD;
+    modcp_params_t p;
+    params_004_9(&p);
+    p.rs232_auto = 1;
+    p.rts_on_delay_ms = 15;
+    expect_one(&p, MODCP_PF_RTS_ON_DELAY, 0, rec, true, 15);
+    p.rts_on_delay_ms = 65530;
+    p.rts_off_delay_ms = 65535;
+    expect_one(&p, MODCP_PF_RTS_OFF_DELAY, 0, rec, true, 65535);
+    p.rts_off_delay_ms = 0;
+    assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+
+    params_004_9(&p);
+    p.iface = MODCP_IFACE_RS485;
+    p.opmode = MODCP_OPMODE_SUPPRESS;
+    p.rx_preset = MODCP_RXP_BREAK;
+    expect_one(&p, MODCP_PF_RX_PRESET, 0, rec, true, MODCP_RXP_BREAK);
+    p.rx_preset = MODCP_RXP_HIGH;
+    assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+    p.iface = MODCP_IFACE_RS422;
+    p.rx_preset = MODCP_RXP_BREAK;
+    assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
+    p.rx_preset = 4;
+    expect_one(&p, MODCP_PF_RX_PRESET, 0, rec, true, 4);
+}
+
 static void test_scanner_errors(void **state)
 {
     (void)state;
@@ -772,6 +807,7 @@ static void params_all_fields(modcp_params_t *p)
     p->rs232_auto = 1;
     p->rts_on_delay_ms = 0xA1B2;
     p->rts_off_delay_ms = 0xC3D4;
+    p->rx_preset = MODCP_RXP_HIGH;
     set_win(&p->coils[4], MODCP_AREA_DB, 0x2000, 0x21FF, 0x0102, 0x0304);
     set_win(&p->coils[5], MODCP_AREA_DB, 0x3000, 0x30FF, 0x0506, 0x0708);
     set_win(&p->inputs[2], MODCP_AREA_DB, 0x2000, 0x2FFF, 0x090A, 0x0B0C);
@@ -794,6 +830,7 @@ static void params_all_fields(modcp_params_t *p)
     p->cpu_timeout_ms = 0xEEEE;
     p->start_time_ms = 0xDDDD;
     p->commloss_ms = 0x7530;
+    p->commloss_auto = 1;
     p->scan_start = 0xFF00;
     p->scan_count = 16;
     for (uint16_t i = 0; i < MODCP_SCANNER_MAX; i++) {
@@ -835,6 +872,8 @@ static void assert_params_equal(const modcp_params_t *a, const modcp_params_t *b
     assert_int_equal(a->rs232_auto, b->rs232_auto);
     assert_int_equal(a->rts_on_delay_ms, b->rts_on_delay_ms);
     assert_int_equal(a->rts_off_delay_ms, b->rts_off_delay_ms);
+    assert_int_equal(a->rx_preset, b->rx_preset);
+    assert_int_equal(a->commloss_auto, b->commloss_auto);
     for (size_t i = 0; i < MODCP_COIL_WINDOWS; i++) {
         assert_window_equal(&a->coils[i], &b->coils[i]);
     }
@@ -903,9 +942,11 @@ static void test_record_layout(void **state)
     assert_int_equal(buf[15], 5);  /* slave */
     assert_int_equal(buf[21], 0x34); /* ascii timeout 0x1234 LE */
     assert_int_equal(buf[22], 0x12);
-    /* first coil window at offset 8 + 23: area M, from 0, to 2047, start 1000, db 0 */
+    /* first coil window at offset 8 + 24 (after the receive preset): area M, from 0, to
+     * 2047, start 1000, db 0 */
     static const uint8_t win0[9] = {MODCP_AREA_M, 0x00, 0x00, 0xFF, 0x07, 0xE8, 0x03, 0, 0};
-    assert_memory_equal(&buf[31], win0, sizeof win0);
+    assert_int_equal(buf[31], MODCP_RXP_HIGH);
+    assert_memory_equal(&buf[32], win0, sizeof win0);
     /* the ID strings are the 64 payload bytes before diag_irq: vendor uses all 16 */
     assert_memory_equal(&buf[RECORD_LEN - 3 - 64], "ACME Automation!", 16);
     assert_memory_equal(&buf[RECORD_LEN - 3 - 48], "CP-1\0\0\0\0\0\0\0\0\0\0\0\0", 16);
@@ -1087,6 +1128,7 @@ int main(void)
         cmocka_unit_test(test_coil_windows_overlap),
         cmocka_unit_test(test_input_windows),
         cmocka_unit_test(test_record_field_errors),
+        cmocka_unit_test(test_rts_steps_and_receive_preset),
         cmocka_unit_test(test_scanner_errors),
         cmocka_unit_test(test_id_strings),
         cmocka_unit_test(test_r32_ranges),

@@ -378,15 +378,15 @@ static void test_limits_ascii(void **state)
     assert_int_equal(world_last_event(w), MODCP_EV_QUANTITY);
     write_n(w, true, 7000, 61, 4, 17);
     assert_int_equal(world_db(w, 4)[243], 244);
-    write_n(w, true, 7000, 62, 4, 11);
-    assert_string_equal(ascii_reply(w), ":05900368\r\n");
+    write_n(w, true, 7000, 62, 4, 0); /* 253 data bytes: over-long (003 §8.1) */
+    assert_int_equal(world_last_event(w), MODCP_EV_FRAME_TOO_LONG);
     read_n(w, true, 5000, 62, 1 + 2 * (3 + 248 + 1) + 2); /* int32 the same */
     read_n(w, true, 5000, 63, 11);
     read_n(w, true, 3000, 125, 1 + 2 * (3 + 250 + 1) + 2);
     read_n(w, true, 3000, 126, 11);
     write_n(w, true, 3000, 123, 2, 17);
-    write_n(w, true, 3000, 124, 2, 11);
-    assert_int_equal(world_last_event(w), MODCP_EV_QUANTITY);
+    write_n(w, true, 3000, 124, 2, 0);
+    assert_int_equal(world_last_event(w), MODCP_EV_FRAME_TOO_LONG);
     ascii_world_free(w);
 }
 

@@ -28,6 +28,11 @@ static const enum_name_t names_iface[] = {{"rs232", MODCP_IFACE_RS232},
                                           {"rs422", MODCP_IFACE_RS422},
                                           {"rs485", MODCP_IFACE_RS485},
                                           {NULL, 0}};
+static const enum_name_t names_rxpreset[] = {{"default", MODCP_RXP_DEFAULT},
+                                             {"none", MODCP_RXP_NONE},
+                                             {"break", MODCP_RXP_BREAK},
+                                             {"high", MODCP_RXP_HIGH},
+                                             {NULL, 0}};
 static const enum_name_t names_fset[] = {
     {"cp341", MODCP_FSET_CP341}, {"extended", MODCP_FSET_EXTENDED}, {NULL, 0}};
 static const enum_name_t names_qlimits[] = {

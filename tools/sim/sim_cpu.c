@@ -21,6 +21,7 @@ static void exec_console(member_t *m)
     env.fb = &m->fb;
     env.paused = &m->paused;
     env.cp_start = &m->fb_in.cp_start;
+    env.bp = &m->bp;
     env.cycles = m->cycles;
     /* the CP's status area, read from the backplane like any user program would */
     modcp_cp_status_t cst;
@@ -148,7 +149,7 @@ void *cpu_thread(void *arg)
     atomic_store(&m->cpu_calls, true);
     while (cpu_wait(m, next)) {
         if (!m->paused) {
-            modcp_fb_out_t out;
+            modcp_fb_out_t out = {0}; /* ERROR_NR / INFO read only when the FB wrote them */
             uint32_t moved0 = bp_moves(&m->bp);
             uint32_t fb_t0 = modcp_posix_now_us();
             atomic_store_explicit(&m->cpu_core, this_core(), memory_order_relaxed);

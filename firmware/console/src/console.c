@@ -22,6 +22,7 @@ static const char *const help_lines[] = {
     "  status              FB init state and outputs, CP state, serial-line counters",
     "  pause | resume      stop / restart the cyclic user program (FB calls)",
     "  start 0|1           set the FB's CP_START input (a rising edge re-initialises)",
+    "  commloss reset      reset a latched comm loss (the CPU side's fault reset)",
     "  echo TEXT           print TEXT",
     "  help                this text",
 };
@@ -56,6 +57,19 @@ static int cmd_start(modcp_console_env_t *env, const args_t *a, out_t *o)
     }
     *env->cp_start = v != 0u;
     con_printf(o, "CP_START = %u", (unsigned)v);
+    return MODCP_CONSOLE_OK;
+}
+
+static int cmd_commloss(modcp_console_env_t *env, const args_t *a, out_t *o)
+{
+    if (env->bp == NULL) {
+        return con_fail(o, "commloss reset not available");
+    }
+    if (a->n != 2u || !con_ieq(a->tok[1], "reset")) {
+        return con_fail(o, "usage: commloss reset");
+    }
+    modcp_bp_commloss_reset(env->bp); /* the CP clears a latched loss at its next poll */
+    con_printf(o, "comm loss reset");
     return MODCP_CONSOLE_OK;
 }
 
@@ -123,6 +137,9 @@ static int dispatch(modcp_console_env_t *env, const args_t *a, out_t *o)
     }
     if (con_ieq(c, "start")) {
         return cmd_start(env, a, o);
+    }
+    if (con_ieq(c, "commloss")) {
+        return cmd_commloss(env, a, o);
     }
     if (con_ieq(c, "echo")) {
         return cmd_echo(a, o);

@@ -105,6 +105,8 @@ typedef struct {
     _Atomic uint32_t status_seq; /* seqlock: odd while the CP writes `status` */
     modcp_cp_status_t status;
     _Atomic uint32_t systat_req; /* CPU side: number of the last SYSTAT request */
+    _Atomic uint32_t commloss_reset; /* CPU side: counts comm-loss resets (a latched loss
+                                        is cleared when the CP sees it change) */
 } modcp_backplane_t;
 
 /* Job operations. */
@@ -135,8 +137,14 @@ typedef struct {
 /* INIT payload. */
 typedef struct {
     modcp_areas_t areas;
-    uint16_t record_crc; /* CRC of the PARAMS record the CP must hold */
+    uint16_t record_crc; /* modcp_bp_record_id() of the PARAMS record the CP must hold */
 } modcp_bp_init_t;
+
+/* Both sides: the identity of a PARAMS record, as the manual's CP tells "parameters
+ * already on the CP" by their time stamp (VIPA CP 341 manual §7.2, (00)04H): the CRC-16
+ * of the record without its last two bytes, i.e. an MCPR record's own CRC (the CRC over
+ * a record that ends in its own CRC is always 0, so it cannot be the whole record's). */
+uint16_t modcp_bp_record_id(const uint8_t *record, uint16_t len);
 
 /* INIT_ACK payload. */
 typedef struct {
@@ -151,6 +159,10 @@ bool modcp_bp_read_status(const modcp_backplane_t *bp, modcp_cp_status_t *out);
 /* CPU side: ask for the SYSTAT image (reading clears SYSTAT in the CP, as SFB STATUS
  * does, 004 §7.4). Returns the request number; the CP answers at its next poll. */
 uint32_t modcp_bp_systat_request(modcp_backplane_t *bp);
+/* CPU side: reset a latched comm loss (MODCP_CPST_COMMLOSS, params.commloss_auto off;
+ * the Altivar's "fault reset" of SLF1, 002 §7); the CP clears it at its next poll and
+ * times the supervision from then. */
+void modcp_bp_commloss_reset(modcp_backplane_t *bp);
 /* CPU side: true when request `req` has been answered; copies the 16-byte image
  * (byte 0 state 02H RUN / 05H fault, byte 2 flags F U B, bytes 4..15 six events). */
 bool modcp_bp_systat_result(const modcp_backplane_t *bp, uint32_t req, uint8_t out[16]);

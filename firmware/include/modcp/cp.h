@@ -47,7 +47,8 @@ typedef struct modcp_cp {
     bool configured;      /* valid PARAMS applied */
     bool request_pending; /* a request waits for its job */
     bool ack_pending;     /* an INIT_ACK could not be sent yet */
-    uint16_t record_crc;
+    uint16_t record_crc;  /* modcp_bp_record_id() of the record applied ... */
+    uint16_t record_len;  /* ... and its length (param_event NONE: one was applied) */
     modcp_event_t param_event; /* first fatal parameter event, NONE if configured */
     modcp_event_t ack_event;
     uint32_t err_mark_us; /* link.last_us after the last line error: when it moves on, a

@@ -5,7 +5,8 @@
  *  - wire break: a BREAK reported in normal mode ((08)0DH) means "receive line to the
  *    partner interrupted". The state lasts until the next correctly received character
  *    (the line is back) or re-parameterisation; it lights SF. In interference
- *    suppression and RS485 BREAK is ignored (004 §2.2, §2.3) and never a wire break.
+ *    suppression, and on two-wire RS485 outside a frame, BREAK is ignored (004 §2.2,
+ *    §2.3, 000 §5.6.5) and never a wire break.
  *  - diagnostic interrupt (001 §8.4), only with params.diag_irq (default off): 4 bytes,
  *      wire break on RxD          25 0C 02 00  (coming)
  *      parameterisation error     83 0C 00 00  (coming: a PARAMS record was rejected)

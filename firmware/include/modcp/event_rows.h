@@ -33,17 +33,32 @@
 #define MODCP_EVENT_ROWS_H
 
 #define MODCP_EVENT_CLASS_ROWS(C)                                                                 \
+    C(0x00, "CP start-up", "CP start-up (001 §8.2; in the diagnostic buffer only)")              \
     C(0x05, "CPU job error", "CPU job errors (004 §7.5, 001 §8.2)")                              \
     C(0x07, "send error", "send errors (001 §8.2; used by the RS232 signals)")                   \
     C(0x08, "receive error", "receive errors (004 §7.5, 001 §8.2, 003 §8.5)")                    \
     C(0x0E, "driver processing error", "general processing errors (004 §7.5)")
 
 #define MODCP_EVENT_ROWS(E)                                                                       \
+    /* ---- class 00H: CP start-up (not errors: diagnostic buffer only, diag.c) ---- */        \
+    E(PARAMS_TAKEN, 0x00, 0x03, 0, "—",                                                           \
+      "parameters taken over", "none",                                                            \
+      "a valid parameter record was applied (after the buffer was cleared: the first entry "      \
+      "of a new parameterisation, before its warnings)",                                          \
+      "`cp.c take_params`",                                                                       \
+      "`test_fb_restart.c: test_start_up_events`")                                                \
+    E(PARAMS_SAME, 0x00, 0x04, 0, "—",                                                            \
+      "parameters already on the CP", "none",                                                     \
+      "the CPU side sent the record the CP holds (the same identity and length): nothing "        \
+      "changes (an FB retry; the FB sends no record at a restart)",                               \
+      "`cp.c take_params`",                                                                       \
+      "`test_fb_restart.c: test_same_record_keeps_request_in_progress`")                          \
     /* ---- class 05H: CPU job errors ---- */                                                      \
-    E(JOB_LENGTH, 0x05, 0x18, 0, "04",                                                            \
-      "job longer than the CPU transfer limit",                                                   \
+    E(JOB_LENGTH, 0x05, 0x17, 0, "04",                                                            \
+      "job longer than the CP transfer limit",                                                    \
       "read or write fewer bits/registers per request, or raise job_limit",                       \
-      "a request needs more bytes than `job_limit` (1024 / 450)",                                 \
+      "a request needs more bytes than `job_limit` (1024 / 450); 001 §8.2 \"transfer length > "   \
+      "1 kByte is too large for the CP\" ((05)18H is the master driver's send length)",          \
       "`job.c modcp_job_start` → `cp.c advance` → `pdu.c modcp_pdu_complete`",                    \
       "`test_cp_examples.c: test_exception_04_cpu_errors`; `test_job_fb.c: test_job_limit_450`")  \
     /* ---- class 07H: send errors ---- */                                                         \
@@ -68,22 +83,26 @@
       "transmission error (parity, framing or overrun) in a character",                           \
       "check the line for interference; check that baud, data bits, parity and stop bits match "  \
       "the master",                                                                               \
-      "parity, framing or overrun reported by the UART (normal mode)",                            \
+      "parity, framing or overrun reported by the UART (normal mode; on two-wire RS485 in "      \
+      "normal mode only inside a frame)",                                                         \
       "`link.c modcp_link_on_error`",                                                             \
-      "`test_line.c: test_parity_error_normal`; `test_link.c: test_parity_error_normal_mode`; "   \
-      "`test_ascii.c: test_line_errors`")                                                         \
+      "`test_line.c: test_parity_error_normal, test_rs485_normal_reports_errors_inside_frame`; "  \
+      "`test_link.c: test_parity_error_normal_mode`; `test_ascii.c: test_line_errors`")           \
     E(BREAK, 0x08, 0x0D, 0, "—",                                                                  \
       "BREAK: receive line to the partner interrupted",                                           \
       "reconnect or switch on the partner; RS422/485: check the receive wires R(A)/R(B)",         \
-      "BREAK reported by the UART (normal mode); also a wire break (SF, interrupt)",              \
+      "BREAK reported by the UART (normal mode; on two-wire RS485 in normal mode only inside a "  \
+      "frame; never with receive_preset = high, which holds a broken line idle); also a wire "    \
+      "break (SF, interrupt)",                                                                    \
       "`link.c modcp_link_on_error`; `cpdiag.c modcp_cpdiag_line_error`",                         \
-      "`test_link.c: test_break_idle`; `test_line.c: test_error_after_crc`; `test_diag.c: "       \
-      "test_diag_irq_wire_break`")                                                                \
+      "`test_link.c: test_break_idle`; `test_line.c: test_error_after_crc, "                      \
+      "test_rs485_normal_reports_errors_inside_frame`; `test_diag.c: test_diag_irq_wire_break`")  \
     E(FRAME_TOO_LONG, 0x08, 0x16, 0, "—",                                                         \
       "received telegram longer than the receive buffer",                                         \
       "check the master's request length and the line for interference",                          \
-      "a frame for us longer than the 264-byte receive buffer (ASCII: more than 264 decoded "    \
-      "bytes, address to LRC, i.e. more than 528 hex characters between `:` and CR)",             \
+      "a frame for us longer than the 264-byte receive buffer (ASCII: more than 2 × 252 data "   \
+      "characters, 003 §8.1: more than 255 decoded bytes from address to LRC, i.e. more than "   \
+      "510 hex characters between `:` and CR)",                                                   \
       "`rtu.c rtu_on_timer`; `ascii.c`",                                                          \
       "`test_link.c: test_frame_too_long`; `test_ascii.c: test_frame_too_long`")                  \
     E(SIGNAL_OFF, 0x08, 0x18, 0, "—",                                                             \
@@ -146,9 +165,12 @@
     E(SEQUENCE, 0x08, 0x37, 0, "none",                                                            \
       "new request before the last reply was sent",                                               \
       "increase the master's reply timeout",                                                      \
-      "the master did not wait for our reply", "`rtu.c busy_track`",                              \
+      "the master did not wait for our reply: a request for us or a broadcast started while "    \
+      "the previous one was processed or its reply pending (neither is executed)",                \
+      "`rtu.c rtu_busy_track`; `ascii.c`",                                                        \
       "`test_link.c: test_sequence_error_while_busy`; `test_line.c: "                             \
-      "test_sequence_error_during_turnaround, test_sequence_error_while_job_pending`")            \
+      "test_sequence_error_during_turnaround, test_sequence_error_while_job_pending, "            \
+      "test_sequence_error_broadcast_while_job_pending`; `test_ascii.c: test_sequence_error`")    \
     E(ASCII_START, 0x08, 0x38, 0, "—",                                                            \
       "wrong start character (not ':')", "check the framing settings (ASCII/RTU)",                \
       "ASCII: a frame that does not start with ':' (003 §8.5)", "`ascii.c`",                      \
@@ -326,11 +348,14 @@
       "`test_job_fb.c: test_reply_checks` (`expect_fb_error`)")                                   \
     E(COMMLOSS, 0x0E, 0x60, 0, "—",                                                               \
       "communication loss: no valid request for this slave within the supervision time",          \
-      "check the master and the line; the flag clears with the next valid request",               \
+      "check the master and the line; the CPU side resets the latched flag (modcp_bp_commloss_reset)",               \
       "*modcp extension*: no valid request within `commloss_ms` after the first write",           \
       "`commloss.c`", "`test_extended.c`")
 
 #define MODCP_EVENT_NA_ROWS(N)                                                                    \
+    N(0x05, 0x18, "001 §8.2", "send transfer length too large (> 4 kByte) or too small",         \
+      "a Modbus master driver's event (\"Modbus master only\"); the slave's job over its "      \
+      "transfer limit is (05)17H")                                                                \
     N(0x0E, 0x01, "004 §7.5", "error initialising the driver-specific SCC process",               \
       "modcp is one firmware image, not a driver loaded into a CP operating system. There is "    \
       "no SCC process to start.")                                                                 \

@@ -33,6 +33,7 @@ typedef struct {
     bool cl_armed;       /* an accepted write for our address was seen */
     bool cl_lost;        /* expired: MODCP_CPST_COMMLOSS set */
     uint32_t cl_last_us; /* last valid request for our address */
+    uint32_t cl_reset_seen; /* backplane commloss_reset as last seen (latched mode) */
     /* FC08 sub 03: end-of-frame character of ASCII framing (replaces LF); the CP copies
      * it to modcp_link_t.ascii_delim when delimiter_changed is set (sub 03, sub 01) */
     uint8_t ascii_delimiter;

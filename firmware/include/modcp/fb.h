@@ -6,13 +6,18 @@
  *    the CP parameters at every start;
  *  - on a rising edge of CP_START: clears its outputs (ERROR_NR / ERROR_INFO included:
  *    "a rising edge also clears the errors", 001 FB table), records the real area
- *    sizes, sends PARAMS + INIT and waits for INIT_ACK; retries every retry interval
+ *    sizes, sends INIT (preceded by PARAMS unless the CP acknowledged an INIT for this
+ *    record before: an FB restart is no re-parameterisation, 004 §4.2 step 4) and waits
+ *    for INIT_ACK; retries (PARAMS + INIT) every retry interval
  *    while the CP answers "not ready" or does not answer, until START_TIME; then
  *    CP_START_OK, or CP_START_ERROR with ERROR_NR 2 / ERROR_INFO = the CP's event, and
  *    CP_START reset (004 §5.5: "CP_START is reset and CP_START_ERROR = 1"), so that the
  *    caller's next rising edge retries;
  *  - ERROR_NR / ERROR_INFO keep the last error (initialisation or job, 004 §7.6) until
- *    the next rising edge of CP_START;
+ *    the next rising edge of CP_START; the FB writes them into the caller's out only
+ *    when they change (a new error, the edge's clearing, the first call), so the user
+ *    program may clear them at any time and they stay cleared until the next error
+ *    (004 §7.6, 000 §11: "the user may also clear them");
  *  - executes jobs: reads and register writes against plcmem, FC05/15 bit writes by
  *    read-modify-write; sets CP_START_NDR for one call when a write job was executed.
  *
@@ -88,9 +93,11 @@ typedef struct {
     bool params_pending; /* PARAMS still to send */
     uint16_t params_pos;
     bool init_sent;
+    bool cp_has_params; /* the CP acknowledged an INIT with this record's identity */
     uint32_t init_t0_ms;  /* CP_START edge */
     uint32_t retry_t0_ms; /* last attempt */
     modcp_fb_out_t out;
+    bool err_changed; /* out.error_nr / error_info not yet written to the caller's out */
     uint8_t tx_seq, rx_seq;
     bool rx_synced;
     /* job being executed / reply being sent */
@@ -114,7 +121,10 @@ void modcp_fb_init(modcp_fb_t *fb, modcp_backplane_t *bp, modcp_plcmem_t *mem,
                    uint32_t start_time_ms);
 
 /* One call per CPU cycle. in may be NULL (CP_START false); in->cp_start is written
- * false in the call in which the initialisation fails. */
+ * false in the call in which the initialisation fails. out (may be NULL) is the FB's
+ * outputs, kept by the caller from call to call like an instance DB: CP_START_OK /
+ * _ERROR / _NDR are written at every call, ERROR_NR / ERROR_INFO only when they
+ * change in the FB (see above). */
 void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint32_t now_ms);
 
 #endif

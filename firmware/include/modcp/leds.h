@@ -1,13 +1,17 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the CP's LEDs SF / TXD / RXD (004 §7.2, 001 §1.2; SPEC §7).
  *
- *  SF  (group error): on at power-on and whenever the CP is not ready (no or invalid
- *      parameters, FB not initialised), and while a wire break (BREAK on RxD in normal
- *      mode) is present. The caller computes it; leds.c only drives it.
- *  TXD: on while a reply is being sent; on for at least MODCP_LED_MIN_ON_US.
- *  RXD: on while characters are received (any address: the line is alive); a received
- *      frame keeps it on until it has ended (no character for the link's t3.5) and
- *      at least MODCP_LED_MIN_ON_US have passed since it went on.
+ *  SF  (group error, 004 §7.2, 003 §10.1): on at power-on and whenever the CP has no
+ *      valid parameters, while a wire break (BREAK on RxD in normal mode) is present,
+ *      and with RS232 automatic signals while CTS / DSR are not asserted; not for an FB
+ *      that is not (yet) initialised. The caller computes it; leds.c only drives it.
+ *  TXD: on while a reply is being sent and MODCP_LED_MIN_ON_US (200 ms) after its
+ *      transmission complete, retriggered by every reply (002 §8: "each LED lights for
+ *      200 ms when a frame travels"), and at least 200 ms from switching on.
+ *  RXD: on while characters are received (any address: the line is alive) and 200 ms
+ *      after the last character, retriggered by every frame; a frame keeps it on until
+ *      it has ended (no character for the link's t3.5), and it is on for at least 200 ms
+ *      from switching on (a late poll).
  * The LEDs have one source, the link (modcp/link.h): it records the time of the last
  * received character (last_us; not the echo of our own RS485 reply), the transmissions
  * started (tx_starts) and whether one is on the line (tx_on, until transmission

@@ -148,6 +148,7 @@ typedef struct { /* members by size, the small ones first: every byte within rea
                           echo of our own RS485 reply; never reset: the RXD LED reads
                           it at poll time, leds.h) */
     uint32_t tx_at_us; /* when the reply was handed over (start of the turnaround) */
+    uint32_t tx_end_us; /* transmission complete of the last reply (the TXD LED) */
 } modcp_link_t;
 
 #endif

@@ -18,12 +18,15 @@
 
 #include "modcp/events.h"
 #include "modcp/features.h"
+#include "modcp/hal.h" /* modcp_rx_preset_t */
 
-#define MODCP_PARAMS_VERSION 3u /* 2: rs485_mode_select (000 Table 5-2), quantity_limits;
-                                   3: db_in_32bit_mode (003 §3.7) */
-#define MODCP_PARAMS_RECORD_MAX 320u /* upper bound of the serialised record (checked at compile time) */
+#define MODCP_PARAMS_VERSION 4u /* 2: rs485_mode_select (000 Table 5-2), quantity_limits;
+                                   3: db_in_32bit_mode (003 §3.7);
+                                   4: receive_preset (000 Table 5-8), commloss_auto_clear */
+#define MODCP_PARAMS_RECORD_MAX 328u /* upper bound of the serialised record (checked at compile time) */
 
 typedef enum { MODCP_PARITY_NONE = 0, MODCP_PARITY_ODD = 1, MODCP_PARITY_EVEN = 2 } modcp_parity_t;
+
 typedef enum { MODCP_FRAMING_RTU = 0, MODCP_FRAMING_ASCII = 1 } modcp_framing_t;
 typedef enum { MODCP_OPMODE_NORMAL = 0, MODCP_OPMODE_SUPPRESS = 1 } modcp_opmode_t;
 typedef enum { MODCP_EOF_MANUAL = 0, MODCP_EOF_MODBUS = 1 } modcp_eof_timing_t;
@@ -127,6 +130,7 @@ typedef struct {
     /* interface */
     uint8_t iface;      /* modcp_iface_t */
     uint8_t rs232_auto; /* RS232 automatic secondary signals: 0 off, 1 on */
+    uint8_t rx_preset;  /* modcp_rx_preset_t: receive-line preset of RS422 / RS485 */
     /* mapping */
     uint8_t regs32; /* 32-bit registers on (replaces the DB offset scheme of FC03/06/16) */
     uint8_t r32_lim_db; /* with regs32: 0 (default, 003 §3.7, §5.4) the DB write limits lim_db
@@ -142,6 +146,8 @@ typedef struct {
     uint8_t scan_count;     /* indirection scanner: 0 = off, 1 ... 16 */
     /* diagnostics */
     uint8_t diag_irq; /* diagnostic interrupt records (001 §8.4): 0 off (default), 1 on */
+    uint8_t commloss_auto; /* comm loss: 0 (default) latched until the CPU side resets it
+                              (002 §7, SLF1), 1: cleared by the next valid request */
     /* 16-bit members */
     uint16_t ascii_timeout_ms; /* protocol: 1 ... 6500 */
     uint16_t turnaround_ms;    /* interface: RS485 delay before the reply, 0 ... 100 */
@@ -216,6 +222,8 @@ typedef enum {
     MODCP_PF_RS485_SEL,
     MODCP_PF_QTY_LIMITS,
     MODCP_PF_R32_LIM_DB,
+    MODCP_PF_RX_PRESET,
+    MODCP_PF_COMMLOSS_AUTO,
     MODCP_PF_COUNT
 } modcp_param_field_t;
 

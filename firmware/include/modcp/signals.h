@@ -51,6 +51,8 @@ typedef struct {
     uint8_t state;         /* modcp_sig_state_t */
     uint32_t t0_us;        /* start of the running wait */
     bool cts, dsr;         /* inputs as last reported by the port (OFF until reported) */
+    bool cts_missing;      /* CTS was not ON when needed ((07)08H, or OFF while sending),
+                              until it is ON again: lights SF with DSR OFF (003 §10.1) */
     bool rts, dtr;         /* outputs as last set */
     uint16_t aborts;       /* sends and receptions aborted by CTS / DSR */
 } modcp_sig_t;

@@ -120,6 +120,13 @@ static void hal_set_signal(void *ctx, modcp_signal_t sig, bool on)
     }
 }
 
+/* The line as the preset makes it (000 Table 5-8): R(A) 0 V / R(B) 5 V holds a broken
+ * or undriven line at idle, so a BREAK on it is not received (decode_rx drops it). */
+static void hal_set_rx_preset(void *ctx, uint8_t preset)
+{
+    ((modcp_posix_port_t *)ctx)->rx_preset = preset;
+}
+
 void modcp_posix_hal(modcp_posix_port_t *p, modcp_hal_t *hal)
 {
     memset(hal, 0, sizeof *hal);
@@ -130,6 +137,7 @@ void modcp_posix_hal(modcp_posix_port_t *p, modcp_hal_t *hal)
     hal->set_led = hal_set_led;
     hal->set_signal = hal_set_signal;
     hal->uart_tx_abort = hal_uart_tx_abort;
+    hal->set_rx_preset = hal_set_rx_preset;
 }
 
 bool modcp_posix_modem_inputs(modcp_posix_port_t *p, bool *cts, bool *dsr)

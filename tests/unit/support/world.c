@@ -9,6 +9,7 @@
 #include <cmocka.h>
 
 #include "frames.h"
+#include "diag_internal.h"
 
 static const uint16_t db_numbers[WORLD_DBS] = {WORLD_WORK_DB, 800, 801, 802, 900, 901, 910};
 
@@ -33,6 +34,11 @@ static void fake_de(void *ctx, bool on)
     if (on) {
         f->de_on_count++;
     }
+}
+
+static void fake_rx_preset(void *ctx, uint8_t preset)
+{
+    ((fake_hal_t *)ctx)->rx_preset = preset;
 }
 
 void world_example_params(modcp_params_t *p)
@@ -71,7 +77,8 @@ world_t *world_new(const modcp_params_t *p)
                               .t_count = 240, .c_count = 240, .dbs = w->dbs,
                               .db_count = WORLD_DBS};
     w->hal = (modcp_hal_t){.ctx = &w->fake, .uart_tx = fake_tx, .timer_arm = fake_arm,
-                           .set_de = fake_de};
+                           .set_de = fake_de, .set_rx_preset = fake_rx_preset};
+    w->fake.rx_preset = -1;
     size_t n = modcp_params_encode(&w->params, w->record, sizeof w->record);
     assert_true(n > 0);
     w->record_len = (uint16_t)n;
@@ -97,7 +104,7 @@ static void step(world_t *w, bool cp_start)
     modcp_cp_poll(&w->cp, w->now_us);
 }
 
-bool world_start(world_t *w, uint32_t max_ms)
+bool world_start_keep(world_t *w, uint32_t max_ms)
 {
     for (uint32_t ms = 0; ms < max_ms; ms++) {
         step(w, true);
@@ -107,6 +114,15 @@ bool world_start(world_t *w, uint32_t max_ms)
         w->now_us += 1000;
     }
     return w->fb_out.cp_start_ok;
+}
+
+bool world_start(world_t *w, uint32_t max_ms)
+{
+    bool ok = world_start_keep(w, max_ms);
+    if (w->cp.diag.buffer_len == 1u && w->cp.diag.buffer[0] == MODCP_EV_PARAMS_TAKEN) {
+        modcp_diag_clear_buffer(&w->cp.diag); /* a plain start's (00)03H: see world.h */
+    }
+    return ok;
 }
 
 void world_run(world_t *w, uint32_t us)

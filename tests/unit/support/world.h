@@ -25,6 +25,7 @@ typedef struct {
     uint32_t timer_us;
     bool de;
     unsigned de_on_count;
+    int rx_preset; /* the last set_rx_preset, -1 before any */
 } fake_hal_t;
 
 typedef struct {
@@ -55,8 +56,13 @@ void world_example_params(modcp_params_t *p);
 /* Allocate a world with params p (NULL: the example set), not yet started. */
 world_t *world_new(const modcp_params_t *p);
 void world_free(world_t *w);
-/* Run CP_START and cycles until CP_START_OK or CP_START_ERROR (or max_ms). */
+/* Run CP_START and cycles until CP_START_OK or CP_START_ERROR (or max_ms). A plain
+ * start leaves one entry in the diagnostic buffer, (00)03H "parameters taken over" (VIPA
+ * CP 341 manual §7.2); world_start clears the buffer when that is all it holds, so that
+ * each test counts its own events (a start with warnings keeps them, with (00)03H
+ * under them). world_start_keep leaves it (test_fb_restart.c test_start_up_events). */
 bool world_start(world_t *w, uint32_t max_ms);
+bool world_start_keep(world_t *w, uint32_t max_ms);
 /* Advance time by us, running FB cycles (1 ms) and CP polls. */
 void world_run(world_t *w, uint32_t us);
 /* Send frame bytes (hex string incl. CRC) to the CP, end it with t3.5 silence and run

@@ -63,6 +63,7 @@ typedef struct modcp_console_env {
     const modcp_fb_t *fb;     /* the FB: init state, outputs, jobs: status */
     bool *paused;             /* the cyclic user program is paused: pause / resume */
     bool *cp_start;           /* the FB's CP_START input: start 0|1 (optional) */
+    modcp_backplane_t *bp;    /* the backplane: commloss reset (optional) */
     /* CP-side state for `status` (filled by the host from the CP or its snapshot) */
     bool cp_configured;            /* valid parameter record applied */
     bool cp_ready;                 /* configured and the FB's INIT accepted */

@@ -72,6 +72,8 @@ typedef struct modcp_posix_port {
     bool inputs_known, cts, dsr;
     /* receive decoding (PARMRK on a device) */
     uint8_t mark_state;
+    uint8_t rx_preset; /* the CP's receive-line preset (hal set_rx_preset): with
+                          MODCP_RXP_HIGH a broken line looks idle, BREAK is not seen */
     uint32_t overruns; /* last TIOCGICOUNT overrun count */
     /* optional observer of transmitted frames (for the trace) */
     void (*on_tx)(void *user, const uint8_t *buf, uint16_t len, uint32_t now_us);
