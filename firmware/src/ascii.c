@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — Modbus ASCII framing (003 §2 = manual §8.1, SPEC §3.2): ':' + hex pairs +
+/* modcp — Modbus ASCII framing ([ASCII-32] §2 = manual §8.1, docs/ascii-and-32bit.md): ':' + hex pairs +
  * LRC + CR LF, decoded into the same binary buffer as RTU (address at buf[0], PDU at
  * buf + 1, LRC last) while the characters arrive; the PDU engine and the mapping are
  * the ones RTU uses.
@@ -9,7 +9,7 @@
  *
  * Receive, by link state:
  *   IDLE  waiting for ':'. Any other character: wrong start character, event (08)38H
- *         (normal mode; interference suppression and RS485 are silent, 003 §3.2:
+ *         (normal mode; interference suppression and RS485 are silent, [ASCII-32] §3.2:
  *         "the start of the receive message is recognised by the correctly received
  *         start character"), then the rest of the run of stray characters is ignored
  *         without further events until a ':' or the character delay time ends it.
@@ -26,18 +26,18 @@
  * rest after the last character; a silence that long inside a frame for us discards it
  * with (08)06H.
  *
- * Errors inside a frame for us discard it with no reply (003 §8.1, §6):
+ * Errors inside a frame for us discard it with no reply ([ASCII-32] §8.1, §6):
  *   ':' inside the frame ............ (08)39H, reception restarts at the new ':'
  *   not 0-9 / A-F (lower case a-f is accepted), an odd number of hex characters
  *   before CR, or CR not followed by the delimiter ... (08)3AH
  *   LRC wrong, or fewer than 3 bytes (address, function, LRC) ... (08)36H
- *   more than 2 x 252 data characters (003 §8.1: 255 bytes from address to LRC) ... (08)16H
+ *   more than 2 x 252 data characters ([ASCII-32] §8.1: 255 bytes from address to LRC) ... (08)16H
  *   parity / framing / overrun / BREAK ... (08)0CH / 0DH, reported by link.c (normal
  *   mode only); the frame is discarded in both modes
  *   character delay time exceeded ... (08)06H
  * Each of these counts once in BUS_CRC (FC08 0C), like rtu.c; so do the same errors in
  * another slave's frame (without an event), except an over-long frame.
- * An error after CR LF (state EOF) does not touch the frame (004 §2.2 "after the
+ * An error after CR LF (state EOF) does not touch the frame ([RTU-2003] §2.2 "after the
  * message"). With 7 data bits the eighth bit of a received character is masked.
  *
  * While a request is processed or its reply pending (BUSY / TURNAROUND / TX / EOF)
@@ -60,7 +60,7 @@
 #define ASCII_COLON 0x3Au
 #define ASCII_CR 0x0Du
 #define ASCII_MIN_FRAME 3u /* address, function, LRC */
-/* The longest frame (003 §8.1): address, function, at most 2 x 252 data characters (252
+/* The longest frame ([ASCII-32] §8.1): address, function, at most 2 x 252 data characters (252
  * bytes), LRC; one more byte is an over-long frame, (08)16H. */
 #define ASCII_MAX_FRAME (1u + 1u + 252u + 1u)
 #define HEX_BAD 0xFFu
@@ -148,7 +148,7 @@ static void frame_end(modcp_link_t *l)
     }
     if (l->fr.ascii.count < ASCII_MIN_FRAME || l->fr.ascii.lrc != 0u) {
         if (ours) {
-            link_event(l, MODCP_EV_CRC); /* 003 §8.5 (08)36H "LRC incorrect" */
+            link_event(l, MODCP_EV_CRC); /* [ASCII-32] §8.5 (08)36H "LRC incorrect" */
         }
         link_count(l, MODCP_CNT_BUS_CRC);
         return;
@@ -190,7 +190,7 @@ static void frame_char(modcp_link_t *l, uint8_t c, uint32_t now_us)
     modcp_ascii_t *a = &l->fr.ascii;
     if (c == ASCII_COLON) {
         if (a->in_frame) {
-            /* the first part is discarded (003 §8.5 (08)39H; another slave's: silently) */
+            /* the first part is discarded ([ASCII-32] §8.5 (08)39H; another slave's: silently) */
             discard(l, MODCP_EV_ASCII_RESTART);
         }
         frame_start(l, now_us);
@@ -267,7 +267,7 @@ static void ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
             frame_start(l, now_us);
             break;
         }
-        if (!l->suppress && !l->rs485) { /* RS485: between frames (000 §5.6.5) */
+        if (!l->suppress && !l->rs485) { /* RS485: between frames ([RTU-2009] §5.6.5) */
             link_event(l, MODCP_EV_ASCII_START);
         }
         l->state = MODCP_LINK_SKIP; /* ignore the rest of the stray characters */

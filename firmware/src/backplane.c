@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the CPU–CP backplane: two SPSC rings of 32-byte blocks and the message
- * header (de)serialisers (SPEC §6).
+ * header (de)serialisers (docs/cpu-cp-interface.md).
  *
  * Ring protocol. head counts the blocks the producer has published, tail the blocks
  * the consumer has acknowledged; both only grow and wrap at 2^32, the slot of block n

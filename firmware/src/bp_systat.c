@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — CPU side of the SYSTAT service (004 §7.4; see modcp/cpdiag.h): a request
+/* modcp — CPU side of the SYSTAT service ([RTU-2003] §7.4; see modcp/cpdiag.h): a request
  * number written by the CPU side, answered by the CP in the status area. */
 #include <string.h>
 

@@ -1,20 +1,20 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — comm-loss supervision (SPEC §2, §5.3; 002 §7) and the persistent state of
+/* modcp — comm-loss supervision (docs/parameters.md, §5.3; [ALTIVAR] §7) and the persistent state of
  * the extended set.
  *
  * params.commloss_ms = 0: off; 100 ... 30000 ms: the supervision is armed by the
  * first accepted write (FC05, 06, 15, 16, 22, 23 executed without exception) for our
- * own address since start-up / new parameters (002 §7: "at least one command or
+ * own address since start-up / new parameters ([ALTIVAR] §7: "at least one command or
  * setpoint parameter written a first time"). Once armed, every valid request for our
  * address (CRC good, addressed to us, not broadcast; answered normally, with an
  * exception, or not at all in listen-only mode) restarts the time. When the time runs
  * out: event (0E)60H once and MODCP_CPST_COMMLOSS in the backplane status area,
  * which the CPU side's user program reads with modcp_bp_read_status(). The flag stays
- * latched, as the Altivar's resettable fault SLF1 (002 §7), until the CPU side resets it
+ * latched, as the Altivar's resettable fault SLF1 ([ALTIVAR] §7), until the CPU side resets it
  * (modcp_bp_commloss_reset, seen at the CP's next poll; the time then starts afresh) or
  * new parameters arrive; with params.commloss_auto the next valid request for our
  * address clears it instead. The supervision stays armed either way.
- * Like the Altivar (002 §7 pitfall), any request keeps it alive, also reads.
+ * Like the Altivar ([ALTIVAR] §7 pitfall), any request keeps it alive, also reads.
  * The comm-loss state is x->cl_lost and nowhere else: cp.c publishes
  * MODCP_CPST_COMMLOSS from it, the console reads that flag of the status area. */
 #include <stddef.h>

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the CP side wired together.
  *
- * Start-up (SPEC §2, §6): the CP is "not ready" (SF on, line ignored) until the CPU
+ * Start-up (docs/parameters.md, §6): the CP is "not ready" (SF on, line ignored) until the CPU
  * side's PARAMS record arrives and validates. A bad record leaves it not ready with
  * the record's first fatal event in the diagnostics; never half-configured. The FB's
  * INIT then brings the controller's area sizes and the work area; until it has been
@@ -26,7 +26,7 @@
 
 /* ---- line discipline and diagnostics (signals.c, leds.c, cpdiag.c) ---------- */
 
-/* SF (004 §7.2, 003 §10.1): no or invalid parameters (on at power-on until the CP is
+/* SF ([RTU-2003] §7.2, [ASCII-32] §10.1): no or invalid parameters (on at power-on until the CP is
  * parameterised), a wire break, or RS232 automatic signals with CTS / DSR not asserted.
  * An FB not (yet) initialised does not light it: the CP is parameterised and fine, the
  * requests get exception 04 / (0E)56H. */
@@ -67,7 +67,7 @@ static void line_poll(modcp_cp_t *cp, uint32_t now_us)
     /* (the poll always has its backplane: modcp_job_poll and publish() use it too) */
     uint32_t req = atomic_load_explicit(&cp->job.bp->systat_req, memory_order_acquire);
     if (req != cp->cpdiag.systat_ack) { /* a new SYSTAT request */
-        /* byte 0 (004 §7.4): RUN once parameterised, fault without valid parameters */
+        /* byte 0 ([RTU-2003] §7.4): RUN once parameterised, fault without valid parameters */
         modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, cp->configured);
     }
     if (cp->job.new_errors != 0u) { /* new backplane errors */
@@ -317,7 +317,7 @@ static bool params_start(modcp_cp_t *cp)
 }
 #endif
 
-/* The receive-line preset in force (000 Table 5-8): `default` is BREAK detection on
+/* The receive-line preset in force ([RTU-2009] Table 5-8): `default` is BREAK detection on
  * RS422, HIGH on RS485 (the manual's recommendation for the bus), none on RS232. */
 static uint8_t rx_preset(const modcp_params_t *p)
 {
@@ -351,7 +351,7 @@ static void configure(modcp_cp_t *cp)
 
 /* A PARAMS record arrived: validate and apply, or stay not ready. The record the CP
  * holds already (the same identity and length: the CPU side re-sends it at an FB
- * restart, 004 §4.2, §5.5) is no re-parameterisation (VIPA CP 341 manual §7.2, (00)04H
+ * restart, [RTU-2003] §4.2, §5.5) is no re-parameterisation (VIPA CP 341 manual §7.2, (00)04H
  * "parameters already on the CP"): the request in progress, the diagnostic buffer, a
  * wire break, comm-loss arming and listen-only mode stay; with the record in the frame
  * buffer (features.h) the request in progress was dropped and the line comes back on. */
@@ -368,7 +368,7 @@ static MODCP_NOINLINE void take_params(modcp_cp_t *cp)
         return;
     }
     unconfigure(cp);
-    modcp_diag_clear_buffer(&cp->diag); /* 001 §8.3: re-parameterisation clears it */
+    modcp_diag_clear_buffer(&cp->diag); /* [VIPA-341] §8.3: re-parameterisation clears it */
 #if MODCP_WITH_EXTENDED
     modcp_ext_reset(&cp->ext, &cp->diag); /* comm loss disarmed, listen-only left */
 #endif
@@ -383,7 +383,7 @@ static MODCP_NOINLINE void take_params(modcp_cp_t *cp)
         ev = modcp_params_apply(&cp->params, &cp->params, &warning);
     }
     if (ev == MODCP_EV_NONE) {
-        modcp_diag_event(&cp->diag, MODCP_EV_PARAMS_TAKEN); /* (00)03H, 001 §7.2 */
+        modcp_diag_event(&cp->diag, MODCP_EV_PARAMS_TAKEN); /* (00)03H, [VIPA-341] §7.2 */
     }
     modcp_diag_event(&cp->diag, warning);
     cp->param_event = ev;

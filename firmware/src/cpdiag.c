@@ -34,7 +34,7 @@ void modcp_cpdiag_line_error(modcp_cpdiag_t *d, uint8_t line_errors, bool report
         return;
     }
     d->wire_break = true;
-    irq(d, 0x25u, 0x02u); /* 001 §8.4: wire break on RxD */
+    irq(d, 0x25u, 0x02u); /* [VIPA-341] §8.4: wire break on RxD */
 }
 
 void modcp_cpdiag_good_char(modcp_cpdiag_t *d)
@@ -56,7 +56,7 @@ void modcp_cpdiag_params(modcp_cpdiag_t *d, bool ok, int irq_setting)
     if (!ok) {
         if (!d->param_error) {
             d->param_error = true;
-            irq(d, 0x83u, 0x00u); /* 001 §8.4: parameterisation error */
+            irq(d, 0x83u, 0x00u); /* [VIPA-341] §8.4: parameterisation error */
         }
         return;
     }

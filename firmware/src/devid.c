@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — identification of the extended set: FC17 report slave ID (Modbus
  * Application Protocol V1.1b3 §6.13) and FC43/14 read device identification (§6.21),
- * both from the parameter record's strings (SPEC §2: vendor, product, revision,
+ * both from the parameter record's strings (docs/parameters.md: vendor, product, revision,
  * user application name; at most 16 characters each). An empty revision is modcp's
  * version, MODCP_VERSION (modcp/version.h, generated from the top-level CMakeLists.txt).
  *

@@ -45,8 +45,8 @@ void modcp_diag_event(modcp_diag_t *d, modcp_event_t ev)
     if (b[0] < MODCP_DIAG_BUFFER) {
         b[0]++;
     }
-    if (ev < 0x0100u) { /* class 00H, CP start-up (001 §8.2): not an error, so not in
-                           SYSTAT ("error area") nor in STATUS (an error's, 001 §8.1) */
+    if (ev < 0x0100u) { /* class 00H, CP start-up ([VIPA-341] §8.2): not an error, so not in
+                           SYSTAT ("error area") nor in STATUS (an error's, [VIPA-341] §8.1) */
         d->events_total++;
         return;
     }

@@ -10,7 +10,7 @@ void modcp_diag_init(modcp_diag_t *d);
 /* Record an event (NONE is ignored). */
 void modcp_diag_event(modcp_diag_t *d, modcp_event_t ev);
 /* Increment a serial-line counter. Bus and slave message counts (0B, 0E) wrap
- * 65535 -> 0, the error counts saturate at 65535 (002 §8: frame counters modulo
+ * 65535 -> 0, the error counts saturate at 65535 ([ALTIVAR] §8: frame counters modulo
  * 65536, error counters saturating). */
 void modcp_diag_count_error(modcp_diag_t *d, modcp_counter_t c);
 static inline void modcp_diag_count(modcp_diag_t *d, modcp_counter_t c)
@@ -22,9 +22,9 @@ static inline void modcp_diag_count(modcp_diag_t *d, modcp_counter_t c)
     }
 }
 void modcp_diag_clear_counters(modcp_diag_t *d);
-/* Empty the diagnostic buffer (001 §8.3: re-parameterisation of the CP clears it). */
+/* Empty the diagnostic buffer ([VIPA-341] §8.3: re-parameterisation of the CP clears it). */
 void modcp_diag_clear_buffer(modcp_diag_t *d);
-/* SYSTAT image (16 bytes as 004 §7.4: state, 0, flags, 0, 6 event words high byte
+/* SYSTAT image (16 bytes as [RTU-2003] §7.4: state, 0, flags, 0, 6 event words high byte
  * first); clears the SYSTAT events and flags. run: CP state RUN (else fault). */
 void modcp_diag_read_systat(modcp_diag_t *d, bool run, uint8_t out[16]);
 

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — the CPU side's communication FB (FB 80 / FB 180 model, 004 §4, §7.6).
+/* modcp — the CPU side's communication FB (FB 80 / FB 180 model, [RTU-2003] §4, §7.6).
  *
  * One call per CPU cycle does, in this order:
  *   1. CP_START edge: clear the outputs (ERROR_NR / ERROR_INFO included) and start the
@@ -18,7 +18,7 @@
  *      answers "not ready" or is silent, push PARAMS then INIT.
  *
  * Data crosses the backplane once per 32-byte block each way: no job buffer, one copy
- * between a slot and controller memory. Consistency guarantee (SPEC §6): every block
+ * between a slot and controller memory. Consistency guarantee (docs/cpu-cp-interface.md): every block
  * is written or read within one call, so each block is consistent (a one-block job or
  * reply as a whole); a job whose blocks are all handled in one FB call is consistent
  * as a whole: a write job of up to
@@ -27,7 +27,7 @@
  * that answers it when the ring towards the CP is empty (as in normal operation); a
  * longer job whenever the other side keeps pace during the call.
  *
- * Job validation by the FB (004 §7.6), replied as (0E)57H + ERROR_NR and shown on
+ * Job validation by the FB ([RTU-2003] §7.6), replied as (0E)57H + ERROR_NR and shown on
  * ERROR_NR / ERROR_INFO (they stay until the next CP_START edge): 10 unknown op (INFO =
  * op) · 12 count or len 0 (INFO = count) · 13 len above MODCP_FB_JOB_MAX, or fewer data
  * bytes than the bit count needs (INFO = len / count), or a MASKWRITE (FC22) that is not
@@ -584,7 +584,7 @@ void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint3
     }
     rx_blocks(fb);
     if (!run_init(fb, now_ms) && in != NULL) {
-        in->cp_start = false; /* 004 §5.5: CP_START is reset, CP_START_ERROR = 1 */
+        in->cp_start = false; /* [RTU-2003] §5.5: CP_START is reset, CP_START_ERROR = 1 */
     }
 
     if (out != NULL) {

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — CP side of the backplane (SPEC §6, 004 §4.6).
+/* modcp — CP side of the backplane (docs/cpu-cp-interface.md, [RTU-2003] §4.6).
  *
  * A job goes out as one header block (kind JOB, FIRST, the job's tag, data = the
  * encoded modcp_bp_job_t) and, when its write data fits after the header (up to

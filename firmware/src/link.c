@@ -2,7 +2,7 @@
 /* modcp — serial link layer: configuration, the framing backend behind its ops struct
  * (RTU in rtu.c, ASCII in ascii.c, selected once in modcp_link_configure), the
  * end-of-frame silence, line-error accounting, transmit, turnaround and RS485 driver
- * enable (SPEC §3).
+ * enable (docs/design.md).
  *
  * RS485: DE is switched on before the first byte (before the turnaround delay, so the
  * line is driven to idle while we wait) and released only in modcp_link_on_tx_done(),
@@ -139,7 +139,7 @@ void modcp_link_configure(modcp_link_t *l, const modcp_params_t *p)
     stop(l);
     l->own_addr = p->slave_addr;
     l->rs485 = p->iface == (uint8_t)MODCP_IFACE_RS485;
-    /* two-wire RS485 is interference suppression unless its mode selection is on (000
+    /* two-wire RS485 is interference suppression unless its mode selection is on ([RTU-2009]
      * Table 5-2; params.c refuses mode = normal without it) */
     l->suppress = p->opmode == (uint8_t)MODCP_OPMODE_SUPPRESS || (l->rs485 && p->rs485_sel == 0u);
     l->t35_us = modcp_params_t35_us(p);
@@ -203,8 +203,8 @@ void modcp_link_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
 
 /* Whether a line error is reported ((08)0CH / (08)0DH): in normal mode; never in
  * interference suppression (the frame is discarded silently); on two-wire RS485 in
- * normal mode (mode selection on, 000 Table 5-2) only inside a frame — ours before its
- * CRC is complete, or another slave's — never before, after or between frames (000
+ * normal mode (mode selection on, [RTU-2009] Table 5-2) only inside a frame — ours before its
+ * CRC is complete, or another slave's — never before, after or between frames ([RTU-2009]
  * §5.6.5: "all transmission errors or BREAKs detected before and after received
  * telegrams are ignored ... a BREAK level during the pauses too"). */
 static bool error_reported(const modcp_link_t *l, uint32_t now_us)

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — mapping engine: Modbus addresses -> controller operands (004 §3, 003 §4).
+/* modcp — mapping engine: Modbus addresses -> controller operands ([RTU-2003] §3, [ASCII-32] §4).
  *
  * Bits (FC01/05/15 on the coil windows, FC02 on the input windows), checked in
  * this order:
@@ -13,17 +13,17 @@
  *   6. writes: every touched M / Q byte inside lim_m / lim_q (max 0 = not
  *      writable); a DB-bit window: its DB inside lim_db and not the FB's work DB
  *      ................................................... (0E)52H
- *   SPEC §4 ("every byte or DB that a write touches must lie inside its MIN/MAX")
- *   decides over 003 §4.6, where DB-bit coils ignore the DB limits.
+ *   docs/mapping.md ("every byte or DB that a write touches must lie inside its MIN/MAX")
+ *   decides over [ASCII-32] §4.6, where DB-bit coils ignore the DB limits.
  *
- * Registers, 16-bit scheme (004 §3.4): base 0 (not configured) -> (0E)51H;
+ * Registers, 16-bit scheme ([RTU-2003] §3.4): base 0 (not configured) -> (0E)51H;
  * DB = base + (reg >> 9) > 65535 -> (0E)53H; word + qty > 512 -> (0E)39H;
  * writes (FC06/16/22/23) outside lim_db or to the work DB -> (0E)52H.
  *
- * Registers, 32-bit scheme (003 §4.5; params.regs32, FC03/06/16/23):
+ * Registers, 32-bit scheme ([ASCII-32] §4.5; params.regs32, FC03/06/16/23):
  * the range holding reg (an all-zero range is unused) -> else (0E)51H;
  * reg + qty - 1 > to -> (0E)54H; writes: the work DB -> (0E)52H; lim_db only with
- * params.r32_lim_db (003 §3.7, §5.4: the DB limits are the standard mode's, the three
+ * params.r32_lim_db ([ASCII-32] §3.7, §5.4: the DB limits are the standard mode's, the three
  * DBs stay writable; r32_lim_db = 1 keeps modcp's earlier, stricter rule).
  * int16: DBW = (reg - from) * 2, 2 bytes per register; int32 / float:
  * DBD = (reg - from) * 4, 4 bytes per register. out->bit = kind + 1.
@@ -41,8 +41,8 @@
 #include "map_internal.h"
 #include "quantity_internal.h"
 
-#define TC_MAX_CP341 16u   /* 004 §3.3: CP 341 reads at most 16 timers / counters */
-#define WORDS_PER_DB 512u  /* 004 §3.4 */
+#define TC_MAX_CP341 16u   /* [RTU-2003] §3.3: CP 341 reads at most 16 timers / counters */
+#define WORDS_PER_DB 512u  /* [RTU-2003] §3.4 */
 /* The function codes on registers: FC03 / 06 / 16 / 22 / 23 holding, FC04 input. */
 #define REG_FCS ((1u << 3) | (1u << 4) | (1u << 6) | (1u << 16) | (1u << 22) | (1u << 23))
 
@@ -104,7 +104,7 @@ static bool limit_ok(const modcp_limit_t *l, uint32_t first, uint32_t last)
 bool modcp_map_db_write_ok(const modcp_params_t *p, const modcp_areas_t *a, uint32_t db)
 {
     if (a != NULL && db == a->work_db) {
-        return false; /* the FB's work area is never writable (004 §3.5); work_db 0 (none):
+        return false; /* the FB's work area is never writable ([RTU-2003] §3.5); work_db 0 (none):
                          db 0 is refused anyway */
     }
     return db >= 1u && limit_ok(&p->lim_db, db, db);
@@ -204,9 +204,9 @@ modcp_event_t modcp_map_regs_kind(const modcp_params_t *p, const modcp_areas_t *
     uint32_t offset;
     uint32_t bytes;
     bool db_limits = true; /* writes: lim_db applies (else only the work DB is refused) */
-    if (fc != 4u && p->regs32 != 0u) { /* the 32-bit scheme (never FC04, 003 §4.4) */
+    if (fc != 4u && p->regs32 != 0u) { /* the 32-bit scheme (never FC04, [ASCII-32] §4.4) */
         const uint8_t k1 = out->bit;    /* the range's kind + 1, 0: none */
-        db_limits = p->r32_lim_db != 0u; /* 003 §3.7, §5.4: the DB limits are standard mode's */
+        db_limits = p->r32_lim_db != 0u; /* [ASCII-32] §3.7, §5.4: the DB limits are standard mode's */
 #if MODCP_WITH_EXTENDED
         if (fc == 22u && k1 != MODCP_R32_INT16 + 1u) {
             return MODCP_EV_NO_WINDOW;

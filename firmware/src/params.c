@@ -1,24 +1,24 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — the parameter record: defaults, validation, effective copy, binary form.
  *
- * Validation rules and the events they raise (004 §2, §3, §7.5; 003 §3, §4.5, §8.6).
+ * Validation rules and the events they raise ([RTU-2003] §2, §3, §7.5; [ASCII-32] §3, §4.5, §8.6).
  * One issue per bad field (per window / range / scanner entry / ID string); for a
  * field with several problems only the first one found is reported.
  *
- *   data_bits      RTU: 8; ASCII: 7 or 8 (8: modcp extension, SPEC §2) (0E)20H fatal
- *   stop_bits      ASCII: not 1 with parity even/odd, not 2 with parity none (003
+ *   data_bits      RTU: 8; ASCII: 7 or 8 (8: modcp extension, docs/parameters.md) (0E)20H fatal
+ *   stop_bits      ASCII: not 1 with parity even/odd, not 2 with parity none ([ASCII-32]
  *                  §3.1 "with even or odd parity 1 stop bit is pre-defined; none
  *                  parity effects two stop bits": 7E1, 7O1, 7N2; the same for the
  *                  8-bit extension) ... (0E)2EH fatal (the manual gives no event)
  *   slave_addr     0 ................................................ (0E)23H fatal
  *   opmode         not 0/1; normal on RS485 (two-wire) while rs485_sel is 0
- *                  (000 Table 5-2: without "enable operating-mode selection for
+ *                  ([RTU-2009] Table 5-2: without "enable operating-mode selection for
  *                  RS485" two-wire RS485 runs in modem = interference suppression
  *                  mode only; event (0E)22H "selected operating mode not allowed")
  *                  .................................................. (0E)22H fatal
  *   f_mul          outside 1..10 ................. (0E)21H NOT fatal, runs with 1
  *   ascii_timeout  outside 1..6500 ms ............ (0E)21H NOT fatal, runs with 1000
- *                  (003 §8.6 prints this as the second parameter event, at the
+ *                  ([ASCII-32] §8.6 prints this as the second parameter event, at the
  *                  position of 21H; checked whatever the framing, the value is
  *                  corrected in either case)
  *   lim_db/m/q     max != 0 && min > max; lim_db: max != 0 && min == 0 (0E)24H fatal
@@ -32,7 +32,7 @@
  *                  DB (2 bytes per int16 register, 4 per int32/float register,
  *                  65536 bytes), two ranges overlapping, two ranges on the same DB
  *                  .................................................. (0E)2EH fatal
- *                  003 §8.6 lists these four errors between "overlap FC02" (28H)
+ *                  [ASCII-32] §8.6 lists these four errors between "overlap FC02" (28H)
  *                  and "error reading the parameter file" (2EH), but their event
  *                  numbers are illegible in the OCR. We do not invent numbers and
  *                  report them as (0E)2EH. An all-zero entry (from = to = db = 0)
@@ -447,7 +447,7 @@ static CHECK_INLINE void check_scanner(issue_sink_t *s, const modcp_params_t *p)
 static CHECK_INLINE bool custom_ok(const modcp_params_t *p, const modcp_param_row_t *r,
                                    uint32_t *v)
 {
-    /* The ASCII character frame (003 §3.1) and the RS485 operating mode (000 Table 5-2);
+    /* The ASCII character frame ([ASCII-32] §3.1) and the RS485 operating mode ([RTU-2009] Table 5-2);
      * tested before the switch, which then stays a compare chain (no jump table). */
     if (r->field == MODCP_PF_STOP_BITS) {
         return p->framing != MODCP_FRAMING_ASCII ||
@@ -461,7 +461,7 @@ static CHECK_INLINE bool custom_ok(const modcp_params_t *p, const modcp_param_ro
     case MODCP_PF_DATA_BITS: return p->framing == MODCP_FRAMING_ASCII || *v == 8u;
     case MODCP_PF_RS232_AUTO: return *v == 0u || p->iface == MODCP_IFACE_RS232;
     case MODCP_PF_RTS_ON_DELAY:
-    case MODCP_PF_RTS_OFF_DELAY: return *v % 10u == 0u; /* 001 §1.6: steps of 10 ms */
+    case MODCP_PF_RTS_OFF_DELAY: return *v % 10u == 0u; /* [VIPA-341] §1.6: steps of 10 ms */
     case MODCP_PF_RX_PRESET: return *v != MODCP_RXP_BREAK || p->iface != MODCP_IFACE_RS485;
     case MODCP_PF_JOB_LIMIT: return *v <= model_limit(p->cpu_model);
     case MODCP_PF_SCANNER: return MODCP_PARAM_WIDTH(r) != 1u || scan_count_ok(p);

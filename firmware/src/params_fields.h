@@ -108,28 +108,28 @@ typedef struct {
       "must be one of 300, 600, 1200, 2400, 4800, 9600, 19200, 38400, 57600, 76800, 115200",      \
       "transmission rate, bit/s", /* custom: one of the table */                                  \
       "300, 600, 1200, 2400, 4800, 9600, 19200, 38400, 57600, 76800, 115200",                     \
-      "004 §2.1, 000 §2.1")                                                                       \
+      "[RTU-2003] §2.1, [RTU-2009] §2.1")                                                                       \
     S(data_bits, 1, MODCP_PF_DATA_BITS, 0, 7, 8, 8, MODCP_EV_DATA_BITS, MODCP_PF_CUSTOM,          \
       "serial", "data_bits", NUM, none, "must be 8 for RTU, 7 or 8 for ASCII",                    \
       "data bits per character", /* custom: 8 for RTU */                                          \
-      "RTU: 8; ASCII: 7 (8: a modcp extension, SPEC §2)", "004 §2.1, 003 §3.1")                   \
+      "RTU: 8; ASCII: 7 (8: a modcp extension, docs/parameters.md)", "[RTU-2003] §2.1, [ASCII-32] §3.1")                   \
     S(parity, 1, MODCP_PF_PARITY, 0, 0, 2, MODCP_PARITY_EVEN, MODCP_EV_PARAM_RECORD, 0, "serial",  \
       "parity", ENUM, parity, "must be none, odd or even", "parity bit",                          \
-      "`none`, `odd`, `even` (`n`, `o`, `e`)", "004 §2.1")                                        \
+      "`none`, `odd`, `even` (`n`, `o`, `e`)", "[RTU-2003] §2.1")                                        \
     S(stop_bits, 1, MODCP_PF_STOP_BITS, 0, 1, 2, 1, MODCP_EV_PARAM_RECORD, MODCP_PF_CUSTOM,       \
       "serial", "stop_bits", NUM, none, "must be 1 or 2",                                         \
       "stop bits; ASCII: 1 with parity even or odd, 2 with parity none (7E1, 7O1, 7N2), "        \
       "`modcp-conf` sets them from the parity when the key is absent",                           \
       /* custom: the ASCII frame */                                                               \
-      "1, 2 (ASCII: by the parity)", "004 §2.1, 003 §3.1")                                        \
+      "1, 2 (ASCII: by the parity)", "[RTU-2003] §2.1, [ASCII-32] §3.1")                                        \
     S(slave_addr, 1, MODCP_PF_SLAVE_ADDR, 0, 1, 255, 222, MODCP_EV_SLAVE_ADDR, 0, "protocol",     \
       "slave_address", NUM, none, "must be 1..255",                                               \
       "the CP's own Modbus address; frames for other addresses are not checked and not "         \
       "answered; 0 is broadcast. The default is the manuals' 222; their examples use 5",          \
-      "1 … 255", "004 §2.2")                                                                      \
+      "1 … 255", "[RTU-2003] §2.2")                                                                      \
     S(framing, 1, MODCP_PF_FRAMING, 0, 0, MODCP_WITH_ASCII, MODCP_FRAMING_RTU,                    \
       MODCP_EV_PARAM_RECORD, 0, "protocol", "framing", ENUM, framing, "must be rtu or ascii",     \
-      "RTU (binary, CRC-16) or ASCII (`:` hex LRC CR LF)", "`rtu`, `ascii`", "003")               \
+      "RTU (binary, CRC-16) or ASCII (`:` hex LRC CR LF)", "`rtu`, `ascii`", "[ASCII-32]")               \
     S(opmode, 1, MODCP_PF_OPMODE, 0, 0, 1, MODCP_OPMODE_NORMAL, MODCP_EV_OPMODE,                 \
       MODCP_PF_CUSTOM, "protocol", "mode", ENUM, mode,                                            \
       "must be normal or suppress (interference suppression)",                                    \
@@ -138,56 +138,56 @@ typedef struct {
       "an error, starts a frame at the own address and ignores errors after the CRC. With "     \
       "`interface.type = rs485` (two-wire) the default is `suppress`, and `normal` needs "      \
       "`rs485_mode_select = on`; it then reports errors and BREAK inside a frame and ignores "  \
-      "those before, after and between frames (000 §5.6.5)",                                    \
+      "those before, after and between frames ([RTU-2009] §5.6.5)",                                    \
       /* custom: RS485 needs rs485_sel for normal */                                              \
       "`normal`, `suppress` (`interference_suppression`, `modem`)",                               \
-      "004 §2.2, 000 Table 5-2")                                                                  \
+      "[RTU-2003] §2.2, [RTU-2009] Table 5-2")                                                                  \
     S(f_mul, 1, MODCP_PF_FMUL, 0, 1, 10, 1, MODCP_EV_FMUL, MODCP_PF_WARN, "protocol", "f_mul",    \
       NUM, none, "must be 1..10; the CP runs with 1",                                             \
       "character delay multiplier: end of frame = TIME_OUT(baud) × f_MUL",                        \
-      "1 … 10 (outside: warning, the CP runs with 1)", "004 §2.2, §5.3")                          \
+      "1 … 10 (outside: warning, the CP runs with 1)", "[RTU-2003] §2.2, §5.3")                          \
     S(eof_timing, 1, MODCP_PF_EOF_TIMING, 0, 0, 1, MODCP_EOF_MANUAL, MODCP_EV_PARAM_RECORD, 0,    \
       "protocol", "eof_timing", ENUM, eof, "must be manual or modbus",                            \
-      "end-of-frame rule: `manual` = the table of 004 §5.3 × f_MUL (76800: 0.5 ms … 300: 128 "   \
+      "end-of-frame rule: `manual` = the table of [RTU-2003] §5.3 × f_MUL (76800: 0.5 ms … 300: 128 "   \
       "ms; 57600, 115200 by 3.5 × 11 bits); `modbus` = Modbus serial line (3.5 characters, "     \
       "1750 µs above 19200)",                                                                     \
-      "`manual`, `modbus`", "004 §5.3, SPEC §2")                                                  \
+      "`manual`, `modbus`", "[RTU-2003] §5.3, docs/parameters.md")                                                  \
     S(t15_check, 1, MODCP_PF_T15_CHECK, 0, 0, 1, 0, MODCP_EV_PARAM_RECORD, 0, "protocol",         \
       "t15_check", BOOL, none, "must be on or off",                                               \
       "Modbus t1.5 check: a gap longer than 1.5 characters inside a frame discards it "          \
       "((08)06H)",                                                                                \
-      "`on`, `off`", "SPEC §2")                                                                   \
+      "`on`, `off`", "docs/parameters.md")                                                                   \
     S(ascii_timeout_ms, 2, MODCP_PF_ASCII_TIMEOUT, 0, 1, 6500, 1000, MODCP_EV_FMUL,               \
       MODCP_PF_WARN, "protocol", "ascii_timeout_ms", NUM, none,                                   \
       "must be 1..6500 ms; the CP runs with 1000 ms", "ASCII inter-character timeout",            \
-      "1 … 6500 (outside: warning, the CP runs with 1000)", "003")                                \
+      "1 … 6500 (outside: warning, the CP runs with 1000)", "[ASCII-32]")                                \
     S(iface, 1, MODCP_PF_IFACE, 0, 0, 2, MODCP_IFACE_RS232, MODCP_EV_PARAM_RECORD, 0,             \
       "interface", "type", ENUM, iface, "must be rs232, rs422 or rs485",                          \
       "physical interface; `rs485` = two-wire half duplex with direction switching (errors "     \
       "and BREAK between frames ignored; interference suppression unless "                      \
       "`rs485_mode_select = on` and `mode = normal`)",                                          \
-      "`rs232`, `rs422`, `rs485`", "004 §2.3")                                                    \
+      "`rs232`, `rs422`, `rs485`", "[RTU-2003] §2.3")                                                    \
     S(turnaround_ms, 2, MODCP_PF_TURNAROUND, 0, 0, 100, 0, MODCP_EV_PARAM_RECORD, 0,              \
       "interface", "turnaround_ms", NUM, none, "must be 0..100 ms",                               \
       "RS485: wait from the moment the reply is ready to its first bit; the transmitter (DE) " \
       "is enabled at once, when the reply is ready, and drives the idle line during the wait",  \
       "0 … 100",                                                                                  \
-      "SPEC §3.1")                                                                                \
+      "docs/diagnostics.md")                                                                                \
     S(rs232_auto, 1, MODCP_PF_RS232_AUTO, 0, 0, MODCP_WITH_RS232_SIGNALS, 0,                      \
       MODCP_EV_PARAM_RECORD, MODCP_PF_CUSTOM, "interface", "rs232_auto", BOOL, none,              \
       "must be on or off, and on only with interface.type = rs232",                              \
       "RS232 automatic secondary signals (RTS/CTS/DTR/DSR)", /* custom: RS232 only */            \
-      "`on`, `off`; on only with `type = rs232`", "004 §2.4, 001")                                \
+      "`on`, `off`; on only with `type = rs232`", "[RTU-2003] §2.4, [VIPA-341]")                                \
     S(rts_on_delay_ms, 2, MODCP_PF_RTS_ON_DELAY, 0, 0, 65530, 10, MODCP_EV_PARAM_RECORD,          \
       MODCP_PF_CUSTOM, "interface", "rts_on_delay_ms", NUM, none,                                 \
       "must be 0..65530 ms in steps of 10 ms",                                                    \
       "data output waiting time: RTS on → CTS expected", /* custom: steps of 10 ms */          \
-      "0 … 65530, steps of 10 ms", "001 §1.6, §7.1 (004 §2.4, 000: no values)")                  \
+      "0 … 65530, steps of 10 ms", "[VIPA-341] §1.6, §7.1 ([RTU-2003] §2.4, 000: no values)")                  \
     S(rts_off_delay_ms, 2, MODCP_PF_RTS_OFF_DELAY, 0, 0, 65530, 10, MODCP_EV_PARAM_RECORD,        \
       MODCP_PF_CUSTOM, "interface", "rts_off_delay_ms", NUM, none,                                \
       "must be 0..65530 ms in steps of 10 ms",                                                    \
       "time to RTS off after the last character", /* custom: steps of 10 ms */                  \
-      "0 … 65530, steps of 10 ms", "001 §1.6, §7.1 (004 §2.4, 000: no values)")                  \
+      "0 … 65530, steps of 10 ms", "[VIPA-341] §1.6, §7.1 ([RTU-2003] §2.4, 000: no values)")                  \
     S(rx_preset, 1, MODCP_PF_RX_PRESET, 0, 0, 3, MODCP_RXP_DEFAULT, MODCP_EV_PARAM_RECORD,        \
       MODCP_PF_CUSTOM, "interface", "receive_preset", ENUM, rxpreset,                             \
       "must be default, none, break or high; break only with type = rs232 or rs422",             \
@@ -195,8 +195,8 @@ typedef struct {
       "R(A) 5 V / R(B) 0 V, a broken line is a BREAK level ((08)0DH, wire break); `high` = "     \
       "R(A) 0 V / R(B) 5 V, a broken line looks idle and BREAK cannot be recognised; `none` = "  \
       "no bias (the partner provides it); `default` = `break` on RS422, `high` on RS485",       \
-      /* custom: break not on RS485 (000 Table 5-8 note 1) */                                    \
-      "`default`, `none`, `break`, `high`", "000 Table 5-8, 004 §2.3")                           \
+      /* custom: break not on RS485 ([RTU-2009] Table 5-8 note 1) */                                    \
+      "`default`, `none`, `break`, `high`", "[RTU-2009] Table 5-8, [RTU-2003] §2.3")                           \
     G(coils, MODCP_COIL_WINDOWS, modcp_bitwin_t, 5, MODCP_PF_COILS)                               \
     M(modcp_bitwin_t, area, 1, MODCP_COIL_WINDOWS)                                                \
     M(modcp_bitwin_t, from, 2, MODCP_COIL_WINDOWS)                                                \
@@ -211,14 +211,14 @@ typedef struct {
     M(modcp_bitwin_t, db, 2, MODCP_INPUT_WINDOWS)                                                 \
     S(hr_base_db, 2, MODCP_PF_HR_BASE, 0, 0, 65535, 0, MODCP_EV_PARAM_RECORD, 0, "registers",     \
       "holding_base_db", NUM, none, "must be a DB number 1..65535 (0: not configured)",           \
-      "base DB of FC03/06/16", "1 … 65535 (0 = no holding registers)", "004 §3.4")                \
+      "base DB of FC03/06/16", "1 … 65535 (0 = no holding registers)", "[RTU-2003] §3.4")                \
     S(ir_base_db, 2, MODCP_PF_IR_BASE, 0, 0, 65535, 0, MODCP_EV_PARAM_RECORD, 0, "registers",     \
       "input_base_db", NUM, none, "must be a DB number 1..65535 (0: not configured)",             \
-      "base DB of FC04 (read-only)", "1 … 65535 (0 = none)", "004 §3.4")                          \
+      "base DB of FC04 (read-only)", "1 … 65535 (0 = none)", "[RTU-2003] §3.4")                          \
     S(regs32, 1, MODCP_PF_REGS32, 0, 0, 1, 0, MODCP_EV_PARAM_RECORD, 0, "registers",              \
       "with_32bit_registers", BOOL, none, "must be on or off",                                    \
       "FC03/06/16 use the three ranges below instead of the DB scheme", "`on`, `off`",           \
-      "003 §4.5")                                                                                 \
+      "[ASCII-32] §4.5")                                                                                 \
     G(r32, 3, modcp_r32range_t, 3, MODCP_PF_R32)                                                  \
     M(modcp_r32range_t, from, 2, 3)                                                               \
     M(modcp_r32range_t, to, 2, 3)                                                                 \
@@ -231,62 +231,62 @@ typedef struct {
       "with `with_32bit_registers = on`: `off` = the manual's rule, `db` limits FC06/16 in the " \
       "standard DB scheme only and the three 32-bit ranges' DBs stay writable; `on` = `db` "     \
       "limits their writes too",                                                                  \
-      "`on`, `off`", "003 §3.7, §5.4")                                                            \
+      "`on`, `off`", "[ASCII-32] §3.7, §5.4")                                                            \
     S(fset, 1, MODCP_PF_FSET, 0, 0, MODCP_WITH_EXTENDED, MODCP_WITH_EXTENDED,                     \
       MODCP_EV_PARAM_RECORD, 0, "protocol", "function_set", ENUM, fset,                           \
       "must be cp341 or extended",                                                                \
       "`cp341` = exactly FC 01–06, 08 sub 0, 15, 16; `extended` adds FC08 diagnostics, 11, 12, " \
       "17, 22, 23, 43/14, the scanner",                                                           \
-      "`cp341`, `extended`", "SPEC §5")                                                           \
+      "`cp341`, `extended`", "docs/mapping.md")                                                           \
     S(rs485_sel, 1, MODCP_PF_RS485_SEL, 0, 0, 1, 0, MODCP_EV_PARAM_RECORD, 0, "protocol",         \
       "rs485_mode_select", BOOL, none, "must be on or off",                                       \
       "enable operating-mode selection for RS485: `off` = two-wire RS485 runs in interference " \
       "suppression (modem) mode only, `mode = normal` there is refused with (0E)22H; `on` "     \
       "allows `mode = normal` on two-wire RS485 too: errors inside a frame are reported "       \
       "((08)0CH / (08)0DH, wire break)",                                                         \
-      "`on`, `off`", "000 Table 5-2")                                                             \
+      "`on`, `off`", "[RTU-2009] Table 5-2")                                                             \
     S(qty_limits, 1, MODCP_PF_QTY_LIMITS, 0, 0, 1, MODCP_QLIMITS_MANUAL, MODCP_EV_PARAM_RECORD,   \
       0, "protocol", "quantity_limits", ENUM, qlimits, "must be manual or spec",                  \
       "largest quantity per request (exception 03 above it): `manual` = the manuals' RTU "       \
       "limits, FC01/02/15 2040 bits, FC03/04/16 127 registers (a 126/127-register reply is "     \
       "257/259 bytes); `spec` = the Modbus application protocol's, FC01/02 2000, FC15 1968, "    \
       "FC03/04 125, FC16 123, FC23 125 / 121: every reply fits the 256-byte RTU ADU",            \
-      "`manual`, `spec`", "004 §6, SPEC §5.1, Modbus V1.1b3 §6")                                  \
+      "`manual`, `spec`", "[RTU-2003] §6, docs/mapping.md, Modbus V1.1b3 §6")                                  \
     S(cpu_model, 1, MODCP_PF_CPU_MODEL, 0, 0, 1, MODCP_CPU_CP341, MODCP_EV_PARAM_RECORD, 0,       \
       "cpu", "model", ENUM, model, "must be cp341 or cp441",                                      \
       "CPU transfer limit per job: `cp341` 1024 bytes, `cp441` 450 bytes", "`cp341`, `cp441`",   \
-      "004 §4.4, §4.5")                                                                           \
+      "[RTU-2003] §4.4, §4.5")                                                                           \
     S(job_limit, 2, MODCP_PF_JOB_LIMIT, 0, 32, 1024, 0, MODCP_EV_PARAM_RECORD,                    \
       MODCP_PF_ZERO_OK | MODCP_PF_CUSTOM, "cpu", "job_limit", NUM, none,                          \
       "must be 0 (the model's limit) or 32..1024 bytes (cp341) / 32..450 (cp441)",                \
       "bytes per CPU job; 0 = the model's limit", /* custom: the model's limit */                \
-      "0, or 32 … 1024 (cp341) / 450 (cp441)", "SPEC §6")                                         \
+      "0, or 32 … 1024 (cp341) / 450 (cp441)", "docs/cpu-cp-interface.md")                                         \
     S(cpu_timeout_ms, 2, MODCP_PF_CPU_TIMEOUT, 0, 1, 65535, 1000, MODCP_EV_PARAM_RECORD, 0,       \
       "cpu", "timeout_ms", NUM, none, "must be 1..65535 ms",                                      \
       "CPU job timeout: exception 04 with (0E)31H (read / register write) or (0E)3BH "           \
       "(FC05/15)",                                                                                \
-      "1 … 65535", "004 §4.3")                                                                    \
+      "1 … 65535", "[RTU-2003] §4.3")                                                                    \
     S(start_time_ms, 2, MODCP_PF_START_TIME, 0, 1, 65535, 5000, MODCP_EV_PARAM_RECORD, 0, "cpu",  \
       "start_time_ms", NUM, none, "must be 1..65535 ms",                                          \
       "FB init time START_TIME (CP_START_ERROR after it); `modcp-conf` also refuses "            \
       "(P − 1) × `cycle_ms` or less, see below",                                                  \
-      "1 … 65535", "004 §4.1")                                                                    \
+      "1 … 65535", "[RTU-2003] §4.1")                                                                    \
     S(commloss_ms, 2, MODCP_PF_COMMLOSS, 0, 100, MODCP_WITH_EXTENDED ? 30000 : 0, 0,              \
       MODCP_EV_PARAM_RECORD, MODCP_PF_ZERO_OK, "supervision", "commloss_ms", NUM, none,           \
       "must be 0 (off) or 100..30000 ms",                                                         \
       "comm-loss supervision: no valid request for our address within this time (armed after "   \
       "the first master write) raises an event and a flag the CPU side sees",                    \
-      "0 (off) or 100 … 30000", "002 §7")                                                         \
+      "0 (off) or 100 … 30000", "[ALTIVAR] §7")                                                         \
     S(commloss_auto, 1, MODCP_PF_COMMLOSS_AUTO, 0, 0, MODCP_WITH_EXTENDED, 0,                     \
       MODCP_EV_PARAM_RECORD, 0, "supervision", "commloss_auto_clear", BOOL, none,                 \
       "must be on or off", "`off`: a comm loss stays latched until the CPU side resets it "      \
       "(`modcp_bp_commloss_reset`) or new parameters arrive, as the Altivar's fault SLF1; "      \
       "`on`: the next valid request for our address clears it",                                 \
-      "`on`, `off`", "002 §7")                                                                    \
+      "`on`, `off`", "[ALTIVAR] §7")                                                                    \
     S(scan_start, 2, MODCP_PF_SCANNER, 0xFF, 0, 65535, 0, MODCP_EV_PARAM_RECORD,                  \
       MODCP_PF_CUSTOM, "scanner", "start", NUM, none, "must be 0..65535",                         \
       "first scanner register address", /* custom: with the entries */                          \
-      "0 … 65535", "002 §11")                                                                     \
+      "0 … 65535", "[ALTIVAR] §11")                                                                     \
     S(scan_count, 1, MODCP_PF_SCANNER, 0xFF, 0, 255, 0, MODCP_EV_PARAM_RECORD, MODCP_PF_CUSTOM,   \
       "scanner", "", NUM, none, "", "", "", "") /* the number of [scanner] entries */             \
     G(scan, MODCP_SCANNER_MAX, modcp_operand_ref_t, 3, MODCP_PF_SCANNER)                          \
@@ -295,19 +295,19 @@ typedef struct {
     M(modcp_operand_ref_t, offset, 2, MODCP_SCANNER_MAX)                                          \
     S(vendor, MODCP_PW_STR, MODCP_PF_ID_STRING, 0, 0, 0, 0, MODCP_EV_PARAM_RECORD,                \
       MODCP_PF_CUSTOM, "identification", "vendor", STR, none, "at most 16 characters",            \
-      "vendor name (object 00)", "≤ 16 characters", "002 §10.5")                                  \
+      "vendor name (object 00)", "≤ 16 characters", "[ALTIVAR] §10.5")                                  \
     S(product, MODCP_PW_STR, MODCP_PF_ID_STRING, 1, 0, 0, 0, MODCP_EV_PARAM_RECORD,               \
       MODCP_PF_CUSTOM, "identification", "product", STR, none, "at most 16 characters",           \
-      "product code (object 01)", "≤ 16 characters", "002 §10.5")                                 \
+      "product code (object 01)", "≤ 16 characters", "[ALTIVAR] §10.5")                                 \
     S(revision, MODCP_PW_STR, MODCP_PF_ID_STRING, 2, 0, 0, 0, MODCP_EV_PARAM_RECORD,              \
       MODCP_PF_CUSTOM, "identification", "revision", STR, none, "at most 16 characters",          \
-      "revision (object 02); empty: modcp's version", "≤ 16 characters", "002 §10.5")             \
+      "revision (object 02); empty: modcp's version", "≤ 16 characters", "[ALTIVAR] §10.5")             \
     S(app_name, MODCP_PW_STR, MODCP_PF_ID_STRING, 3, 0, 0, 0, MODCP_EV_PARAM_RECORD,              \
       MODCP_PF_CUSTOM, "identification", "app_name", STR, none, "at most 16 characters",          \
-      "user application name (object 06)", "≤ 16 characters", "002 §10.5")                        \
+      "user application name (object 06)", "≤ 16 characters", "[ALTIVAR] §10.5")                        \
     S(diag_irq, 1, MODCP_PF_DIAG_IRQ, 0, 0, 1, 0, MODCP_EV_PARAM_RECORD, 0, "diagnostics",        \
       "interrupt", BOOL, none, "must be on or off",                                               \
-      "diagnostic interrupt records for the CPU side", "`on`, `off`", "001 §8.4")
+      "diagnostic interrupt records for the CPU side", "`on`, `off`", "[VIPA-341] §8.4")
 
 /* The composite record fields' keys in the tables of docs/parameters.md (their rules are
  * in params.c and the document's prose). D(section, key, meaning, values, default, source,
@@ -315,20 +315,20 @@ typedef struct {
 #define MODCP_PARAM_DOC_ROWS(D)                                                                   \
     D("registers", "int16",                                                                       \
       "registers `FROM-TO @ DB`: 16-bit values, 2 bytes each from DBB0", "`off` or range", "off", \
-      "003 §4.5", "(0E)2EH")                                                                      \
+      "[ASCII-32] §4.5", "(0E)2EH")                                                                      \
     D("registers", "int32", "32-bit integers, 4 bytes (one DBD) per register", "`off` or range",  \
-      "off", "003 §4.5", "(0E)2EH")                                                               \
+      "off", "[ASCII-32] §4.5", "(0E)2EH")                                                               \
     D("registers", "float", "32-bit IEEE floats, 4 bytes per register", "`off` or range", "off",  \
-      "003 §4.5", "(0E)2EH")                                                                      \
+      "[ASCII-32] §4.5", "(0E)2EH")                                                                      \
     D("limits", "db", "resulting DB numbers writable by FC06/16",                                 \
-      "`MIN-MAX` with 1 ≤ MIN ≤ MAX, or `off`", "off", "004 §3.5", "(0E)24H")                     \
+      "`MIN-MAX` with 1 ≤ MIN ≤ MAX, or `off`", "off", "[RTU-2003] §3.5", "(0E)24H")                     \
     D("limits", "m", "flag bytes writable by FC05/15", "`MIN-MAX` with MIN ≤ MAX, or `off`",      \
-      "off", "004 §3.5", "(0E)24H")                                                               \
+      "off", "[RTU-2003] §3.5", "(0E)24H")                                                               \
     D("limits", "q", "output bytes writable by FC05/15", "`MIN-MAX`, or `off`", "off",            \
-      "004 §3.5", "(0E)24H")                                                                      \
+      "[RTU-2003] §3.5", "(0E)24H")                                                                      \
     D("scanner", "entries",                                                                       \
       "up to 16 word operands the consecutive registers point at, e.g. `MW10 DB5.DBW20 T3`",      \
-      "`MWn`, `IWn`, `QWn`, `DBn.DBWm`, `Tn`, `Cn`", "none (off)", "002 §11", "(0E)2EH")
+      "`MWn`, `IWn`, `QWn`, `DBn.DBWm`, `Tn`, `Cn`", "none (off)", "[ALTIVAR] §11", "(0E)2EH")
 
 /* The number of rows (S and G; the M rows are the G rows' members), a constant. */
 #define MODCP_PARAM_ROW_COUNT (0u MODCP_PARAM_ROWS(MODCP_PX_ONE, MODCP_PX_ONE, MODCP_PX_NONE))

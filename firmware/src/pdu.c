@@ -4,7 +4,7 @@
  * accounting of the extended set.
  *
  * Order of checks (docs/diagnostics.md "Order of checks"; Modbus Application Protocol
- * §6 state diagrams, 004 ch. 7, SPEC §6). The link layer has already dropped frames
+ * §6 state diagrams, [RTU-2003] ch. 7, docs/cpu-cp-interface.md). The link layer has already dropped frames
  * for other addresses and frames with a bad CRC / LRC.
  *   (extended set) FC12 receive event; listen-only mode takes the request
  *   1. CPU side not initialised     -> (0E)56H, exception 04 (every request)
@@ -145,7 +145,7 @@ uint16_t modcp_pdu_exception(uint8_t *pdu, uint8_t fc, uint8_t code)
 }
 
 /* Event word -> Modbus exception code, the column exc of the event rows
- * (modcp/event_rows.h; 004 ch. 7, SPEC §5.2); 0 for events that name no code. The engine
+ * (modcp/event_rows.h; [RTU-2003] ch. 7, docs/diagnostics.md); 0 for events that name no code. The engine
  * names the code itself where it refuses (modcp_pdu_err); fail() answers the mapping's
  * events (modcp_pdu_map_err) with this code. Kept as one 16-bit word per row with a code
  * (exc << 12 | class << 8 | number; the rows with exc 0 leave no entry): 28 bytes and a

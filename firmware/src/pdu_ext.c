@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — handlers of the extended function set (SPEC §5.3) that run CPU jobs in
+/* modcp — handlers of the extended function set (docs/extended-functions.md) that run CPU jobs in
  * sequence: FC22 mask write register, FC23 read/write multiple registers, and FC03 /
  * FC06 / FC16 on the indirection scanner's addresses (one job per scattered operand).
  *

@@ -37,11 +37,11 @@ enum {
 
 /* Flags of a function-code table row (pdu.c); the handlers see them in s->fcflags. */
 enum {
-    F_CP341 = 1u << 0, /* in function set cp341 (the manual's, 004 §6) */
-    F_EXT = 1u << 1,   /* in function set extended (SPEC §5.3) */
-    F_BCAST = 1u << 2, /* broadcast may run it (SPEC §5.2: FC 05, 06, 15, 16) */
+    F_CP341 = 1u << 0, /* in function set cp341 (the manual's, [RTU-2003] §6) */
+    F_EXT = 1u << 1,   /* in function set extended (docs/extended-functions.md) */
+    F_BCAST = 1u << 2, /* broadcast may run it (docs/diagnostics.md: FC 05, 06, 15, 16) */
     F_ADDR = 1u << 3,  /* start address at pdu[1..2] (s->addr) */
-    F_R32 = 1u << 4,   /* holding registers: width by the start address (003 §4.5) */
+    F_R32 = 1u << 4,   /* holding registers: width by the start address ([ASCII-32] §4.5) */
     F_SCAN = 1u << 5,  /* extended: on scanner addresses the scanner's handler runs */
     F_WRITE = 1u << 6, /* writes controller memory (arms the comm-loss supervision) */
     F_NOCOUNT = 1u << 7, /* not counted by the FC11 event counter (FC11, FC12) */
@@ -99,7 +99,7 @@ static inline modcp_pdu_action_t modcp_pdu_job(modcp_pdu_t *s, uint8_t op,
     return MODCP_PDU_JOB;
 }
 
-/* pdu_rw.c: the manual's function set (004 §6): FC01 / 02 / 05 / 15, FC03 / 04 / 06 /
+/* pdu_rw.c: the manual's function set ([RTU-2003] §6): FC01 / 02 / 05 / 15, FC03 / 04 / 06 /
  * 16 (one handler per class, told apart by s->fc and s->fcflags), FC08 sub 0000. */
 modcp_pdu_action_t modcp_pdu_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
                                   uint16_t len, uint16_t cap, uint16_t *out_len);

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — handlers of the manual's function set (004 §6), one per class: bits (FC01,
+/* modcp — handlers of the manual's function set ([RTU-2003] §6), one per class: bits (FC01,
  * 02, 05, 15), registers (FC03, 04, 06, 16), and FC08 sub-function 0000. Each maps its
  * request and sets up one CPU job; the reply is encoded by pdu.c from s->x.echo /
  * s->x.rbytes when the job is done.
@@ -124,7 +124,7 @@ modcp_pdu_action_t modcp_pdu_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
 }
 
 /* FC03 / FC04 (read), FC06 / FC16 (write): the register functions. FC06's reply is
- * the echo: 5 bytes, 7 for an int32 / float register of the 32-bit scheme (003 §4.5). */
+ * the echo: 5 bytes, 7 for an int32 / float register of the 32-bit scheme ([ASCII-32] §4.5). */
 modcp_pdu_action_t modcp_pdu_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
                                   uint16_t len, uint16_t cap, uint16_t *out_len)
 {

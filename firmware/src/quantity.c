@@ -11,7 +11,7 @@
 uint8_t modcp_regs32_kind(const modcp_params_t *p, uint8_t fc, uint16_t reg)
 {
     if (p->regs32 == 0u || fc == 4u) {
-        return 0u; /* FC04 is never 32-bit (003 §4.4) */
+        return 0u; /* FC04 is never 32-bit ([ASCII-32] §4.4) */
     }
     for (size_t k = 0; k < 3u; k++) {
         const modcp_r32range_t *r = &p->r32[k];

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — RTU framing (004 §5, SPEC §3.1): frame boundaries by the t3.5 gap, address
+/* modcp — RTU framing ([RTU-2003] §5, docs/diagnostics.md): frame boundaries by the t3.5 gap, address
  * filter, running CRC, t1.5 check, frames that arrive while a request is in progress;
  * one receive automaton (rtu_on_byte, byte_other, rtu_on_error, rtu_on_block) with
  * one frame start and one end of a skipped frame for normal operation and interference
@@ -27,7 +27,7 @@
  *    a new one, so a request is never swallowed by someone else's frame. In RX the
  *    timer alone decides the end of a frame (a late timer is the port's fault).
  *  - A line error while our frame already ends in a valid CRC (>= 4 bytes, CRC 0) is
- *    "after the CRC" (004 §2.2): it is not part of the frame, does not restart t3.5,
+ *    "after the CRC" ([RTU-2003] §2.2): it is not part of the frame, does not restart t3.5,
  *    and the frame stays valid (reported in normal mode only, by link.c). This is the
  *    glitch an RS485 line produces when the master releases its driver.
  *  - Frames with a character error, BREAK or t1.5 violation inside count once in
@@ -37,7 +37,7 @@
  *    "not checked".
  *  - RS485 while transmitting: received characters are the echo of our own reply on
  *    the two-wire line and are ignored (no (08)37H for our own address).
- *  - RS485 two-wire in normal mode (004 §2.3): a line error or BREAK that is not inside
+ *  - RS485 two-wire in normal mode ([RTU-2003] §2.3): a line error or BREAK that is not inside
  *    a frame (idle line, after a frame's t3.5, while a request is processed and no
  *    frame is being followed) does not start a frame: it is ignored, so a BREAK level
  *    or a glitch in the pause can never swallow the next request. In normal mode on
@@ -169,7 +169,7 @@ void rtu_internal_error(modcp_link_t *l)
 /* A character (or line error) while a request is processed or its reply is pending:
  * not stored; only frame starts are followed, for (08)37H and for the return to idle.
  * A frame for us or a broadcast (address 0) starting then is a message sequence error
- * (08)37H (004 §7.5): neither is executed, and no request is lost without a trace.
+ * (08)37H ([RTU-2003] §7.5): neither is executed, and no request is lost without a trace.
  * A line error that is not inside a frame (modem mode: after the CRC) with
  * interference suppression (or RS485) is ignored, as between messages. */
 void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — RTU framing in interference suppression = modem mode (000 §5.6.1, §8;
- * 004 §2.2): the part of the RTU backend (rtu.c, rtu_ops) that runs for the
+/* modcp — RTU framing in interference suppression = modem mode ([RTU-2009] §5.6.1, §8;
+ * [RTU-2003] §2.2): the part of the RTU backend (rtu.c, rtu_ops) that runs for the
  * operating mode `suppression` (l->modem, set by rtu_configure). It shares rtu.c's ops
  * table, receive automaton, block path and hot path (a character below r->stop: a store
  * and a CRC step), its frame and stretch starts and ends (frame_start, rtu_cand_start,

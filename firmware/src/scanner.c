@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — indirection scanner (SPEC §5.3, 002 §11 "scanner de communication").
+/* modcp — indirection scanner (docs/extended-functions.md, [ALTIVAR] §11 "scanner de communication").
  *
  * scan_count (1..16) consecutive holding registers from scan_start; register
  * scan_start + k stands for the word operand params.scan[k]:

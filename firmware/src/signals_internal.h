@@ -25,7 +25,7 @@ bool modcp_sig_on_tx_done(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us);
 void modcp_sig_on_rx(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us);
 /* The port reports CTS / DSR (at start and on every change). */
 void modcp_sig_on_inputs(modcp_sig_t *s, modcp_link_t *l, bool cts, bool dsr, uint32_t now_us);
-/* SF's part (003 §10.1 "CTS/DSR not asserted"): automatic signals with DSR OFF, or CTS
+/* SF's part ([ASCII-32] §10.1 "CTS/DSR not asserted"): automatic signals with DSR OFF, or CTS
  * not ON when a reply needed it (until CTS is ON again). */
 static inline bool modcp_sig_fault(const modcp_sig_t *s)
 {

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — character and frame timing derived from the parameters (004 §5.3, SPEC §3.1).
+/* modcp — character and frame timing derived from the parameters ([RTU-2003] §5.3, docs/diagnostics.md).
  * Integer arithmetic only; results are rounded up to whole microseconds. */
 #include <stdint.h>
 
@@ -33,7 +33,7 @@ static uint32_t bit_time_us(uint32_t bits_x10, uint32_t baud)
     return div_ceil(bits_x10 * (US_PER_S / 10u), baud);
 }
 
-/* The manual's TIME_OUT table (004 §5.3): 300 ... 76800 baud, 300 x 2^k, is 38,400,000 /
+/* The manual's TIME_OUT table ([RTU-2003] §5.3): 300 ... 76800 baud, 300 x 2^k, is 38,400,000 /
  * baud us (128 ms ... 0.5 ms); other rates (57600 -> 669, 115200 -> 335) by the 3.5 x
  * 11-bit rule. Computed instead of a switch of nine rates. */
 static uint32_t table_timeout_us(uint32_t baud)

@@ -22,7 +22,7 @@ typedef struct {
 static const bench_request_t bench_requests[] = {
     {"fc03x10", 0x03, 0x0000, 10, 25},    /* 10 holding registers at 0 */
     {"fc16x4", 0x10, 0x0032, 4, 8},       /* 4 registers at 0x32, data 1..8 */
-    {"fc01x32", 0x01, 0x0040, 32, 9},     /* 32 coils at 0x40 (004 §6.1 example) */
+    {"fc01x32", 0x01, 0x0040, 32, 9},     /* 32 coils at 0x40 ([RTU-2003] §6.1 example) */
     /* issue 12 item 7: the six requests of tools/bench --summary */
     {"fc01x2000", 0x01, 0x0000, 2000, 255}, /* 2000 coils (M) */
     {"fc03x125", 0x03, 0x0000, 125, 255},   /* 125 holding registers (DB 800) */

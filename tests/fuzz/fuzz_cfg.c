@@ -10,7 +10,7 @@
  *        7      data bits: 8 in ASCII, 7 in RTU (refused there: falls back)
  *   1    0-3    f_MUL 1..15 (11..15 out of range: the CP warns and runs with 1)
  *        4      end of frame by the Modbus rule; 5 t1.5 check; 6 interference
- *               suppression (modem mode); 7 RS485 mode selection (000 Table 5-2)
+ *               suppression (modem mode); 7 RS485 mode selection ([RTU-2009] Table 5-2)
  *   2    0-1    interface: 1 RS422, 2 RS485, 3 RS232
  *        2      RS232 automatic secondary signals
  *        3-5    RS485 turnaround 0, 1, 2, 3, 5, 10, 50, 100 ms

@@ -408,7 +408,7 @@ static int writable(const modcp_limit_t *l, unsigned k)
 }
 
 /* In 32-bit mode the DB limits are standard mode's: the 32-bit ranges' DBs stay writable
- * unless [limits] db_in_32bit_mode (r32_lim_db) keeps them (003 §3.7, §5.4). */
+ * unless [limits] db_in_32bit_mode (r32_lim_db) keeps them ([ASCII-32] §3.7, §5.4). */
 static int r32_db_free(unsigned db)
 {
     if (W.p.regs32 == 0u || W.p.r32_lim_db != 0u) return 0;

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* Fuzz target: the parameter record the CPU side hands the CP (SPEC §2), through
+/* Fuzz target: the parameter record the CPU side hands the CP (docs/parameters.md), through
  * decode, validate, apply and the CP's configuration over the backplane.
  * Input: byte 0 selects the form of the rest:
  *   bit 0 = 0  the rest is the record as it is (any length up to 2 x the record size):

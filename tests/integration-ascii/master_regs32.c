@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* master_regs32 — libmodbus (RTU) against a modcp slave in 32-bit register mode,
- * configured with configs/regs32.ini (003 §4.5: 3000-4999 int16 -> DB2.DBW0,
+ * configured with configs/regs32.ini ([ASCII-32] §4.5: 3000-4999 int16 -> DB2.DBW0,
  * 5000-5099 int32 -> DB3.DBD0, 7000-9999 float -> DB4.DBD0; FC04 base DB 900).
  *
  *   master_regs32 --device PATH [--baud 9600] [--parity E] [--slave 5] [--verbose]
@@ -11,7 +11,7 @@
  * byte for byte, CRC included. Values: floats are IEEE-754 single, int32 two's
  * complement, both big-endian as stored in the DB (byte 1 = most significant).
  *
- * Groups: the worked examples of 003 §4.5 / §9.4 / §9.8 / §9.12 with their exact
+ * Groups: the worked examples of [ASCII-32] §4.5 / §9.4 / §9.8 / §9.12 with their exact
  * replies; the configured initial values (floats, int32); float / int32 write-then-read;
  * exceptions (straddling ranges, gaps, quantity, byte counts); the RTU limits (63
  * registers of 4 bytes, 127 of 2); FC04 unchanged. The memory the checks wrote is
@@ -200,24 +200,24 @@ static bool write32(uint16_t reg, uint16_t n, const uint32_t *v, const char *wha
 
 static void manual_examples(void)
 {
-    /* 003 §4.5 with the [memory] values of configs/regs32.ini */
-    expect("05 03 0B EA 00 02", "05 03 04 87 65 43 21", "003 §4.5 FC03 int16 3050 -> DB2.DBW100");
+    /* [ASCII-32] §4.5 with the [memory] values of configs/regs32.ini */
+    expect("05 03 0B EA 00 02", "05 03 04 87 65 43 21", "[ASCII-32] §4.5 FC03 int16 3050 -> DB2.DBW100");
     expect("05 03 1B 59 00 02", "05 03 08 CD DC AB BA 11 22 33 44",
-           "003 §9.4 FC03 float 7001 -> DB4.DBD4, DBD8");
-    expect("05 06 0D 37 2B 1A", "05 06 0D 37 2B 1A", "003 §4.5 FC06 int16 3383 -> DB2.DBW766");
+           "[ASCII-32] §9.4 FC03 float 7001 -> DB4.DBD4, DBD8");
+    expect("05 06 0D 37 2B 1A", "05 06 0D 37 2B 1A", "[ASCII-32] §4.5 FC06 int16 3383 -> DB2.DBW766");
     expect("05 06 1B 5A 12 23 34 45", "05 06 1B 5A 12 23 34 45",
-           "003 §9.8 FC06 float 7002 -> DB4.DBD8, 4 data bytes echoed");
+           "[ASCII-32] §9.8 FC06 float 7002 -> DB4.DBD8, 4 data bytes echoed");
     expect("05 10 0C 1C 00 03 06 CD 09 DE 1A EF 2B", "05 10 0C 1C 00 03",
-           "003 §4.5 FC16 int16 3100 -> DB2.DBW200..204");
+           "[ASCII-32] §4.5 FC16 int16 3100 -> DB2.DBW200..204");
     expect("05 10 13 8B 00 02 08 3A 09 DE 1A 01 02 03 04", "05 10 13 8B 00 02",
-           "003 §9.12 FC16 int32 5003 -> DB3.DBD12, DBD16");
+           "[ASCII-32] §9.12 FC16 int32 5003 -> DB3.DBD12, DBD16");
     /* read back what the writes stored */
     expect("05 03 0D 37 00 01", "05 03 02 2B 1A", "read back DB2.DBW766");
     expect("05 03 1B 59 00 02", "05 03 08 CD DC AB BA 12 23 34 45", "read back DB4.DBD4, DBD8");
     expect("05 03 13 8B 00 02", "05 03 08 3A 09 DE 1A 01 02 03 04", "read back DB3.DBD12, 16");
     expect("05 03 0C 1C 00 03", "05 03 06 CD 09 DE 1A EF 2B", "read back DB2.DBW200..204");
-    /* FC04 keeps the DB-offset scheme with its own base DB 900 (003 §4.4) */
-    expect("05 04 02 C0 00 03", "05 04 06 A1 A2 A3 A4 A5 A6", "003 §9.5 FC04 -> DB901.DBW384");
+    /* FC04 keeps the DB-offset scheme with its own base DB 900 ([ASCII-32] §4.4) */
+    expect("05 04 02 C0 00 03", "05 04 06 A1 A2 A3 A4 A5 A6", "[ASCII-32] §9.5 FC04 -> DB901.DBW384");
 }
 
 static void values(void)

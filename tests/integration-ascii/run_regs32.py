@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: Apache-2.0
-"""32-bit registers over RTU (003 §4.5): modcp-sim with configs/regs32.ini on its pty,
+"""32-bit registers over RTU ([ASCII-32] §4.5): modcp-sim with configs/regs32.ini on its pty,
 master_regs32 (libmodbus, raw requests) runs its checks over the line, then the values
 it wrote are verified from the controller side through the simulator's console
 (`get DBn.DBDm [float]`: DBD as int32 and as IEEE-754 float), and the diagnostic
@@ -52,12 +52,12 @@ def main():
         ok(rc == 0, "master_regs32 exit code %d" % rc)
 
         # what the master wrote, seen by the controller (big-endian as stored)
-        ok(get(sim, "DB2.DBW766")[0] == 0x2B1A, "DB2.DBW766 = 2B1A (003 §4.5 FC06 int16)")
-        ok(get(sim, "DB2.DBW200")[0] == 0xCD09, "DB2.DBW200 = CD09 (003 §4.5 FC16 int16)")
+        ok(get(sim, "DB2.DBW766")[0] == 0x2B1A, "DB2.DBW766 = 2B1A ([ASCII-32] §4.5 FC06 int16)")
+        ok(get(sim, "DB2.DBW200")[0] == 0xCD09, "DB2.DBW200 = CD09 ([ASCII-32] §4.5 FC16 int16)")
         ok(get(sim, "DB2.DBW204")[0] == 0xEF2B, "DB2.DBW204 = EF2B")
-        ok(get(sim, "DB4.DBD8")[0] == 0x12233445, "DB4.DBD8 = 12233445 (003 §9.8 FC06 float)")
-        ok(get(sim, "DB3.DBD12")[0] == 0x3A09DE1A, "DB3.DBD12 = 3A09DE1A (003 §9.12)")
-        ok(get(sim, "DB3.DBD16")[0] == 0x01020304, "DB3.DBD16 = 01020304 (003 §9.12)")
+        ok(get(sim, "DB4.DBD8")[0] == 0x12233445, "DB4.DBD8 = 12233445 ([ASCII-32] §9.8 FC06 float)")
+        ok(get(sim, "DB3.DBD12")[0] == 0x3A09DE1A, "DB3.DBD12 = 3A09DE1A ([ASCII-32] §9.12)")
+        ok(get(sim, "DB3.DBD16")[0] == 0x01020304, "DB3.DBD16 = 01020304 ([ASCII-32] §9.12)")
         ok(get(sim, "DB4.DBD800", True) == (0.001, 0x3A83126F), "DB4.DBD800 = 0.001")
         ok(get(sim, "DB4.DBD804", True) == (-123.5, 0xC2F70000), "DB4.DBD804 = -123.5")
         ok(get(sim, "DB4.DBD36", True)[1] == 0xC2F6E979, "DB4.DBD36 = -123.456 (FC06, 4 bytes)")

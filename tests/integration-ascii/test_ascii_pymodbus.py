@@ -1,21 +1,21 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: Apache-2.0
-"""Modbus ASCII (003 §2) against modcp-sim, with pymodbus's ASCII framer (Debian's
+"""Modbus ASCII ([ASCII-32] §2) against modcp-sim, with pymodbus's ASCII framer (Debian's
 /usr/bin/python3, python3-pymodbus) and, for what pymodbus cannot send, raw frames
 through the same pty.
 
     test_ascii_pymodbus.py --sim modcp-sim --simlib DIR --configs DIR
 
 1. configs/ascii.ini (9600 7E1 ASCII): every function of the manual's set through
-   pymodbus with the values of 003 §9 (initial memory of the config), writes checked
+   pymodbus with the values of [ASCII-32] §9 (initial memory of the config), writes checked
    from the controller side (console `get`), exceptions 01 / 02 / 03, the ASCII limits
-   (003 §5: bits 2008 / 1976, registers 125 / 123), broadcast.
-2. The same pty, raw text: the 003 §2 vectors byte for byte, and every receive error
+   ([ASCII-32] §5: bits 2008 / 1976, registers 125 / 123), broadcast.
+2. The same pty, raw text: the [ASCII-32] §2 vectors byte for byte, and every receive error
    with its event in the diagnostic buffer: LRC (08)36H, ':' restart (08)39H, non-hex
    (08)3AH, wrong start (08)38H, character delay time (08)06H (100 ms via --set).
 3. configs/regs32.ini switched to ASCII (--set protocol.framing=ascii, data_bits=7):
    32-bit registers through pymodbus (FC03 with 4 bytes per register, floats as
-   IEEE-754 big-endian) and the 32-bit vectors of 003 §2 as raw text; limits 62 / 61.
+   IEEE-754 big-endian) and the 32-bit vectors of [ASCII-32] §2 as raw text; limits 62 / 61.
 Prints "N passed, M failed"; exit code 0 only when nothing failed.
 """
 import argparse
@@ -123,7 +123,7 @@ def get(sim, operand):
 
 
 class Read32Request(ReadHoldingRegistersRequest):
-    """FC03 for the 32-bit ranges: the reply carries 4 bytes per register (003 §4.5);
+    """FC03 for the 32-bit ranges: the reply carries 4 bytes per register ([ASCII-32] §4.5);
     pymodbus must expect byte count 4 x count (it decodes them as 2 x count words)."""
 
     def __init__(self, address, count, slave=SLAVE):
@@ -138,7 +138,7 @@ def read32(c, address, count):
 
 
 class Write32Request(WriteMultipleRegistersRequest):
-    """FC16 for the 32-bit ranges: the quantity counts 4-byte registers (003 §4.5)."""
+    """FC16 for the 32-bit ranges: the quantity counts 4-byte registers ([ASCII-32] §4.5)."""
 
     def __init__(self, address, values32, slave=SLAVE):
         WriteMultipleRegistersRequest.__init__(self, address, [0], unit=slave)
@@ -157,27 +157,27 @@ def part_standard(Sim, sim_bin, configs):
              sets=["protocol.ascii_timeout_ms=100"]) as sim:
         ok(sim.settings == "9600 7E1 ASCII", "settings %r" % sim.settings)
         c = client(sim)
-        # 003 §9.1 FC01: 64 -> M1008.0, 32 bits = 01 17 02 18
+        # [ASCII-32] §9.1 FC01: 64 -> M1008.0, 32 bits = 01 17 02 18
         r = c.read_coils(64, 32, slave=SLAVE)
         want = [bool((b >> k) & 1) for b in (0x01, 0x17, 0x02, 0x18) for k in range(8)]
         ok(not r.isError() and r.bits[:32] == want, "FC01 64 x 32 -> 01 17 02 18: %r" % r)
-        # 003 §9.2 FC02: 4144 -> I134.0, 24 bits = 12 34 56
+        # [ASCII-32] §9.2 FC02: 4144 -> I134.0, 24 bits = 12 34 56
         r = c.read_discrete_inputs(4144, 24, slave=SLAVE)
         want = [bool((b >> k) & 1) for b in (0x12, 0x34, 0x56) for k in range(8)]
         ok(not r.isError() and r.bits[:24] == want, "FC02 4144 x 24 -> 12 34 56: %r" % r)
-        # 003 §9.3 FC03: 0050H -> DB800.DBW160 = 8765 4321
+        # [ASCII-32] §9.3 FC03: 0050H -> DB800.DBW160 = 8765 4321
         r = c.read_holding_registers(0x50, 2, slave=SLAVE)
         ok(not r.isError() and r.registers == [0x8765, 0x4321], "FC03 0050H x 2: %r" % r)
-        # 003 §9.5 FC04: 02C0H -> DB901.DBW384
+        # [ASCII-32] §9.5 FC04: 02C0H -> DB901.DBW384
         r = c.read_input_registers(0x2C0, 3, slave=SLAVE)
         ok(not r.isError() and r.registers == [0xA1A2, 0xA3A4, 0xA5A6], "FC04 02C0H x 3: %r" % r)
-        # 003 §9.6 FC05: 2057 -> Q257.1
+        # [ASCII-32] §9.6 FC05: 2057 -> Q257.1
         r = c.write_coil(2057, True, slave=SLAVE)
         ok(not r.isError() and get(sim, "Q257.1") == 1, "FC05 2057 -> Q257.1 = 1")
-        # 003 §9.7 FC06: 0180H -> DB800.DBW768
+        # [ASCII-32] §9.7 FC06: 0180H -> DB800.DBW768
         r = c.write_register(0x180, 0x2B1A, slave=SLAVE)
         ok(not r.isError() and get(sim, "DB800.DBW768") == 0x2B1A, "FC06 0180H -> DB800.DBW768")
-        # 003 §9.10 FC15: 1153 -> M1144.1 .. M1145.4 = CD 09 (12 bits)
+        # [ASCII-32] §9.10 FC15: 1153 -> M1144.1 .. M1145.4 = CD 09 (12 bits)
         bits = [bool((0x09CD >> k) & 1) for k in range(12)]
         before = get(sim, "MB1144"), get(sim, "MB1145")
         r = c.write_coils(1153, bits, slave=SLAVE)
@@ -185,17 +185,17 @@ def part_standard(Sim, sim_bin, configs):
         ok(get(sim, "MB1144") == ((before[0] & 0x01) | ((0xCD << 1) & 0xFE)) and
            get(sim, "MB1145") == ((before[1] & 0xE0) | (0xCD >> 7) | (0x09 << 1)),
            "FC15 bits M1144.1 .. M1145.4, neighbours kept")
-        # 003 §9.12 FC16: 0A32H -> DB805.DBW100..104
+        # [ASCII-32] §9.12 FC16: 0A32H -> DB805.DBW100..104
         r = c.write_registers(0x0A32, [0xCD09, 0xDE1A, 0xEF2B], slave=SLAVE)
         ok(not r.isError() and [get(sim, "DB805.DBW%d" % a) for a in (100, 102, 104)] ==
            [0xCD09, 0xDE1A, 0xEF2B], "FC16 0A32H -> DB805.DBW100..104")
-        # 003 §8.1 FC08 echo
+        # [ASCII-32] §8.1 FC08 echo
         r = c.execute(ReturnQueryDataRequest(0xA5C3, unit=SLAVE))
         ok(not r.isError() and list(r.message) == [0xA5C3], "FC08 echo A5C3: %r" % r)
         # exceptions
         ok(exc(c.write_coil(3000, True, slave=SLAVE)) == 2, "FC05 coil 3000: exception 02")
         ok(exc(c.read_holding_registers(0x1FF, 2, slave=SLAVE)) == 2, "FC03 crossing a DB: 02")
-        # ASCII limits (003 §5, §8.5 (08)32H)
+        # ASCII limits ([ASCII-32] §5, §8.5 (08)32H)
         ok(not c.read_coils(0, 2008, slave=SLAVE).isError(), "FC01 2008 bits")
         ok(exc(c.read_coils(0, 2009, slave=SLAVE)) == 3, "FC01 2009 bits: exception 03")
         ok(not c.read_discrete_inputs(0, 2008, slave=SLAVE).isError(), "FC02 2008 bits")
@@ -208,7 +208,7 @@ def part_standard(Sim, sim_bin, configs):
         ok(not c.write_registers(0x400, list(range(123)), slave=SLAVE).isError(), "FC16 123")
         ok(get(sim, "DB802.DBW244") == 122, "FC16 123 registers: the last one DB802.DBW244")
         ok("0832" in sim.diag(), "(08)32H in the diagnostic buffer")
-        # 1977 bits need 253 data bytes: more than 2 x 252 characters (003 §8.1), an
+        # 1977 bits need 253 data bytes: more than 2 x 252 characters ([ASCII-32] §8.1), an
         # over-long frame, (08)16H, not answered (last: pymodbus drops the port after it;
         # FC16 with 124 registers likewise, test_ascii.c test_limits_registers)
         ok(no_reply(lambda: c.write_coils(0, [False] * 1977, slave=SLAVE)),
@@ -218,16 +218,16 @@ def part_standard(Sim, sim_bin, configs):
         c.close()
 
         port = RawPort(sim.device)
-        # the 003 §2 vectors, byte for byte
+        # the [ASCII-32] §2 vectors, byte for byte
         for req, rsp in ((b":05080000A5C38B\r\n", b":05080000A5C38B\r\n"),
                          (b":050300500002A6\r\n", b":05030487654321A4\r\n"),
                          (b":0501004000209A\r\n", b":05010401170218C4\r\n"),
                          (b":050402C0000332\r\n", b":050406A1A2A3A4A5A61C\r\n"),
                          (b":05050809FF00E6\r\n", b":05050809FF00E6\r\n"),
                          (b":050F0481000C02CD0983\r\n", b":050F0481000C5B\r\n"),
-                         (frame("05050BB8FF00"), b":05850274\r\n")):  # 003 §8.2
+                         (frame("05050BB8FF00"), b":05850274\r\n")):  # [ASCII-32] §8.2
             got = raw(port, req)
-            ok(got == rsp, "003 §2 %r -> %r, got %r" % (req, rsp, got))
+            ok(got == rsp, "[ASCII-32] §2 %r -> %r, got %r" % (req, rsp, got))
         # broadcast: executed, no reply
         got = raw(port, frame("000601802B2B"))
         ok(got == b"" and get(sim, "DB800.DBW768") == 0x2B2B, "broadcast FC06: no reply, written")
@@ -259,7 +259,7 @@ def part_regs32(Sim, sim_bin, configs):
              sets=["protocol.framing=ascii", "serial.data_bits=7"]) as sim:
         ok(sim.settings == "9600 7E1 ASCII", "settings %r" % sim.settings)
         c = client(sim)
-        # 003 §9.4: 7001 x 2 -> DB4.DBD4, DBD8; pymodbus sees 4 words (byte count 8)
+        # [ASCII-32] §9.4: 7001 x 2 -> DB4.DBD4, DBD8; pymodbus sees 4 words (byte count 8)
         r = read32(c, 7001, 2)
         ok(not r.isError() and r.registers == [0xCDDC, 0xABBA, 0x1122, 0x3344],
            "FC03 7001 x 2 (32-bit) -> CDDC ABBA 1122 3344: %r" % r)
@@ -276,7 +276,7 @@ def part_regs32(Sim, sim_bin, configs):
         # 16-bit range: 3050 -> DB2.DBW100
         r = c.read_holding_registers(3050, 2, slave=SLAVE)
         ok(not r.isError() and r.registers == [0x8765, 0x4321], "FC03 3050 x 2 (int16): %r" % r)
-        # FC16 with 4-byte registers (003 §9.12) through pymodbus's framer
+        # FC16 with 4-byte registers ([ASCII-32] §9.12) through pymodbus's framer
         r = c.execute(Write32Request(5003, [0x3A09DE1A, 0x01020304]))
         ok(not r.isError() and (r.address, r.count) == (5003, 2), "FC16 32-bit 5003 x 2: %r" % r)
         ok(get(sim, "DB3.DBD12") == 0x3A09DE1A and get(sim, "DB3.DBD16") == 0x01020304,
@@ -295,7 +295,7 @@ def part_regs32(Sim, sim_bin, configs):
         ok(not c.execute(Write32Request(8000, range(61))).isError(), "FC16 61 floats")
         ok(exc(c.read_holding_registers(4999, 2, slave=SLAVE)) == 2, "straddling int16/int32: 02")
         # 62 floats are 248 data bytes, 253 with start, quantity and byte count: more than
-        # 2 x 252 characters (003 §8.1), over-long, not answered (last: pymodbus drops the
+        # 2 x 252 characters ([ASCII-32] §8.1), over-long, not answered (last: pymodbus drops the
         # port after it)
         ok(no_reply(lambda: c.execute(Write32Request(8000, range(62)))),
            "FC16 62 floats: over-long, no reply")
@@ -306,7 +306,7 @@ def part_regs32(Sim, sim_bin, configs):
                          (b":05061B5A12233445D2\r\n", b":05061B5A12233445D2\r\n"),
                          (b":0510138B0002083A09DE1A01020304FE\r\n", b":0510138B00024B\r\n")):
             got = raw(port, req)
-            ok(got == rsp, "003 §2 %r -> %r, got %r" % (req, rsp, got))
+            ok(got == rsp, "[ASCII-32] §2 %r -> %r, got %r" % (req, rsp, got))
         ok(get(sim, "DB4.DBD8") == 0x12233445, "FC06 4 data bytes: DB4.DBD8 = 12233445")
         port.close()
 

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* master_ext — libmodbus checks of the extended function set (SPEC §5.3) against a modcp
+/* master_ext — libmodbus checks of the extended function set (docs/extended-functions.md) against a modcp
  * slave with configs/default.ini plus the scanner of tests/integration-ext/CMakeLists.txt:
  *   [scanner] start = 4096, entries = MW1000 QW256 DB801.DBW20 IW134 T100 C200 DB800.DBW160
  *

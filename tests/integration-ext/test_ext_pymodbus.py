@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: Apache-2.0
-"""Extended function set (SPEC §5.3) with pymodbus (Debian's python3-pymodbus, 3.0 API)
+"""Extended function set (docs/extended-functions.md) with pymodbus (Debian's python3-pymodbus, 3.0 API)
 against modcp-sim with configs/default.ini, comm-loss supervision 500 ms:
 
  - FC08 through pymodbus's diag_message requests: echo, clear counters, the eight
@@ -185,7 +185,7 @@ def main():
         reg = diag(dm.ReturnDiagnosticRegisterRequest(unit=S))
         t.ok(reg == 0x0002, "FC08 02 diagnostic register with comm loss: %r (0002)" % reg)
         time.sleep(0.05)
-        t.ok(status().get("commloss") == "1", "comm loss: latched through the next request (002 §7)")
+        t.ok(status().get("commloss") == "1", "comm loss: latched through the next request ([ALTIVAR] §7)")
         sim.cmd("commloss reset")
         time.sleep(0.05)
         t.ok(status().get("commloss") == "0", "comm loss: cleared by the CPU side's reset")

@@ -8,7 +8,7 @@
  *                    [--timeout-ms 2000] [--cpu-timeout-ms 1000] [--control FIFO]
  *                    [--profile default|4.6.4] [--only GROUP[,GROUP]] [--verbose]
  *
- * Groups: manual (every FC of 004 §6 with the exact reply bytes of 004 §9), tc
+ * Groups: manual (every FC of [RTU-2003] §6 with the exact reply bytes of [RTU-2003] §9), tc
  * (timer/counter words), exceptions (01, 02, 03, 04 from a missing DB), broadcast
  * (no reply, memory changed), big (largest frames), extended (FC17, FC22, FC23,
  * FC43/14, FC08 counters, FC11 of function_set = extended), random (write-then-read over all
@@ -234,19 +234,19 @@ static bool write_regs(int addr, int n, const uint16_t *src)
 
 static void g_manual(void)
 {
-    /* 004 §6 / §9: the manual's frames, reply bytes including the CRC */
-    raw_lm("004 §6.1 FC01 M1008.0..M1011.7", "05 01 00 40 00 20", "05 01 04 01 17 02 18 0E 83");
-    raw_lm("004 §6.2 FC02 I134.0..I136.7", "05 02 10 30 00 18", "05 02 03 12 34 56 4F 31");
-    raw_lm("004 §6.3 FC03 DB800.DBW160/162", "05 03 00 50 00 02", "05 03 04 87 65 43 21 76 70");
-    raw_lm("004 §6.4 FC04 DB901.DBW384..388", "05 04 02 C0 00 03",
+    /* [RTU-2003] §6 / §9: the manual's frames, reply bytes including the CRC */
+    raw_lm("[RTU-2003] §6.1 FC01 M1008.0..M1011.7", "05 01 00 40 00 20", "05 01 04 01 17 02 18 0E 83");
+    raw_lm("[RTU-2003] §6.2 FC02 I134.0..I136.7", "05 02 10 30 00 18", "05 02 03 12 34 56 4F 31");
+    raw_lm("[RTU-2003] §6.3 FC03 DB800.DBW160/162", "05 03 00 50 00 02", "05 03 04 87 65 43 21 76 70");
+    raw_lm("[RTU-2003] §6.4 FC04 DB901.DBW384..388", "05 04 02 C0 00 03",
            "05 04 06 A1 A2 A3 A4 A5 A6 2A 76");
-    raw_echo("004 §6.7 FC08 loopback", "05 08 00 00 A5 C3", "05 08 00 00 A5 C3 DA 8E");
+    raw_echo("[RTU-2003] §6.7 FC08 loopback", "05 08 00 00 A5 C3", "05 08 00 00 A5 C3 DA 8E");
 
     /* FC05: Q257.1 (coil 2057); first clear it, then the manual's frame */
     uint8_t b[16], before[16];
     ok(modbus_write_bit(ctx, 2057, 0) == 1, "FC05 clear Q257.1");
     bool rd = read_bits(2056, 8, before);
-    raw_lm("004 §6.5 FC05 Q257.1 on", "05 05 08 09 FF 00", "05 05 08 09 FF 00 5F DC");
+    raw_lm("[RTU-2003] §6.5 FC05 Q257.1 on", "05 05 08 09 FF 00", "05 05 08 09 FF 00 5F DC");
     rd = rd && read_bits(2056, 8, b);
     before[1] = 1;
     ok(rd && memcmp(b, before, 8) == 0, "FC05 read back Q257.1 = %u, Q257.0/2..7 unchanged", b[1]);
@@ -254,21 +254,21 @@ static void g_manual(void)
     /* FC06: DB800.DBW768 := 2B1A */
     uint16_t r[8];
     ok(modbus_write_register(ctx, 0x180, 0) == 1, "FC06 clear DB800.DBW768");
-    raw_lm("004 §6.6 FC06 DB800.DBW768 = 2B1A", "05 06 01 80 2B 1A", "05 06 01 80 2B 1A 17 61");
+    raw_lm("[RTU-2003] §6.6 FC06 DB800.DBW768 = 2B1A", "05 06 01 80 2B 1A", "05 06 01 80 2B 1A 17 61");
     rd = read_regs(0x180, 1, r);
     ok(rd && r[0] == 0x2B1A, "FC06 read back DB800.DBW768 = %04X", r[0]);
 
     /* FC15: M1144.0..M1145.3 = CD, 9; M1145.4..7 untouched (set to 1 first) */
     uint8_t pre[16] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1};
     ok(write_bits(1152, 16, pre), "FC15 prepare MB1144 = 00, MB1145 = F0");
-    raw_lm("004 §6.8 FC15 M1144.0..M1145.3", "05 0F 04 80 00 0C 02 CD 09",
+    raw_lm("[RTU-2003] §6.8 FC15 M1144.0..M1145.3", "05 0F 04 80 00 0C 02 CD 09",
            "05 0F 04 80 00 0C 54 92");
     raw_lmc("FC15 read back MB1144/1145 = CD F9 (M1145.4..7 untouched)", "05 01 04 80 00 10",
            "05 01 02 CD F9");
 
     /* FC16: DB800.DBW100..104 */
     ok(write_regs(0x32, 3, (const uint16_t[]){0, 0, 0}), "FC16 clear DB800.DBW100..104");
-    raw_lm("004 §6.9 FC16 DB800.DBW100..104", "05 10 00 32 00 03 06 CD 09 DE 1A EF 2B",
+    raw_lm("[RTU-2003] §6.9 FC16 DB800.DBW100..104", "05 10 00 32 00 03 06 CD 09 DE 1A EF 2B",
            "05 10 00 32 00 03 20 43");
     rd = read_regs(0x32, 3, r);
     ok(rd && r[0] == 0xCD09 && r[1] == 0xDE1A && r[2] == 0xEF2B, "FC16 read back %04X %04X %04X",
@@ -797,9 +797,9 @@ int main(int argc, char **argv)
     double t0 = now_s();
     if (group("manual")) {
         if (o.p464) {
-            raw_lm("004 §6.1 FC01", "05 01 00 40 00 20", "05 01 04 01 17 02 18 0E 83");
-            raw_lm("004 §6.3 FC03", "05 03 00 50 00 02", "05 03 04 87 65 43 21 76 70");
-            raw_lm("004 §6.5 FC05 Q257.1 (inside QB 256-319)", "05 05 08 09 FF 00",
+            raw_lm("[RTU-2003] §6.1 FC01", "05 01 00 40 00 20", "05 01 04 01 17 02 18 0E 83");
+            raw_lm("[RTU-2003] §6.3 FC03", "05 03 00 50 00 02", "05 03 04 87 65 43 21 76 70");
+            raw_lm("[RTU-2003] §6.5 FC05 Q257.1 (inside QB 256-319)", "05 05 08 09 FF 00",
                    "05 05 08 09 FF 00 5F DC");
             raw_exc("4.6.4: FC06 example DB800 outside DB 600-699 -> 02", "05 06 01 80 2B 1A", 2);
             raw_exc("4.6.4: FC16 example DB800 -> 02", "05 10 00 32 00 03 06 CD 09 DE 1A EF 2B", 2);

@@ -141,7 +141,7 @@ def main():
         return 1
     t0 = time.monotonic()
 
-    # the manual's read examples (004 §6), as values
+    # the manual's read examples ([RTU-2003] §6), as values
     ok(bits(c, 0x40, 32, s) == byte_bits([0x01, 0x17, 0x02, 0x18]),
        "FC01 M1008.0..M1011.7 = 01 17 02 18")
     rr = c.read_discrete_inputs(0x1030, 24, slave=s)
@@ -176,7 +176,7 @@ def main():
        "FC15 MB1144 = CD, M1145.0..3 = 9, M1145.4..7 untouched")
 
     # exceptions as pymodbus reports them
-    qmax = 125 if a.framing == "ascii" else 127  # FC03 limit: 127 (RTU), 125 (ASCII, 003)
+    qmax = 125 if a.framing == "ascii" else 127  # FC03 limit: 127 (RTU), 125 (ASCII, [ASCII-32])
     rr = c.read_holding_registers(0, qmax, slave=s)
     ok(not rr.isError() and len(rr.registers) == qmax, "FC03 %d registers accepted" % qmax)
     ok(exc_code(c.read_holding_registers(0, qmax + 1, slave=s)) == 3,

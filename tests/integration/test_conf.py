@@ -192,38 +192,38 @@ OPMODE_AT = 8 + 9  # header, then baud u32, data bits, parity, stop bits, slave,
 
 
 def rs485_mode_select(t, a, tmp):
-    """Issue 13 item 4, 000 Table 5-2: two-wire RS485 runs in modem (interference
+    """Issue 13 item 4, [RTU-2009] Table 5-2: two-wire RS485 runs in modem (interference
     suppression) mode unless rs485_mode_select = on allows mode = normal."""
     with open(os.path.join(a.configs, "default.ini")) as f:
         default = f.read()
     text = default.replace("mode = normal\n", "")
     rc, lines, rec, p = record_of(a, tmp, text, "interface.type=rs485")
     t.ok(rc == 0 and lines == [] and len(rec) > OPMODE_AT and rec[OPMODE_AT] == 1,
-         "000 Table 5-2: rs485 without mode: default modem (suppress) (%r)" % lines)
+         "[RTU-2009] Table 5-2: rs485 without mode: default modem (suppress) (%r)" % lines)
     rc, lines, rec, p = record_of(a, tmp, text, "interface.type=rs422")
     t.ok(rc == 0 and lines == [] and len(rec) > OPMODE_AT and rec[OPMODE_AT] == 0,
-         "000 Table 5-2: rs422 4-wire without mode: default normal (%r)" % lines)
+         "[RTU-2009] Table 5-2: rs422 4-wire without mode: default normal (%r)" % lines)
     line = default[:default.index("mode = normal")].count("\n") + 1
     rc, lines, rec, p = record_of(a, tmp, default, "interface.type=rs485")
     t.ok(rc == 2 and lines == ["%s:%d: protocol.mode = normal: normal is not allowed with "
                                "interface.type = rs485 (two-wire runs in interference suppression = "
-                               "modem mode) unless protocol.rs485_mode_select = on (000 Table 5-2) "
+                               "modem mode) unless protocol.rs485_mode_select = on ([RTU-2009] Table 5-2) "
                                "(event (0E)22H)" % (p, line)],
-         "000 Table 5-2: rs485 with mode = normal: refused, (0E)22H, rule named (%r)" % lines)
+         "[RTU-2009] Table 5-2: rs485 with mode = normal: refused, (0E)22H, rule named (%r)" % lines)
     rc, lines, rec, p = record_of(a, tmp, default, "interface.type=rs485",
                                   "protocol.rs485_mode_select=on")
     t.ok(rc == 0 and lines == [] and len(rec) > OPMODE_AT and rec[OPMODE_AT] == 0,
-         "000 Table 5-2: rs485 with mode = normal and rs485_mode_select = on: accepted (%r)" % lines)
+         "[RTU-2009] Table 5-2: rs485 with mode = normal and rs485_mode_select = on: accepted (%r)" % lines)
     rc, lines, rec, p = record_of(a, tmp, default, "interface.type=rs485", "protocol.mode=modem")
     t.ok(rc == 0 and lines == [] and len(rec) > OPMODE_AT and rec[OPMODE_AT] == 1,
-         "000 Table 5-2: mode = modem is interference suppression (%r)" % lines)
+         "[RTU-2009] Table 5-2: mode = modem is interference suppression (%r)" % lines)
 
 
 STOP_AT = 8 + 6  # header, baud u32, data bits, parity, stop bits
 
 
 def ascii_frame(t, a, tmp):
-    """Issue 13 item 5, 003 §3.1: "with even or odd parity 1 stop bit is pre-defined; none
+    """Issue 13 item 5, [ASCII-32] §3.1: "with even or odd parity 1 stop bit is pre-defined; none
     parity effects two stop bits" -- the ASCII frame is 7E1, 7O1 or 7N2."""
     with open(os.path.join(a.configs, "ascii.ini")) as f:
         text = f.read()
@@ -235,29 +235,29 @@ def ascii_frame(t, a, tmp):
                                       "serial.stop_bits=%d" % stop)
         if ok:
             t.ok(rc == 0 and lines == [] and len(rec) > STOP_AT and rec[STOP_AT] == stop,
-                 "003 §3.1: ASCII %s accepted (%r)" % (frame, lines))
+                 "[ASCII-32] §3.1: ASCII %s accepted (%r)" % (frame, lines))
         else:
             want = ("--set:2: serial.stop_bits = %d: the ASCII character frame %s is not allowed: "
-                    "with parity even or odd 1 stop bit, with parity none 2 (003 §3.1: 7E1, 7O1 or "
+                    "with parity even or odd 1 stop bit, with parity none 2 ([ASCII-32] §3.1: 7E1, 7O1 or "
                     "7N2); stop_bits = %d (event (0E)2EH)" % (stop, frame, 2 if par == "none" else 1))
-            t.ok(rc == 2 and lines == [want], "003 §3.1: ASCII %s refused, rule named (%r)" % (frame, lines))
+            t.ok(rc == 2 and lines == [want], "[ASCII-32] §3.1: ASCII %s refused, rule named (%r)" % (frame, lines))
     # without a stop_bits key the stop bits follow the parity
     rc, lines, rec, p = record_of(a, tmp, text.replace("stop_bits = 1\n", ""), "serial.parity=none")
     t.ok(rc == 0 and lines == [] and len(rec) > STOP_AT and rec[STOP_AT] == 2,
-         "003 §3.1: ASCII parity none without stop_bits: 2 stop bits (%r)" % lines)
+         "[ASCII-32] §3.1: ASCII parity none without stop_bits: 2 stop bits (%r)" % lines)
     rc, lines, rec, p = record_of(a, tmp, text.replace("stop_bits = 1\n", ""), "serial.parity=odd")
     t.ok(rc == 0 and lines == [] and len(rec) > STOP_AT and rec[STOP_AT] == 1,
-         "003 §3.1: ASCII parity odd without stop_bits: 1 stop bit (%r)" % lines)
+         "[ASCII-32] §3.1: ASCII parity odd without stop_bits: 1 stop bit (%r)" % lines)
     # in the file: the line of stop_bits is named
     rc, lines, rec, p = record_of(a, tmp, text.replace("parity = even", "parity = none"))
     t.ok(rc == 2 and len(lines) == 1 and lines[0].startswith("%s:%d: serial.stop_bits = 1: the ASCII "
                                                             "character frame 7N1" % (p, line)),
-         "003 §3.1: 7N1 in the file: its stop_bits line named (%r)" % lines)
-    # RTU keeps 1 or 2 stop bits with any parity (004 §2.1)
+         "[ASCII-32] §3.1: 7N1 in the file: its stop_bits line named (%r)" % lines)
+    # RTU keeps 1 or 2 stop bits with any parity ([RTU-2003] §2.1)
     with open(os.path.join(a.configs, "default.ini")) as f:
         rtu = f.read()
     rc, lines, rec, p = record_of(a, tmp, rtu, "serial.parity=none", "serial.stop_bits=1")
-    t.ok(rc == 0 and lines == [], "004 §2.1: RTU 8N1 accepted (%r)" % lines)
+    t.ok(rc == 0 and lines == [], "[RTU-2003] §2.1: RTU 8N1 accepted (%r)" % lines)
 
 
 def quantity_limits(t, a, tmp):
@@ -281,7 +281,7 @@ def quantity_limits(t, a, tmp):
 
 
 def db_in_32bit_mode(t, a, tmp):
-    """Issue 27 item 4: [limits] db_in_32bit_mode = off (default, 003 §3.7) | on, one byte
+    """Issue 27 item 4: [limits] db_in_32bit_mode = off (default, [ASCII-32] §3.7) | on, one byte
     of the record; configs/regs32.ini says off."""
     with open(os.path.join(a.configs, "regs32.ini")) as f:
         text = f.read()

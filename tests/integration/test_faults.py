@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: Apache-2.0
-"""Faults (SPEC §3.1, §6; issue 3 item 7) against modcp-sim with configs/default.ini:
+"""Faults (docs/diagnostics.md, §6; issue 3 item 7) against modcp-sim with configs/default.ini:
 
  - a frame for another address: silence, no event, the next good request is served;
  - a CRC-corrupted frame for us: silence, event (08)36H, CRC counter; next request served;

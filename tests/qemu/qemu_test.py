@@ -412,7 +412,7 @@ def suite_firmware(t, c):
 
     # the console and the master see one controller memory
     rep = t.transact(adu([0x06, 0x01, 0x80, 0x2B, 0x1A]), expect_len=8)
-    c.ok(rep == adu([0x06, 0x01, 0x80, 0x2B, 0x1A]), "004 §6.6 FC06 DB800.DBW768 = 2B1A")
+    c.ok(rep == adu([0x06, 0x01, 0x80, 0x2B, 0x1A]), "[RTU-2003] §6.6 FC06 DB800.DBW768 = 2B1A")
     if c.console(t, "console: get DB800.DBW768 = 0x2B1A after FC06"):
         v = console_value(t.console("get DB800.DBW768"))
         c.ok(v == 0x2B1A, "console: get DB800.DBW768 = 0x2B1A after FC06 (got %s)" % v)
@@ -512,9 +512,9 @@ def suite_smoke(t, c):
             c.ok("\nversion %s\n" % VERSION in text,
                  "console: board shows version %s (project(modcp VERSION))" % VERSION)
     c.ok(t.transact(adu([0x03, 0x00, 0x50, 0x00, 0x02]), expect_len=9) ==
-         bytes.fromhex("05 03 04 87 65 43 21 76 70"), "004 §6.3 FC03 manual example")
+         bytes.fromhex("05 03 04 87 65 43 21 76 70"), "[RTU-2003] §6.3 FC03 manual example")
     c.ok(t.transact(adu([0x06, 0x01, 0x80, 0x2B, 0x1A]), expect_len=8) == adu([0x06, 0x01, 0x80, 0x2B, 0x1A]),
-         "004 §6.6 FC06 DB800.DBW768 = 2B1A")
+         "[RTU-2003] §6.6 FC06 DB800.DBW768 = 2B1A")
     if c.console(t, "console: get DB800.DBW768 = 0x2B1A"):
         v = console_value(t.console("get DB800.DBW768"))
         c.ok(v == 0x2B1A, "console: get DB800.DBW768 = 0x2B1A (got %s)" % v)

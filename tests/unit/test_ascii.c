@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* Modbus ASCII framing (003 §2 = manual §8.1, SPEC §3.2), end to end through the core:
+/* Modbus ASCII framing ([ASCII-32] §2 = manual §8.1, docs/ascii-and-32bit.md), end to end through the core:
  * characters in -> ascii.c -> PDU engine -> mapping -> job -> FB -> reply out as text.
- * Every ASCII frame of 003 §2 (the telegram example of §8.1 and the vectors worked out
+ * Every ASCII frame of [ASCII-32] §2 (the telegram example of §8.1 and the vectors worked out
  * from the §9 examples), every receive error with its event, the ASCII quantity limits
- * of 003 §5 / §8.5 (08)32H, the character delay time, and the encoder at the largest
+ * of [ASCII-32] §5 / §8.5 (08)32H, the character delay time, and the encoder at the largest
  * reply. The 32-bit frames of the list are in test_regs32.c. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -41,10 +41,10 @@ static void expect_ascii_silence(world_t *w, const char *req)
     assert_int_equal(ascii_request(w, req, 200), 0);
 }
 
-/* ---- 003 §2 frames ------------------------------------------------------------- */
+/* ---- [ASCII-32] §2 frames ------------------------------------------------------------- */
 
-/* 003 §8.1 telegram example: FC08 echo to slave 5, LRC 8B (computed in 003 §2);
- * 003 (A) 4: accepted and echoed byte-identically. */
+/* [ASCII-32] §8.1 telegram example: FC08 echo to slave 5, LRC 8B (computed in [ASCII-32] §2);
+ * [ASCII-32] (A) 4: accepted and echoed byte-identically. */
 static void test_telegram_example_fc08(void **state)
 {
     (void)state;
@@ -60,7 +60,7 @@ static void test_telegram_example_fc08(void **state)
     ascii_world_free(w);
 }
 
-/* 003 §9.3 FC03 (base DB 800): 0050H -> DB800.DBW160, 162 */
+/* [ASCII-32] §9.3 FC03 (base DB 800): 0050H -> DB800.DBW160, 162 */
 static void test_fc03_vector(void **state)
 {
     (void)state;
@@ -70,7 +70,7 @@ static void test_fc03_vector(void **state)
     ascii_world_free(w);
 }
 
-/* 003 §8.2 exception example `05 85 02`: FC05 to coil 3000 (no window) */
+/* [ASCII-32] §8.2 exception example `05 85 02`: FC05 to coil 3000 (no window) */
 static void test_exception_vector(void **state)
 {
     (void)state;
@@ -81,7 +81,7 @@ static void test_exception_vector(void **state)
     ascii_world_free(w);
 }
 
-/* 003 §9.6 FC05: 2057 -> Q257.1 set; the reply is the echo */
+/* [ASCII-32] §9.6 FC05: 2057 -> Q257.1 set; the reply is the echo */
 static void test_fc05_vector(void **state)
 {
     (void)state;
@@ -92,7 +92,7 @@ static void test_fc05_vector(void **state)
     ascii_world_free(w);
 }
 
-/* 003 §9.10 FC15: 1153 -> M1144.1 ... M1145.4 (12 bits), other bits untouched */
+/* [ASCII-32] §9.10 FC15: 1153 -> M1144.1 ... M1145.4 (12 bits), other bits untouched */
 static void test_fc15_vector(void **state)
 {
     (void)state;
@@ -107,7 +107,7 @@ static void test_fc15_vector(void **state)
     ascii_world_free(w);
 }
 
-/* 003 §9.1 FC01: 64 -> M1008.0, 32 bits */
+/* [ASCII-32] §9.1 FC01: 64 -> M1008.0, 32 bits */
 static void test_fc01_vector(void **state)
 {
     (void)state;
@@ -117,7 +117,7 @@ static void test_fc01_vector(void **state)
     ascii_world_free(w);
 }
 
-/* 003 §9.2 FC02: 4144 -> I134.0, 24 bits */
+/* [ASCII-32] §9.2 FC02: 4144 -> I134.0, 24 bits */
 static void test_fc02_vector(void **state)
 {
     (void)state;
@@ -127,7 +127,7 @@ static void test_fc02_vector(void **state)
     ascii_world_free(w);
 }
 
-/* 003 §9.5 FC04 (base DB 900): 02C0H -> DB901.DBW384, 3 registers */
+/* [ASCII-32] §9.5 FC04 (base DB 900): 02C0H -> DB901.DBW384, 3 registers */
 static void test_fc04_vector(void **state)
 {
     (void)state;
@@ -137,7 +137,7 @@ static void test_fc04_vector(void **state)
     ascii_world_free(w);
 }
 
-/* 003 §9.7 FC06 standard: 0180H -> DB800.DBW768 */
+/* [ASCII-32] §9.7 FC06 standard: 0180H -> DB800.DBW768 */
 static void test_fc06_vector(void **state)
 {
     (void)state;
@@ -147,7 +147,7 @@ static void test_fc06_vector(void **state)
     ascii_world_free(w);
 }
 
-/* 003 §9.11 FC16 standard: 0A32H -> DB805.DBW100, 102, 104 */
+/* [ASCII-32] §9.11 FC16 standard: 0A32H -> DB805.DBW100, 102, 104 */
 static void test_fc16_vector(void **state)
 {
     (void)state;
@@ -166,7 +166,7 @@ static void test_lower_case_hex(void **state)
     ascii_world_free(w);
 }
 
-/* ---- receive errors (003 §8.1 "Error Handling", §8.5) -------------------------- */
+/* ---- receive errors ([ASCII-32] §8.1 "Error Handling", §8.5) -------------------------- */
 
 /* LRC incorrect: (08)36H, no reply, BUS_CRC counted */
 static void test_bad_lrc(void **state)
@@ -328,7 +328,7 @@ static void test_rs485_normal_line_errors(void **state)
     ascii_world_free(w);
 }
 
-/* character delay time (003 §3.2): a gap longer than the ASCII timeout inside a frame
+/* character delay time ([ASCII-32] §3.2): a gap longer than the ASCII timeout inside a frame
  * discards it with (08)06H; a gap just shorter does not */
 static void test_character_delay_time(void **state)
 {
@@ -368,7 +368,7 @@ static void test_character_delay_time(void **state)
     ascii_world_free(w);
 }
 
-/* an invalid character delay time runs with 1000 ms and reports (0E)21H (003 §8.6) */
+/* an invalid character delay time runs with 1000 ms and reports (0E)21H ([ASCII-32] §8.6) */
 static void test_invalid_timeout_default(void **state)
 {
     (void)state;
@@ -455,7 +455,7 @@ static void test_other_address(void **state)
     ascii_world_free(w);
 }
 
-/* broadcast (003 §8.1): FC06 executed, no reply; FC03 ignored with (08)30H */
+/* broadcast ([ASCII-32] §8.1): FC06 executed, no reply; FC03 ignored with (08)30H */
 static void test_broadcast(void **state)
 {
     (void)state;
@@ -468,7 +468,7 @@ static void test_broadcast(void **state)
     ascii_world_free(w);
 }
 
-/* a new request before the reply was sent: (08)37H (003 §8.5) */
+/* a new request before the reply was sent: (08)37H ([ASCII-32] §8.5) */
 static void test_sequence_error(void **state)
 {
     (void)state;
@@ -483,7 +483,7 @@ static void test_sequence_error(void **state)
     assert_int_equal(w->cp.diag.buffer_len, 0);
     ascii_feed(w, ":05080000A5C38B\r\n", ASCII_CHAR_US);
     assert_int_equal(world_last_event(w), MODCP_EV_SEQUENCE);
-    /* a broadcast in the same position (004 §7.5): (08)37H too, not executed */
+    /* a broadcast in the same position ([RTU-2003] §7.5): (08)37H too, not executed */
     ascii_feed(w, ":000600001234B4\r\n", ASCII_CHAR_US);
     assert_int_equal(w->cp.diag.buffer_len, 2);
     assert_int_equal(world_last_event(w), MODCP_EV_SEQUENCE);
@@ -552,7 +552,7 @@ static void test_input_delimiter(void **state)
     ascii_world_free(w);
 }
 
-/* ---- ASCII quantity limits (003 §5, §8.5 (08)32H) -------------------------------- */
+/* ---- ASCII quantity limits ([ASCII-32] §5, §8.5 (08)32H) -------------------------------- */
 
 static void expect_ascii_exception(world_t *w, const uint8_t *bin, size_t n, uint8_t code,
                                    modcp_event_t ev)
@@ -593,7 +593,7 @@ static void test_limits_bits(void **state)
     assert_int_equal(w->m[1246], 0xFF);
     assert_int_equal(w->m[1247], 0xA5); /* the byte after the 1976 bits: untouched */
     /* 1977 bits need 248 data bytes: 253 with start, quantity and byte count, more than
-     * a frame holds (003 §8.1, 2 x 252 characters): over-long, (08)16H, no reply */
+     * a frame holds ([ASCII-32] §8.1, 2 x 252 characters): over-long, (08)16H, no reply */
     wr[5] = 0xB9;
     wr[6] = 0xF8;
     assert_int_equal(ascii_request(w, ascii_frame(wr, 7 + 248), 200), 0);
@@ -619,7 +619,7 @@ static void test_limits_registers(void **state)
     }
     assert_int_equal(ascii_request(w, ascii_frame(wr, 7 + 246), 200), 17);
     assert_int_equal(world_db(w, 800)[245], 245);
-    wr[5] = 0x7C; /* 124 registers: 253 data bytes, over-long (003 §8.1) */
+    wr[5] = 0x7C; /* 124 registers: 253 data bytes, over-long ([ASCII-32] §8.1) */
     wr[6] = 0xF8;
     assert_int_equal(ascii_request(w, ascii_frame(wr, 7 + 248), 200), 0);
     assert_int_equal(world_last_event(w), MODCP_EV_FRAME_TOO_LONG);
@@ -707,7 +707,7 @@ static void test_rs485_echo(void **state)
     modcp_params_t p;
     ascii_example_params(&p);
     p.iface = MODCP_IFACE_RS485;
-    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 (000 Table 5-2) */
+    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 ([RTU-2009] Table 5-2) */
     world_t *w = ascii_world_started(&p);
     ascii_feed(w, ":05080000A5C38B\r\n", ASCII_CHAR_US);
     assert_true(ascii_fire(w));

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* Backplane rings and header encoders (SPEC §6: 32-byte blocks, request/acknowledge
+/* Backplane rings and header encoders (docs/cpu-cp-interface.md: 32-byte blocks, request/acknowledge
  * per block with sequence numbers). */
 #include <pthread.h>
 #include <sched.h>
@@ -235,7 +235,7 @@ static void test_two_threads(void **state)
 }
 
 /* JOB header: 0 op | 1 area | 2 bit | 3..4 db | 5..6 offset | 7..8 count | 9..10 len,
- * little-endian. 004 §6.8 FC15 example: M 1144.0, 12 bits, 2 data bytes. */
+ * little-endian. [RTU-2003] §6.8 FC15 example: M 1144.0, 12 bits, 2 data bytes. */
 static void test_job_header(void **state)
 {
     (void)state;
@@ -262,7 +262,7 @@ static void test_job_header(void **state)
     assert_int_equal(back.len, 2);
     assert_false(modcp_bp_job_decode(d, (uint8_t)(n - 1u), &back)); /* short */
 
-    /* 004 §6.6 FC06 example: DB 800, DBW 768, high field values round-trip */
+    /* [RTU-2003] §6.6 FC06 example: DB 800, DBW 768, high field values round-trip */
     modcp_bp_job_t w = {.op = MODCP_JOB_WRITE,
                         .opnd = {.area = MODCP_AREA_DB, .bit = 7, .db = 0xFFFF, .offset = 768, .count = 2},
                         .len = 0xFEDC};

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* Comm-loss supervision (SPEC §2, §5.3; 002 §7): armed by the first accepted write for
+/* Comm-loss supervision (docs/parameters.md, §5.3; [ALTIVAR] §7): armed by the first accepted write for
  * our address; no valid request for our address within commloss_ms -> event (0E)60H
  * once and MODCP_CPST_COMMLOSS in the backplane status area, latched until the CPU side
  * resets it (the Altivar's resettable fault SLF1); with commloss_auto_clear the next
@@ -130,7 +130,7 @@ static void test_what_refreshes(void **state)
  * fault. By default the loss stays latched: valid requests (which still restart the
  * time) do not clear it; the CPU side's reset (modcp_bp_commloss_reset) clears it at the
  * CP's next poll, the supervision stays armed and times from the reset. */
-static void test_002_s7_latched_until_reset(void **state)
+static void test_commloss_latched_until_reset(void **state)
 {
     (void)state;
     world_t *w = cl_world(200);
@@ -200,7 +200,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_not_armed_before_first_write),
         cmocka_unit_test(test_threshold_and_refresh),
-        cmocka_unit_test(test_002_s7_latched_until_reset),
+        cmocka_unit_test(test_commloss_latched_until_reset),
         cmocka_unit_test(test_what_refreshes),
         cmocka_unit_test(test_off),
         cmocka_unit_test(test_armed_by_fc22_fc23_long_time),

@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* End to end through the core: frame in -> link -> PDU -> mapping -> job over the
  * backplane -> FB against controller memory -> reply out. Every worked example of
- * 004 §6 with the 004 §9 frames (CRC included), the 4.6.4 negative tests, every
- * exception code and event of SPEC §5.2, broadcast, and the not-ready states.
+ * [RTU-2003] §6 with the [RTU-2003] §9 frames (CRC included), the 4.6.4 negative tests, every
+ * exception code and event of docs/diagnostics.md, broadcast, and the not-ready states.
  * Built twice: unit.test_cp_examples against modcp_core, and unit.test_cp_manual
  * against modcp_core_manual (the feature switches of modcp/features.h off), where
  * MODCP_TEST_MANUAL adds the checks that the switched-off features are refused. */
@@ -49,7 +49,7 @@ static void expect_exception(world_t *w, const uint8_t *pdu_with_addr, size_t le
     assert_int_equal(world_last_event(w), ev);
 }
 
-/* 004 §6.1 FC01 example: M 1008.0 .. M 1011.7 */
+/* [RTU-2003] §6.1 FC01 example: M 1008.0 .. M 1011.7 */
 static void test_fc01_example(void **state)
 {
     (void)state;
@@ -90,7 +90,7 @@ static void test_fc01_timers(void **state)
     world_free(w);
 }
 
-/* 004 §6.2 FC02 example: I 134.0 .. I 136.7 */
+/* [RTU-2003] §6.2 FC02 example: I 134.0 .. I 136.7 */
 static void test_fc02_example(void **state)
 {
     (void)state;
@@ -100,7 +100,7 @@ static void test_fc02_example(void **state)
     world_free(w);
 }
 
-/* 004 §6.3 FC03 example: DB 800 DBW 160, 162 */
+/* [RTU-2003] §6.3 FC03 example: DB 800 DBW 160, 162 */
 static void test_fc03_example(void **state)
 {
     (void)state;
@@ -110,7 +110,7 @@ static void test_fc03_example(void **state)
     world_free(w);
 }
 
-/* 004 §6.4 FC04 example: DB 901 DBW 384, 386, 388 */
+/* [RTU-2003] §6.4 FC04 example: DB 901 DBW 384, 386, 388 */
 static void test_fc04_example(void **state)
 {
     (void)state;
@@ -120,7 +120,7 @@ static void test_fc04_example(void **state)
     world_free(w);
 }
 
-/* 004 §6.5 FC05 example: Q 257.1 set, other bits untouched */
+/* [RTU-2003] §6.5 FC05 example: Q 257.1 set, other bits untouched */
 static void test_fc05_example(void **state)
 {
     (void)state;
@@ -135,7 +135,7 @@ static void test_fc05_example(void **state)
     world_free(w);
 }
 
-/* 004 §6.6 FC06 example: DB 800 DBW 768 = 2B1A */
+/* [RTU-2003] §6.6 FC06 example: DB 800 DBW 768 = 2B1A */
 static void test_fc06_example(void **state)
 {
     (void)state;
@@ -146,7 +146,7 @@ static void test_fc06_example(void **state)
     world_free(w);
 }
 
-/* 004 §6.7 FC08 example: echo */
+/* [RTU-2003] §6.7 FC08 example: echo */
 static void test_fc08_example(void **state)
 {
     (void)state;
@@ -155,7 +155,7 @@ static void test_fc08_example(void **state)
     world_free(w);
 }
 
-/* 004 §6.8 FC15 example: M 1144 = CD, M 1145.0..3 = 1001, M 1145.4..7 untouched */
+/* [RTU-2003] §6.8 FC15 example: M 1144 = CD, M 1145.0..3 = 1001, M 1145.4..7 untouched */
 static void test_fc15_example(void **state)
 {
     (void)state;
@@ -168,7 +168,7 @@ static void test_fc15_example(void **state)
     world_free(w);
 }
 
-/* 004 §6.9 FC16 example: DB 800 DBW 100, 102, 104 */
+/* [RTU-2003] §6.9 FC16 example: DB 800 DBW 100, 102, 104 */
 static void test_fc16_example(void **state)
 {
     (void)state;
@@ -178,7 +178,7 @@ static void test_fc16_example(void **state)
     world_free(w);
 }
 
-/* 004 §5.4 exception example: slave 5, FC 05, code 02 -> 05 85 02 82 90 */
+/* [RTU-2003] §5.4 exception example: slave 5, FC 05, code 02 -> 05 85 02 82 90 */
 static void test_exception_frame_example(void **state)
 {
     (void)state;
@@ -190,7 +190,7 @@ static void test_exception_frame_example(void **state)
     world_free(w);
 }
 
-/* 004 §3.5 / 4.6.4 limits (DB 600-699, MB 1000-1127, QB 256-319) reject the FC15
+/* [RTU-2003] §3.5 / 4.6.4 limits (DB 600-699, MB 1000-1127, QB 256-319) reject the FC15
  * example at MB 1144 and the FC06/16 examples in DB 800: exception 02, (0E)52H,
  * nothing written. */
 static void test_manual_464_limits_reject(void **state)
@@ -217,7 +217,7 @@ static void test_manual_464_limits_reject(void **state)
     world_free(w);
 }
 
-/* SPEC §5.2 exception 01 */
+/* docs/diagnostics.md exception 01 */
 static void test_exception_01(void **state)
 {
     (void)state;
@@ -233,7 +233,7 @@ static void test_exception_01(void **state)
     world_free(w);
 }
 
-/* SPEC §5.2 exception 02 with each event */
+/* docs/diagnostics.md exception 02 with each event */
 static void test_exception_02(void **state)
 {
     (void)state;
@@ -275,7 +275,7 @@ static void test_exception_02(void **state)
     world_free(w);
 }
 
-/* SPEC §5.2 exception 03 with each event */
+/* docs/diagnostics.md exception 03 with each event */
 static void test_exception_03(void **state)
 {
     (void)state;
@@ -303,7 +303,7 @@ static void test_exception_03(void **state)
     world_free(w);
 }
 
-/* SPEC §5.2 exception 04: FB not initialised */
+/* docs/diagnostics.md exception 04: FB not initialised */
 static void test_exception_04_not_initialised(void **state)
 {
     (void)state;
@@ -325,7 +325,7 @@ static void test_exception_04_not_initialised(void **state)
     world_free(w);
 }
 
-/* SPEC §5.2 exception 04: CPU job timeouts (0E)31H (read) and (0E)3BH (FB bit write) */
+/* docs/diagnostics.md exception 04: CPU job timeouts (0E)31H (read) and (0E)3BH (FB bit write) */
 static void test_exception_04_timeouts(void **state)
 {
     (void)state;
@@ -348,7 +348,7 @@ static void test_exception_04_timeouts(void **state)
     world_free(w);
 }
 
-/* SPEC §5.2 exception 04: DB missing, job longer than the transfer limit */
+/* docs/diagnostics.md exception 04: DB missing, job longer than the transfer limit */
 static void test_exception_04_cpu_errors(void **state)
 {
     (void)state;
@@ -663,7 +663,7 @@ static void test_shared_record_during_reply(void **state)
     push_rest(w, &k);
     assert_true(w->cp.configured); /* the record was taken */
     assert_int_equal(w->cp.param_event, MODCP_EV_NONE);
-    /* the record the CP holds already: no re-parameterisation (004 §4.2 step 4), the
+    /* the record the CP holds already: no re-parameterisation ([RTU-2003] §4.2 step 4), the
      * FB's initialisation stays */
     assert_true(w->cp.env.fb_ready);
     assert_int_equal(w->fake.tx_count, sent + 1);

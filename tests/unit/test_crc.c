@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* CRC-16 and LRC against the standard vectors and the manual's frames (004 §9). */
+/* CRC-16 and LRC against the standard vectors and the manual's frames ([RTU-2003] §9). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -48,7 +48,7 @@ static void test_incremental_equals_whole(void **state)
 static void test_manual_frames(void **state)
 {
     (void)state;
-    /* 004 §9 computed vectors for every worked example of §6 */
+    /* [RTU-2003] §9 computed vectors for every worked example of §6 */
     check_frame_crc("05 01 00 40 00 20 3D 82");
     check_frame_crc("05 01 04 01 17 02 18 0E 83");
     check_frame_crc("05 02 10 30 00 18 7D 4B");

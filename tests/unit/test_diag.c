@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* Diagnostics (SPEC §7, 004 §7, 001 §8): STATUS word, diagnostic buffer, SYSTAT (first
+/* Diagnostics (docs/diagnostics.md, [RTU-2003] §7, [VIPA-341] §8): STATUS word, diagnostic buffer, SYSTAT (first
  * six events, F / U / B, clear on read) and its service over the backplane, the
  * diagnostic interrupt records, wire break, the LEDs SF / TXD / RXD with their 200 ms
  * minimum on-time (1 us resolution), the status area, the diag_irq parameter, and the
@@ -22,7 +22,7 @@
 #include "job_internal.h"
 #include "params_internal.h"
 
-#define FC08_REQ "05 08 00 00 A5 C3 DA 8E" /* 004 §6.7, answered by the CP alone */
+#define FC08_REQ "05 08 00 00 A5 C3 DA 8E" /* [RTU-2003] §6.7, answered by the CP alone */
 #define CHAR_US 1146u
 #define T35_US 4000u
 #define LED_ON(led) (((uint32_t)(led) << 1) | 1u)
@@ -37,7 +37,7 @@ static modcp_params_t example(void)
 
 /* ---- STATUS word, diagnostic buffer, SYSTAT -------------------------------------- */
 
-/* 001 §8.1: bits 15..13 reserved (0), 12..8 class, 7..0 number; the last event. */
+/* [VIPA-341] §8.1: bits 15..13 reserved (0), 12..8 class, 7..0 number; the last event. */
 static void test_status_word(void **state)
 {
     (void)state;
@@ -48,7 +48,7 @@ static void test_status_word(void **state)
     assert_int_equal(d.status, 0x0836);
     modcp_diag_event(&d, MODCP_EV_FB_NOT_RUNNING);
     assert_int_equal(d.status, 0x0E56);
-    modcp_diag_event(&d, MODCP_EV_JOB_LENGTH); /* 001 §8.2: (05)17H, "transfer length
+    modcp_diag_event(&d, MODCP_EV_JOB_LENGTH); /* [VIPA-341] §8.2: (05)17H, "transfer length
                                                   > 1 kByte is too large for the CP" */
     assert_int_equal(d.status, 0x0517);
     modcp_diag_event(&d, MODCP_EV_CTS_TIMEOUT);
@@ -60,7 +60,7 @@ static void test_status_word(void **state)
     assert_int_equal(d.events_total, 5);
 }
 
-/* 001 §8.3: ring of 9 entries, newest first, the oldest drops out. */
+/* [VIPA-341] §8.3: ring of 9 entries, newest first, the oldest drops out. */
 static void test_diag_buffer_ring(void **state)
 {
     (void)state;
@@ -76,7 +76,7 @@ static void test_diag_buffer_ring(void **state)
     assert_int_equal(d.events_total, 11);
 }
 
-/* 004 §7.4: only the first six events since the last read; F = an event entered,
+/* [RTU-2003] §7.4: only the first six events since the last read; F = an event entered,
  * U = overflow, B = BREAK; reading gives the 16-byte image and clears it. */
 static void test_systat_image(void **state)
 {
@@ -224,7 +224,7 @@ static lw_t *start(const modcp_params_t *p)
     return x;
 }
 
-/* 001 §8.4: BREAK on RxD (normal mode) -> 25 0C 02 00, once while it lasts; SF on; the
+/* [VIPA-341] §8.4: BREAK on RxD (normal mode) -> 25 0C 02 00, once while it lasts; SF on; the
  * next good character ends it -> 00 0C 00 00 (going), SF off. */
 static void test_diag_irq_wire_break(void **state)
 {
@@ -284,7 +284,7 @@ static void test_diag_irq_wire_break(void **state)
     lw_free(x);
 }
 
-/* 001 §8.4: parameterisation error -> 83 0C 00 00, once (not at every retry of the
+/* [VIPA-341] §8.4: parameterisation error -> 83 0C 00 00, once (not at every retry of the
  * FB); valid parameters later -> going. */
 static void test_diag_irq_param_error(void **state)
 {
@@ -361,7 +361,7 @@ static void test_diag_irq_parameter(void **state)
     (void)state;
     modcp_params_t p;
     modcp_params_defaults(&p);
-    assert_int_equal(p.diag_irq, 0); /* 001 §8.4: disabled by default */
+    assert_int_equal(p.diag_irq, 0); /* [VIPA-341] §8.4: disabled by default */
     p.diag_irq = 2;
     modcp_param_issue_t is[4];
     assert_int_equal(modcp_params_validate(&p, is, 4), 1);
@@ -533,7 +533,7 @@ static void test_leds_rs485_echo(void **state)
     (void)state;
     modcp_params_t p = example();
     p.iface = MODCP_IFACE_RS485;
-    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 (000 Table 5-2) */
+    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 ([RTU-2009] Table 5-2) */
     lw_t *x = start(&p);
     x->cycles = false;
     x->auto_tx_done = false; /* the reply stays on the line */

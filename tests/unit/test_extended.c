@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* Extended function set (SPEC §5.3), end to end through the core with the 004 §9
+/* Extended function set (docs/extended-functions.md), end to end through the core with the [RTU-2003] §9
  * example parameters (slave 5, holding registers from DB 800, DB writes 800..899):
  * FC08 sub-functions with the Serial Line V1.02 counter semantics, FC11, FC12 with the
  * event byte encoding, FC17, FC22, FC23, FC43/14, listen-only, the `cp341` set.
@@ -37,9 +37,9 @@ static const char *version_hex(void)
 
 /* ---- function set cp341 ------------------------------------------------------------ */
 
-/* SPEC §2 function set `cp341`: exactly 01-06, 08 sub 0000, 15, 16; every FC of the
+/* docs/parameters.md function set `cp341`: exactly 01-06, 08 sub 0000, 15, 16; every FC of the
  * extended set -> exception 01, (08)31H; FC08 sub-functions other than 0000 -> 03,
- * (08)35H as in the manual (004 §6.7); the scanner is off. */
+ * (08)35H as in the manual ([RTU-2003] §6.7); the scanner is off. */
 /* The FC12 event log is a ring: newest first, at most 64, the oldest drops out; a
  * clear empties it and the next event is the newest (and only) one. */
 static void test_comm_log_ring(void **state)
@@ -140,7 +140,7 @@ static void test_fc08_counters_after_known_traffic(void **state)
     world_free(w);
 }
 
-/* 002 §8: message counters wrap 65535 -> 0, error counters saturate at 65535. */
+/* [ALTIVAR] §8: message counters wrap 65535 -> 0, error counters saturate at 65535. */
 static void test_fc08_wrap_and_saturation(void **state)
 {
     (void)state;
@@ -524,7 +524,7 @@ static void test_fc23_maximum_quantities(void **state)
     world_free(w);
 }
 
-/* 32-bit registers (003 §4.5): FC22 on the int16 range only; FC23 counts 32-bit
+/* 32-bit registers ([ASCII-32] §4.5): FC22 on the int16 range only; FC23 counts 32-bit
  * entities in the int32 / float ranges. */
 static void test_fc22_fc23_regs32(void **state)
 {
@@ -576,7 +576,7 @@ static void test_fc43_basic_default(void **state)
     world_free(w);
 }
 
-/* The 002 §10.5 identification strings; regular stream access gives the Altivar's
+/* The [ALTIVAR] §10.5 identification strings; regular stream access gives the Altivar's
  * 55-byte frame with our conformity level 82H and ReadDevId 02. */
 static void test_fc43_regular_altivar_strings(void **state)
 {
@@ -755,7 +755,7 @@ static void test_pdu_state_per_request(void **state)
 
 /* ---- not initialised, broadcast -------------------------------------------------- */
 
-/* SPEC §6: until the FB's INIT every request gets 04 / (0E)56H, the extended set too. */
+/* docs/cpu-cp-interface.md: until the FB's INIT every request gets 04 / (0E)56H, the extended set too. */
 static void test_extended_not_initialised(void **state)
 {
     (void)state;

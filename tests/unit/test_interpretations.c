@@ -3,13 +3,13 @@
  * particular way, a test pins the behaviour that the documents describe (with the
  * manual's words and the reason):
  *   - FC08 with a sub-function other than 0000: exception 03 / (08)35H in the cp341 set
- *     (004 §8.7), exception 01 / (08)35H in the extended set (docs/extended-functions.md);
+ *     ([RTU-2003] §8.7), exception 01 / (08)35H in the extended set (docs/extended-functions.md);
  *   - the STATUS word of the status area keeps the last event, it never returns to 0
- *     (001 §8.1; docs/diagnostics.md);
- *   - lower-case ASCII hex is accepted, replies are upper case (003 §8.1;
+ *     ([VIPA-341] §8.1; docs/diagnostics.md);
+ *   - lower-case ASCII hex is accepted, replies are upper case ([ASCII-32] §8.1;
  *     docs/ascii-and-32bit.md);
  *   - BREAK on a four-wire (RS422) line in interference suppression mode is not reported
- *     and is no wire break (004 §4.6.1, 000 Table 5-8; docs/diagnostics.md). */
+ *     and is no wire break ([RTU-2003] §4.6.1, [RTU-2009] Table 5-8; docs/diagnostics.md). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -21,7 +21,7 @@
 #include "lineworld.h"
 #include "world.h"
 
-#define FC08_REQ "05 08 00 00 A5 C3 DA 8E" /* 004 §6.7 */
+#define FC08_REQ "05 08 00 00 A5 C3 DA 8E" /* [RTU-2003] §6.7 */
 
 static world_t *started(uint8_t fset)
 {
@@ -42,9 +42,9 @@ static uint8_t fc08(world_t *w, uint16_t sub)
     return w->fake.tx[1] == 0x88u ? w->fake.tx[2] : 0u;
 }
 
-/* 004 §8.7: "Only diagnostic code 0000 is supported. Any other value -> exception 3,
+/* [RTU-2003] §8.7: "Only diagnostic code 0000 is supported. Any other value -> exception 3,
  * (08)35H." The cp341 set keeps that. */
-static void test_004_s8_7_fc08_subcode_not_0000_exception_03(void **state)
+static void test_fc08_subcode_other_than_0000_answers_exception_03(void **state)
 {
     (void)state;
     world_t *w = started(MODCP_FSET_CP341);
@@ -82,10 +82,10 @@ static uint16_t status_word(const world_t *w)
     return st.status;
 }
 
-/* 001 §8.1: the FB's STATUS output is "non-zero only while ERROR is set; otherwise
+/* [VIPA-341] §8.1: the FB's STATUS output is "non-zero only while ERROR is set; otherwise
  * STATUS = 0". The STATUS word of the CP's status area is the last event and stays until
  * the next one: successful requests after an event do not clear it. */
-static void test_001_s8_1_status_word_keeps_last_event(void **state)
+static void test_status_word_keeps_last_event(void **state)
 {
     (void)state;
     world_t *w = started(MODCP_FSET_CP341);
@@ -107,10 +107,10 @@ static void test_001_s8_1_status_word_keeps_last_event(void **state)
     world_free(w);
 }
 
-/* 003 §8.1: "each 8-bit byte is sent as two ASCII hex characters 0-9 A-F"; a character
+/* [ASCII-32] §8.1: "each 8-bit byte is sent as two ASCII hex characters 0-9 A-F"; a character
  * that "is not an ASCII hex character" rejects the string. a-f are accepted as hex, the
  * reply is upper case; g is not hex: rejected with (08)3AH. */
-static void test_003_s8_1_lower_case_hex_accepted_reply_upper_case(void **state)
+static void test_ascii_lower_case_hex_accepted_reply_upper_case(void **state)
 {
     (void)state;
     modcp_params_t p;
@@ -125,13 +125,13 @@ static void test_003_s8_1_lower_case_hex_accepted_reply_upper_case(void **state)
     ascii_world_free(w);
 }
 
-/* 004 §4.6.1 interference suppression: a BREAK during a message makes it faulty and
- * ignored, BREAK after the CRC is ignored; 000 Table 5-8: on four-wire RS422 "error
+/* [RTU-2003] §4.6.1 interference suppression: a BREAK during a message makes it faulty and
+ * ignored, BREAK after the CRC is ignored; [RTU-2009] Table 5-8: on four-wire RS422 "error
  * handling follows the operating mode". So on RS422 in suppression mode a BREAK (the
  * receive-line preset R(A) 5V / R(B) 0V shows a broken line as BREAK) is not reported:
  * no (08)0DH, no wire break, SF off; the next request is answered. In normal mode the
  * same BREAK is (08)0DH and a wire break. */
-static void test_004_s4_6_1_break_four_wire_suppression_not_reported(void **state)
+static void test_break_in_four_wire_suppression_not_reported(void **state)
 {
     (void)state;
     modcp_params_t p;
@@ -176,13 +176,13 @@ static void test_004_s4_6_1_break_four_wire_suppression_not_reported(void **stat
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_004_s8_7_fc08_subcode_not_0000_exception_03),
+        cmocka_unit_test(test_fc08_subcode_other_than_0000_answers_exception_03),
 #if MODCP_WITH_EXTENDED
         cmocka_unit_test(test_mbap6_8_fc08_unsupported_subfunction_exception_01_event_0835),
 #endif
-        cmocka_unit_test(test_001_s8_1_status_word_keeps_last_event),
-        cmocka_unit_test(test_003_s8_1_lower_case_hex_accepted_reply_upper_case),
-        cmocka_unit_test(test_004_s4_6_1_break_four_wire_suppression_not_reported),
+        cmocka_unit_test(test_status_word_keeps_last_event),
+        cmocka_unit_test(test_ascii_lower_case_hex_accepted_reply_upper_case),
+        cmocka_unit_test(test_break_in_four_wire_suppression_not_reported),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

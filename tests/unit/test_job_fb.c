@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The CP-side job module and the CPU-side FB together over one backplane, single
  * thread: the test alternates modcp_job_poll() (the CP task) and modcp_fb_call() (the
- * CPU cycle). 004 §4.2 init handshake, §4.4 / §4.5 job limits and 32-byte blocks,
+ * CPU cycle). [RTU-2003] §4.2 init handshake, §4.4 / §4.5 job limits and 32-byte blocks,
  * §4.6 generic handshake, §6.5 / §6.8 / §6.9 examples, §7.5 events, §7.6 ERROR_NR. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -138,7 +138,7 @@ static modcp_event_t start(fx_t *f, uint8_t op, uint8_t area, uint16_t db, uint1
     return modcp_job_start(&f->job, h, f->wbuf, f->rbuf, sizeof f->rbuf, f->now_us);
 }
 
-/* ---- initialisation (004 §4.2) ------------------------------------------------------ */
+/* ---- initialisation ([RTU-2003] §4.2) ------------------------------------------------------ */
 
 /* The FB hands the CP its parameters at the first call, before any CP_START. */
 static void test_params_at_first_call(void **state)
@@ -208,7 +208,7 @@ static void test_init_happy_path(void **state)
 }
 
 /* The CP answers "not ready" (it was still testing itself); the FB repeats PARAMS +
- * INIT every MODCP_FB_RETRY_MS until START_TIME (004 §4.2 step 6). */
+ * INIT every MODCP_FB_RETRY_MS until START_TIME ([RTU-2003] §4.2 step 6). */
 static void test_init_retry_then_success(void **state)
 {
     fx_t *f = *state;
@@ -244,7 +244,7 @@ static void test_init_retry_then_success(void **state)
 }
 
 /* CP silent: CP_START_ERROR with ERROR_NR 2 exactly at START_TIME, not 1 ms before
- * (004 §7.6 10.1.1). ERROR_INFO 0: the CP never reported an event. */
+ * ([RTU-2003] §7.6 10.1.1). ERROR_INFO 0: the CP never reported an event. */
 static void test_init_timeout_cp_silent(void **state)
 {
     fx_t *f = *state;
@@ -265,7 +265,7 @@ static void test_init_timeout_cp_silent(void **state)
     assert_int_equal(f->out.error_nr, 2);
     assert_int_equal(f->out.error_info, 0);
     assert_int_equal(f->fb.state, MODCP_FBST_FAILED);
-    /* outputs stay; a job now is answered (0E)56H (004 §4.2 step 7) */
+    /* outputs stay; a job now is answered (0E)56H ([RTU-2003] §4.2 step 7) */
     f->now_ms += 1000;
     fb(f, true);
     assert_true(f->out.cp_start_error);
@@ -317,7 +317,7 @@ static void test_params_overflow(void **state)
     assert_int_equal(f->job.msglen, 0);
 }
 
-/* Before init completes every job is answered (0E)56H (004 §4.2 step 7, §4.6 e). */
+/* Before init completes every job is answered (0E)56H ([RTU-2003] §4.2 step 7, §4.6 e). */
 static void test_job_before_init(void **state)
 {
     fx_t *f = *state;
@@ -330,7 +330,7 @@ static void test_job_before_init(void **state)
     assert_int_equal(f->job.event, MODCP_EV_FB_NOT_RUNNING);
 }
 
-/* ---- jobs: 32-byte blocks, limits (004 §4.4, §4.5) ------------------------------------ */
+/* ---- jobs: 32-byte blocks, limits ([RTU-2003] §4.4, §4.5) ------------------------------------ */
 
 /* The CP side alone: header block, then ceil(len/32) data blocks, the last shorter. */
 static void test_job_block_layout(void **state)
@@ -433,7 +433,7 @@ static void test_read_1024(void **state)
     assert_int_equal(f->ndr_calls, 0); /* a read is not new data */
 }
 
-/* 004 §6.3 FC03 / §9: DB 800 DBW 160 = 8765 4321 read as 4 bytes; 004 §6.1 T/C words
+/* [RTU-2003] §6.3 FC03 / §9: DB 800 DBW 160 = 8765 4321 read as 4 bytes; [RTU-2003] §6.1 T/C words
  * high byte first. */
 static void test_read_small(void **state)
 {
@@ -454,7 +454,7 @@ static void test_read_small(void **state)
     assert_memory_equal(f->rbuf, ((const uint8_t[]){0x12, 0x34}), 2);
 }
 
-/* CP 441-2 model: the transfer limit is 450 bytes (004 §4.5). */
+/* CP 441-2 model: the transfer limit is 450 bytes ([RTU-2003] §4.5). */
 static void test_job_limit_450(void **state)
 {
     fx_t *f = *state;
@@ -483,7 +483,7 @@ static void test_job_limit_450(void **state)
     assert_int_equal(f->db800[450], 0x00);
 }
 
-/* 004 §6.8 FC15 example executed by the FB: CD 09 for 12 bits at M 1144.0, M 1145.4..7
+/* [RTU-2003] §6.8 FC15 example executed by the FB: CD 09 for 12 bits at M 1144.0, M 1145.4..7
  * preset to 1 stay 1; CP_START_NDR for exactly the executing call. */
 static void test_bitwrite_fc15_ndr(void **state)
 {
@@ -504,7 +504,7 @@ static void test_bitwrite_fc15_ndr(void **state)
     fb(f, true);
     assert_false(f->out.cp_start_ndr);
 
-    /* 004 §6.5 FC05 example: Q 257.1 set */
+    /* [RTU-2003] §6.5 FC05 example: Q 257.1 set */
     f->q[257] = 0x80;
     f->wbuf[0] = 0x01;
     assert_int_equal(start(f, MODCP_JOB_BITWRITE, MODCP_AREA_Q, 0, 257, 1, 1, 1, 1024),
@@ -516,9 +516,9 @@ static void test_bitwrite_fc15_ndr(void **state)
     assert_int_equal(f->ndr_calls, 1);
 }
 
-/* ---- timeouts and cancellation (004 §4.3, (0E)31H / (0E)3BH) ------------------------- */
+/* ---- timeouts and cancellation ([RTU-2003] §4.3, (0E)31H / (0E)3BH) ------------------------- */
 
-/* FC16 example data (004 §6.9) for DB 800 DBW 100; the FB is not called: (0E)31H at
+/* FC16 example data ([RTU-2003] §6.9) for DB 800 DBW 100; the FB is not called: (0E)31H at
  * exactly timeout_us; afterwards the cancelled write is not executed. */
 static void test_write_timeout_not_executed(void **state)
 {
@@ -605,7 +605,7 @@ static void test_read_timeout_stale_reply_dropped(void **state)
     assert_int_equal(f->rbuf[0], 0x99);
 }
 
-/* FC05 (004 §6.5) with the FB not called: (0E)3BH; the wrap of the CP clock is harmless;
+/* FC05 ([RTU-2003] §6.5) with the FB not called: (0E)3BH; the wrap of the CP clock is harmless;
  * the cancelled bit write is never executed. */
 static void test_bitwrite_timeout(void **state)
 {
@@ -670,7 +670,7 @@ static void test_job_abort(void **state)
     assert_int_equal(poll(f), MODCP_JOBP_NOTHING);
 }
 
-/* ---- errors reported by the FB (004 §7.5 (0E)38H/39H/3AH/57H, §7.6 10..18) ----------- */
+/* ---- errors reported by the FB ([RTU-2003] §7.5 (0E)38H/39H/3AH/57H, §7.6 10..18) ----------- */
 
 static void expect_fb_error(fx_t *f, uint16_t nr, uint16_t info)
 {
@@ -721,7 +721,7 @@ static void test_fb_errors(void **state)
     expect_fb_error(f, MODCP_FB_ERR_AMOUNT, 1100);
     assert_int_equal(f->db800[0], 0x00);
 
-    /* later jobs continue (004 §7.6: 10..19 do not stop the FB); outputs keep the error */
+    /* later jobs continue ([RTU-2003] §7.6: 10..19 do not stop the FB); outputs keep the error */
     f->m[3] = 0x0F;
     assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_M, 0, 3, 0, 1, 1, 1024), MODCP_EV_NONE);
     run_job(f);
@@ -731,9 +731,9 @@ static void test_fb_errors(void **state)
     assert_int_equal(f->fb.state, MODCP_FBST_RUN);
 }
 
-/* ---- FB outputs (004 FB table and §5.5, 001 FB table) ---------------------------------- */
+/* ---- FB outputs ([RTU-2003] FB table and §5.5, [VIPA-341] FB table) ---------------------------------- */
 
-/* 004 §5.5 step 5: "If the SEND fails -> CP_START is reset and CP_START_ERROR = 1".
+/* [RTU-2003] §5.5 step 5: "If the SEND fails -> CP_START is reset and CP_START_ERROR = 1".
  * CP_START is in/out (001: IN_OUT): the FB writes it false in the call that fails, the
  * error outputs stay until the caller's next rising edge, which retries. */
 static void test_fb_outputs_5_5_init_failure_resets_cp_start(void **state)
@@ -788,7 +788,7 @@ static void test_fb_outputs_5_5_init_failure_resets_cp_start(void **state)
     assert_int_equal(f->fb.state, MODCP_FBST_RUN);
 }
 
-/* 004 §5.5: a failure with the CP answering "not ready" keeps ERROR_INFO = the CP's
+/* [RTU-2003] §5.5: a failure with the CP answering "not ready" keeps ERROR_INFO = the CP's
  * last event after CP_START was reset, until the next rising edge. */
 static void test_fb_outputs_5_5_error_info_kept_until_edge(void **state)
 {
@@ -819,7 +819,7 @@ static void test_fb_outputs_5_5_error_info_kept_until_edge(void **state)
     assert_int_equal(f->out.error_info, 0);
 }
 
-/* 001 FB table: "a rising edge [of CP_START] also clears the errors"; 004 §7.6: a job
+/* [VIPA-341] FB table: "a rising edge [of CP_START] also clears the errors"; [RTU-2003] §7.6: a job
  * error (10..19) does not stop the FB. ERROR_NR / ERROR_INFO show the last error: kept
  * through later successful jobs and while CP_START stays set, replaced by a newer error,
  * cleared only by a rising edge of CP_START. */
@@ -892,7 +892,7 @@ static void test_access_errors(void **state)
 {
     fx_t *f = *state;
     init_ok(f);
-    /* 004 §7.5 (0E)39H: DB 801 does not exist */
+    /* [RTU-2003] §7.5 (0E)39H: DB 801 does not exist */
     assert_int_equal(start(f, MODCP_JOB_READ, MODCP_AREA_DB, 801, 0, 0, 4, 4, 1024), MODCP_EV_NONE);
     run_job(f);
     assert_int_equal(f->job.event, MODCP_EV_DB_ACCESS);
@@ -920,7 +920,7 @@ static void test_access_errors(void **state)
     assert_int_equal(f->out.error_nr, 0); /* not an FB error */
 }
 
-/* (0E)3AH: the FB's work DB does not exist (004 §7.5) — bit writes cannot be placed. */
+/* (0E)3AH: the FB's work DB does not exist ([RTU-2003] §7.5) — bit writes cannot be placed. */
 static void test_work_db_missing(void **state)
 {
     fx_t *f = *state;
@@ -1046,7 +1046,7 @@ static bool fb_reply(fx_t *f, uint8_t *tag, modcp_bp_reply_t *r)
     return true;
 }
 
-/* SPEC §6: nothing is executed from a job whose data did not arrive complete. */
+/* docs/cpu-cp-interface.md: nothing is executed from a job whose data did not arrive complete. */
 static void test_fb_incomplete_jobs(void **state)
 {
     fx_t *f = *state;

@@ -1,12 +1,12 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* Line discipline end to end (SPEC §3.1, 004 §2.2, §2.3, §5.3): character errors and
+/* Line discipline end to end (docs/diagnostics.md, [RTU-2003] §2.2, §2.3, §5.3): character errors and
  * BREAK in normal and interference-suppression mode and on RS485, frame start by the
  * own address, errors after the CRC, the t1.5 check, the t3.5 end of frame, RS485
  * driver enable and turnaround, (08)37H — through the whole CP (link, PDU, job, FB)
  * on a simulated line with exact time (lineworld.h). Thresholds at 1 us.
  *
- * Line: 9600 baud 8E1 = 11 bits, one character = 1146 us, t3.5 = 4000 us (004 §5.3),
- * t1.5 = 1719 us (1.5 x 11 bits). Frames: 004 §6 examples with the 004 §9 CRCs. */
+ * Line: 9600 baud 8E1 = 11 bits, one character = 1146 us, t3.5 = 4000 us ([RTU-2003] §5.3),
+ * t1.5 = 1719 us (1.5 x 11 bits). Frames: [RTU-2003] §6 examples with the [RTU-2003] §9 CRCs. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -16,9 +16,9 @@
 
 #include "lineworld.h"
 
-#define FC03_REQ "05 03 00 50 00 02 C5 9E"     /* 004 §6.3 */
+#define FC03_REQ "05 03 00 50 00 02 C5 9E"     /* [RTU-2003] §6.3 */
 #define FC03_RSP "05 03 04 87 65 43 21 76 70"
-#define FC08_REQ "05 08 00 00 A5 C3 DA 8E"     /* 004 §6.7, answered by the CP alone */
+#define FC08_REQ "05 08 00 00 A5 C3 DA 8E"     /* [RTU-2003] §6.7, answered by the CP alone */
 #define CHAR_US 1146u
 #define T35_US 4000u
 #define T15_US 1719u
@@ -71,7 +71,7 @@ static uint32_t fc03_with_error(lw_t *x, uint8_t flags)
 
 /* ---- character errors and BREAK --------------------------------------------------- */
 
-/* 004 §2.2 normal operation: a parity error inside a request -> (08)0CH, no reply; the
+/* [RTU-2003] §2.2 normal operation: a parity error inside a request -> (08)0CH, no reply; the
  * next good request is answered. */
 static void test_parity_error_normal(void **state)
 {
@@ -104,7 +104,7 @@ static void test_parity_error_normal(void **state)
     lw_free(x);
 }
 
-/* 004 §2.2 interference suppression: the frame is discarded silently; the next good
+/* [RTU-2003] §2.2 interference suppression: the frame is discarded silently; the next good
  * request is answered. */
 static void test_parity_error_suppression(void **state)
 {
@@ -195,7 +195,7 @@ static void test_rs485_normal_ignores_errors_between_frames(void **state)
     lw_free(x);
 }
 
-/* Without the mode selection two-wire RS485 is interference suppression (004 §2.3):
+/* Without the mode selection two-wire RS485 is interference suppression ([RTU-2003] §2.3):
  * an error inside a frame discards it silently. */
 static void test_rs485_without_selection_suppresses(void **state)
 {
@@ -216,7 +216,7 @@ static void test_rs485_without_selection_suppresses(void **state)
 }
 
 /* "The start of an incoming message is recognised by a correctly received slave
- * address" (004 §2.2): a glitch or BREAK on the idle line just before a request (less
+ * address" ([RTU-2003] §2.2): a glitch or BREAK on the idle line just before a request (less
  * than t3.5) does not swallow it in interference suppression and on RS485. In normal
  * mode the glitch starts a faulty frame that runs into the request: (08)0CH, lost. */
 static void check_glitch_before_request(uint8_t opmode, uint8_t iface, uint8_t flags,
@@ -225,7 +225,7 @@ static void check_glitch_before_request(uint8_t opmode, uint8_t iface, uint8_t f
     modcp_params_t p = example();
     p.opmode = opmode;
     p.iface = iface;
-    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 (000 Table 5-2) */
+    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 ([RTU-2009] Table 5-2) */
     lw_t *x = start(&p);
     lw_error(x, flags);
     lw_advance(x, lw_now(x) + 300); /* 300 us later the master starts */
@@ -279,10 +279,10 @@ static void test_glitch_while_busy_suppression(void **state)
     lw_free(x);
 }
 
-/* 004 §2.2: errors after the CRC are ignored in suppression mode (the request is
+/* [RTU-2003] §2.2: errors after the CRC are ignored in suppression mode (the request is
  * answered, no event); normal mode reports them but still answers. In normal mode the
  * error does not restart t3.5. In suppression (modem) mode the valid CRC itself ended
- * the frame (000 §8): the FC08 reply was already on the line when the error came
+ * the frame ([RTU-2009] §8): the FC08 reply was already on the line when the error came
  * (the timing there is test_modem.c's). */
 static void test_error_after_crc(void **state)
 {
@@ -312,7 +312,7 @@ static void test_error_after_crc(void **state)
 
 /* ---- t3.5 and t1.5 ----------------------------------------------------------------- */
 
-/* 004 §5.3: the reply to the FC08 example leaves exactly t3.5 after the last character
+/* [RTU-2003] §5.3: the reply to the FC08 example leaves exactly t3.5 after the last character
  * (the CP answers FC08 alone); an expiry 1 us early does not end the frame. */
 static void test_t35_end_to_end(void **state)
 {
@@ -356,7 +356,7 @@ static void test_t35_gap_threshold(void **state)
     lw_free(x);
 }
 
-/* Modbus serial line t1.5 (SPEC §3.1, optional): silence of exactly t1.5 inside a frame
+/* Modbus serial line t1.5 (docs/diagnostics.md, optional): silence of exactly t1.5 inside a frame
  * is accepted; 1 us more discards the frame: (08)06H in normal mode, silently in
  * interference suppression; counted in the status area. */
 static void test_t15_end_to_end(void **state)
@@ -434,7 +434,7 @@ static void check_turnaround(uint16_t turnaround_ms)
 {
     modcp_params_t p = example();
     p.iface = MODCP_IFACE_RS485;
-    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 (000 Table 5-2) */
+    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 ([RTU-2009] Table 5-2) */
     p.turnaround_ms = turnaround_ms;
     lw_t *x = start(&p);
     uint32_t ta = (uint32_t)turnaround_ms * 1000u;
@@ -481,7 +481,7 @@ static void test_rs485_turnaround_thresholds(void **state)
     check_turnaround(0);
     check_turnaround(1);
     check_turnaround(5);
-    check_turnaround(100); /* the maximum (SPEC §3.1: 0 ... 100 ms) */
+    check_turnaround(100); /* the maximum (docs/diagnostics.md: 0 ... 100 ms) */
 }
 
 /* A request that needs the CPU (FC03): the reply waits for the FB's data, then the
@@ -491,7 +491,7 @@ static void test_rs485_turnaround_after_job(void **state)
     (void)state;
     modcp_params_t p = example();
     p.iface = MODCP_IFACE_RS485;
-    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 (000 Table 5-2) */
+    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 ([RTU-2009] Table 5-2) */
     p.turnaround_ms = 3;
     lw_t *x = start(&p);
     uint32_t last = lw_send(x, FC03_REQ);
@@ -514,7 +514,7 @@ static void test_sequence_error_during_turnaround(void **state)
     (void)state;
     modcp_params_t p = example();
     p.iface = MODCP_IFACE_RS485;
-    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 (000 Table 5-2) */
+    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 ([RTU-2009] Table 5-2) */
     p.turnaround_ms = 20;
     lw_t *x = start(&p);
     uint32_t last = lw_send(x, FC08_REQ);
@@ -554,7 +554,7 @@ static void test_sequence_error_while_job_pending(void **state)
     lw_free(x);
 }
 
-/* 004 §7.5 (08)37H "the master sent a new request before the last reply had been
+/* [RTU-2003] §7.5 (08)37H "the master sent a new request before the last reply had been
  * transferred": a broadcast (address 0) in that position is a request too. It is not
  * executed (DB800.DBW0 untouched) and not lost without a trace: (08)37H, as for a
  * request for us. The same broadcast once the reply is out is executed. */

@@ -2,7 +2,7 @@
 /* Link layer, RTU framing and timing: end-of-frame thresholds, address filter, CRC,
  * over-long frames, t1.5, line errors in normal and interference-suppression mode,
  * (08)37H, transmit with CRC, RS485 driver enable and turnaround.
- * Frames are the manual's examples with the CRCs of 004 §9. */
+ * Frames are the manual's examples with the CRCs of [RTU-2003] §9. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -21,7 +21,7 @@
 #include "link_internal.h"
 #include "params_internal.h"
 
-/* 004 §6.3 FC03 example request and response (004 §9 CRCs) */
+/* [RTU-2003] §6.3 FC03 example request and response ([RTU-2003] §9 CRCs) */
 #define FC03_REQ "05 03 00 50 00 02 C5 9E"
 #define FC03_RSP "05 03 04 87 65 43 21 76 70"
 
@@ -162,7 +162,7 @@ static void assert_canary(const ctx_t *c)
 static void test_timing_manual_table(void **state)
 {
     (void)state;
-    /* 004 §5.3 TIME_OUT table x f_MUL (004 §2.2) */
+    /* [RTU-2003] §5.3 TIME_OUT table x f_MUL ([RTU-2003] §2.2) */
     static const struct {
         uint32_t baud, us;
     } tab[] = {{300, 128000}, {600, 64000},  {1200, 32000}, {2400, 16000},
@@ -247,7 +247,7 @@ static void test_timing_t15_and_char(void **state)
 /* ------------------------------------------------------------------------------ */
 /* end-of-frame thresholds                                                          */
 
-/* The FC03 request (004 §6.3) is not ended 1 us before t3.5 after its last byte (the
+/* The FC03 request ([RTU-2003] §6.3) is not ended 1 us before t3.5 after its last byte (the
  * early expiry re-arms the timer for the remaining 1 us) and is delivered exactly at
  * t3.5. */
 static void check_eof(ctx_t *c, uint32_t baud, uint8_t fmul, uint8_t eof, uint32_t t35)
@@ -287,7 +287,7 @@ static void check_eof(ctx_t *c, uint32_t baud, uint8_t fmul, uint8_t eof, uint32
 static void test_eof_thresholds_manual(void **state)
 {
     ctx_t *c = *state;
-    /* 004 §5.3 table x f_MUL 1 and 10 */
+    /* [RTU-2003] §5.3 table x f_MUL 1 and 10 */
     check_eof(c, 300, 1, MODCP_EOF_MANUAL, 128000);
     check_eof(c, 300, 10, MODCP_EOF_MANUAL, 1280000); /* 1279999 vs 1280000 */
     check_eof(c, 9600, 1, MODCP_EOF_MANUAL, 4000);    /* 3999 vs 4000 */
@@ -296,7 +296,7 @@ static void test_eof_thresholds_manual(void **state)
     check_eof(c, 19200, 10, MODCP_EOF_MANUAL, 20000);
     check_eof(c, 76800, 1, MODCP_EOF_MANUAL, 500);
     check_eof(c, 76800, 10, MODCP_EOF_MANUAL, 5000);
-    /* 000 §2.1 rates by the 3.5 x 11-bit rule */
+    /* [RTU-2009] §2.1 rates by the 3.5 x 11-bit rule */
     check_eof(c, 57600, 1, MODCP_EOF_MANUAL, 669);
     check_eof(c, 115200, 1, MODCP_EOF_MANUAL, 335);
     check_eof(c, 115200, 10, MODCP_EOF_MANUAL, 3350);
@@ -335,7 +335,7 @@ static void test_fc03_request_delivered(void **state)
 {
     ctx_t *c = *state;
     configure(c);
-    /* 004 §6.3 FC03 example request */
+    /* [RTU-2003] §6.3 FC03 example request */
     assert_true(frame_hex(c, FC03_REQ, 500, NULL));
     assert_pdu(c, 5, "03 00 50 00 02");
     assert_int_equal(c->l.state, MODCP_LINK_BUSY);
@@ -350,7 +350,7 @@ static void test_crc_error(void **state)
 {
     ctx_t *c = *state;
     configure(c);
-    /* 004 §6.3 FC03 request with the CRC high byte corrupted: (08)36H, silence */
+    /* [RTU-2003] §6.3 FC03 request with the CRC high byte corrupted: (08)36H, silence */
     assert_false(frame_hex(c, "05 03 00 50 00 02 C5 9F", 500, NULL));
     assert_int_equal(c->l.state, MODCP_LINK_IDLE);
     assert_int_equal(c->d.buffer_len, 1);
@@ -377,7 +377,7 @@ static void test_other_address_ignored(void **state)
 {
     ctx_t *c = *state;
     configure(c);
-    /* 004 §2.2: frames for address 7 are not checked and not answered; no event */
+    /* [RTU-2003] §2.2: frames for address 7 are not checked and not answered; no event */
     uint8_t b[16];
     size_t n = add_crc(b, hex_frame("07 03 00 50 00 02", b, sizeof b));
     uint32_t last = feed(c, b, n, 500);
@@ -403,7 +403,7 @@ static void test_own_address_inside_other_frame(void **state)
     ctx_t *c = *state;
     configure(c);
     /* A frame for 7 whose data contains our address and a complete FC03 request
-     * (004 §6.3) is followed to its end and never taken for a request. */
+     * ([RTU-2003] §6.3) is followed to its end and never taken for a request. */
     uint8_t b[32];
     size_t n = hex_frame("07 10 00 00 00 04 08 " FC03_REQ, b, sizeof b);
     n = add_crc(b, n);
@@ -433,7 +433,7 @@ static void test_broadcast_delivered(void **state)
 {
     ctx_t *c = *state;
     configure(c);
-    /* 004 §5.2: address 0 = broadcast; FC06 example data (004 §6.6) */
+    /* [RTU-2003] §5.2: address 0 = broadcast; FC06 example data ([RTU-2003] §6.6) */
     uint8_t b[16];
     size_t n = add_crc(b, hex_frame("00 06 01 80 2B 1A", b, sizeof b));
     uint32_t last = feed(c, b, n, 500);
@@ -449,7 +449,7 @@ static void test_frame_too_long(void **state)
 {
     ctx_t *c = *state;
     configure(c);
-    /* 001 §8.2: a 300-byte frame for us does not fit the 264-byte buffer: (08)16H */
+    /* [VIPA-341] §8.2: a 300-byte frame for us does not fit the 264-byte buffer: (08)16H */
     uint8_t b[300];
     for (size_t i = 0; i < sizeof b; i++) {
         b[i] = (uint8_t)i;
@@ -467,7 +467,7 @@ static void test_frame_too_long(void **state)
     assert_int_equal(c->d.counters[MODCP_CNT_SLAVE_MSG], 0);
     assert_canary(c);
 
-    /* exactly 264 bytes fit (FC15 with 2040 bits, SPEC §5.1) */
+    /* exactly 264 bytes fit (FC15 with 2040 bits, docs/mapping.md) */
     uint8_t m[MODCP_ADU_MAX];
     memset(m, 0x55, sizeof m);
     m[0] = 5;
@@ -486,7 +486,7 @@ static void test_sequence_error_while_busy(void **state)
     uint32_t end;
     assert_true(frame_hex(c, FC03_REQ, 500, &end));
     fake_hal_log_clear(&c->f);
-    /* 004 §7.5 (08)37H: the master repeats the request before our reply was sent;
+    /* [RTU-2003] §7.5 (08)37H: the master repeats the request before our reply was sent;
      * reported once per frame, the request in the buffer is untouched */
     uint32_t last = feed_hex(c, "05 03 00 60 00 01 00 00", end + 1000);
     assert_int_equal(c->d.buffer_len, 1);
@@ -538,7 +538,7 @@ static void test_tail_after_tx_done_skipped(void **state)
     configure(c);
     uint32_t end;
     assert_true(frame_hex(c, FC03_REQ, 500, &end));
-    /* reply, 004 §6.3 FC03 response; RS232 full duplex: the master starts a new
+    /* reply, [RTU-2003] §6.3 FC03 response; RS232 full duplex: the master starts a new
      * request while we are still sending */
     uint8_t rsp[] = {0x03, 0x04, 0x87, 0x65, 0x43, 0x21};
     memcpy(c->fr.pdu, rsp, sizeof rsp);
@@ -672,7 +672,7 @@ static void test_parity_error_normal_mode(void **state)
     ctx_t *c = *state;
     configure(c);
     uint32_t end;
-    /* 004 §2.2 normal operation: (08)0CH, the frame is discarded, no (08)36H */
+    /* [RTU-2003] §2.2 normal operation: (08)0CH, the frame is discarded, no (08)36H */
     assert_false(frame_with_error(c, MODCP_LINE_PARITY, 500, &end));
     assert_int_equal(c->l.state, MODCP_LINK_IDLE);
     assert_int_equal(c->d.buffer_len, 1);
@@ -705,7 +705,7 @@ static void test_parity_error_suppression_mode(void **state)
     configure(c);
     assert_true(c->l.suppress);
     uint32_t end;
-    /* 004 §2.2 interference suppression: the frame is discarded silently */
+    /* [RTU-2003] §2.2 interference suppression: the frame is discarded silently */
     assert_false(frame_with_error(c, MODCP_LINE_PARITY, 500, &end));
     assert_int_equal(c->l.state, MODCP_LINK_IDLE);
     assert_int_equal(c->d.buffer_len, 0);
@@ -723,7 +723,7 @@ static void test_break_idle(void **state)
     ctx_t *c = *state;
     configure(c);
     uint32_t end;
-    /* 004 §2.2 normal: BREAK before a message -> (08)0DH; the message after t3.5 is
+    /* [RTU-2003] §2.2 normal: BREAK before a message -> (08)0DH; the message after t3.5 is
      * served */
     error_at(c, MODCP_LINE_BREAK, 500);
     assert_int_equal(c->d.buffer_len, 1);
@@ -749,7 +749,7 @@ static void test_break_idle(void **state)
     assert_int_equal(c->d.buffer_len, 0);
     assert_int_equal(c->d.breaks, 1);
 
-    /* RS485 two-wire behaves like interference suppression (004 §2.3) */
+    /* RS485 two-wire behaves like interference suppression ([RTU-2003] §2.3) */
     c->p.opmode = MODCP_OPMODE_NORMAL;
     c->p.iface = MODCP_IFACE_RS485;
     configure(c);
@@ -766,7 +766,7 @@ static void test_error_after_crc(void **state)
     ctx_t *c = *state;
     c->p.iface = MODCP_IFACE_RS485;
     configure(c);
-    /* 004 §2.2/§2.3: a framing error right after the CRC (the master releasing the
+    /* [RTU-2003] §2.2/§2.3: a framing error right after the CRC (the master releasing the
      * RS485 line) is ignored; the request is served */
     uint32_t last = feed_hex(c, FC03_REQ, 500);
     error_at(c, MODCP_LINE_FRAMING, last + 300);
@@ -796,7 +796,7 @@ static void test_reply_fc03(void **state)
     uint32_t end;
     assert_true(frame_hex(c, FC03_REQ, 500, &end));
     fake_hal_log_clear(&c->f);
-    /* 004 §6.3 FC03 response with the 004 §9 CRC */
+    /* [RTU-2003] §6.3 FC03 response with the [RTU-2003] §9 CRC */
     uint8_t rsp[] = {0x03, 0x04, 0x87, 0x65, 0x43, 0x21};
     memcpy(c->fr.pdu, rsp, sizeof rsp);
     c->f.now = end + 50;
@@ -817,7 +817,7 @@ static void test_reply_exception(void **state)
     ctx_t *c = *state;
     configure(c);
     uint32_t end;
-    /* 004 §6.5 FC05 request; 004 §5.4 exception reply 05 85 02 (004 §9 CRC) */
+    /* [RTU-2003] §6.5 FC05 request; [RTU-2003] §5.4 exception reply 05 85 02 ([RTU-2003] §9 CRC) */
     assert_true(frame_hex(c, "05 05 08 09 FF 00 5F DC", 500, &end));
     assert_pdu(c, 5, "05 08 09 FF 00");
     c->fr.pdu[0] = 0x85;
@@ -837,7 +837,7 @@ static void test_reply_too_long(void **state)
     assert_int_equal(c->l.state, MODCP_LINK_IDLE);
     assert_int_equal(c->d.buffer[0], MODCP_EV_INTERNAL_SEND);
     assert_canary(c);
-    /* the largest reply fits: FC01 2040 bits (SPEC §5.1) */
+    /* the largest reply fits: FC01 2040 bits (docs/mapping.md) */
     assert_true(frame_hex(c, FC03_REQ, end + 10000, &end));
     modcp_link_reply(&c->l, MODCP_ADU_MAX - 3, end);
     assert_int_equal(c->f.tx_calls, 1);
@@ -858,7 +858,7 @@ static void test_rs485_de_without_turnaround(void **state)
     memcpy(c->fr.pdu, rsp, sizeof rsp);
     c->f.now = end + 10;
     modcp_link_reply(&c->l, sizeof rsp, end + 10);
-    /* SPEC §3.1: DE on before the first byte */
+    /* docs/diagnostics.md: DE on before the first byte */
     long de_on = fake_hal_log_find(&c->f, FHL_DE, 0);
     long tx = fake_hal_log_find(&c->f, FHL_TX, 0);
     assert_true(de_on >= 0 && tx >= 0);

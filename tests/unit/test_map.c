@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* Mapping engine: every worked example of 004 §3.1, §3.3, §3.4, §6 and of 003 §4,
+/* Mapping engine: every worked example of [RTU-2003] §3.1, §3.3, §3.4, §6 and of [ASCII-32] §4,
  * the 4.6.4 write limits, every event of map.h, and the event -> exception table. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -29,7 +29,7 @@ static void set_win(modcp_bitwin_t *w, uint8_t area, uint16_t from, uint16_t to,
     w->db = db;
 }
 
-/* 004 §9: the parameter set that reproduces all the §6 examples. Limits admit the
+/* [RTU-2003] §9: the parameter set that reproduces all the §6 examples. Limits admit the
  * examples (QB 257, MB 1144-1145, DB 800). */
 static void params_004_9(modcp_params_t *p)
 {
@@ -81,12 +81,12 @@ static modcp_event_t regs_ev(const modcp_params_t *p, const modcp_areas_t *a, ui
     return modcp_map_regs(p, a, fc, reg, qty, &op);
 }
 
-/* ---- 004 §3.1 (4.6.2) -------------------------------------------------------- */
+/* ---- [RTU-2003] §3.1 (4.6.2) -------------------------------------------------------- */
 
 static void test_4_6_2_coil_windows(void **state)
 {
     (void)state;
-    /* 004 §3.1 worked example 4.6.2 */
+    /* [RTU-2003] §3.1 worked example 4.6.2 */
     modcp_params_t p;
     modcp_params_defaults(&p);
     set_win(&p.coils[0], MODCP_AREA_M, 0, 2047, 1000, 0);
@@ -115,7 +115,7 @@ static void test_4_6_2_coil_windows(void **state)
 static void test_4_6_2_input_windows(void **state)
 {
     (void)state;
-    /* 004 §3.2 example 4.6.2: M 0-4095 @ M 0.0 (last M 511.7), I 4096-5119 @ I 128.0
+    /* [RTU-2003] §3.2 example 4.6.2: M 0-4095 @ M 0.0 (last M 511.7), I 4096-5119 @ I 128.0
      * (last I 255.7) */
     modcp_params_t p;
     modcp_params_defaults(&p);
@@ -129,12 +129,12 @@ static void test_4_6_2_input_windows(void **state)
     assert_int_equal(bits_ev(&p, &big_cpu, 1, 0, 1), MODCP_EV_NO_WINDOW);
 }
 
-/* ---- 004 §3.3 tables 8.1 / 8.2 ----------------------------------------------- */
+/* ---- [RTU-2003] §3.3 tables 8.1 / 8.2 ----------------------------------------------- */
 
 static void test_8_1_fc01_table(void **state)
 {
     (void)state;
-    /* 004 §3.3 FC 01 worked table (8.1), every row */
+    /* [RTU-2003] §3.3 FC 01 worked table (8.1), every row */
     modcp_params_t p;
     params_004_9(&p);
     expect_bits(&p, 1, 0x0000, 1, MODCP_AREA_M, 1000, 0, 1);
@@ -152,7 +152,7 @@ static void test_8_1_fc01_table(void **state)
 static void test_8_2_fc02_table(void **state)
 {
     (void)state;
-    /* 004 §3.3 FC 02 worked table (8.2), every row */
+    /* [RTU-2003] §3.3 FC 02 worked table (8.2), every row */
     modcp_params_t p;
     params_004_9(&p);
     expect_bits(&p, 2, 0x0000, 1, MODCP_AREA_M, 2000, 0, 1);
@@ -163,12 +163,12 @@ static void test_8_2_fc02_table(void **state)
     expect_bits(&p, 2, 0x10A4, 1, MODCP_AREA_I, 148, 4, 1);
 }
 
-/* ---- 004 §3.4 tables 8.3 / 8.4 / 8.6 ------------------------------------------ */
+/* ---- [RTU-2003] §3.4 tables 8.3 / 8.4 / 8.6 ------------------------------------------ */
 
 static void test_8_3_fc03_table(void **state)
 {
     (void)state;
-    /* 004 §3.4 FC 03/06/16 worked table (8.3), base DB 800, every row */
+    /* [RTU-2003] §3.4 FC 03/06/16 worked table (8.3), base DB 800, every row */
     modcp_params_t p;
     params_004_9(&p);
     expect_regs(&p, 3, 0x0000, 1, 800, 0, 2);
@@ -178,7 +178,7 @@ static void test_8_3_fc03_table(void **state)
     expect_regs(&p, 3, 0x0300, 1, 801, 512, 2);
     expect_regs(&p, 3, 0x03FF, 1, 801, 1022, 2);
     expect_regs(&p, 3, 0x0400, 1, 802, 0, 2);
-    /* 004 §3.4 4.6.3: from register 512 on -> DB 801 */
+    /* [RTU-2003] §3.4 4.6.3: from register 512 on -> DB 801 */
     expect_regs(&p, 3, 511, 1, 800, 1022, 2);
     expect_regs(&p, 3, 512, 1, 801, 0, 2);
 }
@@ -186,7 +186,7 @@ static void test_8_3_fc03_table(void **state)
 static void test_8_4_fc04_table(void **state)
 {
     (void)state;
-    /* 004 §3.4 FC 04 worked table (8.4), base DB 900, every row */
+    /* [RTU-2003] §3.4 FC 04 worked table (8.4), base DB 900, every row */
     modcp_params_t p;
     params_004_9(&p);
     expect_regs(&p, 4, 0x0000, 1, 900, 0, 2);
@@ -196,7 +196,7 @@ static void test_8_4_fc04_table(void **state)
     expect_regs(&p, 4, 0x1400, 1, 910, 0, 2);
     expect_regs(&p, 4, 0x1464, 1, 910, 200, 2);
     expect_regs(&p, 4, 0x14C8, 1, 910, 400, 2);
-    /* 004 §3.4 other example: FC 04 base 1200, registers 0 / 512 / 1024 */
+    /* [RTU-2003] §3.4 other example: FC 04 base 1200, registers 0 / 512 / 1024 */
     p.ir_base_db = 1200;
     expect_regs(&p, 4, 0, 1, 1200, 0, 2);
     expect_regs(&p, 4, 512, 1, 1201, 0, 2);
@@ -206,7 +206,7 @@ static void test_8_4_fc04_table(void **state)
 static void test_8_6_inverse(void **state)
 {
     (void)state;
-    /* 004 §3.4 inverse (8.6): start_register = (DB - base) * 512 + DBW / 2 */
+    /* [RTU-2003] §3.4 inverse (8.6): start_register = (DB - base) * 512 + DBW / 2 */
     uint16_t reg = 0;
     assert_true(modcp_map_reg_of(800, 800, 768, &reg)); /* FC06 example: DB 800 DBW 768 */
     assert_int_equal(reg, 0x0180);
@@ -240,35 +240,35 @@ static void test_8_6_inverse(void **state)
     assert_int_equal(reg, 0x1234);
 }
 
-/* ---- 004 §6 examples ----------------------------------------------------------- */
+/* ---- [RTU-2003] §6 examples ----------------------------------------------------------- */
 
 static void test_section6_operands(void **state)
 {
     (void)state;
     modcp_params_t p;
     params_004_9(&p);
-    /* 004 §6.1 FC01 example: 05 01 00 40 00 20 -> M 1008.0 .. M 1011.7, 32 bits */
+    /* [RTU-2003] §6.1 FC01 example: 05 01 00 40 00 20 -> M 1008.0 .. M 1011.7, 32 bits */
     expect_bits(&p, 1, 0x0040, 0x0020, MODCP_AREA_M, 1008, 0, 32);
-    /* 004 §6.2 FC02 example: 05 02 10 30 00 18 -> I 134.0 .. I 136.7, 24 bits */
+    /* [RTU-2003] §6.2 FC02 example: 05 02 10 30 00 18 -> I 134.0 .. I 136.7, 24 bits */
     expect_bits(&p, 2, 0x1030, 0x0018, MODCP_AREA_I, 134, 0, 24);
-    /* 004 §6.3 FC03 example: 05 03 00 50 00 02 -> DB 800 DBW 160, 2 registers */
+    /* [RTU-2003] §6.3 FC03 example: 05 03 00 50 00 02 -> DB 800 DBW 160, 2 registers */
     expect_regs(&p, 3, 0x0050, 2, 800, 160, 4);
-    /* 004 §6.4 FC04 example: 05 04 02 C0 00 03 -> DB 901 DBW 384, 3 registers */
+    /* [RTU-2003] §6.4 FC04 example: 05 04 02 C0 00 03 -> DB 901 DBW 384, 3 registers */
     expect_regs(&p, 4, 0x02C0, 3, 901, 384, 6);
-    /* 004 §6.5 FC05 example: 05 05 08 09 FF 00 -> Q 257.1 */
+    /* [RTU-2003] §6.5 FC05 example: 05 05 08 09 FF 00 -> Q 257.1 */
     expect_bits(&p, 5, 0x0809, 1, MODCP_AREA_Q, 257, 1, 1);
-    /* 004 §6.6 FC06 example: 05 06 01 80 2B 1A -> DB 800 DBW 768 */
+    /* [RTU-2003] §6.6 FC06 example: 05 06 01 80 2B 1A -> DB 800 DBW 768 */
     expect_regs(&p, 6, 0x0180, 1, 800, 768, 2);
-    /* 004 §6.8 FC15 example: 05 0F 04 80 00 0C 02 CD 09 -> M 1144.0, 12 bits */
+    /* [RTU-2003] §6.8 FC15 example: 05 0F 04 80 00 0C 02 CD 09 -> M 1144.0, 12 bits */
     expect_bits(&p, 15, 0x0480, 0x000C, MODCP_AREA_M, 1144, 0, 12);
-    /* 004 §6.9 FC16 example: 05 10 00 32 00 03 ... -> DB 800 DBW 100, 3 registers */
+    /* [RTU-2003] §6.9 FC16 example: 05 10 00 32 00 03 ... -> DB 800 DBW 100, 3 registers */
     expect_regs(&p, 16, 0x0032, 3, 800, 100, 6);
 }
 
 static void test_4_6_4_limits_reject_examples(void **state)
 {
     (void)state;
-    /* 004 §3.5 example 4.6.4 limits: DB 600-699, MB 1000-1127, QB 256-319; 004 §9 says
+    /* [RTU-2003] §3.5 example 4.6.4 limits: DB 600-699, MB 1000-1127, QB 256-319; [RTU-2003] §9 says
      * they reject the FC15 example at MB 1144 and the FC06/16 examples in DB 800 */
     modcp_params_t p;
     params_004_9(&p);
@@ -303,7 +303,7 @@ static void test_4_6_4_limits_reject_examples(void **state)
 static void test_limits_admitting_examples(void **state)
 {
     (void)state;
-    /* 004 §9: limits that include QB 257, MB 1144-1145 and DB 800 accept §6.5/6/8/9 */
+    /* [RTU-2003] §9: limits that include QB 257, MB 1144-1145 and DB 800 accept §6.5/6/8/9 */
     modcp_params_t p;
     params_004_9(&p);
     p.lim_db = (modcp_limit_t){800, 800};
@@ -321,7 +321,7 @@ static void test_limits_admitting_examples(void **state)
     assert_int_equal(regs_ev(&p, &big_cpu, 6, 0x0200, 1), MODCP_EV_WRITE_DENIED);
     assert_int_equal(regs_ev(&p, &big_cpu, 22, 0x0200, 1), MODCP_EV_WRITE_DENIED);
     assert_int_equal(regs_ev(&p, &big_cpu, 23, 0x0200, 1), MODCP_EV_WRITE_DENIED);
-    /* MAX = 0 disables the whole area (004 §3.5) */
+    /* MAX = 0 disables the whole area ([RTU-2003] §3.5) */
     p.lim_q = (modcp_limit_t){0, 0};
     assert_int_equal(bits_ev(&p, &big_cpu, 5, 0x0809, 1), MODCP_EV_WRITE_DENIED);
     p.lim_db = (modcp_limit_t){0, 0};
@@ -338,7 +338,7 @@ static void test_limits_admitting_examples(void **state)
 static void test_work_db_never_writable(void **state)
 {
     (void)state;
-    /* 004 §3.5: writing into the FB's instance DB is always refused with (0E)52H */
+    /* [RTU-2003] §3.5: writing into the FB's instance DB is always refused with (0E)52H */
     modcp_params_t p;
     params_004_9(&p);
     p.hr_base_db = 80;
@@ -369,11 +369,11 @@ static void test_bit_events(void **state)
     assert_int_equal(bits_ev(&p, &big_cpu, 1, 2560, 1), MODCP_EV_NO_WINDOW);
     assert_int_equal(bits_ev(&p, &big_cpu, 5, 5120, 1), MODCP_EV_NO_WINDOW);
     assert_int_equal(bits_ev(&p, &big_cpu, 2, 5120, 1), MODCP_EV_NO_WINDOW);
-    /* (0E)55H: FC05 / FC15 on T or C (004 §6.5, §6.8), before alignment checks */
+    /* (0E)55H: FC05 / FC15 on T or C ([RTU-2003] §6.5, §6.8), before alignment checks */
     assert_int_equal(bits_ev(&p, &big_cpu, 5, 4096, 1), MODCP_EV_AREA_READONLY);
     assert_int_equal(bits_ev(&p, &big_cpu, 15, 4608, 16), MODCP_EV_AREA_READONLY);
     assert_int_equal(bits_ev(&p, &big_cpu, 15, 4609, 3), MODCP_EV_AREA_READONLY);
-    /* (0E)50H: T/C start not on a 16-bit boundary (004 §3.3) */
+    /* (0E)50H: T/C start not on a 16-bit boundary ([RTU-2003] §3.3) */
     assert_int_equal(bits_ev(&p, &big_cpu, 1, 4104, 16), MODCP_EV_TC_ALIGN);
     assert_int_equal(bits_ev(&p, &big_cpu, 1, 4609, 16), MODCP_EV_TC_ALIGN);
     /* (08)32H: T/C bit count not a multiple of 16 */
@@ -391,7 +391,7 @@ static void test_bit_events(void **state)
     assert_int_equal(bits_ev(&p, &big_cpu, 15, 2047, 2), MODCP_EV_PAST_END);
     assert_int_equal(bits_ev(&p, &big_cpu, 1, 4592, 32), MODCP_EV_PAST_END);  /* T 131/132 */
     assert_int_equal(bits_ev(&p, &big_cpu, 2, 5112, 16), MODCP_EV_PAST_END);
-    /* (0E)54H: past the controller's real area (004 §3.3, sizes from the CPU side) */
+    /* (0E)54H: past the controller's real area ([RTU-2003] §3.3, sizes from the CPU side) */
     modcp_areas_t small = big_cpu;
     small.m_bytes = 1100; /* MB 0..1099 */
     assert_int_equal(bits_ev(&p, &small, 1, 99 * 8, 8), MODCP_EV_NONE); /* MB 1099 */
@@ -438,7 +438,7 @@ static void test_register_events(void **state)
     assert_int_equal(regs_ev(&d, &big_cpu, 3, 0, 1), MODCP_EV_NO_WINDOW);
     assert_int_equal(regs_ev(&d, &big_cpu, 4, 0, 1), MODCP_EV_NO_WINDOW);
     assert_int_equal(regs_ev(&d, &big_cpu, 16, 0, 1), MODCP_EV_NO_WINDOW);
-    /* (0E)39H: no crossing of a DB boundary (004 §3.4; 003 §4.3 example base DB 1,
+    /* (0E)39H: no crossing of a DB boundary ([RTU-2003] §3.4; [ASCII-32] §4.3 example base DB 1,
      * start 510: lengths 1 and 2 accepted, 3 rejected) */
     p.hr_base_db = 1;
     expect_regs(&p, 3, 510, 1, 1, 1020, 2);
@@ -470,17 +470,17 @@ static void test_register_events(void **state)
     assert_int_equal(regs_ev(&p, &big_cpu, 3, 0, 0), MODCP_EV_QUANTITY);
 }
 
-/* ---- 003 §4: DB-bit windows, examples of the ASCII manual ---------------------- */
+/* ---- [ASCII-32] §4: DB-bit windows, examples of the ASCII manual ---------------------- */
 
-static void test_003_db_bit_windows(void **state)
+static void test_db_bit_windows_map_bits_of_a_db(void **state)
 {
     (void)state;
     modcp_params_t p;
     params_004_9(&p);
-    /* 003 §5 FC01 examples table: 4096-4607 -> DB111 (replaces T/C) */
+    /* [ASCII-32] §5 FC01 examples table: 4096-4607 -> DB111 (replaces T/C) */
     memset(&p.coils[2], 0, sizeof p.coils[2] * 2);
     set_win(&p.coils[4], MODCP_AREA_DB, 4096, 4607, 0, 111);
-    /* 003 §4.2 example: 8192-8512 -> DB112 (the §5 FC02 table header prints 8192-8351,
+    /* [ASCII-32] §4.2 example: 8192-8512 -> DB112 (the §5 FC02 table header prints 8192-8351,
      * which would not hold its own row 20C2H = 8386) */
     set_win(&p.inputs[2], MODCP_AREA_DB, 8192, 8512, 0, 112);
     assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
@@ -503,13 +503,13 @@ static void test_003_db_bit_windows(void **state)
     assert_int_equal(op.db, 112); /* "2011" = 20C2H -> DB112.DBX24.2 */
     assert_int_equal(op.offset, 24);
     assert_int_equal(op.bit, 2);
-    /* 003 §4.1: 4096-4415 -> DB111, 320 bits = 40 bytes, last DBX39.7 */
+    /* [ASCII-32] §4.1: 4096-4415 -> DB111, 320 bits = 40 bytes, last DBX39.7 */
     set_win(&p.coils[4], MODCP_AREA_DB, 4096, 4415, 0, 111);
     assert_int_equal(modcp_map_bits(&p, &big_cpu, 1, 4415, 1, &op), MODCP_EV_NONE);
     assert_int_equal(op.offset, 39);
     assert_int_equal(op.bit, 7);
     assert_int_equal(bits_ev(&p, &big_cpu, 1, 4415, 2), MODCP_EV_PAST_END);
-    /* DB-bit writes: the DB must lie inside lim_db (SPEC §4) */
+    /* DB-bit writes: the DB must lie inside lim_db (docs/mapping.md) */
     p.lim_db = (modcp_limit_t){800, 899};
     assert_int_equal(bits_ev(&p, &big_cpu, 5, 4096, 1), MODCP_EV_WRITE_DENIED);
     assert_int_equal(bits_ev(&p, &big_cpu, 15, 4096, 16), MODCP_EV_WRITE_DENIED);
@@ -527,21 +527,21 @@ static void test_003_db_bit_windows(void **state)
     assert_int_equal(bits_ev(&p, &big_cpu, 1, 10000, 9), MODCP_EV_PAST_END);
 }
 
-static void test_003_examples_16bit(void **state)
+static void test_ascii_manual_examples_16bit(void **state)
 {
     (void)state;
     modcp_params_t p;
     params_004_9(&p);
-    /* 003 §5 FC15 example: 05 0F 04 81 00 0C -> M1144.1 .. M1145.4 (12 bits) */
+    /* [ASCII-32] §5 FC15 example: 05 0F 04 81 00 0C -> M1144.1 .. M1145.4 (12 bits) */
     expect_bits(&p, 15, 0x0481, 12, MODCP_AREA_M, 1144, 1, 12);
-    /* 003 §5 FC16 example: 05 10 0A 32 00 03 -> offset 5, word 50 -> DB805.DBW100 */
+    /* [ASCII-32] §5 FC16 example: 05 10 0A 32 00 03 -> offset 5, word 50 -> DB805.DBW100 */
     expect_regs(&p, 16, 0x0A32, 3, 805, 100, 6);
-    /* 003 §4.4: FC04 stays on its own base in every mode */
+    /* [ASCII-32] §4.4: FC04 stays on its own base in every mode */
     p.regs32 = 1;
     expect_regs(&p, 4, 0x02C0, 3, 901, 384, 6);
 }
 
-/* ---- 003 §4.5: 32-bit registers ---------------------------------------------- */
+/* ---- [ASCII-32] §4.5: 32-bit registers ---------------------------------------------- */
 
 static void params_003_32(modcp_params_t *p)
 {
@@ -566,32 +566,32 @@ static void expect_r32(const modcp_params_t *p, uint8_t fc, uint16_t reg, uint16
     assert_int_equal(op.count, bytes);
 }
 
-static void test_003_32bit_examples(void **state)
+static void test_regs32_manual_examples(void **state)
 {
     (void)state;
     modcp_params_t p;
     params_003_32(&p);
     assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
-    /* 003 §4.5 FC03 16-bit: 05 03 0B EA 00 02 -> 3050 -> DB2.DBW100, byte_count 04 */
+    /* [ASCII-32] §4.5 FC03 16-bit: 05 03 0B EA 00 02 -> 3050 -> DB2.DBW100, byte_count 04 */
     expect_r32(&p, 3, 0x0BEA, 2, MODCP_R32_INT16, 2, 100, 4);
-    /* 003 §4.5 FC03 32-bit: 05 03 1B 59 00 02 -> 7001 -> DB4.DBD4 and DBD8, byte_count 08 */
+    /* [ASCII-32] §4.5 FC03 32-bit: 05 03 1B 59 00 02 -> 7001 -> DB4.DBD4 and DBD8, byte_count 08 */
     expect_r32(&p, 3, 0x1B59, 2, MODCP_R32_FLOAT, 4, 4, 8);
-    /* 003 §4.5 FC06 16-bit: 05 06 0D 37 2B 1A -> 3383 -> DB2.DBW766 */
+    /* [ASCII-32] §4.5 FC06 16-bit: 05 06 0D 37 2B 1A -> 3383 -> DB2.DBW766 */
     expect_r32(&p, 6, 0x0D37, 1, MODCP_R32_INT16, 2, 766, 2);
-    /* 003 §4.5 FC06 32-bit: 05 06 1B 5A 12 23 34 45 -> 7002 -> DB4.DBD8, 4 data bytes */
+    /* [ASCII-32] §4.5 FC06 32-bit: 05 06 1B 5A 12 23 34 45 -> 7002 -> DB4.DBD8, 4 data bytes */
     expect_r32(&p, 6, 0x1B5A, 1, MODCP_R32_FLOAT, 4, 8, 4);
-    /* 003 §4.5 FC16 16-bit: 05 10 0C 1C 00 03 06 ... -> 3100 -> DB2.DBW200/202/204 */
+    /* [ASCII-32] §4.5 FC16 16-bit: 05 10 0C 1C 00 03 06 ... -> 3100 -> DB2.DBW200/202/204 */
     expect_r32(&p, 16, 0x0C1C, 3, MODCP_R32_INT16, 2, 200, 6);
-    /* 003 §4.5 FC16 32-bit: 05 10 13 8B 00 02 08 ... -> 5003 -> DB3.DBD12 and DBD16 */
+    /* [ASCII-32] §4.5 FC16 32-bit: 05 10 13 8B 00 02 08 ... -> 5003 -> DB3.DBD12 and DBD16 */
     expect_r32(&p, 16, 0x138B, 2, MODCP_R32_INT32, 3, 12, 8);
-    /* 003 §4.5 further examples (§9.4) */
+    /* [ASCII-32] §4.5 further examples (§9.4) */
     expect_r32(&p, 3, 0x0C37, 1, MODCP_R32_INT16, 2, 254, 2);
     expect_r32(&p, 3, 0x1324, 1, MODCP_R32_INT16, 2, 3800, 2);
     expect_r32(&p, 3, 0x1388, 1, MODCP_R32_INT32, 3, 0, 4);
     expect_r32(&p, 3, 0x13E2, 1, MODCP_R32_INT32, 3, 360, 4);
     expect_r32(&p, 3, 0x1BBC, 1, MODCP_R32_FLOAT, 4, 400, 4);
     expect_r32(&p, 3, 0x26AC, 1, MODCP_R32_FLOAT, 4, 11600, 4); /* printed DBD7600: doc error */
-    /* 003 §4.5 area sizes: last DB2.DBW3998, DB3.DBD396, DB4.DBD11996 */
+    /* [ASCII-32] §4.5 area sizes: last DB2.DBW3998, DB3.DBD396, DB4.DBD11996 */
     expect_r32(&p, 3, 4999, 1, MODCP_R32_INT16, 2, 3998, 2);
     expect_r32(&p, 3, 5099, 1, MODCP_R32_INT32, 3, 396, 4);
     expect_r32(&p, 3, 9999, 1, MODCP_R32_FLOAT, 4, 11996, 4);
@@ -599,12 +599,12 @@ static void test_003_32bit_examples(void **state)
     expect_r32(&p, 23, 7000, 2, MODCP_R32_FLOAT, 4, 0, 8);
 }
 
-static void test_003_32bit_events(void **state)
+static void test_regs32_range_errors_events(void **state)
 {
     (void)state;
     modcp_params_t p;
     params_003_32(&p);
-    /* a request straddling a range end -> (0E)54H (003 §4.5 "access in excess of the
+    /* a request straddling a range end -> (0E)54H ([ASCII-32] §4.5 "access in excess of the
      * parameterised range end") */
     assert_int_equal(regs_ev(&p, &big_cpu, 3, 4999, 2), MODCP_EV_PAST_END);
     assert_int_equal(regs_ev(&p, &big_cpu, 16, 5098, 3), MODCP_EV_PAST_END);
@@ -613,7 +613,7 @@ static void test_003_32bit_events(void **state)
     assert_int_equal(regs_ev(&p, &big_cpu, 3, 0, 1), MODCP_EV_NO_WINDOW);
     assert_int_equal(regs_ev(&p, &big_cpu, 3, 6000, 1), MODCP_EV_NO_WINDOW);
     assert_int_equal(regs_ev(&p, &big_cpu, 6, 10000, 1), MODCP_EV_NO_WINDOW);
-    /* the DB write limits: not in 32-bit mode (003 §3.7, §5.4) ... */
+    /* the DB write limits: not in 32-bit mode ([ASCII-32] §3.7, §5.4) ... */
     p.lim_db = (modcp_limit_t){2, 3};
     expect_r32(&p, 6, 7002, 1, MODCP_R32_FLOAT, 4, 8, 4);
     expect_r32(&p, 16, 7000, 2, MODCP_R32_FLOAT, 4, 0, 8);
@@ -643,7 +643,7 @@ static void test_003_32bit_events(void **state)
 static void test_event_exception(void **state)
 {
     (void)state;
-    /* events.h / 004 ch. 7 / SPEC §5.2 */
+    /* events.h / [RTU-2003] ch. 7 / docs/diagnostics.md */
     assert_int_equal(modcp_event_exception(MODCP_EV_ILLEGAL_FC), 1);
     assert_int_equal(modcp_event_exception(MODCP_EV_QUANTITY), 3);
     assert_int_equal(modcp_event_exception(MODCP_EV_BYTE_COUNT), 3);
@@ -703,10 +703,10 @@ int main(void)
         cmocka_unit_test(test_work_db_never_writable),
         cmocka_unit_test(test_bit_events),
         cmocka_unit_test(test_register_events),
-        cmocka_unit_test(test_003_db_bit_windows),
-        cmocka_unit_test(test_003_examples_16bit),
-        cmocka_unit_test(test_003_32bit_examples),
-        cmocka_unit_test(test_003_32bit_events),
+        cmocka_unit_test(test_db_bit_windows_map_bits_of_a_db),
+        cmocka_unit_test(test_ascii_manual_examples_16bit),
+        cmocka_unit_test(test_regs32_manual_examples),
+        cmocka_unit_test(test_regs32_range_errors_events),
         cmocka_unit_test(test_event_exception),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* Interference suppression = the French edition's modem mode (000 §5.6.1 "Fonctionnement
- * modem", 000 §8 end of telegram; 004 §2.2 "Interference suppression"): the start of a
+/* Interference suppression = the French edition's modem mode ([RTU-2009] §5.6.1 "Fonctionnement
+ * modem", [RTU-2009] §8 end of telegram; [RTU-2003] §2.2 "Interference suppression"): the start of a
  * frame is a correctly received own slave address, the end a formally correct frame
  * with a valid CRC; character errors and BREAK before the frame and after the CRC are
  * ignored. Through the whole CP (link, PDU, job, FB) on a simulated line with exact
@@ -21,9 +21,9 @@
 #include "frames.h"
 #include "lineworld.h"
 
-#define FC03_REQ "05 03 00 50 00 02 C5 9E" /* 004 §6.3 */
+#define FC03_REQ "05 03 00 50 00 02 C5 9E" /* [RTU-2003] §6.3 */
 #define FC03_RSP "05 03 04 87 65 43 21 76 70"
-#define FC08_REQ "05 08 00 00 A5 C3 DA 8E" /* 004 §6.7, answered by the CP alone */
+#define FC08_REQ "05 08 00 00 A5 C3 DA 8E" /* [RTU-2003] §6.7, answered by the CP alone */
 #define CHAR_US 1146u
 #define T35_US 4000u
 
@@ -103,14 +103,14 @@ static void check_stray_before_request(const char *stray, uint8_t error_flags)
     lw_free(x);
 }
 
-static void test_000_561_stray_ff_before_request_answered(void **state)
+static void test_modem_stray_ff_before_request_answered(void **state)
 {
     (void)state;
     check_stray_before_request("FF", 0);
     check_stray_before_request("FF FF FF", 0);
 }
 
-static void test_000_561_stray_00_before_request_answered(void **state)
+static void test_modem_stray_00_before_request_answered(void **state)
 {
     (void)state;
     check_stray_before_request("00", 0);
@@ -118,7 +118,7 @@ static void test_000_561_stray_00_before_request_answered(void **state)
     check_stray_before_request("FF 00", 0);
 }
 
-static void test_000_561_break_before_request_answered(void **state)
+static void test_modem_break_before_request_answered(void **state)
 {
     (void)state;
     check_stray_before_request(NULL, MODCP_LINE_BREAK | MODCP_LINE_FRAMING);
@@ -126,7 +126,7 @@ static void test_000_561_break_before_request_answered(void **state)
     check_stray_before_request("00", MODCP_LINE_BREAK); /* a lone 00: before the frame */
 }
 
-static void test_000_561_parity_error_before_request_answered(void **state)
+static void test_modem_parity_error_before_request_answered(void **state)
 {
     (void)state;
     check_stray_before_request(NULL, MODCP_LINE_PARITY);
@@ -136,7 +136,7 @@ static void test_000_561_parity_error_before_request_answered(void **state)
 
 /* A stray copy of our own address (and a stray 00 + broadcast function code) starts a
  * candidate that fails its CRC at its length; the request inside is found again. */
-static void test_000_561_stray_own_address_before_request_answered(void **state)
+static void test_modem_stray_own_address_before_request_answered(void **state)
 {
     (void)state;
     check_stray_before_request("05", 0);
@@ -147,7 +147,7 @@ static void test_000_561_stray_own_address_before_request_answered(void **state)
 
 /* Normal operation, for comparison: the stray FF starts a frame (address FF, not ours)
  * that runs into the request: the request is lost. */
-static void test_000_561_normal_mode_stray_ff_loses_request(void **state)
+static void test_normal_mode_stray_ff_loses_request(void **state)
 {
     (void)state;
     lw_t *x = start(MODCP_OPMODE_NORMAL);
@@ -160,7 +160,7 @@ static void test_000_561_normal_mode_stray_ff_loses_request(void **state)
 
 /* Another slave's frames that contain our address and 00 are followed, never taken for
  * ours, counted as bus messages, and nothing is reported. */
-static void test_000_561_other_address_not_mistaken_for_ours(void **state)
+static void test_modem_other_address_not_mistaken_for_ours(void **state)
 {
     (void)state;
     lw_t *x = start(MODCP_OPMODE_SUPPRESS);
@@ -189,7 +189,7 @@ static void test_000_561_other_address_not_mistaken_for_ours(void **state)
 }
 
 /* Stray characters alone: nothing counted, nothing reported. */
-static void test_000_561_stray_characters_alone_not_counted(void **state)
+static void test_modem_stray_characters_alone_not_counted(void **state)
 {
     (void)state;
     lw_t *x = start(MODCP_OPMODE_SUPPRESS);
@@ -205,7 +205,7 @@ static void test_000_561_stray_characters_alone_not_counted(void **state)
 
 /* A frame that starts with our address and never ends in a valid CRC is a CRC error,
  * reported at its t3.5 as in normal operation. */
-static void test_000_8_crc_error_reported(void **state)
+static void test_modem_crc_error_reported(void **state)
 {
     (void)state;
     lw_t *x = start(MODCP_OPMODE_SUPPRESS);
@@ -218,9 +218,9 @@ static void test_000_8_crc_error_reported(void **state)
     lw_free(x);
 }
 
-/* A character error inside our frame discards it silently (004 §2.2), counted once in
+/* A character error inside our frame discards it silently ([RTU-2003] §2.2), counted once in
  * FC08's bus error counter; the next request is answered. */
-static void test_004_22_error_inside_frame_discards_it(void **state)
+static void test_modem_error_inside_frame_discards_it(void **state)
 {
     (void)state;
     lw_t *x = start(MODCP_OPMODE_SUPPRESS);
@@ -240,7 +240,7 @@ static void test_004_22_error_inside_frame_discards_it(void **state)
 /* ---- the end: a formally correct frame with a valid CRC ---------------------------- */
 
 /* Errors and BREAK right after the CRC: ignored, not counted; the request is answered. */
-static void test_004_22_errors_after_crc_ignored_not_counted(void **state)
+static void test_modem_errors_after_crc_ignored_not_counted(void **state)
 {
     (void)state;
     lw_t *x = start(MODCP_OPMODE_SUPPRESS);
@@ -259,10 +259,10 @@ static void test_004_22_errors_after_crc_ignored_not_counted(void **state)
     lw_free(x);
 }
 
-/* 000 §8: the valid CRC ends the frame; the CP does not wait t3.5. FC08 is answered by
+/* [RTU-2009] §8: the valid CRC ends the frame; the CP does not wait t3.5. FC08 is answered by
  * the CP alone: the reply leaves at the timer the last character armed (1 us), where
  * normal operation waits t3.5. */
-static void test_000_8_end_by_crc_without_t35(void **state)
+static void test_modem_frame_ends_by_crc_without_t35(void **state)
 {
     (void)state;
     for (int modem = 0; modem < 2; modem++) {
@@ -278,7 +278,7 @@ static void test_000_8_end_by_crc_without_t35(void **state)
 
 /* Lengths by function code: fixed (FC03, FC06, FC08), by the byte count (FC16), each
  * answered before t3.5; broadcast FC06 executed without a reply. */
-static void test_000_8_lengths_by_function_code(void **state)
+static void test_modem_frame_lengths_by_function_code(void **state)
 {
     (void)state;
     lw_t *x = start(MODCP_OPMODE_SUPPRESS);
@@ -307,7 +307,7 @@ static void test_000_8_lengths_by_function_code(void **state)
 /* Function codes without a known length end by t3.5: an unsupported one (FC07) is
  * answered with exception 01 at t3.5, also after a stray character; FC08 with more
  * data than usual continues to t3.5 and is echoed. */
-static void test_000_8_unknown_length_by_t35(void **state)
+static void test_modem_unknown_length_ends_by_t35(void **state)
 {
     (void)state;
     lw_t *x = start(MODCP_OPMODE_SUPPRESS);
@@ -333,7 +333,7 @@ static void test_000_8_unknown_length_by_t35(void **state)
  * character) in both modes, with the injected clock: FC08 (the CP alone) and FC03
  * (a job through the FB, CPU cycle 1 ms, 100 requests at every phase of the cycle).
  * Model: normal t3.5 + 1/2 cycle + 1 character; modem mode without t3.5. Printed. */
-static void test_000_8_slave_time_both_modes(void **state)
+static void test_slave_time_normal_and_modem(void **state)
 {
     (void)state;
     uint32_t avg[2];
@@ -369,21 +369,21 @@ static void test_000_8_slave_time_both_modes(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_000_561_stray_ff_before_request_answered),
-        cmocka_unit_test(test_000_561_stray_00_before_request_answered),
-        cmocka_unit_test(test_000_561_break_before_request_answered),
-        cmocka_unit_test(test_000_561_parity_error_before_request_answered),
-        cmocka_unit_test(test_000_561_stray_own_address_before_request_answered),
-        cmocka_unit_test(test_000_561_normal_mode_stray_ff_loses_request),
-        cmocka_unit_test(test_000_561_other_address_not_mistaken_for_ours),
-        cmocka_unit_test(test_000_561_stray_characters_alone_not_counted),
-        cmocka_unit_test(test_000_8_crc_error_reported),
-        cmocka_unit_test(test_004_22_error_inside_frame_discards_it),
-        cmocka_unit_test(test_004_22_errors_after_crc_ignored_not_counted),
-        cmocka_unit_test(test_000_8_end_by_crc_without_t35),
-        cmocka_unit_test(test_000_8_lengths_by_function_code),
-        cmocka_unit_test(test_000_8_unknown_length_by_t35),
-        cmocka_unit_test(test_000_8_slave_time_both_modes),
+        cmocka_unit_test(test_modem_stray_ff_before_request_answered),
+        cmocka_unit_test(test_modem_stray_00_before_request_answered),
+        cmocka_unit_test(test_modem_break_before_request_answered),
+        cmocka_unit_test(test_modem_parity_error_before_request_answered),
+        cmocka_unit_test(test_modem_stray_own_address_before_request_answered),
+        cmocka_unit_test(test_normal_mode_stray_ff_loses_request),
+        cmocka_unit_test(test_modem_other_address_not_mistaken_for_ours),
+        cmocka_unit_test(test_modem_stray_characters_alone_not_counted),
+        cmocka_unit_test(test_modem_crc_error_reported),
+        cmocka_unit_test(test_modem_error_inside_frame_discards_it),
+        cmocka_unit_test(test_modem_errors_after_crc_ignored_not_counted),
+        cmocka_unit_test(test_modem_frame_ends_by_crc_without_t35),
+        cmocka_unit_test(test_modem_frame_lengths_by_function_code),
+        cmocka_unit_test(test_modem_unknown_length_ends_by_t35),
+        cmocka_unit_test(test_slave_time_normal_and_modem),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

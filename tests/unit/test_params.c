@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* Parameter record: defaults (SPEC §2), validation events (004 §7.5 class 0EH, 003 §8.6),
+/* Parameter record: defaults (docs/parameters.md), validation events ([RTU-2003] §7.5 class 0EH, [ASCII-32] §8.6),
  * the effective copy, the binary record, the job limit. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -27,11 +27,11 @@ static void set_win(modcp_bitwin_t *w, uint8_t area, uint16_t from, uint16_t to,
     w->db = db;
 }
 
-/* 004 §9 parameter set (slave 5, coils M/Q/T/C, inputs M/I, base DB 800 / 900) */
+/* [RTU-2003] §9 parameter set (slave 5, coils M/Q/T/C, inputs M/I, base DB 800 / 900) */
 static void params_004_9(modcp_params_t *p)
 {
     world_example_params(p);
-    /* 004 §3.5 example 4.6.4 limits */
+    /* [RTU-2003] §3.5 example 4.6.4 limits */
     p->lim_db = (modcp_limit_t){600, 699};
     p->lim_m = (modcp_limit_t){1000, 1127};
     p->lim_q = (modcp_limit_t){256, 319};
@@ -69,7 +69,7 @@ static void expect_one(const modcp_params_t *p, modcp_param_field_t field, uint8
 static void test_defaults(void **state)
 {
     (void)state;
-    /* SPEC §2 defaults */
+    /* docs/parameters.md defaults */
     modcp_params_t p;
     memset(&p, 0x5A, sizeof p);
     modcp_params_defaults(&p);
@@ -77,7 +77,7 @@ static void test_defaults(void **state)
     assert_int_equal(p.data_bits, 8);
     assert_int_equal(p.parity, MODCP_PARITY_EVEN);
     assert_int_equal(p.stop_bits, 1);
-    assert_int_equal(p.slave_addr, 222); /* 004 §2.2 as printed */
+    assert_int_equal(p.slave_addr, 222); /* [RTU-2003] §2.2 as printed */
     assert_int_equal(p.framing, MODCP_FRAMING_RTU);
     assert_int_equal(p.opmode, MODCP_OPMODE_NORMAL);
     assert_int_equal(p.f_mul, 1);
@@ -89,7 +89,7 @@ static void test_defaults(void **state)
     assert_int_equal(p.rs232_auto, 0);
     assert_int_equal(p.rts_on_delay_ms, 10); /* VIPA CP 341 manual §1.6: 10 ms each */
     assert_int_equal(p.rts_off_delay_ms, 10);
-    assert_int_equal(p.rx_preset, MODCP_RXP_DEFAULT); /* 000 Table 5-8: by interface */
+    assert_int_equal(p.rx_preset, MODCP_RXP_DEFAULT); /* [RTU-2009] Table 5-8: by interface */
     assert_int_equal(p.commloss_auto, 0); /* latched, as the Altivar's SLF1 */
     for (size_t i = 0; i < MODCP_COIL_WINDOWS; i++) {
         assert_int_equal(p.coils[i].area, MODCP_AREA_NONE);
@@ -105,7 +105,7 @@ static void test_defaults(void **state)
     assert_int_equal(p.lim_q.max, 0);
     assert_int_equal(p.lim_db.min, 0);
     assert_int_equal(p.fset, MODCP_FSET_EXTENDED);
-    assert_int_equal(p.rs485_sel, 0); /* 000 Table 5-2: "Non" */
+    assert_int_equal(p.rs485_sel, 0); /* [RTU-2009] Table 5-2: "Non" */
     assert_int_equal(p.qty_limits, MODCP_QLIMITS_MANUAL);
     assert_int_equal(p.cpu_model, MODCP_CPU_CP341);
     assert_int_equal(p.job_limit, 0);
@@ -163,22 +163,22 @@ static void test_group_members_in_slot_order(void **state)
 static void test_manual_sets_are_valid(void **state)
 {
     (void)state;
-    /* 004 §9 parameter set with the 4.6.4 limits */
+    /* [RTU-2003] §9 parameter set with the 4.6.4 limits */
     modcp_params_t p;
     params_004_9(&p);
     assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
-    /* 004 §3.1 4.6.2: two DB-bit windows on top, 003 §4.1 / §4.2 */
+    /* [RTU-2003] §3.1 4.6.2: two DB-bit windows on top, [ASCII-32] §4.1 / §4.2 */
     set_win(&p.coils[4], MODCP_AREA_DB, 8192, 8511, 0, 111);
     set_win(&p.coils[5], MODCP_AREA_DB, 9000, 9000, 0, 111);
     set_win(&p.inputs[2], MODCP_AREA_DB, 8192, 8351, 0, 112);
     assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
-    /* 003 ASCII: 7 data bits; 8 allowed as an extension */
+    /* [ASCII-32] ASCII: 7 data bits; 8 allowed as an extension */
     p.framing = MODCP_FRAMING_ASCII;
     p.data_bits = 7;
     assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
     p.data_bits = 8;
     assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
-    /* 003 §4.5 32-bit ranges */
+    /* [ASCII-32] §4.5 32-bit ranges */
     p.regs32 = 1;
     p.r32[0] = (modcp_r32range_t){3000, 4999, 2};
     p.r32[1] = (modcp_r32range_t){5000, 5099, 3};
@@ -190,7 +190,7 @@ static void test_manual_sets_are_valid(void **state)
     p.ascii_timeout_ms = 6500;
     p.turnaround_ms = 100;
     p.iface = MODCP_IFACE_RS485;
-    p.opmode = MODCP_OPMODE_SUPPRESS; /* two-wire: modem mode (000 Table 5-2) */
+    p.opmode = MODCP_OPMODE_SUPPRESS; /* two-wire: modem mode ([RTU-2009] Table 5-2) */
     p.commloss_ms = 30000;
     p.job_limit = 1024;
     p.scan_count = 16;
@@ -216,7 +216,7 @@ static void test_manual_sets_are_valid(void **state)
 static void test_data_bits(void **state)
 {
     (void)state;
-    /* 004 §2.1: RTU 8 only -> (0E)20H fatal; 003 §3.1 ASCII 7 */
+    /* [RTU-2003] §2.1: RTU 8 only -> (0E)20H fatal; [ASCII-32] §3.1 ASCII 7 */
     modcp_params_t p;
     params_004_9(&p);
     p.data_bits = 7;
@@ -228,12 +228,12 @@ static void test_data_bits(void **state)
     expect_one(&p, MODCP_PF_DATA_BITS, 0, MODCP_EV_DATA_BITS, true, 9);
 }
 
-/* 003 §3.1 (CP 341 MODBUS ASCII slave, transmission parameters): "With Modbus ASCII 7
+/* [ASCII-32] §3.1 (CP 341 MODBUS ASCII slave, transmission parameters): "With Modbus ASCII 7
  * data bits are mandatory." "With even or odd parity 1 stop bit is pre-defined. None
  * parity effects two stop bits." The ASCII frame is 7E1, 7O1 or 7N2; 7N1, 7E2, 7O2 are
  * refused on the stop bits ((0E)2EH: the manual gives the rule no event of its own).
- * The 8-bit extension of SPEC §2 follows the same rule (8E1, 8O1, 8N2). */
-static void test_003_s3_1_ascii_frame_7e1_7o1_7n2(void **state)
+ * The 8-bit extension of docs/parameters.md follows the same rule (8E1, 8O1, 8N2). */
+static void test_ascii_frame_7e1_7o1_7n2_accepted(void **state)
 {
     (void)state;
     modcp_params_t p;
@@ -270,9 +270,9 @@ static void test_003_s3_1_ascii_frame_7e1_7o1_7n2(void **state)
     expect_one(&p, MODCP_PF_DATA_BITS, 0, MODCP_EV_DATA_BITS, true, 6);
 }
 
-/* 004 §2.1 Table 5-1: RTU keeps the manual's free choice of 1 or 2 stop bits with any
+/* [RTU-2003] §2.1 Table 5-1: RTU keeps the manual's free choice of 1 or 2 stop bits with any
  * parity (8N1, 8E2 ...): the ASCII rule is for ASCII only. */
-static void test_004_s2_1_rtu_stop_bits_free(void **state)
+static void test_rtu_stop_bits_free_with_any_parity(void **state)
 {
     (void)state;
     modcp_params_t p;
@@ -286,9 +286,9 @@ static void test_004_s2_1_rtu_stop_bits_free(void **state)
     }
 }
 
-/* 003 §3.1: the CP refuses a 7N1 ASCII record at start-up (driver not ready; FB:
+/* [ASCII-32] §3.1: the CP refuses a 7N1 ASCII record at start-up (driver not ready; FB:
  * CP_START_ERROR, ERROR_INFO (0E)2EH); the same record as 7N2 starts. */
-static void test_003_s3_1_ascii_7n1_refused_by_cp(void **state)
+static void test_ascii_7n1_refused_by_cp(void **state)
 {
     (void)state;
     modcp_params_t p;
@@ -314,7 +314,7 @@ static void test_003_s3_1_ascii_7n1_refused_by_cp(void **state)
 static void test_slave_addr(void **state)
 {
     (void)state;
-    /* 004 §2.2: own address 0 -> (0E)23H, driver not ready; 255 legal */
+    /* [RTU-2003] §2.2: own address 0 -> (0E)23H, driver not ready; 255 legal */
     modcp_params_t p;
     params_004_9(&p);
     p.slave_addr = 0;
@@ -326,7 +326,7 @@ static void test_slave_addr(void **state)
 static void test_opmode(void **state)
 {
     (void)state;
-    /* 004 §2.2: illegal operating mode -> (0E)22H fatal */
+    /* [RTU-2003] §2.2: illegal operating mode -> (0E)22H fatal */
     modcp_params_t p;
     params_004_9(&p);
     p.opmode = 2;
@@ -335,12 +335,12 @@ static void test_opmode(void **state)
     assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
 }
 
-/* 000 §5.6.1 Table 5-2 "Activer la sélection du mode de fonctionnement pour RS485"
+/* [RTU-2009] §5.6.1 Table 5-2 "Activer la sélection du mode de fonctionnement pour RS485"
  * (default "Non") and "Mode de fonctionnement" (default: full duplex RS422 4-wire
  * normal, half duplex RS485 2-wire modem): without the selection, two-wire RS485 runs in
  * modem (interference suppression) mode only; "normal" there is refused with (0E)22H
  * "selected operating mode not allowed", the driver is not ready. */
-static void test_000_table5_2_rs485_normal_needs_mode_select(void **state)
+static void test_rs485_normal_needs_mode_select(void **state)
 {
     (void)state;
     modcp_params_t p;
@@ -358,9 +358,9 @@ static void test_000_table5_2_rs485_normal_needs_mode_select(void **state)
     expect_one(&p, MODCP_PF_RS485_SEL, 0, MODCP_EV_PARAM_RECORD, true, 2);
 }
 
-/* 000 Table 5-2 / Table 5-8: full duplex RS422 4-wire (and RS232) default to normal and
+/* [RTU-2009] Table 5-2 / Table 5-8: full duplex RS422 4-wire (and RS232) default to normal and
  * may choose either mode without the RS485 selection. */
-static void test_000_table5_2_four_wire_normal_or_modem(void **state)
+static void test_four_wire_normal_or_modem(void **state)
 {
     (void)state;
     modcp_params_t p;
@@ -379,10 +379,10 @@ static void test_000_table5_2_four_wire_normal_or_modem(void **state)
     assert_int_equal(p.opmode, MODCP_OPMODE_NORMAL);
 }
 
-/* 000 §10 event (0E)22H, driver not ready: the CP refuses such a record at start-up
+/* [RTU-2009] §10 event (0E)22H, driver not ready: the CP refuses such a record at start-up
  * (FB: CP_START_ERROR, ERROR_INFO 0E22H) and answers nothing; with the selection the
  * same record starts and answers. */
-static void test_000_table5_2_rs485_normal_refused_by_cp(void **state)
+static void test_rs485_normal_refused_by_cp(void **state)
 {
     (void)state;
     modcp_params_t p;
@@ -409,7 +409,7 @@ static void test_000_table5_2_rs485_normal_refused_by_cp(void **state)
 static void test_fmul_corrected(void **state)
 {
     (void)state;
-    /* 004 §2.2: f_MUL outside 1..10 -> (0E)21H, the driver runs with 1 */
+    /* [RTU-2003] §2.2: f_MUL outside 1..10 -> (0E)21H, the driver runs with 1 */
     modcp_params_t p;
     params_004_9(&p);
     p.f_mul = 0;
@@ -434,7 +434,7 @@ static void test_fmul_corrected(void **state)
 static void test_ascii_timeout_corrected(void **state)
 {
     (void)state;
-    /* 003 §3.2: character delay time outside 1..6500 ms -> driver runs with 1000 ms */
+    /* [ASCII-32] §3.2: character delay time outside 1..6500 ms -> driver runs with 1000 ms */
     modcp_params_t p;
     params_004_9(&p);
     p.framing = MODCP_FRAMING_ASCII;
@@ -453,7 +453,7 @@ static void test_ascii_timeout_corrected(void **state)
 static void test_write_limits(void **state)
 {
     (void)state;
-    /* 004 §3.5: illegal write limits -> (0E)24H fatal; value = min << 16 | max */
+    /* [RTU-2003] §3.5: illegal write limits -> (0E)24H fatal; value = min << 16 | max */
     modcp_params_t p;
     params_004_9(&p);
     p.lim_m = (modcp_limit_t){1128, 1127};
@@ -479,7 +479,7 @@ static void test_write_limits(void **state)
 static void test_coil_windows_illegal(void **state)
 {
     (void)state;
-    /* 004 §3.1: illegal from/to for FC01/05/15 -> (0E)25H fatal */
+    /* [RTU-2003] §3.1: illegal from/to for FC01/05/15 -> (0E)25H fatal */
     modcp_params_t p;
     params_004_9(&p);
     p.coils[1].area = MODCP_AREA_I; /* inputs are not coils */
@@ -491,7 +491,7 @@ static void test_coil_windows_illegal(void **state)
     set_win(&p.coils[0], MODCP_AREA_M, 2047, 0, 1000, 0); /* from > to */
     expect_one(&p, MODCP_PF_COILS, 0, MODCP_EV_COIL_FROMTO, true, (2047u << 16) | 0u);
     params_004_9(&p);
-    set_win(&p.coils[4], MODCP_AREA_DB, 8192, 8255, 0, 0); /* 003 §4.1: DB 0 */
+    set_win(&p.coils[4], MODCP_AREA_DB, 8192, 8255, 0, 0); /* [ASCII-32] §4.1: DB 0 */
     expect_one(&p, MODCP_PF_COILS, 4, MODCP_EV_COIL_FROMTO, true, 0);
     params_004_9(&p);
     set_win(&p.coils[2], MODCP_AREA_T, 4096, 4195, 100, 0); /* 100 bits: not whole words */
@@ -519,7 +519,7 @@ static void test_coil_windows_illegal(void **state)
 static void test_coil_windows_overlap(void **state)
 {
     (void)state;
-    /* 004 §3.1: overlapping from/to FC01/05/15 -> (0E)27H fatal; gaps are legal */
+    /* [RTU-2003] §3.1: overlapping from/to FC01/05/15 -> (0E)27H fatal; gaps are legal */
     modcp_params_t p;
     params_004_9(&p);
     p.coils[1].from = 2047; /* Q window now starts inside the M window */
@@ -542,7 +542,7 @@ static void test_coil_windows_overlap(void **state)
 static void test_input_windows(void **state)
 {
     (void)state;
-    /* 004 §3.2: FC02 illegal -> (0E)26H, overlap -> (0E)28H, both fatal */
+    /* [RTU-2003] §3.2: FC02 illegal -> (0E)26H, overlap -> (0E)28H, both fatal */
     modcp_params_t p;
     params_004_9(&p);
     p.inputs[1].area = MODCP_AREA_Q;
@@ -604,9 +604,9 @@ static void test_record_field_errors(void **state)
     params_004_9(&p);
     p.rs232_auto = 2;
     expect_one(&p, MODCP_PF_RS232_AUTO, 0, rec, true, 2);
-    p.rs232_auto = 1; /* 004 §2.4: RS232 only */
+    p.rs232_auto = 1; /* [RTU-2003] §2.4: RS232 only */
     p.iface = MODCP_IFACE_RS485;
-    p.opmode = MODCP_OPMODE_SUPPRESS; /* two-wire: modem mode (000 Table 5-2) */
+    p.opmode = MODCP_OPMODE_SUPPRESS; /* two-wire: modem mode ([RTU-2009] Table 5-2) */
     expect_one(&p, MODCP_PF_RS232_AUTO, 0, rec, true, 1);
     p.iface = MODCP_IFACE_RS232;
     assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
@@ -646,8 +646,8 @@ static void test_record_field_errors(void **state)
 }
 
 /* VIPA CP 341 manual §1.6 / §7.1: RTS off delay and data output waiting time 0 ... 65535
- * ms in steps of 10 ms, default 10 ms (004 §2.4 and 000 give no values); the receive-line
- * preset of 000 Table 5-8: R(A) 5 V / R(B) 0 V (BREAK detection) only on four-wire RS422
+ * ms in steps of 10 ms, default 10 ms ([RTU-2003] §2.4 and [RTU-2009] give no values); the receive-line
+ * preset of [RTU-2009] Table 5-8: R(A) 5 V / R(B) 0 V (BREAK detection) only on four-wire RS422
  * (note 1), refused on two-wire RS485. Each with (0E)2EH naming the field and value. */
 static void test_rts_steps_and_receive_preset(void **state)
 {
@@ -705,7 +705,7 @@ static void test_scanner_errors(void **state)
 static void test_id_strings(void **state)
 {
     (void)state;
-    /* ID strings (002 §10.5) must be NUL-terminated within 17 bytes */
+    /* ID strings ([ALTIVAR] §10.5) must be NUL-terminated within 17 bytes */
     modcp_params_t p;
     params_004_9(&p);
     memset(p.revision, 'x', sizeof p.revision);
@@ -718,7 +718,7 @@ static void test_id_strings(void **state)
 static void test_r32_ranges(void **state)
 {
     (void)state;
-    /* 003 §4.5 / §8.6 32-bit range errors: event numbers illegible -> (0E)2EH */
+    /* [ASCII-32] §4.5 / §8.6 32-bit range errors: event numbers illegible -> (0E)2EH */
     const modcp_event_t rec = MODCP_EV_PARAM_RECORD;
     modcp_params_t p;
     params_004_9(&p);
@@ -728,7 +728,7 @@ static void test_r32_ranges(void **state)
     expect_one(&p, MODCP_PF_R32, 0, rec, true, (4999u << 16) | 3000u);
     p.r32[0] = (modcp_r32range_t){3000, 4999, 0}; /* DB 0 */
     expect_one(&p, MODCP_PF_R32, 0, rec, true, 0);
-    /* a DB holds 32768 16-bit or 16384 32-bit registers (003 §4.5: DBW 65534 / DBD 65532) */
+    /* a DB holds 32768 16-bit or 16384 32-bit registers ([ASCII-32] §4.5: DBW 65534 / DBD 65532) */
     p.r32[0] = (modcp_r32range_t){0, 32767, 2};
     assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
     p.r32[0] = (modcp_r32range_t){0, 32768, 2};
@@ -1066,7 +1066,7 @@ static void test_record_id_strings(void **state)
 static void test_job_limit(void **state)
 {
     (void)state;
-    /* 004 §6.10: CP 341 job length <= 1024 B, CP 441-2 <= 450 B */
+    /* [RTU-2003] §6.10: CP 341 job length <= 1024 B, CP 441-2 <= 450 B */
     modcp_params_t p;
     modcp_params_defaults(&p);
     assert_int_equal(modcp_params_job_limit(&p), 1024);
@@ -1113,14 +1113,14 @@ int main(void)
         cmocka_unit_test(test_group_members_in_slot_order),
         cmocka_unit_test(test_manual_sets_are_valid),
         cmocka_unit_test(test_data_bits),
-        cmocka_unit_test(test_003_s3_1_ascii_frame_7e1_7o1_7n2),
-        cmocka_unit_test(test_004_s2_1_rtu_stop_bits_free),
-        cmocka_unit_test(test_003_s3_1_ascii_7n1_refused_by_cp),
+        cmocka_unit_test(test_ascii_frame_7e1_7o1_7n2_accepted),
+        cmocka_unit_test(test_rtu_stop_bits_free_with_any_parity),
+        cmocka_unit_test(test_ascii_7n1_refused_by_cp),
         cmocka_unit_test(test_slave_addr),
         cmocka_unit_test(test_opmode),
-        cmocka_unit_test(test_000_table5_2_rs485_normal_needs_mode_select),
-        cmocka_unit_test(test_000_table5_2_four_wire_normal_or_modem),
-        cmocka_unit_test(test_000_table5_2_rs485_normal_refused_by_cp),
+        cmocka_unit_test(test_rs485_normal_needs_mode_select),
+        cmocka_unit_test(test_four_wire_normal_or_modem),
+        cmocka_unit_test(test_rs485_normal_refused_by_cp),
         cmocka_unit_test(test_fmul_corrected),
         cmocka_unit_test(test_ascii_timeout_corrected),
         cmocka_unit_test(test_write_limits),

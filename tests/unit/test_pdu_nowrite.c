@@ -261,7 +261,7 @@ static void check_world(const modcp_params_t *p, uint32_t seed)
     world_free(w);
 }
 
-/* Application Protocol §7: exception => not executed; the world of the 004 §9 example
+/* Application Protocol §7: exception => not executed; the world of the [RTU-2003] §9 example
  * set with the scanner over missing and short DBs. */
 static void test_mbap7_exception_means_nothing_written(void **state)
 {

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The order in which the PDU engine checks a request (docs/diagnostics.md "Order of
- * checks"): address -> CRC -> CPU side initialised (SPEC §6) -> broadcast rule
- * (SPEC §5.2) -> function code -> length -> quantity -> values -> addresses and write
+ * checks"): address -> CRC -> CPU side initialised (docs/cpu-cp-interface.md) -> broadcast rule
+ * (docs/diagnostics.md) -> function code -> length -> quantity -> values -> addresses and write
  * limits -> CPU job. Each test sends a request that fails two adjacent steps at once
  * and asserts that the earlier step answers (reply and event), and that nothing ran. */
 #include <setjmp.h>
@@ -82,7 +82,7 @@ static void test_spec31_order_crc_before_not_initialised(void **state)
     world_free(w);
 }
 
-/* 3. SPEC §6: until the FB's initialisation completes *every* request gets 04 /
+/* 3. docs/cpu-cp-interface.md: until the FB's initialisation completes *every* request gets 04 /
  * (0E)56H: an unsupported function code, a request of the wrong length, a quantity
  * out of range, an address outside every window too - in both function sets. */
 static void test_spec6_not_initialised_before_function_code(void **state)
@@ -135,7 +135,7 @@ static void test_spec6_not_initialised_broadcast(void **state)
     world_free(w);
 }
 
-/* 4. SPEC §5.2: the broadcast rule before the function code: a broadcast of an
+/* 4. docs/diagnostics.md: the broadcast rule before the function code: a broadcast of an
  * unsupported or non-broadcast code is dropped with (08)30H, not (08)31H. */
 static void test_spec52_order_broadcast_before_function_code(void **state)
 {
@@ -148,7 +148,7 @@ static void test_spec52_order_broadcast_before_function_code(void **state)
     world_free(w);
 }
 
-/* 5. Application Protocol §6 / 004 ch. 7: function code before the length: an
+/* 5. Application Protocol §6 / [RTU-2003] ch. 7: function code before the length: an
  * unsupported code answers 01 / (08)31H whatever follows it. In cp341 the extended
  * codes are unsupported too. */
 static void test_mbap6_order_function_code_before_length(void **state)

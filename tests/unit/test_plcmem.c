@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* Controller memory model: bytes, T/C words high byte first, bit read-modify-write,
- * access events (0E)38H / (0E)39H (004 §7.5), DB lookup. Memory laid out for the
- * manual's example parameter set (004 §9): MB 1000.., QB 256.., T 100.., C 200..,
+ * access events (0E)38H / (0E)39H ([RTU-2003] §7.5), DB lookup. Memory laid out for the
+ * manual's example parameter set ([RTU-2003] §9): MB 1000.., QB 256.., T 100.., C 200..,
  * DB 800 / DB 900. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -85,7 +85,7 @@ static void test_areas(void **state)
     assert_int_equal(a.work_db, 0);
 }
 
-/* 004 §6.1 FC01 example: M 1008.0 .. 1011.7 hold 01 17 02 18 (read whole bytes). */
+/* [RTU-2003] §6.1 FC01 example: M 1008.0 .. 1011.7 hold 01 17 02 18 (read whole bytes). */
 static void test_read_write_bytes(void **state)
 {
     world_t *w = *state;
@@ -97,13 +97,13 @@ static void test_read_write_bytes(void **state)
     assert_int_equal(modcp_plcmem_read(&w->mem, &o, out, 4), MODCP_EV_NONE);
     assert_memory_equal(out, fc01, 4);
 
-    /* 004 §6.2 FC02 example: IB 130 .. 132 = 12 34 56 */
+    /* [RTU-2003] §6.2 FC02 example: IB 130 .. 132 = 12 34 56 */
     w->i[130] = 0x12, w->i[131] = 0x34, w->i[132] = 0x56;
     o = opnd(MODCP_AREA_I, 0, 130, 0, 3);
     assert_int_equal(modcp_plcmem_read(&w->mem, &o, out, 3), MODCP_EV_NONE);
     assert_memory_equal(out, ((const uint8_t[]){0x12, 0x34, 0x56}), 3);
 
-    /* 004 §6.9 FC16 example: DB 800 DBW 100..104 = CD09 DE1A EF2B, big-endian as stored */
+    /* [RTU-2003] §6.9 FC16 example: DB 800 DBW 100..104 = CD09 DE1A EF2B, big-endian as stored */
     const uint8_t fc16[] = {0xCD, 0x09, 0xDE, 0x1A, 0xEF, 0x2B};
     o = opnd(MODCP_AREA_DB, 800, 100, 0, 6);
     assert_int_equal(modcp_plcmem_write(&w->mem, &o, fc16, 6), MODCP_EV_NONE);
@@ -126,7 +126,7 @@ static void test_read_write_bytes(void **state)
     assert_int_equal(all[63], 0x77);
 }
 
-/* 004 §6.1 / §9: T and C words travel high byte first (controller byte order). */
+/* [RTU-2003] §6.1 / §9: T and C words travel high byte first (controller byte order). */
 static void test_timers_counters(void **state)
 {
     world_t *w = *state;
@@ -156,7 +156,7 @@ static void test_timers_counters(void **state)
     assert_int_equal(modcp_plcmem_write(&w->mem, &o, out, 2), MODCP_EV_AREA_ACCESS);
 }
 
-/* 004 §6.8 FC15 example: CD 09 for 12 bits at M 1144.0; M 1145.4..7 preset to 1 stay 1. */
+/* [RTU-2003] §6.8 FC15 example: CD 09 for 12 bits at M 1144.0; M 1145.4..7 preset to 1 stay 1. */
 static void test_write_bits_fc15_example(void **state)
 {
     world_t *w = *state;
@@ -179,7 +179,7 @@ static void test_write_bits_fc15_example(void **state)
     assert_int_equal(w->m[1145], 0x09); /* bits 4..7 of the data byte are not part of the write */
 }
 
-/* 004 §6.5 FC05 example: Q 257.1 set, the other bits of QB 257 untouched; then reset. */
+/* [RTU-2003] §6.5 FC05 example: Q 257.1 set, the other bits of QB 257 untouched; then reset. */
 static void test_write_bits_fc05_example(void **state)
 {
     world_t *w = *state;
@@ -207,7 +207,7 @@ static void test_write_bits_unaligned(void **state)
     assert_int_equal(w->m[11], 0x00);
     assert_int_equal(w->m[12], 0xFC);
 
-    /* DB bits (003 DB-bit windows), bit index beyond 7 counts on into the next bytes */
+    /* DB bits ([ASCII-32] DB-bit windows), bit index beyond 7 counts on into the next bytes */
     o = opnd(MODCP_AREA_DB, 900, 2, 9, 2); /* DBX 3.1 .. 3.2 */
     assert_int_equal(modcp_plcmem_write_bits(&w->mem, &o, (const uint8_t[]){0x03}), MODCP_EV_NONE);
     assert_int_equal(w->db900[2], 0x00);

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* Quantity limits, protocol.quantity_limits (issue 13 item 7): `manual` keeps the
- * manuals' RTU limits (004 §6: FC01/02/15 1 … 2040 bits, FC03/04/16 1 … 127 registers);
+ * manuals' RTU limits ([RTU-2003] §6: FC01/02/15 1 … 2040 bits, FC03/04/16 1 … 127 registers);
  * `spec` applies the Modbus application protocol's (V1.1b3 §6.1 FC01 and §6.2 FC02
  * "1 to 2000", §6.3 FC03 and §6.4 FC04 "1 to 125", §6.11 FC15 "1 to 1968 (0x7B0)",
  * §6.12 FC16 "1 to 123 (0x7B)", §6.17 FC23 "read 1 to 125, write 1 to 121"), with
@@ -20,7 +20,7 @@
 
 #define RTU_ADU_MAX 256u /* Modbus over serial line V1.02 §2.5.1 */
 
-/* The 004 §9 example set, extended set (FC23), the given limit set; with regs32 a float
+/* The [RTU-2003] §9 example set, extended set (FC23), the given limit set; with regs32 a float
  * range 1000 … 1099 in DB801 (100 DBDs). */
 static world_t *started(uint8_t qlimits, bool regs32)
 {
@@ -162,7 +162,7 @@ static void test_mbap6_17_fc23_read_125_write_121(void **state)
     }
 }
 
-/* spec with 32-bit registers (003 §4.5): FC03 1 … 62 (248 bytes), FC16 1 … 61 (244
+/* spec with 32-bit registers ([ASCII-32] §4.5): FC03 1 … 62 (248 bytes), FC16 1 … 61 (244
  * bytes) in an int32 / float range, the largest counts inside the spec's 125 / 123
  * words. */
 static void test_mbap6_spec_limits_32bit_registers(void **state)
@@ -184,10 +184,10 @@ static void test_mbap6_spec_limits_32bit_registers(void **state)
 
 /* ---- manual (the default) ----------------------------------------------------------- */
 
-/* 004 §6: FC01/02 1 … 2040 bits, FC03/04 1 … 127 registers, FC15 1 … 2040, FC16 1 … 127
+/* [RTU-2003] §6: FC01/02 1 … 2040 bits, FC03/04 1 … 127 registers, FC15 1 … 2040, FC16 1 … 127
  * stay the default; a 127-register reply is 259 bytes, beyond the RTU ADU of the Modbus
  * specification (why `spec` exists). */
-static void test_004_s6_manual_limits_stay_the_default(void **state)
+static void test_manual_quantity_limits_stay_the_default(void **state)
 {
     (void)state;
     modcp_params_t d;
@@ -250,7 +250,7 @@ int main(void)
         cmocka_unit_test(test_mbap6_11_6_12_spec_write_1968_bits_123_registers),
         cmocka_unit_test(test_mbap6_17_fc23_read_125_write_121),
         cmocka_unit_test(test_mbap6_spec_limits_32bit_registers),
-        cmocka_unit_test(test_004_s6_manual_limits_stay_the_default),
+        cmocka_unit_test(test_manual_quantity_limits_stay_the_default),
         cmocka_unit_test(test_mbap6_spec_table_in_both_framings),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* The 32-bit register extension (003 §4.5, SPEC §4), end to end through the core in RTU
+/* The 32-bit register extension ([ASCII-32] §4.5, docs/mapping.md), end to end through the core in RTU
  * and in ASCII: three ranges int16 -> DB2.DBW, int32 -> DB3.DBD, float -> DB4.DBD
  * (3000-4999, 5000-5099, 7000-9999 as in the manual's example) replace the DB-offset
- * scheme of FC03/06/16; FC04 keeps it. Every worked example of 003 §4.5 / §9.4, §9.8,
- * §9.12 and the address table of §9.4, the 32-bit ASCII vectors of 003 §2, counts in
+ * scheme of FC03/06/16; FC04 keeps it. Every worked example of [ASCII-32] §4.5 / §9.4, §9.8,
+ * §9.12 and the address table of §9.4, the 32-bit ASCII vectors of [ASCII-32] §2, counts in
  * 32-bit entities, FC06 with 4 data bytes, straddling ranges, the quantity limits
  * (ASCII 62 / 61, RTU 63 / 63, modcp decision), IEEE-754 floats big-endian as stored. */
 #include <setjmp.h>
@@ -65,7 +65,7 @@ static void ascii_expect(world_t *w, const char *req, const char *reply)
     assert_string_equal(ascii_reply(w), reply);
 }
 
-/* ---- 003 §4.5 worked examples, RTU ------------------------------------------- */
+/* ---- [ASCII-32] §4.5 worked examples, RTU ------------------------------------------- */
 
 /* FC03 16-bit: 0BEAH = 3050 -> DB2.DBW100, 2 registers, byte count 4 */
 static void test_fc03_int16_example(void **state)
@@ -169,7 +169,7 @@ static void test_address_table(void **state)
     ascii_world_free(w);
 }
 
-/* ---- the same in ASCII: the 32-bit vectors of 003 §2 ---------------------------- */
+/* ---- the same in ASCII: the 32-bit vectors of [ASCII-32] §2 ---------------------------- */
 
 static void test_ascii_vectors(void **state)
 {
@@ -262,7 +262,7 @@ static void test_byte_counts(void **state)
     ascii_world_free(w);
 }
 
-/* FC04 is never 32-bit (003 §4.4): the DB-offset scheme with its own base DB 900 */
+/* FC04 is never 32-bit ([ASCII-32] §4.4): the DB-offset scheme with its own base DB 900 */
 static void test_fc04_unchanged(void **state)
 {
     (void)state;
@@ -289,11 +289,11 @@ static void test_broadcast(void **state)
     ascii_world_free(w);
 }
 
-/* 003 §3.7, §5.4 (default, db_in_32bit_mode = off): the DB MIN/MAX limits are the
+/* [ASCII-32] §3.7, §5.4 (default, db_in_32bit_mode = off): the DB MIN/MAX limits are the
  * standard mode's; in 32-bit mode the three ranges' DBs stay writable whatever lim_db says.
- * The FB's work DB stays refused (004 §3.5). FC06/16 in the DB scheme of a standard-mode
+ * The FB's work DB stays refused ([RTU-2003] §3.5). FC06/16 in the DB scheme of a standard-mode
  * CP still obey lim_db (test_map.c, test_cp_examples.c). */
-static void test_003_s3_7_32bit_ranges_writable_outside_db_limits(void **state)
+static void test_regs32_ranges_writable_outside_db_limits(void **state)
 {
     (void)state;
     modcp_params_t p;
@@ -367,7 +367,7 @@ static void write_n(world_t *w, bool ascii, uint16_t reg, uint16_t n, uint8_t pe
     assert_int_equal(len, expect_len);
 }
 
-/* ASCII (003 §4.5, §8.5 (08)32H): 32-bit read 62 / write 61, int16 125 / 123 */
+/* ASCII ([ASCII-32] §4.5, §8.5 (08)32H): 32-bit read 62 / write 61, int16 125 / 123 */
 static void test_limits_ascii(void **state)
 {
     (void)state;
@@ -378,7 +378,7 @@ static void test_limits_ascii(void **state)
     assert_int_equal(world_last_event(w), MODCP_EV_QUANTITY);
     write_n(w, true, 7000, 61, 4, 17);
     assert_int_equal(world_db(w, 4)[243], 244);
-    write_n(w, true, 7000, 62, 4, 0); /* 253 data bytes: over-long (003 §8.1) */
+    write_n(w, true, 7000, 62, 4, 0); /* 253 data bytes: over-long ([ASCII-32] §8.1) */
     assert_int_equal(world_last_event(w), MODCP_EV_FRAME_TOO_LONG);
     read_n(w, true, 5000, 62, 1 + 2 * (3 + 248 + 1) + 2); /* int32 the same */
     read_n(w, true, 5000, 63, 11);
@@ -445,7 +445,7 @@ static void test_quantity_table(void **state)
     assert_int_equal(modcp_qty_max(&p, 8, 0), 0);
 }
 
-/* overlapping ranges, DB 0, one DB twice: refused, the CP stays not ready (003 §8.6) */
+/* overlapping ranges, DB 0, one DB twice: refused, the CP stays not ready ([ASCII-32] §8.6) */
 static void test_bad_ranges_refused(void **state)
 {
     (void)state;
@@ -485,7 +485,7 @@ int main(void)
         cmocka_unit_test(test_byte_counts),
         cmocka_unit_test(test_fc04_unchanged),
         cmocka_unit_test(test_broadcast),
-        cmocka_unit_test(test_003_s3_7_32bit_ranges_writable_outside_db_limits),
+        cmocka_unit_test(test_regs32_ranges_writable_outside_db_limits),
         cmocka_unit_test(test_32bit_db_limits_option_refuses_writes_outside_db_limits),
         cmocka_unit_test(test_limits_ascii),
         cmocka_unit_test(test_limits_rtu),

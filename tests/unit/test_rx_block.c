@@ -25,7 +25,7 @@
 #include "world.h"
 #include "link_internal.h"
 
-#define FC03_REQ "05 03 00 50 00 02 C5 9E" /* 004 §6.3 */
+#define FC03_REQ "05 03 00 50 00 02 C5 9E" /* [RTU-2003] §6.3 */
 #define FC03_RSP "05 03 04 87 65 43 21 76 70"
 #define T35_US 4000u
 #define T15_US 1719u

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* Indirection scanner (SPEC §5.3, 002 §11): consecutive holding registers that each
+/* Indirection scanner (docs/extended-functions.md, [ALTIVAR] §11): consecutive holding registers that each
  * point at a word operand; FC03/06/16/22/23 on them act on the operands, one CPU job
  * per operand, the reply after all jobs came back; the access rules of direct access. */
 #include <setjmp.h>
@@ -19,7 +19,7 @@ static void put16(uint8_t *p, uint16_t v)
     p[1] = (uint8_t)v;
 }
 
-/* 002 §11 worked example, byte for byte: FC23 to slave 20 reads the 8 monitoring
+/* [ALTIVAR] §11 worked example, byte for byte: FC23 to slave 20 reads the 8 monitoring
  * scanner registers NM1..NM8 (W12741.. = 31C5H) and writes 6 command words NC1..NC6
  * (W12761.. = 31D9H). Here NM1..NM8 are scanner registers pointing at MW100, IW10,
  * DB801.DBW0, T5, C7, QW4, DB802.DBW10 and an unused entry (LFT = 0000); the command

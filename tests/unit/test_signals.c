@@ -1,11 +1,11 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* RS232 automatic secondary signals (004 §2.4, 001 §1.6): DTR / RTS outputs, CTS / DSR
+/* RS232 automatic secondary signals ([RTU-2003] §2.4, [VIPA-341] §1.6): DTR / RTS outputs, CTS / DSR
  * inputs, data output waiting time, time to RTS off, aborts and their events
  * ((07)08H, (08)18H), and the one-shot timer shared with the link. End to end through
  * the CP on a simulated line with exact time (lineworld.h); thresholds at 1 us.
  *
  * Line: 9600 8E1 (character 1146 us, t3.5 4000 us); data output waiting time 10 ms,
- * time to RTS off 20 ms. The FC08 example (004 §6.7) is answered by the CP alone, so
+ * time to RTS off 20 ms. The FC08 example ([RTU-2003] §6.7) is answered by the CP alone, so
  * its reply is ready exactly at t3.5 after the request. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -59,7 +59,7 @@ static modcp_sig_t *sig(lw_t *x)
 
 /* ---- outputs at power-on and configuration --------------------------------------- */
 
-/* 004 §2.4: "at CP power-on the outputs are OFF"; with automatic use the CP sets
+/* [RTU-2003] §2.4: "at CP power-on the outputs are OFF"; with automatic use the CP sets
  * RTS = OFF, DTR = ON once configured; an invalid record takes DTR OFF again. */
 static void test_outputs_power_on_and_configure(void **state)
 {
@@ -106,13 +106,13 @@ static void test_outputs_power_on_and_configure(void **state)
     /* automatic use is refused on RS485 / RS422 (half duplex via DE there) */
     p.rs232_auto = 1;
     p.iface = MODCP_IFACE_RS485;
-    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 (000 Table 5-2) */
+    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 ([RTU-2009] Table 5-2) */
     modcp_param_issue_t is[4];
     assert_int_equal(modcp_params_validate(&p, is, 4), 1);
     assert_int_equal(is[0].field, MODCP_PF_RS232_AUTO);
 }
 
-/* 001 §1.6 "DTR: CP is ready for operation": DTR goes ON with a valid parameter record,
+/* [VIPA-341] §1.6 "DTR: CP is ready for operation": DTR goes ON with a valid parameter record,
  * already before the FB's INIT (the CP is parameterised; requests still get exception
  * 04, (0E)56H until INIT, test_cp_examples.c: test_exception_04_not_initialised). */
 static void test_dtr_on_with_parameters_before_fb_init(void **state)

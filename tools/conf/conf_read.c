@@ -382,15 +382,15 @@ static void parse_text(parse_ctx_t *px, const char *text, size_t len)
 
 /* Defaults that follow another key, as the manuals' parameter dialogs set them: two-wire
  * RS485 runs in interference suppression (modem) mode unless `mode` says otherwise
- * (000 Table 5-2, default "half duplex (RS485) 2-wire: modem"); the ASCII stop bits follow
- * the parity (003 §3.1). */
+ * ([RTU-2009] Table 5-2, default "half duplex (RS485) 2-wire: modem"); the ASCII stop bits follow
+ * the parity ([ASCII-32] §3.1). */
 static void derived_defaults(modcp_conf_t *c)
 {
     modcp_params_t *p = &c->params;
     if (!c->src[MODCP_PF_OPMODE][0].set && p->iface == MODCP_IFACE_RS485) {
         p->opmode = MODCP_OPMODE_SUPPRESS;
     }
-    /* 003 §3.1: "With even or odd parity 1 stop bit is pre-defined. None parity effects
+    /* [ASCII-32] §3.1: "With even or odd parity 1 stop bit is pre-defined. None parity effects
      * two stop bits." */
     if (!c->src[MODCP_PF_STOP_BITS][0].set && p->framing == MODCP_FRAMING_ASCII) {
         p->stop_bits = p->parity == MODCP_PARITY_NONE ? 2u : 1u;

@@ -149,7 +149,7 @@ void conf_report_issue(modcp_conf_t *c, const modcp_param_issue_t *is)
             char par = none ? 'N' : (p->parity == MODCP_PARITY_ODD ? 'O' : 'E');
             (void)snprintf(rule, sizeof rule,
                            "the ASCII character frame %u%c%lu is not allowed: with parity even or "
-                           "odd 1 stop bit, with parity none 2 (003 §3.1: 7E1, 7O1 or 7N2); "
+                           "odd 1 stop bit, with parity none 2 ([ASCII-32] §3.1: 7E1, 7O1 or 7N2); "
                            "stop_bits = %u",
                            (unsigned)p->data_bits, par, (unsigned long)is->value, none ? 2u : 1u);
         } else {
@@ -161,7 +161,7 @@ void conf_report_issue(modcp_conf_t *c, const modcp_param_issue_t *is)
             (void)snprintf(rule, sizeof rule,
                            "normal is not allowed with interface.type = rs485 (two-wire runs in "
                            "interference suppression = modem mode) unless "
-                           "protocol.rs485_mode_select = on (000 Table 5-2)");
+                           "protocol.rs485_mode_select = on ([RTU-2009] Table 5-2)");
         } else {
             conf_copy_str(rule, sizeof rule, conf_field_rule(is->field));
         }

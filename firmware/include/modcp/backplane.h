@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — the CPU–CP backplane interface (SPEC §6).
+/* modcp — the CPU–CP backplane interface (docs/cpu-cp-interface.md).
  *
  * The only thing the CP side and the CPU side share. Two single-producer /
  * single-consumer rings of 32-byte blocks, one per direction. A block is "requested"
@@ -92,10 +92,10 @@ typedef struct {
     modcp_event_t buffer[9]; /* diagnostic buffer, newest first */
     uint8_t buffer_len;
     modcp_event_t param_event; /* why the CP is not configured (NONE if it is) */
-    uint8_t diag_irq[4];    /* last diagnostic interrupt record (001 §8.4) */
+    uint8_t diag_irq[4];    /* last diagnostic interrupt record ([VIPA-341] §8.4) */
     uint32_t diag_irq_count; /* advances with every diagnostic interrupt */
     uint32_t systat_ack;    /* SYSTAT request answered by systat[] */
-    uint8_t systat[16];     /* SYSTAT image (004 §7.4), cleared in the CP when taken */
+    uint8_t systat[16];     /* SYSTAT image ([RTU-2003] §7.4), cleared in the CP when taken */
 } modcp_cp_status_t;
 
 typedef struct {
@@ -157,10 +157,10 @@ void modcp_bp_init(modcp_backplane_t *bp);
 /* CPU side: read a consistent copy; false if the CP was writing (try again). */
 bool modcp_bp_read_status(const modcp_backplane_t *bp, modcp_cp_status_t *out);
 /* CPU side: ask for the SYSTAT image (reading clears SYSTAT in the CP, as SFB STATUS
- * does, 004 §7.4). Returns the request number; the CP answers at its next poll. */
+ * does, [RTU-2003] §7.4). Returns the request number; the CP answers at its next poll. */
 uint32_t modcp_bp_systat_request(modcp_backplane_t *bp);
 /* CPU side: reset a latched comm loss (MODCP_CPST_COMMLOSS, params.commloss_auto off;
- * the Altivar's "fault reset" of SLF1, 002 §7); the CP clears it at its next poll and
+ * the Altivar's "fault reset" of SLF1, [ALTIVAR] §7); the CP clears it at its next poll and
  * times the supervision from then. */
 void modcp_bp_commloss_reset(modcp_backplane_t *bp);
 /* CPU side: true when request `req` has been answered; copies the 16-byte image

@@ -1,13 +1,13 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — the CP's diagnostic channels towards the CPU side (004 §7, 001 §8; SPEC §7),
+/* modcp — the CP's diagnostic channels towards the CPU side ([RTU-2003] §7, [VIPA-341] §8; docs/diagnostics.md),
  * besides the diagnostic buffer and the STATUS word that diag.c keeps:
  *
  *  - wire break: a BREAK reported in normal mode ((08)0DH) means "receive line to the
  *    partner interrupted". The state lasts until the next correctly received character
  *    (the line is back) or re-parameterisation; it lights SF. In interference
- *    suppression, and on two-wire RS485 outside a frame, BREAK is ignored (004 §2.2,
- *    §2.3, 000 §5.6.5) and never a wire break.
- *  - diagnostic interrupt (001 §8.4), only with params.diag_irq (default off): 4 bytes,
+ *    suppression, and on two-wire RS485 outside a frame, BREAK is ignored ([RTU-2003] §2.2,
+ *    §2.3, [RTU-2009] §5.6.5) and never a wire break.
+ *  - diagnostic interrupt ([VIPA-341] §8.4), only with params.diag_irq (default off): 4 bytes,
  *      wire break on RxD          25 0C 02 00  (coming)
  *      parameterisation error     83 0C 00 00  (coming: a PARAMS record was rejected)
  *      fault gone                 00 0C 00 00  (going: the wire break ended, or valid
@@ -18,7 +18,7 @@
  *    state raise an interrupt (a record rejected again, e.g. at the FB's retries, does
  *    not). For a record that cannot be decoded at all (CRC, length) the setting of the
  *    last decodable record applies.
- *  - SYSTAT service (004 §7.4, read with SFB STATUS, clears it): the CPU side writes a
+ *  - SYSTAT service ([RTU-2003] §7.4, read with SFB STATUS, clears it): the CPU side writes a
  *    request number to the backplane (modcp_bp_systat_request); the CP answers at its
  *    next poll by publishing the 16-byte SYSTAT image with that number and clearing
  *    SYSTAT (modcp_diag_read_systat). Events after that go into the fresh SYSTAT; no

@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — diagnostics store (SPEC §7). Everyone reports events here; nobody else
+/* modcp — diagnostics store (docs/diagnostics.md). Everyone reports events here; nobody else
  * stores them.
- *  - diagnostic buffer: the last 9 events, newest first (001 §8.3)
- *  - SYSTAT: first 6 events since the last read, F/U/B flags (004 §7.4), clear on read
- *  - STATUS word: last event, class in bits 12..8, number in 7..0 (001 §8.1)
+ *  - diagnostic buffer: the last 9 events, newest first ([VIPA-341] §8.3)
+ *  - SYSTAT: first 6 events since the last read, F/U/B flags ([RTU-2003] §7.4), clear on read
+ *  - STATUS word: last event, class in bits 12..8, number in 7..0 ([VIPA-341] §8.1)
  *  - per-event counters and the Modbus serial-line counters (FC08 0B..12) */
 #ifndef MODCP_DIAG_H
 #define MODCP_DIAG_H
@@ -48,7 +48,7 @@ typedef struct {
     modcp_event_t buffer[MODCP_DIAG_BUFFER]; /* newest first */
     uint8_t buffer_len;
     uint8_t systat_len;   /* events entered in SYSTAT since the last read (0..6) */
-    /* from here on SYSTAT as its image (004 §7.4) from byte 2: one copy reads it */
+    /* from here on SYSTAT as its image ([RTU-2003] §7.4) from byte 2: one copy reads it */
     uint8_t systat_flags; /* MODCP_SYSTAT_F | U | B */
     uint8_t systat_zero;  /* image byte 3: always 0 */
     uint8_t systat[2u * MODCP_SYSTAT_EVENTS]; /* the events, high byte (class) first */

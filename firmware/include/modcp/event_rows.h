@@ -6,8 +6,8 @@
  * (modcp_event_exception, pdu.c), the English texts, remedies and class names that the
  * simulator and the console print (event_text.c: only an image that shows texts links
  * them), and the tables "Every event" of docs/diagnostics.md (`modcp-conf event-table`,
- * compared with the page by the integration.conf test). Sources: 004 §7.5 (classes 05H,
- * 08H, 0EH), 001 §8.2 (classes 00H, 07H, 08H 16H/18H), 003 §8.5 (08H 38H..3AH, ASCII);
+ * compared with the page by the integration.conf test). Sources: [RTU-2003] §7.5 (classes 05H,
+ * 08H, 0EH), [VIPA-341] §8.2 (classes 00H, 07H, 08H 16H/18H), [ASCII-32] §8.5 (08H 38H..3AH, ASCII);
  * events modcp adds say "modcp extension" in their cause.
  *
  * MODCP_EVENT_CLASS_ROWS(C): C(cls, name, heading)
@@ -33,11 +33,11 @@
 #define MODCP_EVENT_ROWS_H
 
 #define MODCP_EVENT_CLASS_ROWS(C)                                                                 \
-    C(0x00, "CP start-up", "CP start-up (001 §8.2; in the diagnostic buffer only)")              \
-    C(0x05, "CPU job error", "CPU job errors (004 §7.5, 001 §8.2)")                              \
-    C(0x07, "send error", "send errors (001 §8.2; used by the RS232 signals)")                   \
-    C(0x08, "receive error", "receive errors (004 §7.5, 001 §8.2, 003 §8.5)")                    \
-    C(0x0E, "driver processing error", "general processing errors (004 §7.5)")
+    C(0x00, "CP start-up", "CP start-up ([VIPA-341] §8.2; in the diagnostic buffer only)")              \
+    C(0x05, "CPU job error", "CPU job errors ([RTU-2003] §7.5, [VIPA-341] §8.2)")                              \
+    C(0x07, "send error", "send errors ([VIPA-341] §8.2; used by the RS232 signals)")                   \
+    C(0x08, "receive error", "receive errors ([RTU-2003] §7.5, [VIPA-341] §8.2, [ASCII-32] §8.5)")                    \
+    C(0x0E, "driver processing error", "general processing errors ([RTU-2003] §7.5)")
 
 #define MODCP_EVENT_ROWS(E)                                                                       \
     /* ---- class 00H: CP start-up (not errors: diagnostic buffer only, diag.c) ---- */        \
@@ -57,7 +57,7 @@
     E(JOB_LENGTH, 0x05, 0x17, 0, "04",                                                            \
       "job longer than the CP transfer limit",                                                    \
       "read or write fewer bits/registers per request, or raise job_limit",                       \
-      "a request needs more bytes than `job_limit` (1024 / 450); 001 §8.2 \"transfer length > "   \
+      "a request needs more bytes than `job_limit` (1024 / 450); [VIPA-341] §8.2 \"transfer length > "   \
       "1 kByte is too large for the CP\" ((05)18H is the master driver's send length)",          \
       "`job.c modcp_job_start` → `cp.c advance` → `pdu.c modcp_pdu_complete`",                    \
       "`test_cp_examples.c: test_exception_04_cpu_errors`; `test_job_fb.c: test_job_limit_450`")  \
@@ -101,7 +101,7 @@
       "received telegram longer than the receive buffer",                                         \
       "check the master's request length and the line for interference",                          \
       "a frame for us longer than the 264-byte receive buffer (ASCII: more than 2 × 252 data "   \
-      "characters, 003 §8.1: more than 255 decoded bytes from address to LRC, i.e. more than "   \
+      "characters, [ASCII-32] §8.1: more than 255 decoded bytes from address to LRC, i.e. more than "   \
       "510 hex characters between `:` and CR)",                                                   \
       "`rtu.c rtu_on_timer`; `ascii.c`",                                                          \
       "`test_link.c: test_frame_too_long`; `test_ascii.c: test_frame_too_long`")                  \
@@ -148,12 +148,12 @@
     E(DIAG_SUBFC, 0x08, 0x35, 3, " / 01",                                                         \
       "illegal diagnostic sub-function or data field (FC 08)",                                    \
       "use a supported sub-function (0000H in the cp341 function set)",                           \
-      "FC08 sub-function not supported (only 0000 in `cp341`: 03, 004 §8.7); in `extended` a "    \
+      "FC08 sub-function not supported (only 0000 in `cp341`: 03, [RTU-2003] §8.7); in `extended` a "    \
       "sub-function it does not implement is exception 01, wrong data 03 "                        \
       "(docs/extended-functions.md, FC08)",                                                       \
       "`pdu_rw.c modcp_pdu_diag0`, `serial_diag.c`",                                              \
       "`test_cp_examples.c: test_exception_03`; `test_interpretations.c: "                        \
-      "test_004_s8_7_fc08_subcode_not_0000_exception_03, "                                        \
+      "test_fc08_subcode_other_than_0000_answers_exception_03, "                                        \
       "test_mbap6_8_fc08_unsupported_subfunction_exception_01_event_0835`")                       \
     E(CRC, 0x08, 0x36, 0, "none",                                                                 \
       "CRC/LRC of the request does not match",                                                    \
@@ -173,17 +173,17 @@
       "test_sequence_error_broadcast_while_job_pending`; `test_ascii.c: test_sequence_error`")    \
     E(ASCII_START, 0x08, 0x38, 0, "—",                                                            \
       "wrong start character (not ':')", "check the framing settings (ASCII/RTU)",                \
-      "ASCII: a frame that does not start with ':' (003 §8.5)", "`ascii.c`",                      \
+      "ASCII: a frame that does not start with ':' ([ASCII-32] §8.5)", "`ascii.c`",                      \
       "`test_ascii.c: test_wrong_start`")                                                         \
     E(ASCII_RESTART, 0x08, 0x39, 0, "—",                                                          \
       "start character inside a telegram: reception restarted",                                   \
       "check whether the line is interrupted",                                                    \
-      "ASCII: ':' inside a frame restarts reception (003 §8.5)", "`ascii.c`",                     \
+      "ASCII: ':' inside a frame restarts reception ([ASCII-32] §8.5)", "`ascii.c`",                     \
       "`test_ascii.c: test_colon_restarts`")                                                      \
     E(ASCII_NOT_HEX, 0x08, 0x3A, 0, "—",                                                          \
       "received character is not a hex character",                                                \
       "make sure the master is in ASCII mode, not RTU",                                           \
-      "ASCII: a character other than 0-9, A-F inside a frame (003 §8.5)", "`ascii.c`",           \
+      "ASCII: a character other than 0-9, A-F inside a frame ([ASCII-32] §8.5)", "`ascii.c`",           \
       "`test_ascii.c: test_not_hex`")                                                             \
     E(MEI_CODE, 0x08, 0x3B, 3, "",                                                                \
       "read device identification (FC 43/14): ReadDevId code not 01..04",                         \
@@ -217,10 +217,10 @@
     E(OPMODE, 0x0E, 0x22, 0, "—",                                                                 \
       "illegal operating mode; CP not ready", "choose normal or interference suppression",        \
       "mode not normal/suppression; `normal` on two-wire RS485 without `rs485_mode_select = on` " \
-      "(000 Table 5-2: \"selected operating mode not allowed\", driver not ready)",               \
+      "([RTU-2009] Table 5-2: \"selected operating mode not allowed\", driver not ready)",               \
       "`params.c custom_ok` → `cp.c`",                                                            \
-      "`test_params.c: test_opmode, test_000_table5_2_rs485_normal_needs_mode_select, "           \
-      "test_000_table5_2_rs485_normal_refused_by_cp`; `test_conf.py: rs485_mode_select`")         \
+      "`test_params.c: test_opmode, test_rs485_normal_needs_mode_select, "           \
+      "test_rs485_normal_refused_by_cp`; `test_conf.py: rs485_mode_select`")         \
     E(SLAVE_ADDR, 0x0E, 0x23, 0, "—",                                                             \
       "illegal slave address (0 not allowed); CP not ready", "use 1..255",                        \
       "address 0", "`params.c` → `cp.c`",                                                         \
@@ -250,10 +250,10 @@
       "check the configuration with modcp-conf check",                                            \
       "magic, version, length, CRC; every field without an event of its own (baud, interface, "   \
       "turnaround, `rs232_auto` off RS232, `diag_irq` > 1, the ASCII frame other than 7E1 / "     \
-      "7O1 / 7N2 on the stop bits (003 §3.1), …)",                                                \
+      "7O1 / 7N2 on the stop bits ([ASCII-32] §3.1), …)",                                                \
       "`params_record.c modcp_params_decode`, `params.c run_checks` → `cp.c take_params`",        \
       "`test_params.c: test_record_field_errors, test_record_damaged, "                           \
-      "test_003_s3_1_ascii_frame_7e1_7o1_7n2, test_003_s3_1_ascii_7n1_refused_by_cp`; "           \
+      "test_ascii_frame_7e1_7o1_7n2_accepted, test_ascii_7n1_refused_by_cp`; "           \
       "`test_diag.c: test_diag_irq_parameter`; `test_job_fb.c: test_init_retry_then_success`")    \
     E(XFER_ACK, 0x0E, 0x30, 0, "—",                                                               \
       "unexpected acknowledgement / block from the CPU side",                                     \
@@ -353,32 +353,32 @@
       "`commloss.c`", "`test_extended.c`")
 
 #define MODCP_EVENT_NA_ROWS(N)                                                                    \
-    N(0x05, 0x18, "001 §8.2", "send transfer length too large (> 4 kByte) or too small",         \
+    N(0x05, 0x18, "[VIPA-341] §8.2", "send transfer length too large (> 4 kByte) or too small",         \
       "a Modbus master driver's event (\"Modbus master only\"); the slave's job over its "      \
       "transfer limit is (05)17H")                                                                \
-    N(0x0E, 0x01, "004 §7.5", "error initialising the driver-specific SCC process",               \
+    N(0x0E, 0x01, "[RTU-2003] §7.5", "error initialising the driver-specific SCC process",               \
       "modcp is one firmware image, not a driver loaded into a CP operating system. There is "    \
       "no SCC process to start.")                                                                 \
-    N(0x0E, 0x02, "004 §7.5", "wrong SCC process active",                                         \
+    N(0x0E, 0x02, "[RTU-2003] §7.5", "wrong SCC process active",                                         \
       "the same: there are no exchangeable SCC drivers")                                          \
-    N(0x0E, 0x03, "004 §7.5", "wrong data-transfer process (interface to the SFBs)",              \
+    N(0x0E, 0x03, "[RTU-2003] §7.5", "wrong data-transfer process (interface to the SFBs)",              \
       "the backplane interface is compiled in. There are no SFB processes to load.")              \
-    N(0x0E, 0x04, "004 §7.5", "illegal interface submodule",                                      \
+    N(0x0E, 0x04, "[RTU-2003] §7.5", "illegal interface submodule",                                      \
       "the interface hardware is fixed per board. A port without DE or RTS/DTR leaves "           \
       "`set_de` / `set_signal` NULL, and the core works without them.")                           \
-    N(0x0E, 0x05, "004 §7.5", "dongle missing or faulty", "no licence dongle")                    \
-    N(0x0E, 0x06, "004 §7.5", "dongle has no valid contents", "no licence dongle")                \
-    N(0x0E, 0x12, "004 §7.5", "default branch in the active automaton",                           \
+    N(0x0E, 0x05, "[RTU-2003] §7.5", "dongle missing or faulty", "no licence dongle")                    \
+    N(0x0E, 0x06, "[RTU-2003] §7.5", "dongle has no valid contents", "no licence dongle")                \
+    N(0x0E, 0x12, "[RTU-2003] §7.5", "default branch in the active automaton",                           \
       "the CP 441-2's automata for its BSEND/RCV job interface. modcp has a receive automaton "   \
       "((0E)11H), a send path ((0E)10H) and the backplane job automaton, whose illegal states "   \
       "are (0E)33H.")                                                                             \
-    N(0x0E, 0x13, "004 §7.5", "default branch in the passive automaton", "as (0E)12H")           \
-    N(0x0E, 0x32, "004 §7.5",                                                                     \
+    N(0x0E, 0x13, "[RTU-2003] §7.5", "default branch in the passive automaton", "as (0E)12H")           \
+    N(0x0E, 0x32, "[RTU-2003] §7.5",                                                                     \
       "error in the transfer to the CPU with RCV (detail in the SYSTAT entry before it)",         \
       "there is no SFB RCV. A failed transfer is a timeout ((0E)31H), a handshake error "         \
       "((0E)33H) or an unexpected block ((0E)30H), so there is no second-level event to "         \
       "report.")                                                                                  \
-    N(0x08, 0x0A, "001 §8.2", "no free receive buffer",                                           \
+    N(0x08, 0x0A, "[VIPA-341] §8.2", "no free receive buffer",                                           \
       "the CP takes one request at a time. A request while one is pending is (08)37H.")
 
 #endif

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — the extended function set (SPEC §5.3, function set `extended`):
+/* modcp — the extended function set (docs/extended-functions.md, function set `extended`):
  *  - FC08 serial-line diagnostics, FC11, FC12 (serial_diag.c; log in commlog.h)
  *  - FC17 report slave ID, FC43/14 read device identification (devid.c)
  *  - FC22 mask write register, FC23 read/write multiple registers (pdu_ext.c)

@@ -1,23 +1,23 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — the CPU side's communication FB (FB 80 / FB 180 model, 004 §4, 001 §2).
+/* modcp — the CPU side's communication FB (FB 80 / FB 180 model, [RTU-2003] §4, [VIPA-341] §2).
  *
  * The user program calls modcp_fb_call() once per cycle. The FB
  *  - sends the parameter record (PARAMS) at its first call, like the CPU re-sending
  *    the CP parameters at every start;
  *  - on a rising edge of CP_START: clears its outputs (ERROR_NR / ERROR_INFO included:
- *    "a rising edge also clears the errors", 001 FB table), records the real area
+ *    "a rising edge also clears the errors", [VIPA-341] FB table), records the real area
  *    sizes, sends INIT (preceded by PARAMS unless the CP acknowledged an INIT for this
- *    record before: an FB restart is no re-parameterisation, 004 §4.2 step 4) and waits
+ *    record before: an FB restart is no re-parameterisation, [RTU-2003] §4.2 step 4) and waits
  *    for INIT_ACK; retries (PARAMS + INIT) every retry interval
  *    while the CP answers "not ready" or does not answer, until START_TIME; then
  *    CP_START_OK, or CP_START_ERROR with ERROR_NR 2 / ERROR_INFO = the CP's event, and
- *    CP_START reset (004 §5.5: "CP_START is reset and CP_START_ERROR = 1"), so that the
+ *    CP_START reset ([RTU-2003] §5.5: "CP_START is reset and CP_START_ERROR = 1"), so that the
  *    caller's next rising edge retries;
- *  - ERROR_NR / ERROR_INFO keep the last error (initialisation or job, 004 §7.6) until
+ *  - ERROR_NR / ERROR_INFO keep the last error (initialisation or job, [RTU-2003] §7.6) until
  *    the next rising edge of CP_START; the FB writes them into the caller's out only
  *    when they change (a new error, the edge's clearing, the first call), so the user
  *    program may clear them at any time and they stay cleared until the next error
- *    (004 §7.6, 000 §11: "the user may also clear them");
+ *    ([RTU-2003] §7.6, [RTU-2009] §11: "the user may also clear them");
  *  - executes jobs: reads and register writes against plcmem, FC05/15 bit writes by
  *    read-modify-write; sets CP_START_NDR for one call when a write job was executed.
  *
@@ -41,7 +41,7 @@
 #endif
 #define MODCP_FB_RETRY_MS 200u /* init retry interval */
 
-/* FB error numbers (004 §7.6). */
+/* FB error numbers ([RTU-2003] §7.6). */
 enum {
     MODCP_FB_ERR_NONE = 0,
     MODCP_FB_ERR_INIT = 2,       /* CP initialisation timeout or error */
@@ -56,9 +56,9 @@ enum {
     MODCP_FB_ERR_AREA = 18, /* illegal memory area */
 };
 
-/* The FB's in/out parameters (CP_START is IN_OUT in the manual, 001 FB table): the
+/* The FB's in/out parameters (CP_START is IN_OUT in the manual, [VIPA-341] FB table): the
  * caller keeps this struct from call to call, like the memory bit CP_START is kept in
- * (M180.0 in 004 §5.4's example). */
+ * (M180.0 in [RTU-2003] §5.4's example). */
 typedef struct {
     bool cp_start; /* IN_OUT: a rising edge starts the initialisation; the FB resets it
                       (writes false) when the initialisation fails */

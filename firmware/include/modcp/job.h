@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — CP side of the backplane: turns a request into a job of 32-byte blocks,
  * waits for the CPU side's reply, times out; and receives the PARAMS / INIT messages
- * the CPU side sends (SPEC §6). Polled with the current time; no clock is read. */
+ * the CPU side sends (docs/cpu-cp-interface.md). Polled with the current time; no clock is read. */
 /* Public for layout only: modcp_cp_t embeds modcp_job_t, so the type is here; its fields
  * are private and its functions (but modcp_job_busy) are internal
  * (firmware/src/job_internal.h). */

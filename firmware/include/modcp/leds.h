@@ -1,12 +1,12 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — the CP's LEDs SF / TXD / RXD (004 §7.2, 001 §1.2; SPEC §7).
+/* modcp — the CP's LEDs SF / TXD / RXD ([RTU-2003] §7.2, [VIPA-341] §1.2; docs/diagnostics.md).
  *
- *  SF  (group error, 004 §7.2, 003 §10.1): on at power-on and whenever the CP has no
+ *  SF  (group error, [RTU-2003] §7.2, [ASCII-32] §10.1): on at power-on and whenever the CP has no
  *      valid parameters, while a wire break (BREAK on RxD in normal mode) is present,
  *      and with RS232 automatic signals while CTS / DSR are not asserted; not for an FB
  *      that is not (yet) initialised. The caller computes it; leds.c only drives it.
  *  TXD: on while a reply is being sent and MODCP_LED_MIN_ON_US (200 ms) after its
- *      transmission complete, retriggered by every reply (002 §8: "each LED lights for
+ *      transmission complete, retriggered by every reply ([ALTIVAR] §8: "each LED lights for
  *      200 ms when a frame travels"), and at least 200 ms from switching on.
  *  RXD: on while characters are received (any address: the line is alive) and 200 ms
  *      after the last character, retriggered by every frame; a frame keeps it on until

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — mapping engine: Modbus addresses -> controller operands (004 §3, 003 §4).
+/* modcp — mapping engine: Modbus addresses -> controller operands ([RTU-2003] §3, [ASCII-32] §4).
  * Pure functions over the parameters and the controller's area sizes. */
 /* Public: the mapping functions are internal (firmware/src/map_internal.h); the types are
  * here because modcp_params_t, the FB and the controller memory use them. */

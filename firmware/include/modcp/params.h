@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — the CP's parameter record (SPEC §2).
+/* modcp — the CP's parameter record (docs/parameters.md).
  *
  * modcp_params_t is the in-memory form. The binary record (what the CPU side hands
  * to the CP, what modcp-conf writes) is a portable little-endian serialisation of it:
@@ -20,9 +20,9 @@
 #include "modcp/features.h"
 #include "modcp/hal.h" /* modcp_rx_preset_t */
 
-#define MODCP_PARAMS_VERSION 4u /* 2: rs485_mode_select (000 Table 5-2), quantity_limits;
-                                   3: db_in_32bit_mode (003 §3.7);
-                                   4: receive_preset (000 Table 5-8), commloss_auto_clear */
+#define MODCP_PARAMS_VERSION 4u /* 2: rs485_mode_select ([RTU-2009] Table 5-2), quantity_limits;
+                                   3: db_in_32bit_mode ([ASCII-32] §3.7);
+                                   4: receive_preset ([RTU-2009] Table 5-8), commloss_auto_clear */
 #define MODCP_PARAMS_RECORD_MAX 328u /* upper bound of the serialised record (checked at compile time) */
 
 typedef enum { MODCP_PARITY_NONE = 0, MODCP_PARITY_ODD = 1, MODCP_PARITY_EVEN = 2 } modcp_parity_t;
@@ -88,7 +88,7 @@ typedef struct {
     uint16_t max; /* 0 = area not writable */
 } modcp_limit_t;
 
-/* 32-bit register range (003 §4.5): registers from..to map onto DB `db`; int32 and
+/* 32-bit register range ([ASCII-32] §4.5): registers from..to map onto DB `db`; int32 and
  * float registers are 4 bytes (DBD), int16 registers 2 bytes (DBW), as in the manual's
  * examples (3050 -> DBW100). */
 typedef enum { MODCP_R32_INT16 = 0, MODCP_R32_INT32 = 1, MODCP_R32_FLOAT = 2 } modcp_r32_kind_t;
@@ -133,11 +133,11 @@ typedef struct {
     uint8_t rx_preset;  /* modcp_rx_preset_t: receive-line preset of RS422 / RS485 */
     /* mapping */
     uint8_t regs32; /* 32-bit registers on (replaces the DB offset scheme of FC03/06/16) */
-    uint8_t r32_lim_db; /* with regs32: 0 (default, 003 §3.7, §5.4) the DB write limits lim_db
+    uint8_t r32_lim_db; /* with regs32: 0 (default, [ASCII-32] §3.7, §5.4) the DB write limits lim_db
                            do not apply to the three 32-bit ranges' DBs; 1: they do */
     /* function set and CPU link */
     uint8_t fset;           /* modcp_fset_t */
-    uint8_t rs485_sel;      /* 000 Table 5-2 "enable operating-mode selection for RS485":
+    uint8_t rs485_sel;      /* [RTU-2009] Table 5-2 "enable operating-mode selection for RS485":
                                0 (default): RS485 two-wire runs in interference suppression
                                (modem) mode only, opmode normal is refused with (0E)22H;
                                1: opmode normal is allowed on RS485 too */
@@ -145,9 +145,9 @@ typedef struct {
     uint8_t cpu_model;      /* modcp_cpu_model_t */
     uint8_t scan_count;     /* indirection scanner: 0 = off, 1 ... 16 */
     /* diagnostics */
-    uint8_t diag_irq; /* diagnostic interrupt records (001 §8.4): 0 off (default), 1 on */
+    uint8_t diag_irq; /* diagnostic interrupt records ([VIPA-341] §8.4): 0 off (default), 1 on */
     uint8_t commloss_auto; /* comm loss: 0 (default) latched until the CPU side resets it
-                              (002 §7, SLF1), 1: cleared by the next valid request */
+                              ([ALTIVAR] §7, SLF1), 1: cleared by the next valid request */
     /* 16-bit members */
     uint16_t ascii_timeout_ms; /* protocol: 1 ... 6500 */
     uint16_t turnaround_ms;    /* interface: RS485 delay before the reply, 0 ... 100 */
@@ -235,7 +235,7 @@ typedef struct {
     uint32_t value;      /* the offending value */
 } modcp_param_issue_t;
 
-/* Defaults of SPEC §2 (no mapping windows, all writes disabled). */
+/* Defaults of docs/parameters.md (no mapping windows, all writes disabled). */
 void modcp_params_defaults(modcp_params_t *p);
 
 /* Serialise to buf (cap bytes). Returns the record length, or 0 if cap is too small. */

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — quantity limits of the bit and register functions by framing and register
- * width (SPEC §4, §5.1; 003 §4.5, §5, §8.5 event (08)32H), and the register width of
- * a holding-register address in the 32-bit scheme (003 §4.5).
+ * width (docs/mapping.md, §5.1; [ASCII-32] §4.5, §5, §8.5 event (08)32H), and the register width of
+ * a holding-register address in the 32-bit scheme ([ASCII-32] §4.5).
  *
  *                      RTU                      ASCII (003: 252 data bytes per frame)
  *   FC01 / FC02        1 ... 2040 bits          1 ... 2008 bits

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — RS232 automatic secondary signals (004 §2.4, 001 §1.6; SPEC §2).
+/* modcp — RS232 automatic secondary signals ([RTU-2003] §2.4, [VIPA-341] §1.6; docs/parameters.md).
  *
  * Only with params.rs232_auto (interface RS232; validation refuses it otherwise):
  *  - configure: DTR = ON (CP ready), RTS = OFF. Not ready / not automatic: both OFF
@@ -52,7 +52,7 @@ typedef struct {
     uint32_t t0_us;        /* start of the running wait */
     bool cts, dsr;         /* inputs as last reported by the port (OFF until reported) */
     bool cts_missing;      /* CTS was not ON when needed ((07)08H, or OFF while sending),
-                              until it is ON again: lights SF with DSR OFF (003 §10.1) */
+                              until it is ON again: lights SF with DSR OFF ([ASCII-32] §10.1) */
     bool rts, dtr;         /* outputs as last set */
     uint16_t aborts;       /* sends and receptions aborted by CTS / DSR */
 } modcp_sig_t;

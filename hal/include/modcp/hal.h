@@ -44,9 +44,9 @@ typedef enum { MODCP_LED_SF = 0, MODCP_LED_TXD = 1, MODCP_LED_RXD = 2 } modcp_le
 
 typedef enum { MODCP_SIG_RTS = 0, MODCP_SIG_DTR = 1 } modcp_signal_t;
 
-/* Receive-line preset of the X27 (RS422 / RS485) interface (000 Table 5-8, 004 §2.3). */
+/* Receive-line preset of the X27 (RS422 / RS485) interface ([RTU-2009] Table 5-8, [RTU-2003] §2.3). */
 typedef enum {
-    MODCP_RXP_DEFAULT = 0, /* by interface (000 Table 5-8): RS422 BREAK, RS485 HIGH */
+    MODCP_RXP_DEFAULT = 0, /* by interface ([RTU-2009] Table 5-8): RS422 BREAK, RS485 HIGH */
     MODCP_RXP_NONE = 1,    /* no bias: the partner provides it */
     MODCP_RXP_BREAK = 2,   /* R(A) 5 V / R(B) 0 V: a broken line is a BREAK level (RS422) */
     MODCP_RXP_HIGH = 3,    /* R(A) 0 V / R(B) 5 V: a broken line is idle, BREAK not seen */
@@ -78,7 +78,7 @@ typedef struct modcp_hal {
      * the aborted transmission. May be NULL: the UART then finishes the frame and its
      * late transmission-complete is ignored. */
     void (*uart_tx_abort)(void *ctx);
-    /* Receive-line preset of RS422 / RS485 (000 Table 5-8, 004 §2.3), set with every
+    /* Receive-line preset of RS422 / RS485 ([RTU-2009] Table 5-8, [RTU-2003] §2.3), set with every
      * valid parameter set: preset is MODCP_RXP_NONE (no bias), MODCP_RXP_BREAK (R(A) 5 V /
      * R(B) 0 V: a broken line shows as BREAK) or MODCP_RXP_HIGH (R(A) 0 V / R(B) 5 V: a
      * broken line looks idle, so the port never sees a BREAK). May be

@@ -120,7 +120,7 @@ static void hal_set_signal(void *ctx, modcp_signal_t sig, bool on)
     }
 }
 
-/* The line as the preset makes it (000 Table 5-8): R(A) 0 V / R(B) 5 V holds a broken
+/* The line as the preset makes it ([RTU-2009] Table 5-8): R(A) 0 V / R(B) 5 V holds a broken
  * or undriven line at idle, so a BREAK on it is not received (decode_rx drops it). */
 static void hal_set_rx_preset(void *ctx, uint8_t preset)
 {

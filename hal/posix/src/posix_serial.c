@@ -272,7 +272,7 @@ static size_t decode(modcp_posix_port_t *p, const uint8_t *in, size_t n, modcp_p
         default:
             p->mark_state = 0;
             if (b == 0u && p->rx_preset == MODCP_RXP_HIGH) {
-                break; /* BREAK on a line held HIGH by the preset (000 Table 5-8): never seen */
+                break; /* BREAK on a line held HIGH by the preset ([RTU-2009] Table 5-8): never seen */
             }
             rx[k].byte = b;
             rx[k].errors = b == 0u ? MODCP_LINE_BREAK : err;

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* Test helpers for Modbus ASCII and the 32-bit register extension (003), on top of
+/* Test helpers for Modbus ASCII and the 32-bit register extension ([ASCII-32]), on top of
  * the world harness (world.h): ASCII frames as text, character timing, the one-shot
- * timer, and a controller laid out for the 003 §4.5 examples. */
+ * timer, and a controller laid out for the [ASCII-32] §4.5 examples. */
 #ifndef MODCP_TEST_ASCII_WORLD_H
 #define MODCP_TEST_ASCII_WORLD_H
 
@@ -17,12 +17,12 @@
 /* The world_example_params() set in ASCII framing, 9600 7E1. */
 void ascii_example_params(modcp_params_t *p);
 
-/* 003 §4.5 32-bit ranges: 3000-4999 int16 -> DB2, 5000-5099 int32 -> DB3,
+/* [ASCII-32] §4.5 32-bit ranges: 3000-4999 int16 -> DB2, 5000-5099 int32 -> DB3,
  * 7000-9999 float -> DB4 (writes: DB limits 2 ... 899) on top of *p. */
 void regs32_example_ranges(modcp_params_t *p);
 
 /* A started world with params p whose controller has DB2 (4000 bytes), DB3 (400),
- * DB4 (12000) as the 003 §4.5 example needs, the FB work DB 80, DB800, DB805 (003
+ * DB4 (12000) as the [ASCII-32] §4.5 example needs, the FB work DB 80, DB800, DB805 ([ASCII-32]
  * §9.12's FC16 target, in place of the harness's DB802) and DB901. Free it with
  * ascii_world_free(). */
 world_t *ascii_world_started(const modcp_params_t *p);

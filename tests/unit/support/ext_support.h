@@ -28,7 +28,7 @@ void ext_bad_crc(world_t *w, uint8_t addr, const char *pdu_hex);
 void ext_line_error(world_t *w, uint8_t flags);
 /* FC08 counter sub-function (0B..12) read through the line. */
 uint16_t ext_counter(world_t *w, uint8_t addr, uint8_t sub);
-/* A started world (CP_START_OK) with params p (NULL: 004 §9 example set). */
+/* A started world (CP_START_OK) with params p (NULL: [RTU-2003] §9 example set). */
 world_t *ext_started(const modcp_params_t *p);
 /* The CP status area as the CPU side reads it. */
 modcp_cp_status_t ext_status(world_t *w);

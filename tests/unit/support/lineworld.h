@@ -45,7 +45,7 @@ typedef struct {
     uint16_t tx_len;
 } lw_t;
 
-/* New world with params p (NULL: the 004 §9 example set), HAL hooked, FB started. */
+/* New world with params p (NULL: the [RTU-2003] §9 example set), HAL hooked, FB started. */
 lw_t *lw_new(const modcp_params_t *p);
 /* The same without starting the FB (hooks installed, time at the world's origin). */
 lw_t *lw_new_unstarted(const modcp_params_t *p);

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* Test world: one CP, one FB, the backplane between them, controller memory laid out
- * for the manual's example parameter set (004 §9), and a fake HAL that records what
+ * for the manual's example parameter set ([RTU-2003] §9), and a fake HAL that records what
  * the CP transmits. Time is simulated. */
 #ifndef MODCP_TEST_WORLD_H
 #define MODCP_TEST_WORLD_H
@@ -47,7 +47,7 @@ typedef struct {
     modcp_fb_out_t fb_out;
 } world_t;
 
-/* The 004 §9 parameter set: slave 5; coils M 0-2047 @ MB1000, Q 2048-2559 @ QB256,
+/* The [RTU-2003] §9 parameter set: slave 5; coils M 0-2047 @ MB1000, Q 2048-2559 @ QB256,
  * T 4096-4607 @ T100, C 4608-5119 @ C200; inputs M 0-4095 @ MB2000, I 4096-5119 @
  * IB128; holding base DB 800, input base DB 900; write limits DB 800-899,
  * MB 1000-1255, QB 256-319 (admit the examples). */
