@@ -276,8 +276,9 @@ void modcp_cp_on_tx_done(modcp_cp_t *cp, uint32_t now_us)
     modcp_link_on_tx_done(&cp->link, now_us); /* TXD off (the last stop bit is out) too */
 }
 
-/* Drop the request in progress, stop the line: the CP is not ready. */
-static void unconfigure(modcp_cp_t *cp)
+/* Drop the request in progress and stop the line (and the RS232 signals): the CP is not
+ * configured; the status area is published in full. */
+static void stop_line(modcp_cp_t *cp)
 {
     if (cp->request_pending) {
         modcp_job_abort(&cp->job);
@@ -288,8 +289,14 @@ static void unconfigure(modcp_cp_t *cp)
     modcp_sig_disable(&cp->sig);
 #endif
     cp->configured = false;
-    cp->env.fb_ready = false;
     cp->publish_all = true; /* signals off; PARAMS clears the buffer, sets param_event */
+}
+
+/* Drop the request in progress, stop the line: the CP is not ready. */
+static void unconfigure(modcp_cp_t *cp)
+{
+    stop_line(cp);
+    cp->env.fb_ready = false;
 }
 
 #if MODCP_SHARED_PARAMS_BUFFER
@@ -303,16 +310,7 @@ static bool params_start(modcp_cp_t *cp)
     if (cp->link.state == MODCP_LINK_TX) {
         return false;
     }
-    if (cp->request_pending) {
-        modcp_job_abort(&cp->job);
-        cp->request_pending = false;
-    }
-    modcp_link_disable(&cp->link);
-#if MODCP_WITH_RS232_SIGNALS
-    modcp_sig_disable(&cp->sig);
-#endif
-    cp->configured = false;
-    cp->publish_all = true;
+    stop_line(cp);
     return true;
 }
 #endif
