@@ -219,20 +219,6 @@ bool sim_fault_parse(sim_fault_t *f, const char *spec, char *err, size_t cap)
     return false;
 }
 
-static int hexval(uint8_t c)
-{
-    if (c >= '0' && c <= '9') {
-        return c - '0';
-    }
-    if (c >= 'A' && c <= 'F') {
-        return c - 'A' + 10;
-    }
-    if (c >= 'a' && c <= 'f') {
-        return c - 'a' + 10;
-    }
-    return -1;
-}
-
 static const char HEX[] = "0123456789ABCDEF";
 
 /* The reply replaced by an exception reply with code. */
@@ -244,8 +230,8 @@ uint16_t exception_frame(const sim_bus_t *b, const uint8_t *in, uint16_t len, ui
         if (len < 5u) {
             return 0;
         }
-        pdu[0] = (uint8_t)((hexval(in[1]) << 4) | hexval(in[2]));
-        pdu[1] = (uint8_t)((hexval(in[3]) << 4) | hexval(in[4]));
+        pdu[0] = (uint8_t)((sim_hex_value(in[1]) << 4) | sim_hex_value(in[2]));
+        pdu[1] = (uint8_t)((sim_hex_value(in[3]) << 4) | sim_hex_value(in[4]));
     } else {
         if (len < 2u) {
             return 0;
@@ -280,7 +266,7 @@ void corrupt_check(const sim_bus_t *b, uint8_t *buf, uint16_t len)
 {
     if (b->line.ascii) {
         if (len >= 4u) { /* the LRC's low digit, before CR LF */
-            int v = hexval(buf[len - 3u]);
+            int v = sim_hex_value(buf[len - 3u]);
             buf[len - 3u] = (uint8_t)HEX[(unsigned)(v < 0 ? 0 : v) ^ 1u];
         }
     } else if (len >= 1u) {

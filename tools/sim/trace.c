@@ -196,7 +196,7 @@ void sim_trace_labels(sim_trace_t *t, const char *rx, const char *tx, const char
     }
 }
 
-static int hexval(uint8_t c)
+int sim_hex_value(uint8_t c)
 {
     if (c >= '0' && c <= '9') {
         return c - '0';
@@ -226,8 +226,8 @@ static bool ascii_decode(const uint8_t *in, size_t n, uint8_t *out, size_t cap, 
     }
     size_t k = 0;
     for (size_t i = 1; i < end; i += 2u) {
-        int hi = hexval(in[i]);
-        int lo = hexval(in[i + 1u]);
+        int hi = sim_hex_value(in[i]);
+        int lo = sim_hex_value(in[i + 1u]);
         if (hi < 0 || lo < 0 || k >= cap) {
             return false;
         }

@@ -61,4 +61,7 @@ void sim_trace_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us);
 /* Meaning of a PDU (pdu[0] = function code) in words. */
 void sim_describe_pdu(const uint8_t *pdu, size_t len, bool reply, char *out, size_t cap);
 
+/* The value of a hex digit 0-9 A-F a-f, -1 for any other character. */
+int sim_hex_value(uint8_t c);
+
 #endif
