@@ -29,7 +29,9 @@
 
 #include "line.h"
 
-#define SIM_BUS_MAX_MEMBERS 16
+#define SIM_BUS_MAX_MEMBERS SIM_LINE_MAX_MEMBERS
+/* modcp members (configs) on one bus: one per Modbus address */
+#define SIM_BUS_MAX_SLAVES 247
 
 typedef struct {
     /* settings (0 = off) */

@@ -448,6 +448,8 @@ int main(int argc, char **argv)
         rc = set_up(s);
     }
     if (rc != 0) {
+        free(s->sets);
+        free(s->faults);
         free(s);
         return rc;
     }
@@ -489,6 +491,8 @@ int main(int argc, char **argv)
     }
     free_members(s);
     int rc_end = !ok ? 1 : s->replay.differ > 0u ? 3 : 0;
+    free(s->sets);
+    free(s->faults);
     free(s);
     return rc_end;
 }

@@ -66,7 +66,6 @@
 #include "latlog.h"
 #include "trace.h"
 
-#define MAX_SETS 32
 #define RX_CHUNK 512
 #define CMD_OUT_MAX 8192
 /* Supervision ticks of the CP thread; nothing on a request's path waits for them. */
@@ -77,7 +76,6 @@
 #define CPU_SPIN_US 50u
 
 #define MAX_MEMBERS SIM_BUS_MAX_MEMBERS
-#define MAX_FAULTS 64
 /* @master: the master's direction of the line (its serial faults) */
 #define MASTER_TARGET (-3)
 
@@ -135,16 +133,17 @@ typedef struct {
 
 struct sim {
     /* options */
-    const char *configs[MAX_MEMBERS];
+    const char *configs[SIM_BUS_MAX_SLAVES];
     size_t n;
     const char *pty_link;
     const char *device;
     const char *script;
     const char *control;
-    const char *sets[MAX_SETS];
+    const char **sets; /* --set and --fault: room for argc each (no limit) */
     size_t set_count;
-    const char *faults[MAX_FAULTS];
+    const char **faults;
     size_t fault_count;
+    size_t arg_cap;
     const char *ext_tty[MAX_MEMBERS]; /* --qemu-member PTY: external members */
     size_t n_ext;
     int ext_fd[MAX_MEMBERS];
