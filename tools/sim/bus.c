@@ -529,8 +529,11 @@ void *sim_bus_thread(void *arg)
     nfds_t nf = 0;
     pf[nf++] = (struct pollfd){b->wake.rd, POLLIN, 0};
     pf[nf++] = (struct pollfd){b->master_fd, POLLIN, 0};
+    /* only external members' ttys: a member of ours hands its reply over (sim_bus_tx);
+     * the paced copy it writes to its own pty is not read (a full pty drops it), so 247
+     * idle ptys cost the bus's poll nothing */
     for (size_t m = 0; m < b->n; m++) {
-        pf[nf++] = (struct pollfd){b->member_fd[m], POLLIN, 0};
+        pf[nf++] = (struct pollfd){b->wake_fd[m] < 0 ? b->member_fd[m] : -1, POLLIN, 0};
     }
     pthread_mutex_lock(&b->mu);
     b->from = now_rel(b);

@@ -62,8 +62,8 @@ typedef struct {
 typedef struct sim_bus sim_bus_t;
 
 /* master_fd: the pty master the master's side opens; member_fd[i]: the far end of
- * member i's pty (what it sends is read and dropped: the bus puts its replies on the
- * line); wake_fd[i]: written when member i has characters to take (sim_bus_take).
+ * member i's pty (what it sends is not read: the bus puts its replies on the line from
+ * sim_bus_tx); wake_fd[i]: written when member i has characters to take (sim_bus_take).
  * wake_fd[i] < 0 makes member i external: member_fd[i] is a tty (a QEMU board's
  * Modbus UART): the line's characters are written to it, and what it writes is put on
  * the line (paced from its arrival; faults do not apply to it).
