@@ -29,6 +29,8 @@
  *                  start with the same memory: only the first is snapshot, the others'
  *                  shadows are copies of it (a whole line of 247 slaves would take minutes
  *                  of snapshots). The final read-back of every slave stays.
+ *   --recover-ms MS  after an error wait MS and drop what the line delivered meanwhile (a
+ *                  reply that came after the timeout is not taken for the next one's).
  *   --expect-errors  (with the default mode) a fault-injecting bus: count errors by kind,
  *                  print them, pass whatever they are (the caller checks the counts).
  * The last line is "N passed, M failed"; exit 0 only when nothing failed. */
@@ -71,6 +73,7 @@ static void gap(void)
 }
 static int nsl;
 static long e_crc, e_timeout, e_exc, e_other;
+static unsigned recover_ms; /* --recover-ms: after an error, silence then flush */
 
 static void count_error(void)
 {
@@ -90,6 +93,11 @@ static void count_error(void)
         e_exc++;
     } else {
         e_other++;
+    }
+    if (recover_ms > 0u) {
+        /* a reply that came late (a stalled host) must not be read as the next one's */
+        usleep(recover_ms * 1000u);
+        (void)modbus_flush(ctx);
     }
 }
 
@@ -344,7 +352,7 @@ int main(int argc, char **argv)
         {"collide", required_argument, 0, 'C'}, {"bench", required_argument, 0, 'X'},
         {"expect-errors", no_argument, 0, 'E'}, {"gap-us", required_argument, 0, 'G'},
         {"max-regs", required_argument, 0, 'R'}, {"max-coils", required_argument, 0, 'K'},
-        {"same-start", no_argument, 0, 'Y'},
+        {"same-start", no_argument, 0, 'Y'}, {"recover-ms", required_argument, 0, 'V'},
         {0, 0, 0, 0}};
     int ch;
     while ((ch = getopt_long(argc, argv, "", lo, NULL)) != -1) {
@@ -358,6 +366,7 @@ int main(int argc, char **argv)
         case 'B': bc = true; break;
         case 'E': expect_errors = true; break;
         case 'Y': same_start = true; break;
+        case 'V': recover_ms = (unsigned)strtoul(optarg, NULL, 10); break;
         case 'R': max_regs = atoi(optarg) < 1 || atoi(optarg) > 125 ? 125 : atoi(optarg); break;
         case 'K': max_coils = atoi(optarg) < 1 || atoi(optarg) > 400 ? 400 : atoi(optarg); break;
         case 'G': gap_us = (unsigned)strtoul(optarg, NULL, 10); break;
@@ -385,7 +394,7 @@ int main(int argc, char **argv)
         }
         default:
             fprintf(stderr, "usage: master_bus --device PATH --slaves 1,2,3|1-247 [--baud B] [--parity E]\n"
-                            "       [--same-start] [--ops N] [--seed N] [--timeout-ms MS] [--broadcast]\n"
+                            "       [--same-start] [--recover-ms MS] [--ops N] [--seed N] [--timeout-ms MS] [--broadcast]\n"
                             "       [--collide ADDR:N] [--bench SECONDS] [--expect-errors]\n"
                             "       [--gap-us US] [--max-regs N] [--max-coils N]\n");
             return 2;

@@ -61,7 +61,8 @@ def main():
              "@s%d answers on the console: %r" % (a.members, last[:1]))
         r = subprocess.run([a.master_bus, "--device", sim.device, "--baud", str(a.baud),
                             "--slaves", "1-%d" % a.members, "--ops", str(a.ops), "--same-start",
-                            "--max-regs", "60", "--max-coils", "200", "--timeout-ms", "2000"],
+                            "--max-regs", "60", "--max-coils", "200", "--timeout-ms", "5000",
+                            "--recover-ms", "100"],
                            capture_output=True, text=True, timeout=3600)
         mixed = [l for l in r.stdout.splitlines() if l.startswith("mixed:")]
         print(mixed[0] if mixed else r.stdout[-2000:], flush=True)
