@@ -2,8 +2,8 @@
 /* master_bus — a libmodbus master on a line with several modcp slaves (modcp-sim with
  * several configs, each a copy of configs/default.ini with its own address).
  *
- *   master_bus --device PATH --slaves 1,2,3 [--baud 9600] [--parity E|O|N]
- *              [--ops 10000] [--seed N] [--timeout-ms 1000]
+ *   master_bus --device PATH --slaves 1,2,3|1-247 [--baud 9600] [--parity E|O|N]
+ *              [--ops 10000] [--seed N] [--timeout-ms 1000] [--same-start]
  *              [--broadcast] [--collide ADDR:N] [--bench SECONDS] [--expect-errors]
  *              [--gap-us US] [--max-regs 125] [--max-coils 400]
  *
@@ -25,6 +25,12 @@
  *                  Passes when no reply was valid and at least one CRC error was seen.
  *   --bench S      FC03 reads of 10 registers from the slaves in turn for S seconds;
  *                  prints transactions per second (not a check).
+ *   --same-start   (with the default mode) the slaves are copies of one configuration and
+ *                  start with the same memory: only the first is snapshot, the others'
+ *                  shadows are copies of it (a whole line of 247 slaves would take minutes
+ *                  of snapshots). The final read-back of every slave stays.
+ *   --recover-ms MS  after an error wait MS and drop what the line delivered meanwhile (a
+ *                  reply that came after the timeout is not taken for the next one's).
  *   --expect-errors  (with the default mode) a fault-injecting bus: count errors by kind,
  *                  print them, pass whatever they are (the caller checks the counts).
  * The last line is "N passed, M failed"; exit 0 only when nothing failed. */
@@ -42,7 +48,7 @@
 
 #include "master_util.h"
 
-#define MAX_SLAVES 16
+#define MAX_SLAVES 247 /* every Modbus address */
 #define NREGS 1536
 #define NCOILS 2048
 
@@ -67,6 +73,7 @@ static void gap(void)
 }
 static int nsl;
 static long e_crc, e_timeout, e_exc, e_other;
+static unsigned recover_ms; /* --recover-ms: after an error, silence then flush */
 
 static void count_error(void)
 {
@@ -86,6 +93,11 @@ static void count_error(void)
         e_exc++;
     } else {
         e_other++;
+    }
+    if (recover_ms > 0u) {
+        /* a reply that came late (a stalled host) must not be read as the next one's */
+        usleep(recover_ms * 1000u);
+        (void)modbus_flush(ctx);
     }
 }
 
@@ -126,14 +138,42 @@ static unsigned rnd(unsigned n)
     return (unsigned)rand() % n;
 }
 
-static int mixed(long ops, bool expect_errors)
+static bool same_start;
+
+static void snapshot(void)
 {
     for (int i = 0; i < nsl; i++) {
+        if (same_start && i > 0) {
+            memcpy(sl[i].regs, sl[0].regs, sizeof sl[i].regs);
+            memcpy(sl[i].coils, sl[0].coils, sizeof sl[i].coils);
+            continue;
+        }
         ok(rd_regs(sl[i].addr, 0, NREGS, sl[i].regs), "slave %d: snapshot registers 0..%d",
            sl[i].addr, NREGS - 1);
         ok(rd_bits(sl[i].addr, 0, NCOILS, sl[i].coils), "slave %d: snapshot coils 0..%d",
            sl[i].addr, NCOILS - 1);
     }
+}
+
+static void print_per(const long *per)
+{
+    if (nsl <= 16) {
+        for (int i = 0; i < nsl; i++) {
+            printf("%s%d: %ld", i > 0 ? ", " : "", sl[i].addr, per[i]);
+        }
+        return;
+    }
+    long lo = per[0], hi = per[0];
+    for (int i = 1; i < nsl; i++) {
+        lo = per[i] < lo ? per[i] : lo;
+        hi = per[i] > hi ? per[i] : hi;
+    }
+    printf("%ld..%ld each", lo, hi);
+}
+
+static int mixed(long ops, bool expect_errors)
+{
+    snapshot();
     long mismatches = 0, errors = 0, per[MAX_SLAVES] = {0};
     double t0 = now_s();
     for (long op = 0; op < ops; op++) {
@@ -205,9 +245,7 @@ static int mixed(long ops, bool expect_errors)
     }
     double dt = now_s() - t0;
     printf("mixed: %ld requests to %d slaves (", ops, nsl);
-    for (int i = 0; i < nsl; i++) {
-        printf("%s%d: %ld", i > 0 ? ", " : "", sl[i].addr, per[i]);
-    }
+    print_per(per);
     printf(") in %.1f s, %.0f/s; %ld mismatches, %ld errors (CRC %ld, timeout %ld, exception %ld, "
            "other %ld)\n",
            dt, dt > 0 ? (double)ops / dt : 0.0, mismatches, errors, e_crc, e_timeout, e_exc, e_other);
@@ -314,6 +352,7 @@ int main(int argc, char **argv)
         {"collide", required_argument, 0, 'C'}, {"bench", required_argument, 0, 'X'},
         {"expect-errors", no_argument, 0, 'E'}, {"gap-us", required_argument, 0, 'G'},
         {"max-regs", required_argument, 0, 'R'}, {"max-coils", required_argument, 0, 'K'},
+        {"same-start", no_argument, 0, 'Y'}, {"recover-ms", required_argument, 0, 'V'},
         {0, 0, 0, 0}};
     int ch;
     while ((ch = getopt_long(argc, argv, "", lo, NULL)) != -1) {
@@ -326,6 +365,8 @@ int main(int argc, char **argv)
         case 't': timeout_ms = atoi(optarg); break;
         case 'B': bc = true; break;
         case 'E': expect_errors = true; break;
+        case 'Y': same_start = true; break;
+        case 'V': recover_ms = (unsigned)strtoul(optarg, NULL, 10); break;
         case 'R': max_regs = atoi(optarg) < 1 || atoi(optarg) > 125 ? 125 : atoi(optarg); break;
         case 'K': max_coils = atoi(optarg) < 1 || atoi(optarg) > 400 ? 400 : atoi(optarg); break;
         case 'G': gap_us = (unsigned)strtoul(optarg, NULL, 10); break;
@@ -337,17 +378,23 @@ int main(int argc, char **argv)
             }
             break;
         case 'S': {
-            char *save = NULL, buf[128];
+            char *save = NULL, buf[2048];
             snprintf(buf, sizeof buf, "%s", optarg);
-            for (char *t = strtok_r(buf, ",", &save); t != NULL && nsl < MAX_SLAVES;
+            for (char *t = strtok_r(buf, ",", &save); t != NULL;
                  t = strtok_r(NULL, ",", &save)) {
-                sl[nsl++].addr = atoi(t);
+                int first = 0, last = 0; /* A or A-B */
+                if (sscanf(t, "%d-%d", &first, &last) != 2) {
+                    last = first = atoi(t);
+                }
+                for (int a = first; a <= last && nsl < MAX_SLAVES; a++) {
+                    sl[nsl++].addr = a;
+                }
             }
             break;
         }
         default:
-            fprintf(stderr, "usage: master_bus --device PATH --slaves 1,2,3 [--baud B] [--parity E]\n"
-                            "       [--ops N] [--seed N] [--timeout-ms MS] [--broadcast]\n"
+            fprintf(stderr, "usage: master_bus --device PATH --slaves 1,2,3|1-247 [--baud B] [--parity E]\n"
+                            "       [--same-start] [--recover-ms MS] [--ops N] [--seed N] [--timeout-ms MS] [--broadcast]\n"
                             "       [--collide ADDR:N] [--bench SECONDS] [--expect-errors]\n"
                             "       [--gap-us US] [--max-regs N] [--max-coils N]\n");
             return 2;

@@ -141,6 +141,9 @@ sender_t *new_sender(sim_bus_t *b)
     for (size_t i = 0; i < MAX_SENDERS; i++) {
         if (!b->s[i].used) {
             memset(&b->s[i], 0, sizeof b->s[i]); /* no faults of its last use */
+            if (i + 1u > b->s_hi) {
+                b->s_hi = i + 1u;
+            }
             return &b->s[i];
         }
     }
@@ -283,7 +286,7 @@ static void external_tx(sim_bus_t *b, size_t m, const uint8_t *buf, size_t n, do
 {
     pthread_mutex_lock(&b->mu);
     sender_t *s = NULL;
-    for (size_t i = 0; i < MAX_SENDERS; i++) {
+    for (size_t i = 0; i < b->s_hi; i++) {
         if (b->s[i].used && b->s[i].who == (int)m && end_of(b, &b->s[i]) + b->c_us >= now) {
             s = &b->s[i];
         }
@@ -311,7 +314,7 @@ static void external_tx(sim_bus_t *b, size_t m, const uint8_t *buf, size_t n, do
 /* Is member m sending at any time in [a, z)? (then its transceiver does not hear) */
 static bool member_sending(const sim_bus_t *b, size_t m, double a, double z)
 {
-    for (size_t i = 0; i < MAX_SENDERS; i++) {
+    for (size_t i = 0; i < b->s_hi; i++) {
         const sender_t *s = &b->s[i];
         if (s->used && s->who == (int)m && s->t0 < z && end_of(b, s) > a) {
             return true;
@@ -358,10 +361,11 @@ static double emit_due(sim_bus_t *b, double now, bool *later)
             mol = 0;
         }
         mo[mol++] = ch.errors != 0u ? 0u : ch.byte; /* as termios reads it (INPCK, no PARMRK) */
-        uint32_t deaf = 0;
+        mset_t deaf;
+        memset(&deaf, 0, sizeof deaf);
         for (size_t m = 0; m < b->n; m++) {
             if (member_sending(b, m, ch.start, at)) {
-                deaf |= 1u << m;
+                mset_add(&deaf, m);
             }
         }
         b->mbuf[b->mlen] = ch.byte;
@@ -379,7 +383,7 @@ static double emit_due(sim_bus_t *b, double now, bool *later)
             b->heard[b->heard_len++] = ch.byte;
         }
         b->heard_end = at;
-        b->heard_mask |= ch.mask;
+        mset_or(&b->heard_mask, &ch.mask);
         if (ch.senders > 1u) {
             b->heard_collided = true;
         }
@@ -390,11 +394,14 @@ static double emit_due(sim_bus_t *b, double now, bool *later)
     members_flush(b); /* nothing follows back to back */
     master_write(b, mo, mol);
     /* senders the receiver is done with */
-    for (size_t i = 0; i < MAX_SENDERS; i++) {
+    for (size_t i = 0; i < b->s_hi; i++) {
         if (b->s[i].used && end_of(b, &b->s[i]) <= b->from + 0.5 * b->bit_us &&
             end_of(b, &b->s[i]) <= now) {
             b->s[i].used = false;
         }
+    }
+    while (b->s_hi > 0u && !b->s[b->s_hi - 1u].used) {
+        b->s_hi--;
     }
     if (b->heard_len > 0u && now - b->heard_end >= (double)b->line.t35_us) {
         heard_flush(b);
@@ -522,8 +529,11 @@ void *sim_bus_thread(void *arg)
     nfds_t nf = 0;
     pf[nf++] = (struct pollfd){b->wake.rd, POLLIN, 0};
     pf[nf++] = (struct pollfd){b->master_fd, POLLIN, 0};
+    /* only external members' ttys: a member of ours hands its reply over (sim_bus_tx);
+     * the paced copy it writes to its own pty is not read (a full pty drops it), so 247
+     * idle ptys cost the bus's poll nothing */
     for (size_t m = 0; m < b->n; m++) {
-        pf[nf++] = (struct pollfd){b->member_fd[m], POLLIN, 0};
+        pf[nf++] = (struct pollfd){b->wake_fd[m] < 0 ? b->member_fd[m] : -1, POLLIN, 0};
     }
     pthread_mutex_lock(&b->mu);
     b->from = now_rel(b);

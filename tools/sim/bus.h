@@ -29,7 +29,9 @@
 
 #include "line.h"
 
-#define SIM_BUS_MAX_MEMBERS 16
+#define SIM_BUS_MAX_MEMBERS SIM_LINE_MAX_MEMBERS
+/* modcp members (configs) on one bus: one per Modbus address */
+#define SIM_BUS_MAX_SLAVES 247
 
 typedef struct {
     /* settings (0 = off) */
@@ -60,8 +62,8 @@ typedef struct {
 typedef struct sim_bus sim_bus_t;
 
 /* master_fd: the pty master the master's side opens; member_fd[i]: the far end of
- * member i's pty (what it sends is read and dropped: the bus puts its replies on the
- * line); wake_fd[i]: written when member i has characters to take (sim_bus_take).
+ * member i's pty (what it sends is not read: the bus puts its replies on the line from
+ * sim_bus_tx); wake_fd[i]: written when member i has characters to take (sim_bus_take).
  * wake_fd[i] < 0 makes member i external: member_fd[i] is a tty (a QEMU board's
  * Modbus UART): the line's characters are written to it, and what it writes is put on
  * the line (paced from its arrival; faults do not apply to it).

@@ -67,7 +67,7 @@ static int sender_level(const sim_bus_t *b, const sender_t *s, double tau)
 
 static int line_level(const sim_bus_t *b, double tau)
 {
-    for (size_t i = 0; i < MAX_SENDERS; i++) {
+    for (size_t i = 0; i < b->s_hi; i++) {
         if (b->s[i].used && sender_level(b, &b->s[i], tau) == 0) {
             return 0;
         }
@@ -104,7 +104,7 @@ static bool sender_first_low(const sim_bus_t *b, const sender_t *s, double from,
 static bool next_start(const sim_bus_t *b, double from, double *ts)
 {
     bool found = false;
-    for (size_t i = 0; i < MAX_SENDERS; i++) {
+    for (size_t i = 0; i < b->s_hi; i++) {
         double at;
         if (b->s[i].used && sender_first_low(b, &b->s[i], from, &at) && (!found || at < *ts)) {
             *ts = at;
@@ -163,14 +163,14 @@ bool decode_next(const sim_bus_t *b, rxchar_t *out)
         }
         sample(b, ts, out);
         out->start = ts;
-        out->mask = 0;
+        memset(&out->mask, 0, sizeof out->mask);
         out->senders = 0;
-        for (size_t i = 0; i < MAX_SENDERS; i++) {
+        for (size_t i = 0; i < b->s_hi; i++) {
             const sender_t *s = &b->s[i];
             if (s->used && s->t0 < ts + out->len_us && end_of(b, s) > ts) {
                 out->senders++;
                 if (s->who >= 0) {
-                    out->mask |= 1u << (unsigned)s->who;
+                    mset_add(&out->mask, (size_t)s->who);
                 }
             }
         }

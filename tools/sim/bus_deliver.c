@@ -7,7 +7,7 @@ void heard_flush(sim_bus_t *b)
 {
     if (b->heard_len > 0u && !b->heard_collided && atomic_load(&b->trace_on)) {
         for (size_t m = 0; m < b->n; m++) { /* an external member's reply, as heard */
-            if (b->wake_fd[m] < 0 && b->heard_mask == (1u << m)) {
+            if (b->wake_fd[m] < 0 && mset_only(&b->heard_mask, m)) {
                 char label[48];
                 snprintf(label, sizeof label, "@%s (external)", b->names[m]);
                 sim_trace_frame(&b->tr, label, b->heard, b->heard_len, true,
@@ -17,7 +17,7 @@ void heard_flush(sim_bus_t *b)
     }
     if (b->heard_len > 0u && b->heard_collided) {
         for (size_t m = 0; m < b->n; m++) {
-            if ((b->heard_mask & (1u << m)) != 0u) {
+            if (mset_has(&b->heard_mask, m)) {
                 b->fault[m].collisions++;
             }
         }
@@ -25,9 +25,14 @@ void heard_flush(sim_bus_t *b)
             char label[160];
             size_t pos = (size_t)snprintf(label, sizeof label, "collision");
             for (size_t m = 0; m < b->n; m++) {
-                if ((b->heard_mask & (1u << m)) != 0u) {
-                    pos += (size_t)snprintf(label + pos, sizeof label - pos, " @%s", b->names[m]);
+                if (!mset_has(&b->heard_mask, m)) {
+                    continue;
                 }
+                if (pos + 32u > sizeof label) { /* 247 members fit no line */
+                    pos += (size_t)snprintf(label + pos, sizeof label - pos, " ...");
+                    break;
+                }
+                pos += (size_t)snprintf(label + pos, sizeof label - pos, " @%s", b->names[m]);
             }
             snprintf(label + pos, sizeof label - pos, ", the line carried");
             sim_trace_frame(&b->tr, label, b->heard, b->heard_len, true, (uint64_t)b->heard_t0,
@@ -36,7 +41,7 @@ void heard_flush(sim_bus_t *b)
     }
     b->heard_len = 0;
     b->heard_collided = false;
-    b->heard_mask = 0;
+    memset(&b->heard_mask, 0, sizeof b->heard_mask);
 }
 
 static void write_all(int fd, const uint8_t *p, size_t n)
@@ -133,7 +138,7 @@ void members_flush(sim_bus_t *b)
         double t[SIM_TRACE_MAX];
         size_t k = 0;
         for (size_t i = 0; i < b->mlen; i++) {
-            if ((b->mdeaf[i] & (1u << m)) == 0u) {
+            if (!mset_has(&b->mdeaf[i], m)) {
                 t[k] = b->mt[i];
                 err[k] = b->merr[i];
                 out[k++] = b->mbuf[i];

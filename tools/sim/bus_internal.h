@@ -21,7 +21,40 @@
 #include "modcp/hal_posix.h"
 #include "trace.h"
 
-#define MAX_SENDERS 32
+/* transmissions on the line at once (every member's reply, noise, fault pieces); the
+ * loops run to the high-water mark s_hi only */
+#define MAX_SENDERS (SIM_BUS_MAX_MEMBERS + 64)
+
+/* a set of members (any number up to SIM_BUS_MAX_MEMBERS) */
+#define MSET_WORDS ((SIM_BUS_MAX_MEMBERS + 63) / 64)
+typedef struct {
+    uint64_t w[MSET_WORDS];
+} mset_t;
+static inline void mset_add(mset_t *s, size_t m)
+{
+    s->w[m / 64u] |= (uint64_t)1u << (m % 64u);
+}
+static inline bool mset_has(const mset_t *s, size_t m)
+{
+    return (s->w[m / 64u] & ((uint64_t)1u << (m % 64u))) != 0u;
+}
+static inline void mset_or(mset_t *a, const mset_t *b)
+{
+    for (size_t i = 0; i < MSET_WORDS; i++) {
+        a->w[i] |= b->w[i];
+    }
+}
+/* s is exactly {m} */
+static inline bool mset_only(const mset_t *s, size_t m)
+{
+    for (size_t i = 0; i < MSET_WORDS; i++) {
+        uint64_t want = i == m / 64u ? (uint64_t)1u << (m % 64u) : 0u;
+        if (s->w[i] != want) {
+            return false;
+        }
+    }
+    return true;
+}
 #define NOISE (-1)
 #define SPIN_US 50.0
 
@@ -73,6 +106,7 @@ struct sim_bus {
 
     pthread_mutex_t mu; /* everything below */
     sender_t s[MAX_SENDERS];
+    size_t s_hi; /* s[s_hi..] are unused */
     double from; /* the receiver looks for the next start bit from here */
     sim_fault_t fault[SIM_BUS_MAX_MEMBERS];
     sim_fault_t mfault; /* the master's direction (@master) */
@@ -85,13 +119,13 @@ struct sim_bus {
     size_t heard_len;
     double heard_t0, heard_end;
     bool heard_collided;
-    uint32_t heard_mask; /* members that sent during the frame */
+    mset_t heard_mask; /* members that sent during the frame */
     /* the characters for the members, handed over when the line pauses: a member's
      * core cuts frames by t1.5 / t3.5 of its own clock, so a late wake-up of the bus
      * thread must not open a gap inside a frame it hears (a UART never does) */
     uint8_t mbuf[SIM_TRACE_MAX];
     uint8_t merr[SIM_TRACE_MAX]; /* MODCP_LINE_* of each */
-    uint32_t mdeaf[SIM_TRACE_MAX]; /* members sending while the character was on the line */
+    mset_t mdeaf[SIM_TRACE_MAX]; /* members sending while the character was on the line */
     double mt[SIM_TRACE_MAX];      /* end of its stop bit */
     size_t mlen;
     sim_trace_t tr;      /* bus thread only (after init) */
@@ -104,7 +138,7 @@ struct sim_bus {
 typedef struct {
     double start; /* start bit's falling edge */
     uint8_t byte;
-    uint32_t mask;   /* members sending during the character */
+    mset_t mask;     /* members sending during the character */
     unsigned senders; /* senders (members and noise) during it */
     uint8_t errors;  /* MODCP_LINE_PARITY / _FRAMING / _BREAK as the receiver found it */
     double len_us;   /* a BREAK's length (else one character) */

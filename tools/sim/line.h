@@ -23,7 +23,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#define SIM_LINE_MAX_MEMBERS 16
+/* every Modbus address (1..247) plus QEMU members: no bitmask or array limits below this */
+#define SIM_LINE_MAX_MEMBERS 256
 #define SIM_LINE_QUEUE 4096
 #define SIM_LINE_MAX_OBSERVERS 4
 

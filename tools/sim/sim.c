@@ -6,28 +6,30 @@
  *             [--script FILE] [--cycle-ms N] [--set section.key=value]... [--control FIFO]
  *             [--bus] [--fault [@M:]KIND=VALUE]... [--seed N] [--qemu-member PTY]...
  *
- * Every slave (member) is one modcp_cp_t + modcp_fb_t with its own threads below; with
- * one config and no --bus / --fault it owns the pty itself, else each member gets a pty
- * of its own and a bus thread joins them, any --qemu-member board's UART pty and the
+ * Every slave (member, up to 247: one per Modbus address) is one modcp_cp_t + modcp_fb_t;
+ * with one config and no --bus / --fault it owns the pty itself, else each member gets a
+ * pty of its own and a bus thread joins them, any --qemu-member board's UART pty and the
  * master's pty into one line.
  *
- * Two threads joined only by the backplane (modcp_backplane_t):
- *   CP thread   the CP side: waits on the UART, the one-shot timer and the paced
- *               reply bytes (POSIX HAL) and feeds modcp_cp_on_rx / _on_timer /
- *               _on_tx_done / _poll with CLOCK_MONOTONIC microseconds. It sleeps until
- *               one of those events or a wake-up from the CPU thread; a supervision
- *               tick (1 ms while a job runs, else 5 ms) only drives job timeouts,
- *               comm-loss supervision and the LEDs. While a job is out it watches
- *               for the reply around the CPU thread's next FB call (port.expect_us);
- *               when it put blocks for the CPU side it signals the CPU thread
- *               (cpu_irq, the "backplane interrupt").
- *   CPU thread  the controller: a cyclic user program that calls modcp_fb_call every
- *               cycle_ms (CP_START set from the first cycle on, like OB100) and executes
- *               queued console commands between two calls; with blocks from the CP
- *               waiting it watches the clock for the last CPU_SPIN_US before the
- *               call. When an FB call moved blocks on the backplane (a reply or
- *               parameters put, job blocks taken) it wakes the CP thread
- *               (modcp_posix_wake).
+ * The two sides of a member are joined only by the backplane (modcp_backplane_t):
+ *   CP thread   one per member, the CP side: waits on the UART, the one-shot timer and
+ *               the paced reply bytes (POSIX HAL) and feeds modcp_cp_on_rx / _on_timer /
+ *               _on_tx_done / _poll with CLOCK_MONOTONIC microseconds, holding cp_mu
+ *               while it runs the core. It sleeps until one of those events or a
+ *               wake-up from the scheduler; a supervision tick (1 ms while a job runs,
+ *               5 ms while a request or the start-up is in progress) drives job
+ *               timeouts; a quiet CP (nothing to do) sleeps until it has work, and the
+ *               scheduler's shared tick polls it (comm-loss supervision, LEDs). While a
+ *               job is out it watches for the reply around the member's next FB call
+ *               (port.expect_us); when it put blocks for the CPU side it signals the
+ *               scheduler (sched_irq, the "backplane interrupt").
+ *   scheduler   one thread for every member's CPU side (sim_sched.c): each member's
+ *               cyclic user program calls modcp_fb_call every cycle_ms of that member
+ *               (CP_START set from the first cycle on, like OB100) and executes queued
+ *               console commands between two calls; with blocks from the CP waiting it
+ *               watches the clock for the last CPU_SPIN_US before the call. When an FB
+ *               call moved blocks on the backplane (a reply or parameters put, job
+ *               blocks taken) it wakes the member's CP thread (modcp_posix_wake).
  * The parameter record travels from the CPU side to the CP over the backplane (the FB
  * sends it); the main thread reads the console (stdin, --script, --control FIFO). The
  * tool keeps a mutex-protected snapshot of the CP's diagnostics for the console. */
@@ -221,6 +223,10 @@ static bool make_bus(sim_t *s, const modcp_params_t *p0, uint32_t char_us)
 /* Each member: the two sides and the interface between them. */
 static bool init_sides(sim_t *s)
 {
+    if (modcp_posix_event_open(&s->sched_irq) != 0) {
+        fprintf(stderr, "modcp-sim: cannot make a pipe\n");
+        return false;
+    }
     pthread_condattr_t ca;
     pthread_condattr_init(&ca);
     pthread_condattr_setclock(&ca, CLOCK_MONOTONIC);
@@ -235,10 +241,8 @@ static bool init_sides(sim_t *s)
         pthread_mutex_init(&m->snap_mu, NULL);
         pthread_mutex_init(&m->cmd_mu, NULL);
         pthread_cond_init(&m->cmd_cv, &ca);
-        if (modcp_posix_event_open(&m->cpu_irq) != 0) {
-            fprintf(stderr, "modcp-sim: cannot make a pipe\n");
-            return false;
-        }
+        pthread_mutex_init(&m->cp_mu, NULL);
+        atomic_init(&m->cp_quiet, false);
         modcp_bp_init(&m->bp);
         modcp_cp_init(&m->cp, &m->hal, &m->bp);
         modcp_fb_init(&m->fb, &m->bp, &m->memory.mem, m->record, m->record_len,
@@ -351,7 +355,8 @@ static void print_startup(sim_t *s, const modcp_params_t *p0)
     }
 }
 
-/* The bus thread and every member's two threads; returns how many members started. */
+/* The bus thread, every member's CP thread and the scheduler (every member's CPU side);
+ * returns how many members started (0 when the scheduler did not). */
 static size_t start_threads(sim_t *s, modcp_posix_thread_t *t_bus, bool *ok)
 {
     *ok = true;
@@ -361,18 +366,21 @@ static size_t start_threads(sim_t *s, modcp_posix_thread_t *t_bus, bool *ok)
     s->cpu_t0_us64 = modcp_posix_now_us64();
     size_t started = 0;
     for (size_t i = 0; *ok && i < s->n; i++) {
-        member_t *m = &s->m[i];
-        *ok = modcp_posix_thread_start(&m->t_cp, cp_thread, m) == 0;
-        if (*ok) {
-            *ok = modcp_posix_thread_start(&m->t_cpu, cpu_thread, m) == 0;
-            if (!*ok) {
-                atomic_store(&s->stop, true);
-                modcp_posix_thread_join(&m->t_cp);
-            }
-        }
+        *ok = modcp_posix_thread_start(&s->m[i].t_cp, cp_thread, &s->m[i]) == 0;
         if (*ok) {
             started++;
         }
+    }
+    if (*ok && modcp_posix_thread_start(&s->t_sched, sched_thread, s) != 0) {
+        *ok = false;
+    }
+    if (!*ok) {
+        atomic_store(&s->stop, true);
+        for (size_t i = 0; i < started; i++) {
+            modcp_posix_wake(&s->m[i].port);
+            modcp_posix_thread_join(&s->m[i].t_cp);
+        }
+        started = 0;
     }
     return started;
 }
@@ -380,16 +388,18 @@ static size_t start_threads(sim_t *s, modcp_posix_thread_t *t_bus, bool *ok)
 static void stop_threads(sim_t *s, size_t started, modcp_posix_thread_t *t_bus)
 {
     atomic_store(&s->stop, true);
+    if (started > 0u) {
+        modcp_posix_event_signal(&s->sched_irq);
+        modcp_posix_thread_join(&s->t_sched);
+    }
     for (size_t i = 0; i < started; i++) {
         member_t *m = &s->m[i];
         modcp_posix_wake(&m->port);
-        modcp_posix_event_signal(&m->cpu_irq);
         pthread_mutex_lock(&m->cmd_mu);
         pthread_cond_broadcast(&m->cmd_cv);
         pthread_mutex_unlock(&m->cmd_mu);
     }
     for (size_t i = 0; i < started; i++) {
-        modcp_posix_thread_join(&s->m[i].t_cpu);
         modcp_posix_thread_join(&s->m[i].t_cp);
     }
     if (s->bus != NULL) {
@@ -401,9 +411,9 @@ static void stop_threads(sim_t *s, size_t started, modcp_posix_thread_t *t_bus)
     }
     for (size_t i = 0; i < s->n; i++) {
         modcp_posix_close(&s->m[i].port);
-        modcp_posix_event_close(&s->m[i].cpu_irq);
         sim_latlog_close(&s->m[i].lat);
     }
+    modcp_posix_event_close(&s->sched_irq);
 }
 
 /* Everything opened and set up; 0 or the exit code (cleaned up but s). */
@@ -442,12 +452,15 @@ int main(int argc, char **argv)
     atomic_init(&s->stop, false);
     atomic_init(&s->trace_on, false);
     atomic_init(&s->ready_count, 0);
+    atomic_init(&s->cmds, false);
     int rc = parse_args(s, argc, argv);
     if (rc == 0) {
         pthread_mutex_init(&s->print_mu, NULL);
         rc = set_up(s);
     }
     if (rc != 0) {
+        free(s->sets);
+        free(s->faults);
         free(s);
         return rc < 0 ? 0 : rc; /* -1: --version printed */
     }
@@ -489,6 +502,8 @@ int main(int argc, char **argv)
     }
     free_members(s);
     int rc_end = !ok ? 1 : s->replay.differ > 0u ? 3 : 0;
+    free(s->sets);
+    free(s->faults);
     free(s);
     return rc_end;
 }

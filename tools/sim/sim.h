@@ -6,28 +6,30 @@
  *             [--script FILE] [--cycle-ms N] [--set section.key=value]... [--control FIFO]
  *             [--bus] [--fault [@M:]KIND=VALUE]... [--seed N] [--qemu-member PTY]...
  *
- * Every slave (member) is one modcp_cp_t + modcp_fb_t with its own threads below; with
- * one config and no --bus / --fault it owns the pty itself, else each member gets a pty
- * of its own and a bus thread joins them, any --qemu-member board's UART pty and the
+ * Every slave (member, up to 247: one per Modbus address) is one modcp_cp_t + modcp_fb_t;
+ * with one config and no --bus / --fault it owns the pty itself, else each member gets a
+ * pty of its own and a bus thread joins them, any --qemu-member board's UART pty and the
  * master's pty into one line.
  *
- * Two threads joined only by the backplane (modcp_backplane_t):
- *   CP thread   the CP side: waits on the UART, the one-shot timer and the paced
- *               reply bytes (POSIX HAL) and feeds modcp_cp_on_rx / _on_timer /
- *               _on_tx_done / _poll with CLOCK_MONOTONIC microseconds. It sleeps until
- *               one of those events or a wake-up from the CPU thread; a supervision
- *               tick (1 ms while a job runs, else 5 ms) only drives job timeouts,
- *               comm-loss supervision and the LEDs. While a job is out it watches
- *               for the reply around the CPU thread's next FB call (port.expect_us);
- *               when it put blocks for the CPU side it signals the CPU thread
- *               (cpu_irq, the "backplane interrupt").
- *   CPU thread  the controller: a cyclic user program that calls modcp_fb_call every
- *               cycle_ms (CP_START set from the first cycle on, like OB100) and executes
- *               queued console commands between two calls; with blocks from the CP
- *               waiting it watches the clock for the last CPU_SPIN_US before the
- *               call. When an FB call moved blocks on the backplane (a reply or
- *               parameters put, job blocks taken) it wakes the CP thread
- *               (modcp_posix_wake).
+ * The two sides of a member are joined only by the backplane (modcp_backplane_t):
+ *   CP thread   one per member, the CP side: waits on the UART, the one-shot timer and
+ *               the paced reply bytes (POSIX HAL) and feeds modcp_cp_on_rx / _on_timer /
+ *               _on_tx_done / _poll with CLOCK_MONOTONIC microseconds, holding cp_mu
+ *               while it runs the core. It sleeps until one of those events or a
+ *               wake-up from the scheduler; a supervision tick (1 ms while a job runs,
+ *               5 ms while a request or the start-up is in progress) drives job
+ *               timeouts; a quiet CP (nothing to do) sleeps until it has work, and the
+ *               scheduler's shared tick polls it (comm-loss supervision, LEDs). While a
+ *               job is out it watches for the reply around the member's next FB call
+ *               (port.expect_us); when it put blocks for the CPU side it signals the
+ *               scheduler (sched_irq, the "backplane interrupt").
+ *   scheduler   one thread for every member's CPU side (sim_sched.c): each member's
+ *               cyclic user program calls modcp_fb_call every cycle_ms of that member
+ *               (CP_START set from the first cycle on, like OB100) and executes queued
+ *               console commands between two calls; with blocks from the CP waiting it
+ *               watches the clock for the last CPU_SPIN_US before the call. When an FB
+ *               call moved blocks on the backplane (a reply or parameters put, job
+ *               blocks taken) it wakes the member's CP thread (modcp_posix_wake).
  * The parameter record travels from the CPU side to the CP over the backplane (the FB
  * sends it); the main thread reads the console (stdin, --script, --control FIFO). The
  * tool keeps a mutex-protected snapshot of the CP's diagnostics for the console. */
@@ -66,22 +68,30 @@
 #include "latlog.h"
 #include "trace.h"
 
-#define MAX_SETS 32
 #define RX_CHUNK 512
 #define CMD_OUT_MAX 8192
-/* Supervision ticks of the CP thread; nothing on a request's path waits for them. */
+/* Supervision ticks of the CP side; nothing on a request's path waits for them. A CP
+ * with nothing to do (no job, no request, no timer, no reply on the line: "quiet") is
+ * not woken by its own tick: the scheduler visits every quiet CP on one shared tick of
+ * QUIET_TICK_US, and its thread sleeps until it has work (QUIET_MAX_US at most). */
 #define IDLE_TICK_US 5000u
+#define QUIET_TICK_US 10000u
 #define BUSY_TICK_US 1000u
+#define QUIET_MAX_US 1000000u
 /* The CPU thread watches the clock for the last CPU_SPIN_US before an FB call that
  * blocks from the CP wait for (only then). */
 #define CPU_SPIN_US 50u
 
 #define MAX_MEMBERS SIM_BUS_MAX_MEMBERS
-#define MAX_FAULTS 64
 /* @master: the master's direction of the line (its serial faults) */
 #define MASTER_TARGET (-3)
 
 typedef struct sim sim_t;
+
+typedef struct {
+    uint8_t last_state;
+    bool ready_printed, counted;
+} cpu_report_t;
 
 /* One slave: its configuration, CP, FB and the threads that run them. */
 typedef struct {
@@ -121,30 +131,34 @@ typedef struct {
     char cmd_out[CMD_OUT_MAX];
     bool cmd_pending;
     bool cmd_done;
-    modcp_posix_thread_t t_cp, t_cpu;
-    /* the CPU thread's wake-up: a console command, the stop, or the CP side's
-     * "backplane interrupt" (the CP put blocks for the CPU side) */
-    modcp_posix_event_t cpu_irq;
-    uint32_t cp_put_seen; /* CP thread: to_cpu.head when it last interrupted */
-    atomic_uint cpu_due; /* CPU thread: when its next FB call is due (us, low 32 bits) */
-    atomic_int cpu_core; /* CPU thread: the processor it last ran on (-1: unknown) */
-    atomic_bool cpu_calls; /* CPU thread: the FB is called (not paused) */
+    modcp_posix_thread_t t_cp;
+    /* the CP side runs under cp_mu: its own thread with work, or the scheduler's shared
+     * tick while the thread sleeps quiet (cp_quiet) */
+    pthread_mutex_t cp_mu;
+    atomic_bool cp_quiet;
+    uint32_t cp_put_seen; /* CP side: to_cpu.head when it last interrupted */
+    uint64_t cpu_next; /* scheduler: when this member's next FB call is due (us) */
+    cpu_report_t rep;  /* scheduler: the FB state last reported */
+    atomic_uint cpu_due; /* scheduler: cpu_next's low 32 bits (for the CP side) */
+    atomic_int cpu_core; /* scheduler: the processor it last ran on (-1: unknown) */
+    atomic_bool cpu_calls; /* scheduler: the FB is called (not paused) */
     uint32_t core_t; /* on a bus: the last time passed to the core */
     sim_latlog_t lat; /* MODCP_SIM_LATLOG: stage time stamps of every reply */
 } member_t;
 
 struct sim {
     /* options */
-    const char *configs[MAX_MEMBERS];
+    const char *configs[SIM_BUS_MAX_SLAVES];
     size_t n;
     const char *pty_link;
     const char *device;
     const char *script;
     const char *control;
-    const char *sets[MAX_SETS];
+    const char **sets; /* --set and --fault: room for argc each (no limit) */
     size_t set_count;
-    const char *faults[MAX_FAULTS];
+    const char **faults;
     size_t fault_count;
+    size_t arg_cap;
     const char *ext_tty[MAX_MEMBERS]; /* --qemu-member PTY: external members */
     size_t n_ext;
     int ext_fd[MAX_MEMBERS];
@@ -155,7 +169,13 @@ struct sim {
     atomic_bool stop;
     atomic_bool trace_on;
     uint64_t t0_us64;
-    uint64_t cpu_t0_us64; /* all CPU threads cycle in phase from here */
+    uint64_t cpu_t0_us64; /* all members' CPU cycles in phase from here */
+    /* the scheduler (sim_sched.c): every member's CPU side and the quiet CPs' tick, one
+     * thread; woken by sched_irq: a console command (cmds), the stop, or a CP side's
+     * "backplane interrupt" (the CP put blocks for the CPU side) */
+    modcp_posix_thread_t t_sched;
+    modcp_posix_event_t sched_irq;
+    atomic_bool cmds;
     atomic_int ready_count;
     member_t m[MAX_MEMBERS];
     /* the bus (bus_mode): the master's pty and the line */
@@ -197,9 +217,22 @@ void cp_snapshot(member_t *m);
 int this_core(void);
 bool ring_pending(const modcp_ring_t *r);
 void *cp_thread(void *arg);
-/* CPU thread (sim_cpu.c) */
+/* The CP side after it ran: the backplane interrupt, the trace, the snapshot (sim_cp.c) */
+void cp_after(member_t *m, uint32_t now, uint64_t t, bool tr);
+/* The CP has nothing to do but supervision (sim_cp.c) */
+bool cp_is_quiet(const member_t *m);
+/* The scheduler's shared tick: poll a quiet CP (its thread asleep) at now - CP_VISIT_LAG_US. */
+#define CP_VISIT_LAG_US 2000u
+void cp_visit(member_t *m, uint32_t now);
+/* One member's CPU side (sim_cpu.c), run by the scheduler */
 void timespec_of(uint64_t us, struct timespec *ts);
-void *cpu_thread(void *arg);
+void cpu_start(member_t *m, uint64_t t0);
+void cpu_command(member_t *m);
+bool cpu_blocks_wait(const member_t *m);
+void cpu_cycle(member_t *m); /* the FB call due at m->cpu_next; the next one planned */
+/* The scheduler (sim_sched.c): one thread for every member's CPU side and the quiet
+ * CPs' supervision tick. */
+void *sched_thread(void *arg);
 /* console (sim_console.c) */
 int find_member(const sim_t *s, const char *name);
 /* Waits until every member's FB initialisation has finished (ready or CP_START_ERROR). */

@@ -138,11 +138,11 @@ static int value_option(sim_t *s, const char *a, const char *v)
         return number_option(s, a, v);
     }
     if (strcmp(a, "--set") == 0) {
-        return push(s->sets, &s->set_count, MAX_SETS, v, a) ? 0 : 1;
+        return push(s->sets, &s->set_count, s->arg_cap, v, a) ? 0 : 1;
     }
     if (strcmp(a, "--fault") == 0) {
         s->bus_mode = true;
-        return push(s->faults, &s->fault_count, MAX_FAULTS, v, a) ? 0 : 1;
+        return push(s->faults, &s->fault_count, s->arg_cap, v, a) ? 0 : 1;
     }
     if (strcmp(a, "--qemu-member") == 0) {
         s->bus_mode = true;
@@ -156,6 +156,12 @@ int parse_args(sim_t *s, int argc, char **argv)
     s->cycle_override = -1;
     s->seed = 1;
     s->speed = 1.0;
+    s->arg_cap = (size_t)argc;
+    s->sets = calloc(s->arg_cap, sizeof *s->sets);
+    s->faults = calloc(s->arg_cap, sizeof *s->faults);
+    if (s->sets == NULL || s->faults == NULL) {
+        return 1;
+    }
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *needs = option_value(a);
@@ -180,8 +186,9 @@ int parse_args(sim_t *s, int argc, char **argv)
         } else if (a[0] == '-') {
             fprintf(stderr, "modcp-sim: unexpected argument '%s'\n", a);
             return usage();
-        } else if (s->n >= MAX_MEMBERS) {
-            fprintf(stderr, "modcp-sim: at most %d configs (members of one bus)\n", MAX_MEMBERS);
+        } else if (s->n >= SIM_BUS_MAX_SLAVES) {
+            fprintf(stderr, "modcp-sim: at most %d configs (members of one bus: one per Modbus address)\n",
+                    SIM_BUS_MAX_SLAVES);
             return 1;
         } else {
             s->configs[s->n++] = a;

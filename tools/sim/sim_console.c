@@ -12,7 +12,8 @@ static void submit(member_t *m, const char *line, char *out, size_t cap)
     snprintf(m->cmd_line, sizeof m->cmd_line, "%s", line);
     m->cmd_pending = true;
     m->cmd_done = false;
-    modcp_posix_event_signal(&m->cpu_irq);
+    atomic_store(&s->cmds, true);
+    modcp_posix_event_signal(&s->sched_irq);
     while (!m->cmd_done && !atomic_load(&s->stop)) {
         struct timespec ts;
         timespec_of(modcp_posix_now_us64() + 100000u, &ts);

@@ -172,8 +172,16 @@ static void own_line_rx(member_t *m, const modcp_posix_rx_t *rx, int n, uint32_t
     }
 }
 
-/* Wait for the next event; n characters (< 0: a read error). */
-static int cp_wait(member_t *m, modcp_posix_rx_t *rx, bool *tx_done, bool *timer, uint32_t *now)
+bool cp_is_quiet(const member_t *m)
+{
+    return modcp_cp_ready(&m->cp) && !modcp_job_busy(&m->cp.job) && !m->cp.request_pending &&
+           !m->port.timer_armed && !m->port.tx_active && !ring_pending(&m->bp.to_cp);
+}
+
+/* Wait for the next event; n characters (< 0: a read error). quiet: nothing to do but
+ * supervision, which the scheduler's shared tick does (cp_visit): sleep until work. */
+static int cp_wait(member_t *m, modcp_posix_rx_t *rx, bool *tx_done, bool *timer, uint32_t *now,
+                   bool quiet)
 {
     bool idle = modcp_cp_ready(&m->cp) && !modcp_job_busy(&m->cp.job) && !m->cp.request_pending;
     /* a job on the backplane: its reply comes at the CPU side's next FB call, watched
@@ -183,7 +191,7 @@ static int cp_wait(member_t *m, modcp_posix_rx_t *rx, bool *tx_done, bool *timer
                            !same_core(atomic_load_explicit(&m->cpu_core, memory_order_relaxed));
     m->port.expect_us = atomic_load_explicit(&m->cpu_due, memory_order_relaxed);
     sim_latlog_before_wait(&m->lat, &m->port);
-    uint32_t max_us = idle ? IDLE_TICK_US : BUSY_TICK_US;
+    uint32_t max_us = quiet ? QUIET_MAX_US : idle ? IDLE_TICK_US : BUSY_TICK_US;
     uint32_t next = 0;
     if (m->sim->bus != NULL && sim_bus_next_time(m->sim->bus, m->index, &next)) {
         int32_t d = (int32_t)(next - modcp_posix_now_us());
@@ -195,13 +203,13 @@ static int cp_wait(member_t *m, modcp_posix_rx_t *rx, bool *tx_done, bool *timer
 }
 
 /* After the core ran: the backplane interrupt, the trace, the console's snapshot. */
-static void cp_after(member_t *m, uint32_t now, uint64_t t, bool tr)
+void cp_after(member_t *m, uint32_t now, uint64_t t, bool tr)
 {
     sim_latlog_after_core(&m->lat, &m->cp, &m->port, now);
     uint32_t put = atomic_load_explicit(&m->bp.to_cpu.head, memory_order_relaxed);
     if (put != m->cp_put_seen) {
         m->cp_put_seen = put;
-        modcp_posix_event_signal(&m->cpu_irq); /* the backplane interrupt */
+        modcp_posix_event_signal(&m->sim->sched_irq); /* the backplane interrupt */
     }
     if (tr) {
         sim_trace_poll(&m->tr, t);
@@ -226,10 +234,19 @@ void *cp_thread(void *arg)
         snprintf(l, sizeof l, "@%s heard", m->name);
         sim_trace_labels(&m->tr, l, NULL, NULL);
     }
+    pthread_mutex_lock(&m->cp_mu);
     while (!atomic_load(&s->stop)) {
         bool tx_done = false, timer = false;
         uint32_t now = 0;
-        int n = cp_wait(m, rx, &tx_done, &timer, &now);
+        bool quiet = cp_is_quiet(m);
+        atomic_store(&m->cp_quiet, quiet);
+        pthread_mutex_unlock(&m->cp_mu);
+        int n = cp_wait(m, rx, &tx_done, &timer, &now, quiet);
+        pthread_mutex_lock(&m->cp_mu);
+        atomic_store(&m->cp_quiet, false);
+        if ((int32_t)(now - m->core_t) < 0) {
+            now = m->core_t; /* the scheduler's tick polled the core meanwhile */
+        }
         if (n < 0) {
             printf_line(s, "modcp-sim: read error on %s: %s", m->port.path, strerror(-n));
             atomic_store(&s->stop, true);
@@ -257,7 +274,33 @@ void *cp_thread(void *arg)
         }
         own_line_rx(m, rx, n, now, t, tr);
         modcp_cp_poll(&m->cp, now);
+        m->core_t = now;
         cp_after(m, now, t, tr);
     }
+    pthread_mutex_unlock(&m->cp_mu);
     return NULL;
+}
+
+void cp_visit(member_t *m, uint32_t now)
+{
+    sim_t *s = m->sim;
+    if (!atomic_load(&m->cp_quiet) || pthread_mutex_trylock(&m->cp_mu) != 0) {
+        return; /* its thread runs it */
+    }
+    uint32_t next = 0;
+    if (atomic_load(&m->cp_quiet) && !(s->bus != NULL && sim_bus_next_time(s->bus, m->index, &next))) {
+        /* a little in the past: characters the bus hands over late keep their times */
+        uint32_t t = now - CP_VISIT_LAG_US;
+        if ((int32_t)(t - m->core_t) < 0) {
+            t = m->core_t;
+        }
+        m->port.now_us = t;
+        modcp_cp_poll(&m->cp, t);
+        m->core_t = t;
+        cp_after(m, t, since_start_of(s, t), false);
+        if (!cp_is_quiet(m)) {
+            modcp_posix_wake(&m->port); /* it has work now: its thread takes over */
+        }
+    }
+    pthread_mutex_unlock(&m->cp_mu);
 }

@@ -1,9 +1,10 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp-sim — the CPU thread: the cyclic user program that calls the FB, and console commands between two calls. */
+/* modcp-sim — one member's CPU side, run by the scheduler (sim_sched.c): the cyclic user
+ * program that calls the FB, and console commands between two calls. */
 #define _GNU_SOURCE
 #include "sim.h"
 
-/* ---- CPU thread ------------------------------------------------------------------- */
+/* ---- CPU side ---------------------------------------------------------------------- */
 
 static void exec_console(member_t *m)
 {
@@ -60,46 +61,25 @@ static const char *who(const member_t *m, char *buf, size_t cap)
     return buf;
 }
 
-/* Console commands until the FB call due at next (false: stop). */
-static bool cpu_wait(member_t *m, uint64_t next)
+/* A console command queued for this member: executed between two FB calls. */
+void cpu_command(member_t *m)
 {
-    sim_t *s = m->sim;
-    for (;;) {
-        if (atomic_load(&s->stop)) {
-            return false;
-        }
-        pthread_mutex_lock(&m->cmd_mu);
-        bool cmd = m->cmd_pending;
-        if (cmd) {
-            exec_console(m);
-            m->cmd_pending = false;
-            m->cmd_done = true;
-            pthread_cond_broadcast(&m->cmd_cv);
-        }
-        pthread_mutex_unlock(&m->cmd_mu);
-        if (cmd) {
-            continue;
-        }
-        uint64_t now = modcp_posix_now_us64();
-        if (now >= next) {
-            return true;
-        }
-        /* blocks from the CP wait for this FB call: it starts on time, not a wake-up
-         * late (the last CPU_SPIN_US are spent watching the clock) */
-        const bool blocks_wait = !m->paused && ring_pending(&m->bp.to_cpu);
-        if (blocks_wait && next - now <= CPU_SPIN_US) {
-            modcp_posix_spin_until_us64(next);
-            return true;
-        }
-        uint64_t at = blocks_wait ? next - CPU_SPIN_US : next;
-        (void)modcp_posix_event_wait_until(&m->cpu_irq, at);
+    pthread_mutex_lock(&m->cmd_mu);
+    if (m->cmd_pending) {
+        exec_console(m);
+        m->cmd_pending = false;
+        m->cmd_done = true;
+        pthread_cond_broadcast(&m->cmd_cv);
     }
+    pthread_mutex_unlock(&m->cmd_mu);
 }
 
-typedef struct {
-    uint8_t last_state;
-    bool ready_printed, counted;
-} cpu_report_t;
+/* Blocks from the CP wait for this member's next FB call. */
+bool cpu_blocks_wait(const member_t *m)
+{
+    return !m->paused && ring_pending(&m->bp.to_cpu);
+}
+
 
 /* "ready" (on a bus: each member's, then the line's) or CP_START_ERROR when the FB's
  * state changed. */
@@ -136,40 +116,41 @@ static void cpu_report(member_t *m, const modcp_fb_out_t *out, cpu_report_t *r)
     }
 }
 
-void *cpu_thread(void *arg)
+void cpu_start(member_t *m, uint64_t t0)
 {
-    member_t *m = arg;
-    sim_t *s = m->sim;
-    uint64_t next = s->cpu_t0_us64; /* every member's cycle in phase (two at one address
-                                       answer at once, as two PLCs polled alike would) */
-    cpu_report_t rep = {0xFF, false, false};
+    m->cpu_next = t0; /* every member's cycle in phase (two at one address answer at
+                         once, as two PLCs polled alike would) */
+    m->rep = (cpu_report_t){0xFF, false, false};
     m->fb_in.cp_start = true; /* OB100: CP_START set at start-up */
-    atomic_store(&m->cpu_due, (unsigned)(next & 0xFFFFFFFFu));
+    atomic_store(&m->cpu_due, (unsigned)(t0 & 0xFFFFFFFFu));
     atomic_store(&m->cpu_core, -1);
     atomic_store(&m->cpu_calls, true);
-    while (cpu_wait(m, next)) {
-        if (!m->paused) {
-            modcp_fb_out_t out = {0}; /* ERROR_NR / INFO read only when the FB wrote them */
-            uint32_t moved0 = bp_moves(&m->bp);
-            uint32_t fb_t0 = modcp_posix_now_us();
-            atomic_store_explicit(&m->cpu_core, this_core(), memory_order_relaxed);
-            modcp_fb_call(&m->fb, &m->fb_in, &out, modcp_posix_now_ms());
-            if (bp_moves(&m->bp) != moved0) {
-                sim_latlog_fb(&m->lat, next, fb_t0, modcp_posix_now_us());
-                modcp_posix_wake(&m->port); /* the CP has blocks to take or room to put */
-            }
-            m->cycles++;
-            cpu_report(m, &out, &rep);
+}
+
+void cpu_cycle(member_t *m)
+{
+    uint64_t next = m->cpu_next;
+    if (!m->paused) {
+        modcp_fb_out_t out = {0}; /* ERROR_NR / INFO read only when the FB wrote them */
+        uint32_t moved0 = bp_moves(&m->bp);
+        uint32_t fb_t0 = modcp_posix_now_us();
+        atomic_store_explicit(&m->cpu_core, this_core(), memory_order_relaxed);
+        modcp_fb_call(&m->fb, &m->fb_in, &out, modcp_posix_now_ms());
+        if (bp_moves(&m->bp) != moved0) {
+            sim_latlog_fb(&m->lat, next, fb_t0, modcp_posix_now_us());
+            modcp_posix_wake(&m->port); /* the CP has blocks to take or room to put */
         }
-        uint64_t period = (uint64_t)m->cycle_ms * 1000u;
-        next += period;
-        uint64_t now = modcp_posix_now_us64();
-        if (next + period < now) {
-            /* overrun: do not catch up with a burst of cycles; stay in phase */
-            next += ((now - next) / period + 1u) * period;
-        }
-        atomic_store_explicit(&m->cpu_due, (unsigned)(next & 0xFFFFFFFFu), memory_order_relaxed);
-        atomic_store_explicit(&m->cpu_calls, !m->paused, memory_order_relaxed);
+        m->cycles++;
+        cpu_report(m, &out, &m->rep);
     }
-    return NULL;
+    uint64_t period = (uint64_t)m->cycle_ms * 1000u;
+    next += period;
+    uint64_t now = modcp_posix_now_us64();
+    if (next + period < now) {
+        /* overrun: do not catch up with a burst of cycles; stay in phase */
+        next += ((now - next) / period + 1u) * period;
+    }
+    m->cpu_next = next;
+    atomic_store_explicit(&m->cpu_due, (unsigned)(next & 0xFFFFFFFFu), memory_order_relaxed);
+    atomic_store_explicit(&m->cpu_calls, !m->paused, memory_order_relaxed);
 }

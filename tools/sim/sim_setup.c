@@ -153,7 +153,7 @@ void member_name(sim_t *s, size_t i)
         dup = dup || strcmp(s->m[k].name, name) == 0;
     }
     if (dup) {
-        snprintf(m->name, sizeof m->name, "%s-%u", name, (unsigned)(i + 1u) % 100u);
+        snprintf(m->name, sizeof m->name, "%s-%u", name, (unsigned)(i + 1u));
     } else {
         snprintf(m->name, sizeof m->name, "%s", name);
     }
@@ -171,6 +171,66 @@ void free_members(sim_t *s)
     }
 }
 
+/* The --set values for member m: S.K=V for every member, @M:S.K=V for member M (name or
+ * index) only, in mine[] (shown[]: as given); 0 or the exit code (message printed). */
+static int member_sets(sim_t *s, const member_t *m, const char **mine, const char **shown,
+                       size_t *nmine)
+{
+    for (size_t k = 0; k < s->set_count; k++) {
+        const char *a = s->sets[k];
+        if (a[0] == '@') {
+            const char *colon = strchr(a, ':');
+            char name[32];
+            size_t len = colon != NULL ? (size_t)(colon - a - 1) : 0u;
+            if (colon == NULL || len == 0u || len >= sizeof name) {
+                fprintf(stderr, "modcp-sim: --set %s: expected @MEMBER:section.key=value\n", a);
+                return 1;
+            }
+            memcpy(name, a + 1, len);
+            name[len] = '\0';
+            int target = find_member(s, name);
+            if (target < 0 || target == MAX_MEMBERS) {
+                fprintf(stderr, "modcp-sim: --set %s: no member @%s\n", a, name);
+                return 1;
+            }
+            if ((size_t)target != m->index) {
+                continue;
+            }
+            mine[*nmine] = colon + 1;
+        } else {
+            mine[*nmine] = a;
+        }
+        shown[(*nmine)++] = a;
+    }
+    return 0;
+}
+
+/* The configuration with the --set values; 0 or the exit code (message printed). */
+static int load_conf(sim_t *s, member_t *m)
+{
+    const char **mine = calloc(s->set_count + 1u, sizeof *mine);
+    const char **shown = calloc(s->set_count + 1u, sizeof *shown);
+    size_t nmine = 0;
+    int rc = mine == NULL || shown == NULL ? 1 : member_sets(s, m, mine, shown, &nmine);
+    if (rc == 0) {
+        size_t fatal = modcp_conf_load_ex(m->conf, m->config, mine, nmine);
+        size_t from_set = print_problems(m->conf, mine, shown, nmine);
+        if (fatal > 0u) {
+            if (from_set == fatal) {
+                fprintf(stderr, "modcp-sim: --set: %zu problem%s, not started\n", fatal,
+                        fatal == 1u ? "" : "s");
+            } else {
+                fprintf(stderr, "modcp-sim: %s%s: %zu problem%s, not started\n", m->config,
+                        from_set > 0u ? " and --set" : "", fatal, fatal == 1u ? "" : "s");
+            }
+            rc = 2;
+        }
+    }
+    free(mine);
+    free(shown);
+    return rc;
+}
+
 /* Configuration of member m: the same code and messages as modcp-conf check.
  * 0, or the exit code. */
 int load_member(sim_t *s, member_t *m)
@@ -180,52 +240,11 @@ int load_member(sim_t *s, member_t *m)
         return 1;
     }
     memset(&m->memory, 0, sizeof m->memory);
-    /* --set S.K=V for every member, --set @M:S.K=V for member M (name or index) only */
-    const char *mine[MAX_SETS], *shown[MAX_SETS];
-    size_t nmine = 0;
-    for (size_t k = 0; k < s->set_count; k++) {
-        const char *a = s->sets[k];
-        if (a[0] == '@') {
-            const char *colon = strchr(a, ':');
-            char name[32];
-            size_t len = colon != NULL ? (size_t)(colon - a - 1) : 0u;
-            if (colon == NULL || len == 0u || len >= sizeof name) {
-                fprintf(stderr, "modcp-sim: --set %s: expected @MEMBER:section.key=value\n", a);
-                free(m->conf);
-                m->conf = NULL;
-                return 1;
-            }
-            memcpy(name, a + 1, len);
-            name[len] = '\0';
-            int target = find_member(s, name);
-            if (target < 0 || target == MAX_MEMBERS) {
-                fprintf(stderr, "modcp-sim: --set %s: no member @%s\n", a, name);
-                free(m->conf);
-                m->conf = NULL;
-                return 1;
-            }
-            if ((size_t)target != m->index) {
-                continue;
-            }
-            mine[nmine] = colon + 1;
-        } else {
-            mine[nmine] = a;
-        }
-        shown[nmine++] = a;
-    }
-    size_t fatal = modcp_conf_load_ex(m->conf, m->config, mine, nmine);
-    size_t from_set = print_problems(m->conf, mine, shown, nmine);
-    if (fatal > 0u) {
-        if (from_set == fatal) {
-            fprintf(stderr, "modcp-sim: --set: %zu problem%s, not started\n", fatal,
-                    fatal == 1u ? "" : "s");
-        } else {
-            fprintf(stderr, "modcp-sim: %s%s: %zu problem%s, not started\n", m->config,
-                    from_set > 0u ? " and --set" : "", fatal, fatal == 1u ? "" : "s");
-        }
+    int rc = load_conf(s, m);
+    if (rc != 0) {
         free(m->conf);
         m->conf = NULL;
-        return 2;
+        return rc;
     }
     size_t rlen = modcp_conf_record(m->conf, m->record, sizeof m->record);
     if (rlen == 0u || !modcp_conf_memory_alloc(m->conf, &m->memory)) {

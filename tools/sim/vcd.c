@@ -31,7 +31,8 @@
 
 typedef struct {
     uint64_t t; /* ticks */
-    uint8_t sig, v;
+    uint16_t sig; /* up to MAX_SIG */
+    uint8_t v;
 } edge_t;
 
 struct sim_vcd {
@@ -57,10 +58,17 @@ static unsigned sig_de(int src)
     return SIG_MEMBER0 + 1u + 2u * (unsigned)src;
 }
 
+/* A signal's identifier: printable characters '!'..'~' (94), one for the first 94
+ * signals, more after (the VCD format allows any length): 247 members have 498. */
+#define ID_MAX 4
 static void id_of(unsigned sig, char *id)
 {
-    id[0] = (char)('!' + sig);
-    id[1] = '\0';
+    size_t n = 0;
+    do {
+        id[n++] = (char)('!' + sig % 94u);
+        sig /= 94u;
+    } while (sig > 0u && n < ID_MAX - 1u);
+    id[n] = '\0';
 }
 
 static void add_edge(sim_vcd_t *v, uint64_t t, unsigned sig, int val)
@@ -73,7 +81,7 @@ static void add_edge(sim_vcd_t *v, uint64_t t, unsigned sig, int val)
         i--;
     }
     memmove(&v->e[i + 1u], &v->e[i], (v->ne - i) * sizeof v->e[0]);
-    v->e[i] = (edge_t){t, (uint8_t)sig, (uint8_t)val};
+    v->e[i] = (edge_t){t, (uint16_t)sig, (uint8_t)val};
     v->ne++;
 }
 
@@ -106,7 +114,7 @@ static void write_until(sim_vcd_t *v, uint64_t until)
         }
         uint64_t at = v->e[i].t;
         for (; i < v->ne && v->e[i].t == at; i++) {
-            char id[2];
+            char id[ID_MAX];
             if (v->level[v->e[i].sig] != v->e[i].v) {
                 v->level[v->e[i].sig] = v->e[i].v;
                 id_of(v->e[i].sig, id);
@@ -116,7 +124,7 @@ static void write_until(sim_vcd_t *v, uint64_t until)
         for (unsigned s = SIG_LINE; s <= SIG_SLAVES; s += SIG_SLAVES) {
             int lv = wired_and(v, s == SIG_LINE);
             if (lv != v->level[s]) {
-                char id[2];
+                char id[ID_MAX];
                 v->level[s] = (uint8_t)lv;
                 id_of(s, id);
                 fprintf(v->f, "%d%s\n", lv, id);
@@ -203,7 +211,7 @@ static void on_close(sim_observer_t *o)
 
 static void declare(sim_vcd_t *v, unsigned sig, const char *name)
 {
-    char id[2];
+    char id[ID_MAX];
     id_of(sig, id);
     fprintf(v->f, "$var wire 1 %s %s $end\n", id, name);
 }
@@ -243,7 +251,7 @@ sim_vcd_t *sim_vcd_open(const sim_line_t *line, const char *path, char *err, siz
     fprintf(v->f, "$upscope $end\n$enddefinitions $end\n#0\n$dumpvars\n");
     for (size_t s = 0; s < v->nsig; s++) {
         v->level[s] = (uint8_t)(is_de(s) ? 0u : 1u);
-        char id[2];
+        char id[ID_MAX];
         id_of((unsigned)s, id);
         fprintf(v->f, "%u%s\n", (unsigned)v->level[s], id);
     }
