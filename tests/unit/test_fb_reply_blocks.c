@@ -15,7 +15,7 @@
 
 #define S 5 /* slave address of the example set */
 
-/* Coils 4096.. are timers T100.. (16 coils each, 004 §9 example set). A read of 25
+/* Coils 4096.. are timers T100.. (16 coils each, [RTU-2003] §9 example set). A read of 25
  * timers (400 coils, 50 data bytes; the CP 441 model: the CP 341 reads at most 16) is
  * sent in two data blocks after the reply's header; each timer's two bytes in it are
  * the bytes a read of that timer alone returns. */

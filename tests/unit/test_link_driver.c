@@ -17,7 +17,7 @@ static void test_configured_rs485_link_keeps_the_driver_off_until_a_reply(void *
     modcp_params_t p;
     world_example_params(&p);
     p.iface = MODCP_IFACE_RS485;
-    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 (000 Table 5-2) */
+    p.rs485_sel = 1; /* mode normal allowed on two-wire RS485 ([RTU-2009] Table 5-2) */
     world_t *w = world_new(&p);
     w->fake.de = true; /* whatever the pin was before the CP took it */
     assert_true(world_start(w, 2000));
