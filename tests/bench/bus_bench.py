@@ -19,6 +19,8 @@ runs: exit 1 when a run carried no transaction at all). Prints one line per run 
     line_idle_cpu_N=    % of one core, idle
     line_tps_N=         transactions/s
 """
+import atexit
+import shutil
 import argparse
 import os
 import re
@@ -87,6 +89,7 @@ def main():
     ap.add_argument("--seconds", type=float, default=5.0)
     a = ap.parse_args()
     tmp = tempfile.mkdtemp(prefix="modcp-busbench-")
+    atexit.register(shutil.rmtree, tmp, True)  # the 247 configs go however the run ends
     out = []
     for n in [int(x) for x in a.members.split(",")]:
         startup, idle, tps, line = run(a, configs(a.config, tmp, n))

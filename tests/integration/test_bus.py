@@ -347,11 +347,11 @@ def main():
     ap.add_argument("--only", default="refused,ascii,three,duplicate,faults")
     a = ap.parse_args()
     t = Checks()
-    tmp = tempfile.mkdtemp(prefix="modcp-bus-")
-    for name in a.only.split(","):
-        {"refused": refused, "ascii": ascii_bus, "three": three, "duplicate": duplicate,
-         "faults": faults}[name](t, a, tmp)
-    return t.done()
+    with tempfile.TemporaryDirectory(prefix="modcp-bus-") as tmp:  # removed however it ends
+        for name in a.only.split(","):
+            {"refused": refused, "ascii": ascii_bus, "three": three, "duplicate": duplicate,
+             "faults": faults}[name](t, a, tmp)
+        return t.done()
 
 
 if __name__ == "__main__":

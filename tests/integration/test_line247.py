@@ -13,6 +13,8 @@ memory: 0 mismatches and 0 errors pass. The console still reaches the last membe
 start-up time (start to "modcp-sim: ready") is printed, not asserted. ctest runs 2,000
 requests (integration.line247); the issue's 10,000: --ops 10000.
 """
+import atexit
+import shutil
 import argparse
 import os
 import re
@@ -48,6 +50,7 @@ def main():
     a = ap.parse_args()
     t = Checks()
     tmp = tempfile.mkdtemp(prefix="modcp-line247-")
+    atexit.register(shutil.rmtree, tmp, True)  # the 247 configs go however the run ends
     cfgs = make_configs(a.config, tmp, a.members)
     t0 = time.monotonic()
     sim = Sim(a.sim, cfgs[0], sets=["serial.baud=%d" % a.baud], cycle_ms=10,
