@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
 # What a new user does, checked in CI: a fresh `git clone` of this tree into an empty
-# temporary folder (nothing beside it: no ../shared, no build folder), then the first
+# temporary folder (nothing beside it, no build folder), then the first
 # steps of `tools/test --quick` there: install-deps --host-only (a no-op when everything
 # is installed), check-deps, the host preset's configure and the simulator's and
 # modcp-conf's build. Then the same check-deps from a source tarball (`git archive`,
