@@ -302,8 +302,7 @@ void modcp_link_tx_complete(modcp_link_t *l, uint32_t now_us)
 void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us)
 {
     if (l->tx_on) { /* (with RS232 signals: already at modcp_link_tx_complete) */
-        l->tx_on = false;
-        l->tx_end_us = now_us;
+        modcp_link_tx_complete(l, now_us);
     }
     if (l->state != MODCP_LINK_TX) {
         return;
