@@ -40,7 +40,7 @@ _Static_assert((MODCP_BP_DEPTH & (MODCP_BP_DEPTH - 1u)) == 0u && MODCP_BP_DEPTH 
 
 void modcp_bp_init(modcp_backplane_t *bp)
 {
-    memset(bp, 0, sizeof *bp); /* empty rings (head = tail = 0), status area zero */
+    (void)memset(bp, 0, sizeof *bp); /* empty rings (head = tail = 0), status area zero */
     atomic_store_explicit(&bp->abort_tag, BP_NO_ABORT, memory_order_release);
 }
 
@@ -132,7 +132,7 @@ bool modcp_ring_put_data(modcp_ring_t *r, uint8_t *seq, uint8_t kind, uint8_t fl
         return false;
     }
     if (len > 0u) {
-        memcpy(b->data, data, len);
+        (void)memcpy(b->data, data, len);
     }
     b->len = len;
     b->kind = kind;

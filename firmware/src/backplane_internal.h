@@ -66,16 +66,16 @@ static inline void modcp_ring_release(modcp_ring_t *r)
 static inline void modcp_block_copy(uint8_t *dst, const uint8_t *src, uint32_t n)
 {
     if (n == MODCP_BLOCK_SIZE) {
-        memcpy(dst, src, MODCP_BLOCK_SIZE);
+        (void)memcpy(dst, src, MODCP_BLOCK_SIZE);
     } else {
-        memcpy(dst, src, n);
+        (void)memcpy(dst, src, n);
     }
 }
 /* A block's len, kind, flags and tag as one word (modcp_block_word), written by
  * modcp_block_stamp: one store on a little-endian target. */
-_Static_assert(offsetof(modcp_block_t, kind) == offsetof(modcp_block_t, len) + 1u &&
-                   offsetof(modcp_block_t, flags) == offsetof(modcp_block_t, len) + 2u &&
-                   offsetof(modcp_block_t, tag) == offsetof(modcp_block_t, len) + 3u,
+_Static_assert((size_t)offsetof(modcp_block_t, kind) == (size_t)offsetof(modcp_block_t, len) + 1u &&
+                   (size_t)offsetof(modcp_block_t, flags) == (size_t)offsetof(modcp_block_t, len) + 2u &&
+                   (size_t)offsetof(modcp_block_t, tag) == (size_t)offsetof(modcp_block_t, len) + 3u,
                "modcp_block_t: len, kind, flags, tag in a row");
 static inline uint32_t modcp_block_word(uint32_t len, uint32_t kind, uint32_t flags, uint32_t tag)
 {

@@ -9,7 +9,7 @@
 
 void modcp_bp_publish_status(modcp_backplane_t *bp, const modcp_cp_status_t *st)
 {
-    memcpy(modcp_bp_status_begin(bp), st, sizeof *st);
+    (void)memcpy(modcp_bp_status_begin(bp), st, sizeof *st);
     modcp_bp_status_end(bp);
 }
 
@@ -19,7 +19,7 @@ bool modcp_bp_read_status(const modcp_backplane_t *bp, modcp_cp_status_t *out)
     if ((s1 & 1u) != 0u) {
         return false;
     }
-    memcpy(out, &bp->status, sizeof *out);
+    (void)memcpy(out, &bp->status, sizeof *out);
     atomic_thread_fence(memory_order_acquire);
     uint32_t s2 = atomic_load_explicit(&bp->status_seq, memory_order_relaxed);
     return s1 == s2;

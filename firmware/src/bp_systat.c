@@ -27,6 +27,6 @@ bool modcp_bp_systat_result(const modcp_backplane_t *bp, uint32_t req, uint8_t o
     if (!modcp_bp_read_status(bp, &st) || st.systat_ack != req) {
         return false;
     }
-    memcpy(out, st.systat, sizeof st.systat);
+    (void)memcpy(out, st.systat, sizeof st.systat);
     return true;
 }

@@ -41,7 +41,7 @@ void modcp_comm_rx(modcp_comm_t *c, bool broadcast)
 
 void modcp_comm_clear_log(modcp_comm_t *c)
 {
-    memset(c->log, 0, sizeof c->log);
+    (void)memset(c->log, 0, sizeof c->log);
     c->log_len = 0;
     c->log_head = 0;
 }
@@ -53,5 +53,7 @@ void modcp_comm_counted(modcp_comm_t *c, unsigned counter)
         c->diag_reg |= MODCP_DREG_OVERRUN;
     } else if (counter == (unsigned)MODCP_CNT_BUS_CRC) {
         modcp_comm_log(c, (uint8_t)(rx_flags(c) | MODCP_COMM_RX_COMM_ERROR));
+    } else {
+        /* other counters leave no event byte */
     }
 }

@@ -96,7 +96,7 @@ void modcp_cp_on_signals(modcp_cp_t *cp, bool cts, bool dsr, uint32_t now_us)
 
 void modcp_cp_init(modcp_cp_t *cp, const modcp_hal_t *hal, modcp_backplane_t *bp)
 {
-    memset(cp, 0, sizeof *cp); /* diagnostics and CP diagnostics empty (no _init of their own) */
+    (void)memset(cp, 0, sizeof *cp); /* diagnostics and CP diagnostics empty (no _init of their own) */
     modcp_params_defaults(&cp->params);
     modcp_link_init(&cp->link, hal, &cp->diag, cp->buf, (uint16_t)MODCP_LINK_BUF_MAX);
 #if MODCP_SHARED_PARAMS_BUFFER
@@ -133,7 +133,7 @@ bool modcp_cp_ready(const modcp_cp_t *cp)
  * address, RTU and ASCII alike: rtu_deliver, ascii_on_timer); the frame is not kept.
  * Built for size one copy, shared by the end of a frame and the poll; built for speed
  * inline in each (no call and no stack frame of its own per request). */
-static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, const modcp_frame_t *f,
+static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, modcp_frame_t *f,
                                                       uint32_t now_us)
 {
     const modcp_pdu_env_t *env = &cp->env;
@@ -199,7 +199,7 @@ void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
 static MODCP_NOINLINE void rx_block_signals(modcp_cp_t *cp, const uint8_t *b, uint16_t n,
                                                uint32_t end_us)
 {
-    uint32_t t = end_us - (uint32_t)(n - 1u) * cp->link.char_us;
+    uint32_t t = end_us - ((uint32_t)n - 1u) * cp->link.char_us;
     for (uint16_t k = 0; k < n; k++) {
         rx_signals(cp, b[k], t);
         t += cp->link.char_us;
@@ -307,7 +307,7 @@ static void unconfigure(modcp_cp_t *cp)
  * rest (FB initialised, diagnostics) stays until take_params finds the record changed. */
 static bool params_start(modcp_cp_t *cp)
 {
-    if (cp->link.state == MODCP_LINK_TX) {
+    if (cp->link.state == (uint8_t)MODCP_LINK_TX) {
         return false;
     }
     stop_line(cp);
@@ -322,9 +322,15 @@ static uint8_t rx_preset(const modcp_params_t *p)
     if (p->rx_preset != (uint8_t)MODCP_RXP_DEFAULT) {
         return p->rx_preset;
     }
-    return p->iface == (uint8_t)MODCP_IFACE_RS485   ? (uint8_t)MODCP_RXP_HIGH
-           : p->iface == (uint8_t)MODCP_IFACE_RS422 ? (uint8_t)MODCP_RXP_BREAK
-                                                    : (uint8_t)MODCP_RXP_NONE;
+    uint8_t preset = (uint8_t)MODCP_RXP_NONE;
+    if (p->iface == (uint8_t)MODCP_IFACE_RS485) {
+        preset = (uint8_t)MODCP_RXP_HIGH;
+    } else if (p->iface == (uint8_t)MODCP_IFACE_RS422) {
+        preset = (uint8_t)MODCP_RXP_BREAK;
+    } else {
+        /* RS232: none */
+    }
+    return preset;
 }
 
 /* The parameters in force, on the line: link, job limits, RS232 signals, receive-line
@@ -405,6 +411,8 @@ static void take_init(modcp_cp_t *cp, const modcp_bp_init_t *init)
         ev = cp->param_event;
     } else if (init->record_crc != cp->record_crc) {
         ev = MODCP_EV_PARAM_RECORD;
+    } else {
+        /* configured with the record the CPU side holds */
     }
     if (ev == MODCP_EV_NONE) {
         cp->areas = init->areas;
@@ -449,8 +457,8 @@ static uint32_t ext_flags(const modcp_cp_t *cp)
     (ST_AT(f) - ST_AT(first) == offsetof(T, tf) - offsetof(T, tfirst))
 #define ST_DIAG(f) ST_SAME(events_total, f, modcp_diag_t, events_total, f)
 #define ST_CPDIAG(f, tf) ST_SAME(diag_irq, f, modcp_cpdiag_t, irq, tf)
-#define ST_DIAG_RUN (ST_AT(buffer_len) + 1u - ST_AT(events_total))
-#define ST_CPDIAG_RUN (ST_AT(systat) + 16u - ST_AT(diag_irq))
+#define ST_DIAG_RUN ((ST_AT(buffer_len) - ST_AT(events_total)) + ST_SIZE(modcp_cp_status_t, buffer_len))
+#define ST_CPDIAG_RUN ((ST_AT(systat) - ST_AT(diag_irq)) + ST_SIZE(modcp_cp_status_t, systat))
 #define ST_SIZE(T, f) sizeof(((T *)0)->f)
 _Static_assert(ST_DIAG(counters) && ST_DIAG(frames_too_long) && ST_DIAG(char_errors) &&
                    ST_DIAG(breaks) && ST_DIAG(t15_discards) && ST_DIAG(status) &&
@@ -482,10 +490,9 @@ static MODCP_SIZE_NOINLINE void publish(modcp_cp_t *cp)
                 (cp->cpdiag.wire_break ? MODCP_CPST_WIRE_BREAK : 0u) |
                 (cp->cpdiag.param_error ? MODCP_CPST_PARAM_ERROR : 0u);
     st->leds = leds;
-    memcpy((uint8_t *)st + ST_AT(events_total),
-           (const uint8_t *)&cp->diag + offsetof(modcp_diag_t, events_total), ST_DIAG_RUN);
-    memcpy((uint8_t *)st + ST_AT(diag_irq),
-           (const uint8_t *)&cp->cpdiag + offsetof(modcp_cpdiag_t, irq), ST_CPDIAG_RUN);
+    (void)memcpy((uint8_t *)&st->events_total, (const uint8_t *)&cp->diag.events_total,
+                 ST_DIAG_RUN);
+    (void)memcpy(st->diag_irq, cp->cpdiag.irq, ST_CPDIAG_RUN);
     st->param_event = cp->param_event;
 #if MODCP_WITH_RS232_SIGNALS
     if (cp->publish_all || cp->sig.enabled) {
@@ -516,22 +523,21 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
             }
             cp->request_pending = false;
             advance(cp, NULL, now_us); /* the next job, or the reply */
-            if (cp->job.state == MODCP_JOBST_IDLE && modcp_ring_peek(&cp->job.bp->to_cp) == NULL) {
+            if (cp->job.state == (uint8_t)MODCP_JOBST_IDLE && modcp_ring_peek(&cp->job.bp->to_cp) == NULL) {
                 break; /* what another modcp_job_poll would find: nothing */
             }
         } else if (r == MODCP_JOBP_PARAMS) {
             take_params(cp);
         } else if (r == MODCP_JOBP_INIT) {
             take_init(cp, &init);
-        }
+        } else { /* MODCP_JOBP_PARAMS_START: only with the record in the frame buffer */
 #if MODCP_SHARED_PARAMS_BUFFER
-        else if (r == MODCP_JOBP_PARAMS_START) {
             if (!params_start(cp)) {
                 break; /* a reply is on the line: the record waits for its end */
             }
             modcp_job_params_grant(&cp->job);
-        }
 #endif
+        }
     }
     line_poll(cp, now_us);
 #if MODCP_WITH_EXTENDED

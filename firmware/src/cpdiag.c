@@ -25,7 +25,7 @@ static void irq(modcp_cpdiag_t *d, uint8_t b0, uint8_t b2)
 
 void modcp_cpdiag_init(modcp_cpdiag_t *d)
 {
-    memset(d, 0, sizeof *d);
+    (void)memset(d, 0, sizeof *d);
 }
 
 void modcp_cpdiag_line_error(modcp_cpdiag_t *d, uint8_t line_errors, bool reported)

@@ -33,11 +33,12 @@
 
 #define PDU_MAX 253u
 #define CONFORMITY 0x82u
+#define ID_MAX ((uint8_t)MODCP_ID_STRING_MAX) /* characters of an object's string */
 
 static uint8_t id_len(const char *str)
 {
     uint8_t n = 0;
-    while (n < MODCP_ID_STRING_MAX && str[n] != '\0') {
+    while (n < ID_MAX && str[n] != '\0') {
         n++;
     }
     return n;
@@ -49,26 +50,25 @@ static bool run_indicator(const modcp_pdu_env_t *env)
 }
 
 /* The objects of the CP in id order, i = 0..3: 00 vendor, 01 product, 02 revision,
- * 06 application name (present when not empty). Their strings are consecutive fields
- * of modcp_params_t. */
-#define ID_FIELD (MODCP_ID_STRING_MAX + 1u)
-_Static_assert(sizeof MODCP_VERSION - 1u <= MODCP_ID_STRING_MAX,
+ * 06 application name (present when not empty). */
+_Static_assert(sizeof MODCP_VERSION <= (sizeof(((modcp_params_t *)0)->revision)),
                "the version fits into the revision object");
-_Static_assert(offsetof(modcp_params_t, product) == offsetof(modcp_params_t, vendor) + ID_FIELD &&
-                   offsetof(modcp_params_t, revision) ==
-                       offsetof(modcp_params_t, vendor) + 2u * ID_FIELD &&
-                   offsetof(modcp_params_t, app_name) ==
-                       offsetof(modcp_params_t, vendor) + 3u * ID_FIELD,
-               "the identification strings are consecutive");
 
 /* Object i's string; the revision (i = 2) left empty by the configuration is modcp's
  * version. */
 static const char *obj_value(const modcp_params_t *p, size_t i)
 {
-    if (i == 2u && p->revision[0] == '\0') {
-        return MODCP_VERSION;
+    const char *v = p->app_name;
+    if (i == 0u) {
+        v = p->vendor;
+    } else if (i == 1u) {
+        v = p->product;
+    } else if (i == 2u) {
+        v = (id_len(p->revision) == 0u) ? MODCP_VERSION : p->revision;
+    } else {
+        /* 3: the application name */
     }
-    return (const char *)p + offsetof(modcp_params_t, vendor) + i * ID_FIELD;
+    return v;
 }
 
 static uint8_t obj_id(size_t i)
@@ -96,7 +96,7 @@ modcp_pdu_action_t modcp_pdu_fc17(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         if ((uint32_t)o + n > cap) {
             break; /* never with the CP's buffer (at most 4 + 50 bytes) */
         }
-        memcpy(pdu + o, part, n);
+        (void)memcpy(pdu + o, part, n);
         o = (uint16_t)(o + n);
     }
     pdu[1] = (uint8_t)(o - 2u);
@@ -121,7 +121,10 @@ modcp_pdu_action_t modcp_pdu_fc43(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         return modcp_pdu_err(s, MODCP_EV_MEI_CODE, MODCP_EXC_ILLEGAL_VALUE);
     }
     const modcp_params_t *p = env->p;
-    const size_t total = id_len(p->app_name) > 0u ? 4u : 3u;
+    size_t total = 3u;
+    if (id_len(p->app_name) > 0u) {
+        total = 4u;
+    }
     /* one past the last object of the category: basic 00..02; regular / extended and
      * the individual access: all */
     size_t last = code == 1u ? 3u : total;
@@ -136,6 +139,8 @@ modcp_pdu_action_t modcp_pdu_fc43(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         last = first + 1u;
     } else if (first == last) {
         first = 0; /* not an object of this category: restart at 00 */
+    } else {
+        /* a stream of the category from its first object */
     }
     const uint16_t limit = cap < PDU_MAX ? cap : (uint16_t)PDU_MAX;
     if (limit < 7u) {
@@ -152,13 +157,13 @@ modcp_pdu_action_t modcp_pdu_fc43(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
             if (count == 0u) {
                 return modcp_pdu_err(s, MODCP_EV_JOB_LENGTH, MODCP_EXC_DEVICE_FAILURE);
             }
-            more = 0xFF;
+            more = 0xFFu;
             next = obj_id(i);
             break;
         }
         pdu[o] = obj_id(i);
         pdu[o + 1u] = n;
-        memcpy(pdu + o + 2u, value, n);
+        (void)memcpy(pdu + o + 2u, value, n);
         o = (uint16_t)(o + 2u + n);
         count++;
     }

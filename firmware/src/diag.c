@@ -9,12 +9,12 @@
 
 void modcp_diag_init(modcp_diag_t *d)
 {
-    memset(d, 0, sizeof *d);
+    (void)memset(d, 0, sizeof *d);
 }
 
-_Static_assert(offsetof(modcp_diag_t, systat_zero) == offsetof(modcp_diag_t, systat_flags) + 1u &&
-                   offsetof(modcp_diag_t, systat) == offsetof(modcp_diag_t, systat_flags) + 2u &&
-                   offsetof(modcp_diag_t, systat_flags) == offsetof(modcp_diag_t, systat_len) + 1u,
+_Static_assert((size_t)offsetof(modcp_diag_t, systat_zero) == (size_t)offsetof(modcp_diag_t, systat_flags) + 1u &&
+                   (size_t)offsetof(modcp_diag_t, systat) == (size_t)offsetof(modcp_diag_t, systat_flags) + 2u &&
+                   (size_t)offsetof(modcp_diag_t, systat_flags) == (size_t)offsetof(modcp_diag_t, systat_len) + 1u,
                "diag: SYSTAT from systat_flags on is the image from byte 2 on");
 /* Keep a base pointer in a register: GCC folds it back into d + offset otherwise, with
  * 4-byte Thumb-2 loads and stores beyond byte 31. An empty asm it cannot see through. */
@@ -36,7 +36,7 @@ void modcp_diag_event(modcp_diag_t *d, modcp_event_t ev)
         return;
     }
     /* diagnostic buffer: ring of 9, newest first */
-    memmove(&d->buffer[1], &d->buffer[0], (MODCP_DIAG_BUFFER - 1u) * sizeof d->buffer[0]);
+    (void)memmove(&d->buffer[1], &d->buffer[0], (MODCP_DIAG_BUFFER - 1u) * sizeof d->buffer[0]);
     d->buffer[0] = ev;
     /* buffer_len and the SYSTAT block through one pointer: their offsets from it are
      * small (short Thumb loads; from d they are beyond byte 31) */
@@ -74,7 +74,7 @@ void modcp_diag_event(modcp_diag_t *d, modcp_event_t ev)
  * line also under LTO: called from a few cold paths, one copy is enough. */
 __attribute__((noinline)) void modcp_diag_count_error(modcp_diag_t *d, modcp_counter_t c)
 {
-    if ((unsigned)c >= MODCP_CNT_COUNT) {
+    if ((unsigned)c >= (unsigned)MODCP_CNT_COUNT) {
         return;
     }
     if (d->counters[c] != UINT16_MAX) {
@@ -87,7 +87,7 @@ __attribute__((noinline)) void modcp_diag_count_error(modcp_diag_t *d, modcp_cou
 
 void modcp_diag_clear_counters(modcp_diag_t *d)
 {
-    memset(d->counters, 0, sizeof d->counters);
+    (void)memset(d->counters, 0, sizeof d->counters);
 }
 
 _Static_assert(offsetof(modcp_diag_t, buffer_len) == offsetof(modcp_diag_t, buffer) +
@@ -97,7 +97,7 @@ _Static_assert(offsetof(modcp_diag_t, buffer_len) == offsetof(modcp_diag_t, buff
 void modcp_diag_clear_buffer(modcp_diag_t *d)
 {
     /* the events and buffer_len */
-    memset((uint8_t *)d + offsetof(modcp_diag_t, buffer), 0, sizeof d->buffer + 1u);
+    (void)memset((uint8_t *)d + offsetof(modcp_diag_t, buffer), 0, sizeof d->buffer + 1u);
 }
 
 void modcp_diag_read_systat(modcp_diag_t *d, bool run, uint8_t out[16])

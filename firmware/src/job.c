@@ -40,11 +40,11 @@ void modcp_job_init(modcp_job_t *j, modcp_backplane_t *bp, uint8_t *msgbuf, uint
     j->msgbuf = msgbuf;
     j->msgcap = msgbuf != NULL ? msgcap : 0u;
 }
-_Static_assert(MODCP_JOBST_IDLE == 0, "a zeroed job is idle");
+_Static_assert((int)MODCP_JOBST_IDLE == 0, "a zeroed job is idle");
 
 bool modcp_job_busy(const modcp_job_t *j)
 {
-    return j->state != MODCP_JOBST_IDLE;
+    return j->state != (uint8_t)MODCP_JOBST_IDLE;
 }
 
 static void push_blocks(modcp_job_t *j);
@@ -77,6 +77,8 @@ modcp_event_t modcp_job_start(modcp_job_t *j, const modcp_bp_job_t *hdr, const u
         }
     } else if (wdata == NULL && hdr->len > 0u) {
         return MODCP_EV_INTERNAL_SEND; /* nothing to send: the caller's mistake */
+    } else {
+        /* a write with its data */
     }
     uint32_t tag = j->tag + 1u; /* 1 ... 255, then 1 again (0 is no job's) */
     j->tag = (uint8_t)(tag + (tag >> 8));
@@ -144,7 +146,7 @@ static void push_data(modcp_job_t *j)
 {
     modcp_ring_t *r = &j->bp->to_cpu;
     modcp_block_t *b;
-    while (j->state == MODCP_JOBST_SENDING && (b = modcp_ring_slot(r)) != NULL) {
+    while (j->state == (uint8_t)MODCP_JOBST_SENDING && (b = modcp_ring_slot(r)) != NULL) {
         uint32_t rest = (uint32_t)j->hdr->len - j->wpos;
         uint32_t n = rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest;
         uint8_t flags = 0;
@@ -215,7 +217,7 @@ static modcp_jobp_t rx_reply(modcp_job_t *j, const modcp_block_t *b)
     const uint8_t *d = b->data;
     uint32_t n = b->len;
     if ((b->flags & MODCP_BLK_FIRST) != 0u) {
-        if (j->state == MODCP_JOBST_RECEIVING || n < MODCP_BP_REPLY_HDR_LEN) {
+        if (j->state == (uint8_t)MODCP_JOBST_RECEIVING || n < MODCP_BP_REPLY_HDR_LEN) {
             proto_error(j, MODCP_JOB_ERR_PROTO);
             return finish(j, MODCP_EV_XFER_STATE, 0);
         }
@@ -233,9 +235,11 @@ static modcp_jobp_t rx_reply(modcp_job_t *j, const modcp_block_t *b)
         }
         d += MODCP_BP_REPLY_HDR_LEN; /* the whole reply in one block: data after the header */
         n -= MODCP_BP_REPLY_HDR_LEN;
-    } else if (j->state != MODCP_JOBST_RECEIVING) {
+    } else if (j->state != (uint8_t)MODCP_JOBST_RECEIVING) {
         proto_error(j, MODCP_JOB_ERR_PROTO); /* data before the header */
         return finish(j, MODCP_EV_XFER_STATE, 0);
+    } else {
+        /* a data block of the reply being received */
     }
     if (n > 0u) { /* count everything that arrived (saturating), store only what fits */
         uint32_t room = j->rlen < j->rcap ? (uint32_t)j->rcap - j->rlen : 0u;
@@ -258,12 +262,16 @@ static modcp_jobp_t rx_params(modcp_job_t *j, const modcp_block_t *b)
     } else if (j->msgkind != MODCP_BP_PARAMS) {
         proto_error(j, MODCP_JOB_ERR_PROTO); /* continuation without a start */
         return MODCP_JOBP_NOTHING;
+    } else {
+        /* the next block of the record being received */
     }
     if ((uint32_t)j->msglen + b->len > j->msgcap) {
         j->msg_overflow = true;
     } else if (b->len > 0u) {
-        memcpy(j->msgbuf + j->msglen, b->data, b->len);
+        (void)memcpy(j->msgbuf + j->msglen, b->data, b->len);
         j->msglen = (uint16_t)(j->msglen + b->len);
+    } else {
+        /* an empty block: nothing to store */
     }
     if ((b->flags & MODCP_BLK_LAST) == 0u) {
         return MODCP_JOBP_NOTHING;
@@ -346,7 +354,7 @@ modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us, modcp_bp_init_t *in
                                                          : MODCP_EV_XFER_TIMEOUT,
                       0);
     }
-    if (j->state == MODCP_JOBST_SENDING) {
+    if (j->state == (uint8_t)MODCP_JOBST_SENDING) {
         push_blocks(j);
     }
     return MODCP_JOBP_NOTHING;

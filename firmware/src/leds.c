@@ -5,7 +5,7 @@
 #include <stddef.h>
 #include "leds_internal.h"
 
-_Static_assert(MODCP_LED_SF == 0 && MODCP_LED_TXD == 1 && MODCP_LED_RXD == 2,
+_Static_assert(((int)MODCP_LED_SF == 0) && ((int)MODCP_LED_TXD == 1) && ((int)MODCP_LED_RXD == 2),
                "leds: SF is bit 0, TXD / RXD index on_us by led - 1");
 
 void modcp_leds_switch(modcp_leds_t *x, const modcp_hal_t *hal, unsigned want, uint32_t now_us)
@@ -14,10 +14,10 @@ void modcp_leds_switch(modcp_leds_t *x, const modcp_hal_t *hal, unsigned want, u
     unsigned went_on = want & changed;
     x->bits = (uint8_t)want;
     if ((went_on & MODCP_LED_BIT(MODCP_LED_TXD)) != 0u) { /* SF has no minimum on-time */
-        x->on_us[MODCP_LED_TXD - 1u] = now_us;
+        x->on_us[(unsigned)MODCP_LED_TXD - 1u] = now_us;
     }
     if ((went_on & MODCP_LED_BIT(MODCP_LED_RXD)) != 0u) {
-        x->on_us[MODCP_LED_RXD - 1u] = now_us;
+        x->on_us[(unsigned)MODCP_LED_RXD - 1u] = now_us;
     }
     if (hal == NULL || hal->set_led == NULL) {
         return;

@@ -26,18 +26,22 @@ static inline void modcp_leds_poll(modcp_leds_t *x, bool sf, const modcp_link_t 
         x->tx_seen = l->tx_starts;
         want |= MODCP_LED_BIT(MODCP_LED_TXD);
     } else if ((want & MODCP_LED_BIT(MODCP_LED_TXD)) != 0u &&
-               now_us - x->on_us[MODCP_LED_TXD - 1u] >= MODCP_LED_MIN_ON_US &&
+               now_us - x->on_us[(unsigned)MODCP_LED_TXD - 1u] >= MODCP_LED_MIN_ON_US &&
                now_us - l->tx_end_us >= MODCP_LED_MIN_ON_US) {
         want &= ~MODCP_LED_BIT(MODCP_LED_TXD);
+    } else {
+        /* TXD stays as it is */
     }
 
     if (l->last_us != x->rx_seen_us) { /* a character since the last poll */
         x->rx_seen_us = l->last_us;
         want |= MODCP_LED_BIT(MODCP_LED_RXD);
     } else if ((want & MODCP_LED_BIT(MODCP_LED_RXD)) != 0u &&
-               now_us - x->on_us[MODCP_LED_RXD - 1u] >= MODCP_LED_MIN_ON_US &&
+               now_us - x->on_us[(unsigned)MODCP_LED_RXD - 1u] >= MODCP_LED_MIN_ON_US &&
                now_us - l->last_us >= MODCP_LED_MIN_ON_US && now_us - l->last_us >= l->t35_us) {
         want &= ~MODCP_LED_BIT(MODCP_LED_RXD);
+    } else {
+        /* RXD stays as it is */
     }
 
     if (want != x->bits) {

@@ -41,6 +41,14 @@
 #include "map_internal.h"
 #include "quantity_internal.h"
 
+/* The areas as the uint8_t the operands and windows hold them in (MISRA C:2012 10.4). */
+#define AREA_I ((uint8_t)MODCP_AREA_I)
+#define AREA_Q ((uint8_t)MODCP_AREA_Q)
+#define AREA_M ((uint8_t)MODCP_AREA_M)
+#define AREA_T ((uint8_t)MODCP_AREA_T)
+#define AREA_C ((uint8_t)MODCP_AREA_C)
+#define AREA_DB ((uint8_t)MODCP_AREA_DB)
+
 #define TC_MAX_CP341 16u   /* [RTU-2003] §3.3: CP 341 reads at most 16 timers / counters */
 #define WORDS_PER_DB 512u  /* [RTU-2003] §3.4 */
 /* The function codes on registers: FC03 / 06 / 16 / 22 / 23 holding, FC04 input. */
@@ -55,10 +63,10 @@ static bool is_write_fc(uint8_t fc)
 
 static bool is_tc(uint8_t area)
 {
-    return area == MODCP_AREA_T || area == MODCP_AREA_C;
+    return area == AREA_T || area == AREA_C;
 }
 
-#define AREA_BIT(a) (1u << (a))
+#define AREA_BIT(a) (1u << (unsigned)(a))
 /* The areas a coil window (FC01/05/15) or an input window (FC02) may map onto. */
 #define COIL_AREAS                                                                         \
     (AREA_BIT(MODCP_AREA_M) | AREA_BIT(MODCP_AREA_Q) | AREA_BIT(MODCP_AREA_T) |            \
@@ -66,31 +74,31 @@ static bool is_tc(uint8_t area)
 #define INPUT_AREAS (AREA_BIT(MODCP_AREA_M) | AREA_BIT(MODCP_AREA_I) | AREA_BIT(MODCP_AREA_DB))
 
 /* The sizes of I, Q, M, T, C are consecutive fields of modcp_areas_t, in area order. */
-_Static_assert(MODCP_AREA_Q == MODCP_AREA_I + 1 && MODCP_AREA_M == MODCP_AREA_I + 2 &&
-                   MODCP_AREA_T == MODCP_AREA_I + 3 && MODCP_AREA_C == MODCP_AREA_I + 4,
+_Static_assert(((int)MODCP_AREA_I == 1) && ((int)MODCP_AREA_Q == 2) && ((int)MODCP_AREA_M == 3) &&
+                   ((int)MODCP_AREA_T == 4) && ((int)MODCP_AREA_C == 5),
                "area order");
-_Static_assert(offsetof(modcp_areas_t, q_bytes) == offsetof(modcp_areas_t, i_bytes) + 2u &&
-                   offsetof(modcp_areas_t, m_bytes) == offsetof(modcp_areas_t, i_bytes) + 4u &&
-                   offsetof(modcp_areas_t, timers) == offsetof(modcp_areas_t, i_bytes) + 6u &&
-                   offsetof(modcp_areas_t, counters) == offsetof(modcp_areas_t, i_bytes) + 8u,
+_Static_assert(((size_t)offsetof(modcp_areas_t, i_bytes) == 0u) &&
+                   ((size_t)offsetof(modcp_areas_t, q_bytes) == 2u) &&
+                   ((size_t)offsetof(modcp_areas_t, m_bytes) == 4u) &&
+                   ((size_t)offsetof(modcp_areas_t, timers) == 6u) &&
+                   ((size_t)offsetof(modcp_areas_t, counters) == 8u),
                "modcp_areas_t: the sizes in area order");
 
 /* The size of area (I, Q, M, T, C or DB: the caller knows it is one of them). */
 static inline uint32_t area_size(const modcp_areas_t *a, uint8_t area)
 {
-    if (a == NULL || area == MODCP_AREA_DB) {
+    if (a == NULL || area == AREA_DB) {
         return 0x10000u;
     }
     uint16_t n;
-    memcpy(&n, (const uint8_t *)a + offsetof(modcp_areas_t, i_bytes) +
-                   2u * (unsigned)(area - MODCP_AREA_I),
-           sizeof n);
+    (void)memcpy((uint8_t *)&n, &((const uint8_t *)a)[2u * ((unsigned)area - (unsigned)AREA_I)],
+                 sizeof n);
     return n;
 }
 
 uint32_t modcp_map_area_size(const modcp_areas_t *a, uint8_t area)
 {
-    if (a != NULL && area != MODCP_AREA_DB && (area < MODCP_AREA_I || area > MODCP_AREA_C)) {
+    if (a != NULL && area != AREA_DB && (area < AREA_I || area > AREA_C)) {
         return 0u;
     }
     return area_size(a, area);
@@ -133,14 +141,13 @@ modcp_event_t modcp_map_bits_valid(const modcp_params_t *p, const modcp_areas_t 
         n = MODCP_INPUT_WINDOWS;
         usable = INPUT_AREAS;
     }
-    for (;; w++) { /* the first window holding addr */
-        if (n-- == 0u) {
+    while ((w->area >= 8u) || ((usable & AREA_BIT(w->area)) == 0u) || (w->from > addr) ||
+           (addr > w->to)) { /* the first window holding addr */
+        n--;
+        if (n == 0u) {
             return MODCP_EV_NO_WINDOW;
         }
-        if (w->area < 8u && (usable & AREA_BIT(w->area)) != 0u && w->from <= addr &&
-            addr <= w->to) {
-            break;
-        }
+        w++;
     }
 
     const bool write = fc >= 5u; /* FC05 / FC15 */
@@ -155,7 +162,7 @@ modcp_event_t modcp_map_bits_valid(const modcp_params_t *p, const modcp_areas_t 
             return MODCP_EV_TC_ALIGN;
         }
         if (qty % 16u != 0u ||
-            (p->cpu_model == MODCP_CPU_CP341 && (uint32_t)qty / 16u > TC_MAX_CP341)) {
+            (p->cpu_model == (uint8_t)MODCP_CPU_CP341 && (uint32_t)qty / 16u > TC_MAX_CP341)) {
             return MODCP_EV_QUANTITY;
         }
         per = 4u;
@@ -168,16 +175,16 @@ modcp_event_t modcp_map_bits_valid(const modcp_params_t *p, const modcp_areas_t 
     }
 
     if (write) { /* a coil window: M, Q or DB (T / C refused above) */
-        const bool ok = area == MODCP_AREA_DB
+        const bool ok = (area == AREA_DB)
                             ? modcp_map_db_write_ok(p, a, w->db)
-                            : limit_ok(area == MODCP_AREA_M ? &p->lim_m : &p->lim_q, first, last);
+                            : limit_ok((area == AREA_M) ? &p->lim_m : &p->lim_q, first, last);
         if (!ok) {
             return MODCP_EV_WRITE_DENIED;
         }
     }
 
     out->area = area;
-    out->db = area == MODCP_AREA_DB ? w->db : 0u;
+    out->db = (area == AREA_DB) ? w->db : 0u;
     out->offset = (uint16_t)first;
     out->bit = (uint8_t)(rel % 8u); /* 0 for T / C */
     out->count = (uint16_t)(qty >> (per - 3u) * 4u); /* bits, or elements for T / C */
@@ -208,7 +215,7 @@ modcp_event_t modcp_map_regs_kind(const modcp_params_t *p, const modcp_areas_t *
         const uint8_t k1 = out->bit;    /* the range's kind + 1, 0: none */
         db_limits = p->r32_lim_db != 0u; /* [ASCII-32] §3.7, §5.4: the DB limits are standard mode's */
 #if MODCP_WITH_EXTENDED
-        if (fc == 22u && k1 != MODCP_R32_INT16 + 1u) {
+        if (fc == 22u && k1 != ((uint8_t)MODCP_R32_INT16 + 1u)) {
             return MODCP_EV_NO_WINDOW;
         }
 #endif
@@ -245,7 +252,7 @@ modcp_event_t modcp_map_regs_kind(const modcp_params_t *p, const modcp_areas_t *
                                       : a != NULL && db == a->work_db)) {
         return MODCP_EV_WRITE_DENIED;
     }
-    out->area = MODCP_AREA_DB;
+    out->area = AREA_DB;
     out->db = (uint16_t)db;
     out->offset = (uint16_t)offset;
     out->count = (uint16_t)bytes;

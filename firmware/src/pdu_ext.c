@@ -38,7 +38,11 @@
 #include "params_internal.h"
 #include "quantity_internal.h"
 
-enum { PH_EARLY = 0, PH_CHECK = 1, PH_WRITE = 2, PH_READ = 3 };
+/* The phases of a job sequence (modcp_pdu_x_t.phase), in order. */
+#define PH_EARLY 0u
+#define PH_CHECK 1u
+#define PH_WRITE 2u
+#define PH_READ 3u
 
 /* The read data's place in the reply: after fc and byte count. */
 #define ROFF 2u
@@ -54,8 +58,8 @@ __attribute__((noinline)) static modcp_event_t operand(const modcp_pdu_t *s,
         *o = write ? x->wdir : x->rdir;
         return MODCP_EV_NONE;
     }
-    return modcp_scan_map(env->p, env->areas, (uint16_t)((write ? x->wstart : x->rstart) + k),
-                          write, o);
+    const uint16_t start = write ? x->wstart : x->rstart;
+    return modcp_scan_map(env->p, env->areas, (uint16_t)(start + k), write, o);
 }
 
 static uint16_t write_jobs(const modcp_pdu_x_t *x)
@@ -81,7 +85,7 @@ static bool early_read(const modcp_pdu_t *s, const modcp_pdu_env_t *env,
                        const modcp_operand_t *o)
 {
     const modcp_pdu_x_t *x = &s->x;
-    if (x->early == 0u || o->area != MODCP_AREA_DB) {
+    if (x->early == 0u || o->area != (uint8_t)MODCP_AREA_DB) {
         return false;
     }
     for (uint16_t k = 0; k < write_jobs(x); k++) {
@@ -98,14 +102,14 @@ static bool early_read(const modcp_pdu_t *s, const modcp_pdu_env_t *env,
  * areas are checked by the CP against the sizes the CPU side reported. */
 static bool needs_check(modcp_pdu_x_t *x, bool write, const modcp_operand_t *o)
 {
-    if (o->area != MODCP_AREA_DB) {
+    if (o->area != (uint8_t)MODCP_AREA_DB) {
         return false;
     }
     if (write && x->wfirst == 0u) {
         x->wfirst = 1;
         return false;
     }
-    if (!write && !x->wscan && x->wdir.area == MODCP_AREA_DB && o->db == x->wdir.db &&
+    if (!write && !x->wscan && x->wdir.area == (uint8_t)MODCP_AREA_DB && o->db == x->wdir.db &&
         (uint32_t)o->offset + o->count <= (uint32_t)x->wdir.offset + x->wdir.count) {
         return false; /* the write job proves the DB at least this long */
     }
@@ -120,7 +124,8 @@ static modcp_pdu_action_t read_job(modcp_pdu_t *s, const modcp_operand_t *o, uin
     uint16_t n = o->count; /* direct: all of it */
     uint16_t off = ROFF;
     uint16_t room = (uint16_t)(x->cap - ROFF);
-    if (x->rscan) { /* scanner: the entry's word */
+    const bool scan = x->rscan;
+    if (scan) { /* scanner: the entry's word */
         n = 2u;
         off = (uint16_t)(off + 2u * k);
         room = 2u;
@@ -128,78 +133,110 @@ static modcp_pdu_action_t read_job(modcp_pdu_t *s, const modcp_operand_t *o, uin
     return modcp_pdu_job(s, MODCP_JOB_READ, o, n, NULL, pdu + off, room);
 }
 
+/* The steps of the phase: early / other reads: the read part; check reads: the write
+ * part, then the read part; writes: the write part twice (DB operands first, in
+ * request order, then the others). */
+static uint16_t phase_steps(const modcp_pdu_x_t *x, uint16_t nw, uint16_t nr)
+{
+    uint16_t n = nr;
+    if (x->phase == PH_CHECK) {
+        n = (uint16_t)(nw + nr);
+    } else if (x->phase == PH_WRITE) {
+        n = (uint16_t)(2u * nw);
+    } else {
+        /* early reads, other reads: the read part */
+    }
+    return n;
+}
+
+/* A write step: operand o (entry k) in its pass (second: the non-DB operands). */
+static bool write_step(modcp_pdu_t *s, const modcp_operand_t *o, uint16_t k, bool second,
+                       uint8_t *pdu, modcp_pdu_action_t *a)
+{
+    const modcp_pdu_x_t *x = &s->x;
+    if ((o->area == (uint8_t)MODCP_AREA_DB) == second) {
+        return false; /* not in this pass */
+    }
+    /* direct: the whole data; scanner: the entry's word, or FC22's masks */
+    uint16_t len = x->wlen;
+    uint16_t off = x->woff;
+    const bool scan = x->wscan;
+    if (scan) {
+        if (x->wop == MODCP_JOB_MASKWRITE) {
+            len = 4u;
+        } else {
+            len = 2u;
+            off = (uint16_t)(off + (2u * k));
+        }
+    }
+    *a = modcp_pdu_job(s, x->wop, o, len, pdu + off, NULL, 0);
+    return true;
+}
+
+/* Step x->idx of the phase: true with its job (or the exception) in *a, false when the
+ * step has none. */
+static bool seq_step(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu, uint16_t nw,
+                     modcp_pdu_action_t *a)
+{
+    modcp_pdu_x_t *x = &s->x;
+    const uint16_t i = x->idx;
+    x->idx++;
+    const bool second = ((x->phase == PH_CHECK) || (x->phase == PH_WRITE)) && (i >= nw);
+    const bool write = (x->phase == PH_WRITE) || ((x->phase == PH_CHECK) && !second);
+    const uint16_t k = second ? (uint16_t)(i - nw) : i;
+    modcp_operand_t o;
+    const modcp_event_t ev = operand(s, env, write, k, &o);
+    if (ev != MODCP_EV_NONE) {
+        *a = modcp_pdu_map_err(s, ev);
+        return true;
+    }
+    if (o.area == (uint8_t)MODCP_AREA_NONE) {
+        if (x->phase == PH_READ) {
+            uint8_t *r = &pdu[ROFF + (2u * k)];
+            r[0] = 0; /* unused scanner entry: reads 0000 */
+            r[1] = 0;
+        }
+        return false; /* (writes: the value is discarded) */
+    }
+    if (x->phase == PH_WRITE) {
+        return write_step(s, &o, k, second, pdu, a);
+    }
+    const bool early = !write && early_read(s, env, &o);
+    if (x->phase != PH_CHECK) { /* early reads: the early ones; other reads: the rest */
+        if ((x->phase == PH_EARLY) ? !early : early) {
+            return false;
+        }
+        *a = read_job(s, &o, k, pdu);
+        return true;
+    }
+    if (early || !needs_check(x, write, &o)) {
+        return false;
+    }
+    o.offset = (uint16_t)(o.offset + o.count - 2u); /* check read: the last word */
+    o.count = 2;
+    o.bit = 0;
+    *a = modcp_pdu_job(s, MODCP_JOB_READ, &o, 2, NULL, x->probe, sizeof x->probe);
+    return true;
+}
+
 modcp_pdu_action_t modcp_pdu_seq_next(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu)
 {
     modcp_pdu_x_t *x = &s->x;
     const uint16_t nw = write_jobs(x);
     const uint16_t nr = read_jobs(x);
-    modcp_operand_t o;
-    for (;;) {
-        /* the steps of the phase: early / other reads: the read part; check reads: the
-         * write part, then the read part; writes: the write part twice (DB operands
-         * first, in request order, then the others) */
-        const uint16_t n = x->phase == PH_CHECK   ? (uint16_t)(nw + nr)
-                           : x->phase == PH_WRITE ? (uint16_t)(2u * nw)
-                                                  : nr;
-        if (x->idx >= n) {
-            if (x->phase == PH_READ) {
-                return MODCP_PDU_DONE;
-            }
-            /* early reads -> check reads -> writes -> reads */
-            x->phase = nw == 0u ? (uint8_t)PH_READ : (uint8_t)(x->phase + 1u);
+    modcp_pdu_action_t a = MODCP_PDU_DONE;
+    bool more = true;
+    while (more) {
+        if (x->idx < phase_steps(x, nw, nr)) {
+            more = !seq_step(s, env, pdu, nw, &a);
+        } else if (x->phase == PH_READ) {
+            more = false; /* MODCP_PDU_DONE */
+        } else { /* early reads -> check reads -> writes -> reads */
+            x->phase = (nw == 0u) ? PH_READ : (uint8_t)(x->phase + 1u);
             x->idx = 0;
-            continue;
         }
-        const uint16_t i = x->idx++;
-        const bool second = (x->phase == PH_CHECK || x->phase == PH_WRITE) && i >= nw;
-        const bool write = x->phase == PH_WRITE || (x->phase == PH_CHECK && !second);
-        const uint16_t k = second ? (uint16_t)(i - nw) : i;
-        modcp_event_t ev = operand(s, env, write, k, &o);
-        if (ev != MODCP_EV_NONE) {
-            return modcp_pdu_map_err(s, ev);
-        }
-        if (o.area == MODCP_AREA_NONE) {
-            if (x->phase == PH_READ) {
-                uint8_t *r = pdu + ROFF + 2u * k;
-                r[0] = 0; /* unused scanner entry: reads 0000 */
-                r[1] = 0;
-            }
-            continue; /* (writes: the value is discarded) */
-        }
-        if (x->phase == PH_WRITE) {
-            if ((o.area == MODCP_AREA_DB) == second) {
-                continue; /* not in this pass */
-            }
-            /* direct: the whole data; scanner: the entry's word, or FC22's masks */
-            uint16_t len = x->wlen;
-            uint16_t off = x->woff;
-            if (x->wscan) {
-                len = x->wop == MODCP_JOB_MASKWRITE ? 4u : 2u;
-                off = (uint16_t)(off + (len == 2u ? 2u * k : 0u));
-            }
-            return modcp_pdu_job(s, x->wop, &o, len, pdu + off, NULL, 0);
-        }
-        const bool early = !write && early_read(s, env, &o);
-        if (x->phase == PH_EARLY) {
-            if (early) {
-                return read_job(s, &o, k, pdu);
-            }
-            continue;
-        }
-        if (x->phase == PH_READ) {
-            if (!early) {
-                return read_job(s, &o, k, pdu);
-            }
-            continue;
-        }
-        if (early || !needs_check(x, write, &o)) {
-            continue;
-        }
-        o.offset = (uint16_t)(o.offset + o.count - 2u); /* check read: the last word */
-        o.count = 2;
-        o.bit = 0;
-        return modcp_pdu_job(s, MODCP_JOB_READ, &o, 2, NULL, x->probe, sizeof x->probe);
     }
+    return a;
 }
 
 /* Start the sequence described in s->x. */
@@ -209,14 +246,21 @@ static modcp_pdu_action_t start(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint
     modcp_pdu_x_t *x = &s->x;
     x->seq = 1; /* completions come to modcp_pdu_seq_next() */
     x->cap = cap;
-    x->phase = write_jobs(x) == 0u ? PH_READ : (x->early != 0u ? PH_EARLY : PH_CHECK);
+    x->phase = PH_CHECK;
+    if (write_jobs(x) == 0u) {
+        x->phase = PH_READ;
+    } else if (x->early != 0u) {
+        x->phase = PH_EARLY;
+    } else {
+        /* writes without early reads: check reads first */
+    }
     return modcp_pdu_seq_next(s, env, pdu);
 }
 
 /* The sequence's state (s->x from phase on: not cleared by pdu.c) starts at zero. */
 static void seq_clear(modcp_pdu_t *s)
 {
-    memset(&s->x.phase, 0, sizeof s->x - offsetof(modcp_pdu_x_t, phase));
+    (void)memset(&s->x.phase, 0, sizeof s->x - (size_t)offsetof(modcp_pdu_x_t, phase));
 }
 
 /* The write part (write) or the read part of s->x checked and mapped: through the
@@ -228,7 +272,8 @@ static modcp_event_t map_part(modcp_pdu_t *s, const modcp_pdu_env_t *env, bool w
     modcp_pdu_x_t *x = &s->x;
     const uint16_t start = write ? x->wstart : x->rstart;
     const uint16_t qty = write ? x->wqty : x->rqty;
-    if (write ? x->wscan : x->rscan) {
+    const bool scan = write ? x->wscan : x->rscan;
+    if (scan) {
         return modcp_scan_check(env->p, env->areas, start, qty, write);
     }
     modcp_operand_t *o = write ? &x->wdir : &x->rdir;
@@ -258,6 +303,8 @@ modcp_pdu_action_t modcp_pdu_scan(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
             return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
         }
         x->woff = 6;
+    } else {
+        /* a read: no write part */
     }
     if (write) {
         x->wop = MODCP_JOB_WRITE;
@@ -357,7 +404,7 @@ modcp_pdu_action_t modcp_pdu_fc23(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     if (2u + (uint32_t)x->rbytes + bc <= cap) {
         /* room for both: the write data move to the buffer's end, so reads that no
          * write touches can land in the reply before the writes run */
-        memmove(pdu + cap - bc, pdu + 10, bc);
+        (void)memmove(pdu + cap - bc, pdu + 10, bc);
         x->woff = (uint16_t)(cap - bc);
         x->early = 1;
     }

@@ -95,6 +95,8 @@ modcp_pdu_action_t modcp_pdu_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         if (bc != (s->qty + 7u) / 8u || len != 6u + bc) {
             return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
         }
+    } else {
+        /* FC01 / FC02 / FC05: no byte count */
     }
     if (!map_bits(s, env, s->qty)) {
         return MODCP_PDU_FAIL;
@@ -110,7 +112,7 @@ modcp_pdu_action_t modcp_pdu_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     }
     modcp_operand_t *o = &s->job.opnd;
     uint16_t bytes;
-    if (o->area == MODCP_AREA_T || o->area == MODCP_AREA_C) {
+    if (o->area == (uint8_t)MODCP_AREA_T || o->area == (uint8_t)MODCP_AREA_C) {
         bytes = (uint16_t)(o->count * 2u); /* whole words, high byte first */
         s->x.rbytes = bytes;
     } else {
@@ -138,6 +140,8 @@ modcp_pdu_action_t modcp_pdu_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         if (bc != modcp_reg_bytes(s->r32_kind) * s->qty || len != 6u + bc) {
             return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
         }
+    } else {
+        /* FC03 / FC04 / FC06: no byte count */
     }
     /* the mapping's byte count is the request's: the width comes from the same range */
     if (!map_regs(s, env, s->qty)) {

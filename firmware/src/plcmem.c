@@ -30,12 +30,14 @@ static uint16_t *word_area(const modcp_plcmem_t *mem, const modcp_operand_t *op,
 {
     uint16_t *base = NULL;
     uint32_t count = 0;
-    if (op->area == MODCP_AREA_T) {
+    if (op->area == (uint8_t)MODCP_AREA_T) {
         base = mem->t;
         count = mem->t_count;
-    } else if (op->area == MODCP_AREA_C) {
+    } else if (op->area == (uint8_t)MODCP_AREA_C) {
         base = mem->c;
         count = mem->c_count;
+    } else {
+        /* I, Q, M: base and count set above */
     }
     if (base == NULL || (uint32_t)op->offset + n > count) {
         return NULL;
@@ -45,7 +47,7 @@ static uint16_t *word_area(const modcp_plcmem_t *mem, const modcp_operand_t *op,
 
 static bool is_word_area(uint8_t area)
 {
-    return area == MODCP_AREA_T || area == MODCP_AREA_C;
+    return area == (uint8_t)MODCP_AREA_T || area == (uint8_t)MODCP_AREA_C;
 }
 
 modcp_event_t modcp_plcmem_read(const modcp_plcmem_t *mem, const modcp_operand_t *op,
@@ -72,7 +74,7 @@ modcp_event_t modcp_plcmem_read(const modcp_plcmem_t *mem, const modcp_operand_t
         return ev;
     }
     if (len > 0u) {
-        memcpy(out, src, len);
+        (void)memcpy(out, src, len);
     }
     return MODCP_EV_NONE;
 }
@@ -100,7 +102,7 @@ modcp_event_t modcp_plcmem_write(modcp_plcmem_t *mem, const modcp_operand_t *op,
         return ev;
     }
     if (len > 0u) {
-        memcpy(dst, in, len);
+        (void)memcpy(dst, in, len);
     }
     return MODCP_EV_NONE;
 }
@@ -144,7 +146,7 @@ void modcp_bits_put(uint8_t *dst, uint32_t first, uint32_t count, const uint8_t 
     if (count == 0u) {
         return;
     }
-    dst += first / 8u;
+    dst = &dst[first / 8u];
     unsigned sh = first & 7u;
     uint32_t end = sh + count;       /* one past the last bit, counted from dst[0] bit 0 */
     uint32_t last = (end - 1u) / 8u; /* the last destination byte */
@@ -157,7 +159,7 @@ void modcp_bits_put(uint8_t *dst, uint32_t first, uint32_t count, const uint8_t 
         return;
     }
     if (sh == 0u) { /* byte-aligned: whole source bytes as they are */
-        memcpy(dst, bits, last);
+        (void)memcpy(dst, bits, last);
         dst[last] = (uint8_t)((dst[last] & ~tail) | (bits[last] & tail));
         return;
     }

@@ -24,7 +24,7 @@
 static bool scanner_on(const modcp_params_t *p)
 {
     return p->fset == (uint8_t)MODCP_FSET_EXTENDED && p->scan_count > 0u &&
-           p->scan_count <= MODCP_SCANNER_MAX;
+           p->scan_count <= (uint8_t)MODCP_SCANNER_MAX;
 }
 
 bool modcp_scan_touches(const modcp_params_t *p, uint16_t reg, uint16_t qty)
@@ -77,10 +77,10 @@ modcp_event_t modcp_scan_map(const modcp_params_t *p, const modcp_areas_t *a, ui
             return MODCP_EV_PAST_END;
         }
         if (write) {
-            if (e->area == MODCP_AREA_I) {
+            if (e->area == (uint8_t)MODCP_AREA_I) {
                 return MODCP_EV_AREA_READONLY;
             }
-            const modcp_limit_t *l = e->area == MODCP_AREA_M ? &p->lim_m : &p->lim_q;
+            const modcp_limit_t *l = e->area == (uint8_t)MODCP_AREA_M ? &p->lim_m : &p->lim_q;
             if (!limit_ok(l, first, first + 1u)) {
                 return MODCP_EV_WRITE_DENIED;
             }
@@ -124,7 +124,7 @@ modcp_event_t modcp_scan_check(const modcp_params_t *p, const modcp_areas_t *a, 
         if (ev != MODCP_EV_NONE) {
             return ev;
         }
-        used |= o.area != MODCP_AREA_NONE;
+        used |= o.area != (uint8_t)MODCP_AREA_NONE;
     }
     return used ? MODCP_EV_NONE : MODCP_EV_NO_WINDOW;
 }

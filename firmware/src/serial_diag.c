@@ -81,12 +81,13 @@ static bool sub_supported(uint16_t sub)
 
 static bool delimiter_ok(uint8_t ch, const modcp_params_t *p)
 {
-    bool hex = (ch >= '0' && ch <= '9') || (ch >= 'A' && ch <= 'F') || (ch >= 'a' && ch <= 'f');
+    bool hex = (ch >= 0x30u && ch <= 0x39u) || (ch >= 0x41u && ch <= 0x46u) || /* 0-9 A-F */
+               (ch >= 0x61u && ch <= 0x66u);                              /* a-f */
     /* ASCII with 7 data bits masks the eighth bit of every received character: a
      * delimiter above 7FH could never be received and would lock the master out */
     bool unreceivable = ch > 0x7Fu && p != NULL && p->framing == (uint8_t)MODCP_FRAMING_ASCII &&
                         p->data_bits == 7u;
-    return !hex && ch != ':' && !unreceivable;
+    return !hex && ch != 0x3Au && !unreceivable; /* ':' */
 }
 
 modcp_pdu_action_t modcp_pdu_fc08(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,

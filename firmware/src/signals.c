@@ -48,7 +48,7 @@ static void reset(modcp_sig_t *s)
 
 void modcp_sig_init(modcp_sig_t *s, const modcp_hal_t *hal, modcp_diag_t *diag)
 {
-    memset(s, 0, sizeof *s);
+    (void)memset(s, 0, sizeof *s);
     s->hal = hal;
     s->diag = diag;
     /* power-on: outputs OFF (set explicitly, whatever the pins did before) */
@@ -96,7 +96,7 @@ static void decide(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us)
 
 void modcp_sig_on_reply(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us)
 {
-    if (!s->enabled || l->state != MODCP_LINK_TURNAROUND || s->state != MODCP_SIGST_IDLE) {
+    if (!s->enabled || l->state != (uint8_t)MODCP_LINK_TURNAROUND || s->state != (uint8_t)MODCP_SIGST_IDLE) {
         return;
     }
     if (!s->dsr) {
@@ -153,7 +153,7 @@ bool modcp_sig_on_timer(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us)
  * job: RTS goes OFF now and the character is received normally. */
 void modcp_sig_on_rx(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us)
 {
-    if (s->enabled && s->state == MODCP_SIGST_RTS_OFF) {
+    if (s->enabled && s->state == (uint8_t)MODCP_SIGST_RTS_OFF) {
         arm(s, 0);
         rts_off_done(s, l, now_us);
     }
@@ -164,7 +164,7 @@ bool modcp_sig_on_tx_done(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us)
     if (!s->enabled) {
         return false;
     }
-    if (s->state != MODCP_SIGST_SENDING) {
+    if (s->state != (uint8_t)MODCP_SIGST_SENDING) {
         return true; /* late completion of an aborted transmission: ignored */
     }
     if (s->off_delay_us == 0u) {
@@ -180,13 +180,13 @@ bool modcp_sig_on_tx_done(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us)
 /* Abort a reply in progress (CTS / DSR OFF). */
 static void abort_send(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us)
 {
-    if (s->state == MODCP_SIGST_WAIT_CTS) {
+    if (s->state == (uint8_t)MODCP_SIGST_WAIT_CTS) {
         count_abort(s);
         s->state = MODCP_SIGST_IDLE;
         out(s, MODCP_SIG_RTS, false);
         arm(s, 0);
         modcp_link_tx_release(l, false, now_us);
-    } else if (s->state == MODCP_SIGST_SENDING) {
+    } else if (s->state == (uint8_t)MODCP_SIGST_SENDING) {
         count_abort(s);
         if (s->hal->uart_tx_abort != NULL) {
             s->hal->uart_tx_abort(s->hal->ctx);
@@ -194,8 +194,9 @@ static void abort_send(modcp_sig_t *s, modcp_link_t *l, uint32_t now_us)
         s->state = MODCP_SIGST_IDLE;
         out(s, MODCP_SIG_RTS, false);
         modcp_link_on_tx_done(l, now_us); /* back to receiving */
+    } else {
+        /* RTS_OFF: everything was sent; the time to RTS off runs out normally */
     }
-    /* RTS_OFF: everything was sent; the time to RTS off runs out normally */
 }
 
 void modcp_sig_on_inputs(modcp_sig_t *s, modcp_link_t *l, bool cts, bool dsr, uint32_t now_us)
@@ -213,13 +214,13 @@ void modcp_sig_on_inputs(modcp_sig_t *s, modcp_link_t *l, bool cts, bool dsr, ui
     if (dsr_fell) {
         event(s, MODCP_EV_SIGNAL_OFF);
         abort_send(s, l, now_us);
-        if (l->state == MODCP_LINK_RX) {
+        if (l->state == (uint8_t)MODCP_LINK_RX) {
             count_abort(s);
             modcp_link_rx_discard(l);
         }
         return;
     }
-    if (cts_fell && s->state == MODCP_SIGST_SENDING) {
+    if (cts_fell && s->state == (uint8_t)MODCP_SIGST_SENDING) {
         s->cts_missing = true;
         event(s, MODCP_EV_SIGNAL_OFF);
         abort_send(s, l, now_us);

@@ -36,15 +36,16 @@
 #define MODCP_BP_DEPTH 4u /* blocks per direction; power of two */
 #endif
 
-enum {
-    MODCP_BP_PARAMS = 1,
-    MODCP_BP_INIT = 2,
-    MODCP_BP_INIT_ACK = 3,
-    MODCP_BP_JOB = 4,
-    MODCP_BP_REPLY = 5,
-};
+/* Block kinds (modcp_block_t.kind). */
+#define MODCP_BP_PARAMS 1u
+#define MODCP_BP_INIT 2u
+#define MODCP_BP_INIT_ACK 3u
+#define MODCP_BP_JOB 4u
+#define MODCP_BP_REPLY 5u
 
-enum { MODCP_BLK_FIRST = 0x01, MODCP_BLK_LAST = 0x02 };
+/* Block flags (modcp_block_t.flags). */
+#define MODCP_BLK_FIRST 0x01u
+#define MODCP_BLK_LAST 0x02u
 
 typedef struct {
     uint8_t data[MODCP_BLOCK_SIZE];
@@ -63,15 +64,13 @@ typedef struct {
 
 /* CP status area: published by the CP side (seqlock), read by the CPU side, so the
  * user program sees the CP's state and diagnostics without touching the CP. */
-enum {
-    MODCP_CPST_CONFIGURED = 0x0001, /* valid parameters applied */
-    MODCP_CPST_READY = 0x0002,      /* configured and FB initialised */
-    MODCP_CPST_SF = 0x0004,         /* group error LED */
-    MODCP_CPST_COMMLOSS = 0x0008,   /* comm-loss supervision expired */
-    MODCP_CPST_LISTEN_ONLY = 0x0010, /* FC08 sub 04 listen-only mode */
-    MODCP_CPST_WIRE_BREAK = 0x0100, /* BREAK on RxD (normal mode) until a good character */
-    MODCP_CPST_PARAM_ERROR = 0x0200, /* the last PARAMS record was rejected */
-};
+#define MODCP_CPST_CONFIGURED 0x0001u  /* valid parameters applied */
+#define MODCP_CPST_READY 0x0002u       /* configured and FB initialised */
+#define MODCP_CPST_SF 0x0004u          /* group error LED */
+#define MODCP_CPST_COMMLOSS 0x0008u    /* comm-loss supervision expired */
+#define MODCP_CPST_LISTEN_ONLY 0x0010u /* FC08 sub 04 listen-only mode */
+#define MODCP_CPST_WIRE_BREAK 0x0100u  /* BREAK on RxD (normal mode) until a good character */
+#define MODCP_CPST_PARAM_ERROR 0x0200u /* the last PARAMS record was rejected */
 
 /* Two runs of fields are laid out as their owners hold them, so that the CP publishes
  * each as one copy: events_total ... buffer_len as in modcp_diag_t (diag.h), diag_irq ...
@@ -109,16 +108,14 @@ typedef struct {
                                         is cleared when the CP sees it change) */
 } modcp_backplane_t;
 
-/* Job operations. */
-enum {
-    MODCP_JOB_READ = 1,     /* read count bytes / T,C elements (FC01/02/03/04) */
-    MODCP_JOB_WRITE = 2,    /* write bytes (FC06/16) */
-    MODCP_JOB_BITWRITE = 3, /* read-modify-write of count bits from operand.bit (FC05/15) */
-    MODCP_JOB_MASKWRITE = 4, /* FC22: the word at the operand (M, Q, DB; count 2 bytes)
-                                := (cur AND data[0..1]) OR (data[2..3] AND NOT data[0..1]),
-                                len 4 (AND mask, OR mask, high byte first), read and
-                                written in one FB call (atomic) */
-};
+/* Job operations (modcp_bp_job_t.op). */
+#define MODCP_JOB_READ 1u     /* read count bytes / T,C elements (FC01/02/03/04) */
+#define MODCP_JOB_WRITE 2u    /* write bytes (FC06/16) */
+#define MODCP_JOB_BITWRITE 3u /* read-modify-write of count bits from operand.bit (FC05/15) */
+#define MODCP_JOB_MASKWRITE 4u /* FC22: the word at the operand (M, Q, DB; count 2 bytes)
+                                  := (cur AND data[0..1]) OR (data[2..3] AND NOT data[0..1]),
+                                  len 4 (AND mask, OR mask, high byte first), read and
+                                  written in one FB call (atomic) */
 
 /* JOB header, first block of a job (serialised little-endian into data[]). */
 typedef struct {

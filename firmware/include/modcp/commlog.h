@@ -33,29 +33,25 @@
 
 #define MODCP_COMM_LOG_LEN 64u
 
-enum {
-    MODCP_COMM_RX = 0x80,
-    MODCP_COMM_RX_COMM_ERROR = 0x02,
-    MODCP_COMM_RX_OVERRUN = 0x10,
-    MODCP_COMM_RX_LISTEN = 0x20,
-    MODCP_COMM_RX_BROADCAST = 0x40,
-    MODCP_COMM_TX = 0x40,
-    MODCP_COMM_TX_READ_EXC = 0x01,  /* exception 1..3 */
-    MODCP_COMM_TX_ABORT_EXC = 0x02, /* exception 4 */
-    MODCP_COMM_TX_BUSY_EXC = 0x04,  /* exception 5..6 */
-    MODCP_COMM_TX_NAK_EXC = 0x08,   /* exception 7 */
-    MODCP_COMM_TX_WRITE_TIMEOUT = 0x10,
-    MODCP_COMM_TX_LISTEN = 0x20,
-    MODCP_COMM_LISTEN_ENTERED = 0x04,
-    MODCP_COMM_RESTART = 0x00,
-};
+#define MODCP_COMM_RX 0x80u
+#define MODCP_COMM_RX_COMM_ERROR 0x02u
+#define MODCP_COMM_RX_OVERRUN 0x10u
+#define MODCP_COMM_RX_LISTEN 0x20u
+#define MODCP_COMM_RX_BROADCAST 0x40u
+#define MODCP_COMM_TX 0x40u
+#define MODCP_COMM_TX_READ_EXC 0x01u /* exception 1..3 */
+#define MODCP_COMM_TX_ABORT_EXC 0x02u /* exception 4 */
+#define MODCP_COMM_TX_BUSY_EXC 0x04u /* exception 5..6 */
+#define MODCP_COMM_TX_NAK_EXC 0x08u /* exception 7 */
+#define MODCP_COMM_TX_WRITE_TIMEOUT 0x10u
+#define MODCP_COMM_TX_LISTEN 0x20u
+#define MODCP_COMM_LISTEN_ENTERED 0x04u
+#define MODCP_COMM_RESTART 0x00u
 
 /* Diagnostic register bits (FC08 sub 02). */
-enum {
-    MODCP_DREG_OVERRUN = 0x0001,  /* latched */
-    MODCP_DREG_COMMLOSS = 0x0002, /* live */
-    MODCP_DREG_CPU_STALLED = 0x0004, /* live */
-};
+#define MODCP_DREG_OVERRUN 0x0001u /* latched */
+#define MODCP_DREG_COMMLOSS 0x0002u /* live */
+#define MODCP_DREG_CPU_STALLED 0x0004u /* live */
 
 typedef struct {
     uint16_t event_count;              /* FC11: successful completions, wraps */

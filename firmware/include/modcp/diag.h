@@ -15,12 +15,16 @@
 #include "modcp/events.h"
 #include "modcp/features.h"
 
-#define MODCP_DIAG_BUFFER 9
-#define MODCP_SYSTAT_EVENTS 6
-#define MODCP_COMM_LOG 64
+#define MODCP_DIAG_BUFFER 9u
+#define MODCP_SYSTAT_EVENTS 6u
+#define MODCP_COMM_LOG 64u
 
-enum { MODCP_SYSTAT_F = 0x01, MODCP_SYSTAT_U = 0x02, MODCP_SYSTAT_B = 0x04 };
-enum { MODCP_SYSTAT_RUN = 0x02, MODCP_SYSTAT_FAULT = 0x05 };
+/* SYSTAT image byte 2 flags and byte 0 states ([RTU-2003] §7.4). */
+#define MODCP_SYSTAT_F 0x01u
+#define MODCP_SYSTAT_U 0x02u
+#define MODCP_SYSTAT_B 0x04u
+#define MODCP_SYSTAT_RUN 0x02u
+#define MODCP_SYSTAT_FAULT 0x05u
 
 /* Modbus serial-line counters (Modbus over Serial Line V1.02 §6.1). */
 typedef enum {

@@ -15,7 +15,7 @@ typedef uint16_t modcp_event_t; /* 0 = no event */
 #define MODCP_EVENT_CLASS(ev) ((uint8_t)((ev) >> 8))
 #define MODCP_EVENT_NUMBER(ev) ((uint8_t)((ev)&0xFFu))
 
-#define MODCP_EV_ENUM_ROW_(NAME, cls, num, ...) MODCP_EV_##NAME = ((cls) << 8) | (num),
+#define MODCP_EV_ENUM_ROW_(NAME, cls, num, ...) MODCP_EV_##NAME = ((cls) * 256) + (num),
 enum {
     MODCP_EV_NONE = 0x0000,
     MODCP_EVENT_ROWS(MODCP_EV_ENUM_ROW_)

@@ -77,12 +77,11 @@ typedef struct {
 #endif
 } modcp_pdu_x_t;
 
-enum {
-    MODCP_X_AFTER_NONE = 0,
-    MODCP_X_AFTER_CLEAR,         /* FC08 sub 0A: counters, event counter, diag register */
-    MODCP_X_AFTER_RESTART,       /* FC08 sub 01 data 0000: restart, keep the log */
-    MODCP_X_AFTER_RESTART_CLEAR, /* FC08 sub 01 data FF00: restart, clear the log */
-};
+/* modcp_pdu_x_t.after: what the FC08 reply leaves to do once it is out. */
+#define MODCP_X_AFTER_NONE 0u
+#define MODCP_X_AFTER_CLEAR 1u         /* FC08 sub 0A: counters, event counter, diag register */
+#define MODCP_X_AFTER_RESTART 2u       /* FC08 sub 01 data 0000: restart, keep the log */
+#define MODCP_X_AFTER_RESTART_CLEAR 3u /* FC08 sub 01 data FF00: restart, clear the log */
 
 /* ---- persistent state --------------------------------------------------------------- */
 

@@ -57,12 +57,10 @@ typedef struct {
     uint16_t aborts;       /* sends and receptions aborted by CTS / DSR */
 } modcp_sig_t;
 
-enum {
-    MODCP_SIGBIT_RTS = 0x01,
-    MODCP_SIGBIT_DTR = 0x02,
-    MODCP_SIGBIT_CTS = 0x04,
-    MODCP_SIGBIT_DSR = 0x08,
-    MODCP_SIGBIT_AUTO = 0x80, /* automatic mode active */
-};
+#define MODCP_SIGBIT_RTS 0x01u
+#define MODCP_SIGBIT_DTR 0x02u
+#define MODCP_SIGBIT_CTS 0x04u
+#define MODCP_SIGBIT_DSR 0x08u
+#define MODCP_SIGBIT_AUTO 0x80u /* automatic mode active */
 
 #endif
