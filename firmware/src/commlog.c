@@ -46,6 +46,42 @@ void modcp_comm_clear_log(modcp_comm_t *c)
     c->log_head = 0;
 }
 
+void modcp_comm_completed(modcp_comm_t *c)
+{
+    c->event_count++; /* wraps 65535 -> 0 */
+}
+
+void modcp_comm_clear(modcp_comm_t *c)
+{
+    c->event_count = 0;
+    c->diag_reg = 0;
+    c->overrun_pending = false;
+}
+
+void modcp_comm_clear_overrun(modcp_comm_t *c)
+{
+    c->diag_reg = (uint16_t)(c->diag_reg & ~MODCP_DREG_OVERRUN);
+    c->overrun_pending = false;
+}
+
+void modcp_comm_restart(modcp_comm_t *c, bool clear_log)
+{
+    modcp_comm_clear(c);
+    c->listen_only = false;
+    if (clear_log) {
+        modcp_comm_clear_log(c);
+    }
+    modcp_comm_log(c, MODCP_COMM_RESTART);
+}
+
+void modcp_comm_listen(modcp_comm_t *c, bool on)
+{
+    c->listen_only = on;
+    if (on) {
+        modcp_comm_log(c, MODCP_COMM_LISTEN_ENTERED);
+    }
+}
+
 void modcp_comm_counted(modcp_comm_t *c, unsigned counter)
 {
     if (counter == (unsigned)MODCP_CNT_CHAR_OVERRUN) {

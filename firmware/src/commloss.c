@@ -20,6 +20,7 @@
 #include <stddef.h>
 
 #include "modcp/ext.h"
+#include "commlog_internal.h"
 #include "diag_internal.h"
 #include "ext_internal.h"
 
@@ -37,7 +38,32 @@ void modcp_ext_reset(modcp_ext_t *x, modcp_diag_t *d)
 {
     modcp_ext_init(x);
     if (d != NULL) {
-        d->comm.listen_only = false;
+        modcp_comm_listen(&d->comm, false);
+    }
+}
+
+void modcp_ext_set_delimiter(modcp_ext_t *x, uint8_t ch)
+{
+    x->ascii_delimiter = ch;
+    x->delimiter_changed = true;
+}
+
+bool modcp_ext_take_delimiter(modcp_ext_t *x, uint8_t *ch)
+{
+    const bool changed = x->delimiter_changed;
+    *ch = x->ascii_delimiter;
+    x->delimiter_changed = false;
+    return changed;
+}
+
+void modcp_ext_job_result(modcp_ext_t *x, bool timed_out, bool ok)
+{
+    if (timed_out) {
+        x->cpu_stalled = true;
+    } else if (ok) {
+        x->cpu_stalled = false;
+    } else {
+        /* refused by the CPU side, or no job: the state stays */
     }
 }
 

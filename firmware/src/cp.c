@@ -70,9 +70,9 @@ static void line_poll(modcp_cp_t *cp, uint32_t now_us)
         /* byte 0 ([RTU-2003] §7.4): RUN once parameterised, fault without valid parameters */
         modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, cp->configured);
     }
-    if (cp->job.new_errors != 0u) { /* new backplane errors */
-        modcp_cpdiag_backplane(&cp->diag, cp->job.new_errors);
-        cp->job.new_errors = 0;
+    const uint8_t errors = modcp_job_take_errors(&cp->job);
+    if (errors != 0u) { /* new backplane errors */
+        modcp_cpdiag_backplane(&cp->diag, errors);
     }
     if (cp->cpdiag.wire_break && cp->link.last_us != cp->err_mark_us) {
         modcp_cpdiag_good_char(&cp->cpdiag); /* a character arrived after the BREAK */
@@ -156,9 +156,9 @@ static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, modcp_frame
     }
 #if MODCP_WITH_EXTENDED
     modcp_pdu_finished(&cp->pdu, env, a, now_us); /* FC11/12 accounting, comm loss */
-    if (cp->ext.delimiter_changed) { /* FC08 sub 03 / 01: the ASCII input delimiter */
-        cp->link.ascii_delim = cp->ext.ascii_delimiter;
-        cp->ext.delimiter_changed = false;
+    uint8_t delim;
+    if (modcp_ext_take_delimiter(&cp->ext, &delim)) { /* FC08 sub 03 / 01 */
+        cp->link.ascii_delim = delim; /* the ASCII input delimiter */
     }
 #endif
     if (a == MODCP_PDU_REPLY) {

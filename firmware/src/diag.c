@@ -88,7 +88,18 @@ __attribute__((noinline)) void modcp_diag_count_error(modcp_diag_t *d, modcp_cou
 void modcp_diag_clear_counters(modcp_diag_t *d)
 {
     (void)memset(d->counters, 0, sizeof d->counters);
+#if MODCP_WITH_EXTENDED
+    modcp_comm_clear(&d->comm); /* FC11's event counter, the diagnostic register */
+#endif
 }
+
+#if MODCP_WITH_EXTENDED
+void modcp_diag_clear_overrun(modcp_diag_t *d)
+{
+    d->counters[MODCP_CNT_CHAR_OVERRUN] = 0;
+    modcp_comm_clear_overrun(&d->comm);
+}
+#endif
 
 _Static_assert(offsetof(modcp_diag_t, buffer_len) == offsetof(modcp_diag_t, buffer) +
                                                        sizeof((modcp_diag_t *)0)->buffer,

@@ -21,7 +21,13 @@ static inline void modcp_diag_count(modcp_diag_t *d, modcp_counter_t c)
         modcp_diag_count_error(d, c); /* the others saturate (diag.c) */
     }
 }
+/* The serial-line counters and, with the extended set, FC11's event counter and the
+ * diagnostic register (FC08 sub 0A). */
 void modcp_diag_clear_counters(modcp_diag_t *d);
+#if MODCP_WITH_EXTENDED
+/* FC08 sub 14: the character overrun counter and the overrun bit. */
+void modcp_diag_clear_overrun(modcp_diag_t *d);
+#endif
 /* Empty the diagnostic buffer ([VIPA-341] §8.3: re-parameterisation of the CP clears it). */
 void modcp_diag_clear_buffer(modcp_diag_t *d);
 /* SYSTAT image (16 bytes as [RTU-2003] §7.4: state, 0, flags, 0, 6 event words high byte

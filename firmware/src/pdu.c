@@ -392,14 +392,11 @@ void modcp_pdu_finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_pdu_ac
     if (s->x.quiet == 0u) {
         modcp_comm_log(&d->comm, send_event(s, &d->comm));
         if (s->x.exc == MODCP_EXC_NONE && (s->fcflags & F_NOCOUNT) == 0u) {
-            d->comm.event_count++; /* successful completion; wraps 65535 -> 0 */
+            modcp_comm_completed(&d->comm); /* successful completion */
         }
         if (x != NULL) {
-            if (s->x.timeout != 0u) {
-                x->cpu_stalled = true;
-            } else if (s->job.op != 0u && s->x.exc == MODCP_EXC_NONE) {
-                x->cpu_stalled = false;
-            }
+            modcp_ext_job_result(x, s->x.timeout != 0u,
+                                 s->job.op != 0u && s->x.exc == MODCP_EXC_NONE);
             if (!s->broadcast && s->x.exc == MODCP_EXC_NONE && (s->fcflags & F_WRITE) != 0u) {
                 modcp_commloss_write(x, env->p, now_us);
             }

@@ -43,22 +43,14 @@ static void put16(uint8_t *p, uint16_t v)
 void modcp_ext_clear_counters(modcp_diag_t *d)
 {
     modcp_diag_clear_counters(d);
-    d->comm.event_count = 0;
-    d->comm.diag_reg = 0;
-    d->comm.overrun_pending = false;
 }
 
 void modcp_ext_restart(modcp_ext_t *x, modcp_diag_t *d, bool clear_log)
 {
-    modcp_ext_clear_counters(d);
-    d->comm.listen_only = false;
-    if (clear_log) {
-        modcp_comm_clear_log(&d->comm);
-    }
-    modcp_comm_log(&d->comm, MODCP_COMM_RESTART);
+    modcp_diag_clear_counters(d);
+    modcp_comm_restart(&d->comm, clear_log);
     if (x != NULL) {
-        x->ascii_delimiter = MODCP_ASCII_DELIMITER_DEFAULT;
-        x->delimiter_changed = true;
+        modcp_ext_set_delimiter(x, MODCP_ASCII_DELIMITER_DEFAULT);
     }
 }
 
@@ -107,6 +99,7 @@ modcp_pdu_action_t modcp_pdu_fc08(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     }
     const uint16_t data = get16(pdu + 3);
     modcp_diag_t *d = env->diag;
+    modcp_ext_t *x = env->ext;
     bool ok;
     switch (sub) {
     case 0x0001:
@@ -128,17 +121,15 @@ modcp_pdu_action_t modcp_pdu_fc08(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         s->x.after = data == 0xFF00u ? MODCP_X_AFTER_RESTART_CLEAR : MODCP_X_AFTER_RESTART;
         break;
     case 0x0002:
-        put16(pdu + 3, modcp_ext_diag_register(env->ext, d));
+        put16(pdu + 3, modcp_ext_diag_register(x, d));
         break;
     case 0x0003:
-        if (env->ext != NULL) {
-            env->ext->ascii_delimiter = (uint8_t)(data >> 8);
-            env->ext->delimiter_changed = true; /* for the frames after this one */
+        if (x != NULL) {
+            modcp_ext_set_delimiter(x, (uint8_t)(data >> 8)); /* for the next frames */
         }
         break;
     case 0x0004:
-        d->comm.listen_only = true;
-        modcp_comm_log(&d->comm, MODCP_COMM_LISTEN_ENTERED);
+        modcp_comm_listen(&d->comm, true);
         modcp_diag_count(d, MODCP_CNT_NO_RESPONSE);
         s->x.quiet = 1;
         *out_len = 0;
@@ -147,9 +138,7 @@ modcp_pdu_action_t modcp_pdu_fc08(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
         s->x.after = MODCP_X_AFTER_CLEAR;
         break;
     case 0x0014:
-        d->counters[MODCP_CNT_CHAR_OVERRUN] = 0;
-        d->comm.diag_reg = (uint16_t)(d->comm.diag_reg & ~(unsigned)MODCP_DREG_OVERRUN);
-        d->comm.overrun_pending = false;
+        modcp_diag_clear_overrun(d);
         break;
     default: /* 0B .. 12: the counters in modcp_counter_t order */
         put16(pdu + 3, d->counters[sub - 0x000Bu]);
