@@ -42,13 +42,6 @@ void modcp_job_init(modcp_job_t *j, modcp_backplane_t *bp, uint8_t *msgbuf, uint
 }
 _Static_assert((int)MODCP_JOBST_IDLE == 0, "a zeroed job is idle");
 
-uint8_t modcp_job_take_errors(modcp_job_t *j)
-{
-    const uint8_t e = j->new_errors;
-    j->new_errors = 0;
-    return e;
-}
-
 bool modcp_job_busy(const modcp_job_t *j)
 {
     return j->state != (uint8_t)MODCP_JOBST_IDLE;

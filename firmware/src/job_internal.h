@@ -35,8 +35,14 @@ void modcp_job_abort(modcp_job_t *j);
 /* After MODCP_JOBP_PARAMS_START: msgbuf is free, the PARAMS record may be stored. */
 void modcp_job_params_grant(modcp_job_t *j);
 #endif
-/* The MODCP_JOB_ERR_* kinds seen since the last call (new_errors), cleared. */
-uint8_t modcp_job_take_errors(modcp_job_t *j);
+/* The MODCP_JOB_ERR_* kinds seen since the last call (new_errors), cleared (the CP's
+ * poll, every time: inline). */
+static inline uint8_t modcp_job_take_errors(modcp_job_t *j)
+{
+    const uint8_t e = j->new_errors;
+    j->new_errors = 0;
+    return e;
+}
 /* Answer an INIT (NONE = ready). False if the ring is full (call again later). */
 bool modcp_job_send_ack(modcp_job_t *j, modcp_event_t ev);
 
