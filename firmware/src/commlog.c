@@ -46,11 +46,6 @@ void modcp_comm_clear_log(modcp_comm_t *c)
     c->log_head = 0;
 }
 
-void modcp_comm_completed(modcp_comm_t *c)
-{
-    c->event_count++; /* wraps 65535 -> 0 */
-}
-
 void modcp_comm_clear(modcp_comm_t *c)
 {
     c->event_count = 0;

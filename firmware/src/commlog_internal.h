@@ -12,8 +12,11 @@ void modcp_comm_log(modcp_comm_t *c, uint8_t ev);
 /* Log the receive event of a valid frame for us (broadcast: addr 0). */
 void modcp_comm_rx(modcp_comm_t *c, bool broadcast);
 void modcp_comm_clear_log(modcp_comm_t *c);
-/* A request completed successfully (FC11's event counter). */
-void modcp_comm_completed(modcp_comm_t *c);
+/* A request completed successfully (FC11's event counter; every request: inline). */
+static inline void modcp_comm_completed(modcp_comm_t *c)
+{
+    c->event_count++; /* wraps 65535 -> 0 */
+}
 /* FC08 sub 0A: event counter, diagnostic register and the pending overrun cleared. */
 void modcp_comm_clear(modcp_comm_t *c);
 /* FC08 sub 14: the overrun bit of the diagnostic register and the pending overrun. */

@@ -48,24 +48,7 @@ void modcp_ext_set_delimiter(modcp_ext_t *x, uint8_t ch)
     x->delimiter_changed = true;
 }
 
-bool modcp_ext_take_delimiter(modcp_ext_t *x, uint8_t *ch)
-{
-    const bool changed = x->delimiter_changed;
-    *ch = x->ascii_delimiter;
-    x->delimiter_changed = false;
-    return changed;
-}
 
-void modcp_ext_job_result(modcp_ext_t *x, bool timed_out, bool ok)
-{
-    if (timed_out) {
-        x->cpu_stalled = true;
-    } else if (ok) {
-        x->cpu_stalled = false;
-    } else {
-        /* refused by the CPU side, or no job: the state stays */
-    }
-}
 
 void modcp_commloss_poll(modcp_ext_t *x, const modcp_params_t *p, modcp_diag_t *d,
                          uint32_t reset, uint32_t now_us)

@@ -12,10 +12,28 @@ void modcp_ext_reset(modcp_ext_t *x, modcp_diag_t *d);
 /* FC08 sub 03 / sub 01: the ASCII end-of-frame character, for the frames after this
  * request; modcp_ext_take_delimiter hands a change to the CP once (true: changed). */
 void modcp_ext_set_delimiter(modcp_ext_t *x, uint8_t ch);
-bool modcp_ext_take_delimiter(modcp_ext_t *x, uint8_t *ch);
+static inline bool modcp_ext_take_delimiter(modcp_ext_t *x, uint8_t *ch)
+{
+    if (!x->delimiter_changed) {
+        return false; /* (every request: inline) */
+    }
+    *ch = x->ascii_delimiter;
+    x->delimiter_changed = false;
+    return true;
+}
 /* A request's CPU jobs ended: one timed out (timed_out), or it had a job and no
- * exception (ok): the FC17 run indicator / diagnostic register bit 2 (cpu_stalled). */
-void modcp_ext_job_result(modcp_ext_t *x, bool timed_out, bool ok);
+ * exception (ok): the FC17 run indicator / diagnostic register bit 2 (cpu_stalled;
+ * every request: inline). */
+static inline void modcp_ext_job_result(modcp_ext_t *x, bool timed_out, bool ok)
+{
+    if (timed_out) {
+        x->cpu_stalled = true;
+    } else if (ok) {
+        x->cpu_stalled = false;
+    } else {
+        /* refused by the CPU side, or no job: the state stays */
+    }
+}
 /* FC08 sub 01 / 0A effects (also used by tests). */
 void modcp_ext_restart(modcp_ext_t *x, modcp_diag_t *d, bool clear_log);
 void modcp_ext_clear_counters(modcp_diag_t *d);

@@ -40,7 +40,9 @@ void modcp_job_params_grant(modcp_job_t *j);
 static inline uint8_t modcp_job_take_errors(modcp_job_t *j)
 {
     const uint8_t e = j->new_errors;
-    j->new_errors = 0;
+    if (e != 0u) {
+        j->new_errors = 0;
+    }
     return e;
 }
 /* Answer an INIT (NONE = ready). False if the ring is full (call again later). */
