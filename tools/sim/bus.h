@@ -23,6 +23,7 @@
 #ifndef MODCP_SIM_BUS_H
 #define MODCP_SIM_BUS_H
 
+#include <stdatomic.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -84,6 +85,12 @@ sim_bus_t *sim_bus_new(const sim_line_cfg_t *line, size_t n, const char *const n
  * (cap was reached). Returns how many (at most cap). */
 size_t sim_bus_take(sim_bus_t *b, size_t m, uint8_t *bytes, uint8_t *errors, uint32_t *t_us,
                     size_t cap, uint32_t until_us, bool *more);
+/* While *quiet (its CP has nothing to do: its thread sleeps, the scheduler's shared tick
+ * takes its characters, sim_bus_take), member m's thread is woken only by a frame it
+ * must answer or report promptly: one that begins with its address or 0 (broadcast),
+ * a character with a line error, and any ASCII character; the frames of the other
+ * addresses just wait in its queue. NULL (the default): every character wakes it. */
+void sim_bus_member_quiet(sim_bus_t *b, size_t m, const atomic_bool *quiet);
 /* The time of the next character member m has not taken (it may lie ahead: the
  * master's faulted requests are handed over with their times); false: none. */
 bool sim_bus_next_time(sim_bus_t *b, size_t m, uint32_t *t_us);

@@ -88,6 +88,9 @@ struct sim_bus {
     uint8_t addr[SIM_BUS_MAX_MEMBERS];
     int member_fd[SIM_BUS_MAX_MEMBERS];
     int wake_fd[SIM_BUS_MAX_MEMBERS];
+    /* sim_bus_member_quiet: while *quiet[m], only a frame for member m wakes it */
+    const atomic_bool *quiet[SIM_BUS_MAX_MEMBERS];
+    double last_t[SIM_BUS_MAX_MEMBERS]; /* end of the last character handed to member m */
     /* what each member heard: byte + the member's clock at the end of its stop bit */
     pthread_mutex_t rx_mu;
     struct {

@@ -211,6 +211,9 @@ static bool make_bus(sim_t *s, const modcp_params_t *p0, uint32_t char_us)
         return false;
     }
     sim_bus_set_line(s->bus, &s->wire);
+    for (size_t i = 0; i < s->n; i++) {
+        sim_bus_member_quiet(s->bus, i, &s->m[i].cp_quiet);
+    }
     if (!apply_cli_faults(s)) {
         sim_bus_free(s->bus);
         s->bus = NULL;
