@@ -17,8 +17,9 @@
  *     member thread that runs late still sees the gaps (t1.5, t3.5) of the line;
  *   - applies the per-member faults (drop, delay, CRC, exception 06 / 04, silence,
  *     noise) to the replies before they reach the line, and counts them;
- *   - traces the line: the master's frames, each member's reply with its name,
- *     faults, and each collision with what the receiver heard.
+ *   - puts on the line model (line.h) what it carries, and, for the text trace, notes:
+ *     a reply's faults, a reply not sent, the noise, each collision with what the
+ *     receiver heard (the trace reads the frames themselves from the line).
  * All members share the line settings (the caller checks that they agree). */
 #ifndef MODCP_SIM_BUS_H
 #define MODCP_SIM_BUS_H
@@ -100,8 +101,9 @@ void sim_bus_free(sim_bus_t *b);
 void *sim_bus_thread(void *bus);
 void sim_bus_stop(sim_bus_t *b);
 void sim_bus_trace(sim_bus_t *b, bool on);
-/* The line model the bus's sources write to (before the bus thread starts). */
-void sim_bus_set_line(sim_bus_t *b, sim_line_t *wire);
+/* The line model the bus's sources write to (before the bus thread starts); solo: one
+ * slave, its trace lines "slave 5" (else "@a slave 5"). */
+void sim_bus_set_line(sim_bus_t *b, sim_line_t *wire, bool solo);
 
 /* A member's UART starts a reply (buf as handed to the UART) at now_us (the member's
  * clock as passed to its core). Any thread. */

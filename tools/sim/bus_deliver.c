@@ -3,18 +3,11 @@
 #define _GNU_SOURCE
 #include "bus_internal.h"
 
+/* What the receiver heard, cut at t3.5: a collision counted for each member that sent
+ * in it and, with the trace on, noted on the line at the frame's end (when it is known;
+ * the senders' own frames are traced from the line). */
 void heard_flush(sim_bus_t *b)
 {
-    if (b->heard_len > 0u && !b->heard_collided && atomic_load(&b->trace_on)) {
-        for (size_t m = 0; m < b->n; m++) { /* an external member's reply, as heard */
-            if (b->wake_fd[m] < 0 && mset_only(&b->heard_mask, m)) {
-                char label[48];
-                snprintf(label, sizeof label, "@%s (external)", b->names[m]);
-                sim_trace_frame(&b->tr, label, b->heard, b->heard_len, true,
-                                (uint64_t)b->heard_t0, NULL);
-            }
-        }
-    }
     if (b->heard_len > 0u && b->heard_collided) {
         for (size_t m = 0; m < b->n; m++) {
             if (mset_has(&b->heard_mask, m)) {
@@ -35,8 +28,10 @@ void heard_flush(sim_bus_t *b)
                 pos += (size_t)snprintf(label + pos, sizeof label - pos, " @%s", b->names[m]);
             }
             snprintf(label + pos, sizeof label - pos, ", the line carried");
-            sim_trace_frame(&b->tr, label, b->heard, b->heard_len, true, (uint64_t)b->heard_t0,
-                            NULL);
+            char line[SIM_TRACE_LINE];
+            sim_trace_format(&b->tr, label, b->heard, b->heard_len, true, false, NULL, line,
+                             sizeof line);
+            sim_line_note(b->wire, (uint64_t)b->heard_end, SIM_SRC_NOISE, SIM_NOTE_LINE, "%s", line);
         }
     }
     b->heard_len = 0;

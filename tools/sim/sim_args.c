@@ -178,6 +178,7 @@ int parse_args(sim_t *s, int argc, char **argv)
             atomic_store(&s->trace_on, true);
         } else if (strcmp(a, "--bus") == 0) {
             s->bus_mode = true;
+            s->bus_named = true;
         } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             return usage();
         } else if (strcmp(a, "--version") == 0) {
@@ -204,6 +205,7 @@ int parse_args(sim_t *s, int argc, char **argv)
     if (s->n > 1u) {
         s->bus_mode = true;
     }
+    s->solo = s->n == 1u && s->n_ext == 0u && !s->bus_named;
     if (s->bus_mode && s->device != NULL) {
         fprintf(stderr, "modcp-sim: --device works with one slave; a bus runs on a pty\n");
         return 1;

@@ -15,7 +15,9 @@ void cp_snapshot(member_t *m)
     pthread_mutex_unlock(&m->snap_mu);
 }
 
-static void trace_events(member_t *m)
+/* The events the core raised since the last call, to the trace at t (the core's time):
+ * through the line, in time order with the frames. */
+static void trace_events(member_t *m, uint64_t t)
 {
     uint32_t total = m->cp.diag.events_total;
     if (total == m->events_seen) {
@@ -29,9 +31,10 @@ static void trace_events(member_t *m)
     if (n > m->cp.diag.buffer_len) {
         n = m->cp.diag.buffer_len;
     }
-    uint64_t t = since_start(m->sim);
     for (uint32_t i = n; i > 0u; i--) {
-        sim_trace_event(&m->tr, m->cp.diag.buffer[i - 1u], t);
+        char line[512];
+        sim_trace_format_event(m->tr.ev_label, m->cp.diag.buffer[i - 1u], line, sizeof line);
+        sim_line_note(&m->sim->wire, t, (int)m->index, SIM_NOTE_LINE, "%s", line);
     }
 }
 
@@ -150,10 +153,9 @@ static void bus_turn(member_t *m, uint32_t now, bool *tx_done, bool *timer, bool
     m->core_t = now;
 }
 
-/* One slave on its own line: the characters read at now (t: since start), to the line
- * model, the trace and the core. */
-static void own_line_rx(member_t *m, const modcp_posix_rx_t *rx, int n, uint32_t now, uint64_t t,
-                        bool tr)
+/* One slave on its own line (a serial device): the characters read at now (t: since
+ * start), to the line model (and so to the trace) and the core. */
+static void own_line_rx(member_t *m, const modcp_posix_rx_t *rx, int n, uint32_t now, uint64_t t)
 {
     if (n > 0 && m->sim->bus == NULL && sim_line_watched(&m->sim->wire)) {
         uint8_t b[RX_CHUNK], fl[RX_CHUNK];
@@ -167,9 +169,6 @@ static void own_line_rx(member_t *m, const modcp_posix_rx_t *rx, int n, uint32_t
         sim_line_put_arrived(&m->sim->wire, SIM_SRC_MASTER, b, fl, (size_t)n, t);
     }
     for (int i = 0; i < n; i++) {
-        if (tr) {
-            sim_trace_rx(&m->tr, rx[i].byte, rx[i].errors, t);
-        }
         if (rx[i].errors != 0u) {
             modcp_cp_on_line_error(&m->cp, rx[i].errors, now);
         } else {
@@ -258,9 +257,9 @@ void cp_after(member_t *m, uint32_t now, uint64_t t, bool tr)
         modcp_posix_event_signal(&m->sim->sched_irq); /* the backplane interrupt */
     }
     if (tr) {
-        sim_trace_poll(&m->tr, t);
+        sim_trace_poll(&m->tr, t); /* MODCP_SIM_MEMBER_RX: what the member heard */
     }
-    trace_events(m);
+    trace_events(m, t);
     cp_snapshot(m);
     if (m->sim->bus == NULL) {
         sim_line_tick(&m->sim->wire, t);
@@ -272,9 +271,9 @@ void *cp_thread(void *arg)
     member_t *m = arg;
     sim_t *s = m->sim;
     modcp_posix_rx_t rx[RX_CHUNK];
-    /* on a bus, the bus traces the line; MODCP_SIM_MEMBER_RX=1 adds what each member
+    /* the trace reads the line; on a bus MODCP_SIM_MEMBER_RX=1 adds what each member
      * heard (a debugging aid: "@b heard ...") */
-    bool line_trace = s->bus == NULL || getenv("MODCP_SIM_MEMBER_RX") != NULL;
+    bool line_trace = s->bus != NULL && getenv("MODCP_SIM_MEMBER_RX") != NULL;
     if (s->bus != NULL) {
         char l[32];
         snprintf(l, sizeof l, "@%s heard", m->name);
@@ -313,7 +312,7 @@ void *cp_thread(void *arg)
         if (timer) {
             modcp_cp_on_timer(&m->cp, now);
         }
-        own_line_rx(m, rx, n, now, t, tr);
+        own_line_rx(m, rx, n, now, t);
         modcp_cp_poll(&m->cp, now);
         m->core_t = now;
         cp_after(m, now, t, tr);
