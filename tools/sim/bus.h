@@ -59,6 +59,7 @@ typedef struct {
     uint32_t dropped, crc_corrupted, exc06, exc04, delayed, silenced, noise_sent;
     uint32_t collisions;    /* replies that overlapped another sender's on the line */
     uint32_t parity_errs, framing_errs, breaks_sent, gaps_made, de_cuts, early_sent;
+    bool used; /* a fault was set (even off) */
 } sim_fault_t;
 
 typedef struct sim_bus sim_bus_t;

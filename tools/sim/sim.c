@@ -285,7 +285,7 @@ static bool init_sides(sim_t *s)
             snprintf(ev, sizeof ev, "@%s ", m->name);
             sim_trace_labels(&m->tr, NULL, NULL, ev);
         }
-        if (s->bus == NULL) {
+        if (s->solo) {
             sim_latlog_open(&m->lat);
         }
         cp_snapshot(m);

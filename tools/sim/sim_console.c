@@ -90,8 +90,8 @@ static void member_cmd(member_t *m, const char *line, const char *cmd, bool pref
         }
         args += strlen(cmd);
         if (s->bus == NULL) {
-            say(s, "error: faults are injected by the bus: start modcp-sim with --bus "
-                          "(or --fault)");
+            say(s, "error: faults are made by the simulated line, which runs on a pty, "
+                   "not on --device");
             return;
         }
         fault_cmd(m, args, prefix);
@@ -111,7 +111,9 @@ static void member_cmd(member_t *m, const char *line, const char *cmd, bool pref
             sayf(s, "@%s %s", m->name, l);
         }
     }
-    if (s->bus != NULL && strcasecmp(cmd, "status") == 0) {
+    /* one slave: its faults' line once it had a fault (its status line last otherwise) */
+    if (s->bus != NULL && strcasecmp(cmd, "status") == 0 &&
+        (!s->solo || sim_bus_fault_get(s->bus, m->index).used)) {
         char f[512];
         sim_bus_fault_describe(s->bus, m->index, f, sizeof f);
         if (prefix) {

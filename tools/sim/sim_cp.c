@@ -136,6 +136,7 @@ static void bus_turn(member_t *m, uint32_t now, bool *tx_done, bool *timer, bool
     uint32_t bt[RX_CHUNK];
     bool more = false;
     size_t k = sim_bus_take(s->bus, m->index, bb, be, bt, RX_CHUNK, now, &more);
+    sim_latlog_rx(&m->lat, k, now);
     if (more) {
         modcp_posix_wake(&m->port); /* more due than one turn takes */
     }
@@ -227,6 +228,7 @@ static int cp_wait(member_t *m, modcp_posix_rx_t *rx, bool *tx_done, bool *timer
     bool quiet = cp_is_quiet(m);
     if (quiet) {
         atomic_store(&m->cp_quiet, true);
+        sim_latlog_before_wait(&m->lat, &m->port);
     } else {
         max_us = cp_plan(m);
     }
@@ -244,7 +246,9 @@ static int cp_wait(member_t *m, modcp_posix_rx_t *rx, bool *tx_done, bool *timer
     atomic_store(&m->cp_quiet, false);
     /* what woke it (and what the tick left due), without waiting */
     m->port.expect_armed = false;
-    return modcp_posix_wait(&m->port, 0u, rx, RX_CHUNK, tx_done, timer, now);
+    int n = modcp_posix_wait(&m->port, 0u, rx, RX_CHUNK, tx_done, timer, now);
+    sim_latlog_after_wait(&m->lat, &m->port, n, *timer, *now);
+    return n;
 }
 
 /* After the core ran: the backplane interrupt, the trace, the console's snapshot. */
