@@ -7,9 +7,9 @@
  *             [--bus] [--fault [@M:]KIND=VALUE]... [--seed N] [--qemu-member PTY]...
  *
  * Every slave (member, up to 247: one per Modbus address) is one modcp_cp_t + modcp_fb_t;
- * with one config and no --bus / --fault it owns the pty itself, else each member gets a
- * pty of its own and a bus thread joins them, any --qemu-member board's UART pty and the
- * master's pty into one line.
+ * on a pty each member (one too: a line of one, so that it takes the line's faults) gets
+ * a pty of its own and a bus thread joins them, any --qemu-member board's UART pty and
+ * the master's pty into one line; on --device the one slave owns the serial port.
  *
  * The two sides of a member are joined only by the backplane (modcp_backplane_t):
  *   CP thread   one per member, the CP side: waits on the UART, the one-shot timer and
