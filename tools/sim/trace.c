@@ -333,8 +333,6 @@ static void print_frame(sim_trace_t *t, const char *dir, const uint8_t *b, size_
     sim_trace_print(t, line, t_us);
 }
 
-static void print_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us);
-
 static void rx_flush(sim_trace_t *t)
 {
     if (t->rx_len > 0u) {
@@ -342,10 +340,6 @@ static void rx_flush(sim_trace_t *t)
     }
     t->rx_len = 0;
     t->rx_errors = false;
-    for (size_t i = 0; i < t->ev_n; i++) {
-        print_event(t, t->ev_q[i], t->ev_t[i]);
-    }
-    t->ev_n = 0;
 }
 
 void sim_trace_rx(sim_trace_t *t, uint8_t byte, uint8_t errors, uint64_t t_us)
@@ -378,40 +372,9 @@ void sim_trace_poll(sim_trace_t *t, uint64_t t_us)
     }
 }
 
-void sim_trace_tx(sim_trace_t *t, const uint8_t *buf, size_t len, uint64_t t_us)
-{
-    rx_flush(t);
-    print_frame(t, t->tx_label, buf, len, true, false, t_us, NULL);
-}
-
-void sim_trace_frame(sim_trace_t *t, const char *label, const uint8_t *buf, size_t len, bool reply,
-                     uint64_t t_us, const char *note)
-{
-    rx_flush(t);
-    print_frame(t, label, buf, len, reply, false, t_us, note);
-}
-
-void sim_trace_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us)
-{
-    if (t->rx_len > 0u && t->ev_n < sizeof t->ev_q / sizeof t->ev_q[0]) {
-        t->ev_q[t->ev_n] = ev; /* after the frame being received, which began earlier */
-        t->ev_t[t->ev_n] = t_us;
-        t->ev_n++;
-        return;
-    }
-    print_event(t, ev, t_us);
-}
-
 void sim_trace_format_event(const char *prefix, modcp_event_t ev, char *out, size_t cap)
 {
     const char *cls = modcp_event_class_text(MODCP_EVENT_CLASS(ev));
     snprintf(out, cap, "%sevent (%02X)%02XH %s: %s", prefix, (unsigned)MODCP_EVENT_CLASS(ev),
              (unsigned)MODCP_EVENT_NUMBER(ev), cls, modcp_event_text(ev));
-}
-
-static void print_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us)
-{
-    char line[512];
-    sim_trace_format_event(t->ev_label, ev, line, sizeof line);
-    sim_trace_print(t, line, t_us);
 }

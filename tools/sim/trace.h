@@ -39,10 +39,6 @@ typedef struct {
     char tx_label[24]; /* sender of sent frames ("slave 5", "@b slave 5") */
     char ev_label[24]; /* prefix of event lines ("" or "@b ") */
     bool any_addr;     /* a bus's trace: no request is "not for us" */
-    /* events raised while a frame is being received: printed after it */
-    modcp_event_t ev_q[16];
-    uint64_t ev_t[16];
-    size_t ev_n;
 } sim_trace_t;
 
 void sim_trace_init(sim_trace_t *t, uint8_t own_addr, bool ascii, uint64_t gap_us,
@@ -53,13 +49,6 @@ void sim_trace_labels(sim_trace_t *t, const char *rx, const char *tx, const char
 void sim_trace_rx(sim_trace_t *t, uint8_t byte, uint8_t errors, uint64_t t_us);
 /* Ends a received frame after the gap. */
 void sim_trace_poll(sim_trace_t *t, uint64_t t_us);
-/* A frame sent (the whole reply, as handed to the UART). */
-void sim_trace_tx(sim_trace_t *t, const uint8_t *buf, size_t len, uint64_t t_us);
-/* A frame with its sender's label and an optional note ("fault: CRC corrupted"). */
-void sim_trace_frame(sim_trace_t *t, const char *label, const uint8_t *buf, size_t len, bool reply,
-                     uint64_t t_us, const char *note);
-/* A diagnostic event. */
-void sim_trace_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us);
 
 /* A trace line's length at most */
 #define SIM_TRACE_LINE 4096u
