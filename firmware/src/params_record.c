@@ -26,6 +26,23 @@
 _Static_assert(RECORD_BYTES <= MODCP_PARAMS_RECORD_MAX, "parameter record too large");
 _Static_assert(PAYLOAD_BYTES <= 0xFFFFu, "payload length must fit u16");
 
+/* A group's structs lie in the record member after member (params_fields.h). */
+#define FIRST_W(type) MODCP_PARAM_FIRST_WIDTH_##type
+#define LAYOUT_G(member, count, type, members, field)                                           \
+    _Static_assert((sizeof(type) == (MODCP_PARAM_SLOT(FIRST_W(type)) + (2u * ((members) - 1u)))) && \
+                       (MODCP_PARAM_OFF(member) <= MODCP_PARAM_ABSENT),                         \
+                   #member ": members without a gap");
+#define LAYOUT_M(type, member, width, count)                                                    \
+    _Static_assert(((offsetof(type, member) == 0u) ||                                           \
+                    (((offsetof(type, member) - MODCP_PARAM_SLOT(FIRST_W(type))) % 2u) == 0u)) && \
+                       ((width) == ((offsetof(type, member) == 0u) ? FIRST_W(type) : 2u)),     \
+                   #type "." #member ": place");
+#define LAYOUT_S(...)
+MODCP_PARAM_ROWS(LAYOUT_S, LAYOUT_G, LAYOUT_M)
+_Static_assert(offsetof(modcp_params_t, lim_q) ==
+                   offsetof(modcp_params_t, lim_db) + 2u * sizeof(modcp_limit_t),
+               "lim_db, lim_m, lim_q are one group of three");
+
 /* "MCPR", read and written as one little-endian word (no memcmp: in the manual's core the
  * record was its only caller) */
 #define RECORD_MAGIC                                                                              \
