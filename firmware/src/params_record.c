@@ -90,9 +90,13 @@ static void dec_field(const codec_t *c, size_t at, size_t off, uint8_t width)
 {
     const uint8_t *r = &c->src[at];
     uint8_t *f = &c->dst[off];
+#if RECORD_LE
+    (void)memcpy(f, r, width); /* the same bytes: one call, shared with the rest of the core */
+#else
     for (size_t i = 0u; i < width; i++) {
         f[field_byte(i, width)] = r[i];
     }
+#endif
     if (width == MODCP_PW_STR) {
         f[MODCP_PW_STR] = 0u; /* terminated whatever the record holds */
     }
