@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: Apache-2.0
 """Serial-layer faults (issue 22 item 3): one slave (configs/default.ini, 9600 8E1, slave
-5) as a bus member (--bus), faults in the master's direction (@master) and in the
-member's replies, from the console and from --fault, each off by default and counted in
-`status`; for each, what the manuals require of the slave (CP 341 / CP 441-2 manual,
+5) as it runs by default (no --bus: a line of one member), faults in the master's direction
+(@master) and in its replies, from the console and from --fault, each off by default and
+counted in `status` (its faults line once it had one); for each, what the manuals require of the slave (CP 341 / CP 441-2 manual,
 "Diagnostic messages of the MODBUS slave driver", and the Modbus serial line spec):
 
  - parity error in a request byte: event (08)0CH, char_errors + 1, the request dropped;
@@ -106,7 +106,7 @@ class Case:
 
 def master_direction(a, t, tmp):
     pcap = os.path.join(tmp, "faults.pcap")
-    sim = Sim(a.sim, a.config, extra=["--bus", "--capture", pcap]).start()
+    sim = Sim(a.sim, a.config, extra=["--capture", pcap]).start()
     line = RawLine(sim.device)
     try:
         mf = master_faults(sim)
@@ -140,7 +140,11 @@ def master_direction(a, t, tmp):
 
 
 def member_direction(sim, line, t):
+    t.ok(member_faults(sim) == {}, "status: no faults line while the slave never had a fault")
+    sim.cmd("fault off")
     f0 = member_faults(sim)
+    t.ok(f0 and all(f0[k] == "0" for k in ("parity_errors", "breaks", "de_cuts")),
+         "status: its faults line, zero, once a fault was set (%s)" % f0)
     sim.cmd("fault parity=3")
     rsp = line.xfer(REQ, len(RSP), timeout=1.0)
     sim.cmd("fault off")
@@ -178,7 +182,7 @@ def delayed_reply(sim, line, t):
 
 def t15_on(a, t):
     sim = Sim(a.sim, a.config, sets=["protocol.t15_check=on"],
-              extra=["--bus", "--fault", "@master:parity=2"]).start()
+              extra=["--fault", "@master:parity=2"]).start()
     line = RawLine(sim.device)
     try:
         rsp = line.xfer(REQ, len(RSP), timeout=0.5)

@@ -129,9 +129,10 @@ void sim_bus_trace(sim_bus_t *b, bool on)
     atomic_store(&b->trace_on, on);
 }
 
-void sim_bus_set_line(sim_bus_t *b, sim_line_t *wire)
+void sim_bus_set_line(sim_bus_t *b, sim_line_t *wire, bool solo)
 {
     b->wire = wire;
+    b->solo = solo;
 }
 
 /* ---- replies onto the line ------------------------------------------------------- */
@@ -150,12 +151,24 @@ sender_t *new_sender(sim_bus_t *b)
     return NULL; /* more than MAX_SENDERS at once: the reply is lost */
 }
 
-static void trace_line(sim_bus_t *b, const char *label, const uint8_t *buf, size_t len,
-                       double t, const char *note)
+/* The trace of member m's reply at t: a reply not sent (on_line false) as a line of its
+ * own, the note of one sent as the remark of its frame on the line (put before it). */
+static void trace_line(sim_bus_t *b, size_t m, const char *label, const uint8_t *buf, size_t len,
+                       double t, const char *note, bool on_line)
 {
-    if (atomic_load(&b->trace_on)) {
-        sim_trace_frame(&b->tr, label, buf, len, true, (uint64_t)(t < 0.0 ? 0.0 : t), note);
+    if (!atomic_load(&b->trace_on)) {
+        return;
     }
+    uint64_t tu = (uint64_t)(t < 0.0 ? 0.0 : t);
+    if (on_line) {
+        if (note != NULL && note[0] != '\0') {
+            sim_line_note(b->wire, tu, (int)m, SIM_NOTE_FRAME, "%s", note);
+        }
+        return;
+    }
+    char line[SIM_TRACE_LINE];
+    sim_trace_format(&b->tr, label, buf, len, true, false, note, line, sizeof line);
+    sim_line_note(b->wire, tu, (int)m, SIM_NOTE_LINE, "%s", line);
 }
 
 /* A transmission to the line model, with its serial faults as the characters' flags. */
@@ -206,14 +219,12 @@ static void add_noise(sim_bus_t *b, size_t m, const sender_t *s)
     f->noise_sent += z->len;
     sim_line_put_frame(b->wire, SIM_SRC_NOISE, z->b, NULL, z->len, (uint64_t)z->t0);
     if (atomic_load(&b->trace_on)) {
-        char line[1200];
-        size_t pos = (size_t)snprintf(line, sizeof line, "[%5lu.%06lu] noise (fault of @%s)",
-                                      (unsigned long)((uint64_t)z->t0 / 1000000u),
-                                      (unsigned long)((uint64_t)z->t0 % 1000000u), b->names[m]);
+        char line[SIM_NOTE_MAX];
+        size_t pos = (size_t)snprintf(line, sizeof line, "noise (fault of @%s)", b->names[m]);
         for (uint16_t i = 0; i < z->len && pos + 4u < sizeof line; i++) {
             pos += (size_t)snprintf(line + pos, sizeof line - pos, " %02X", z->b[i]);
         }
-        b->print(b->user, line);
+        sim_line_note(b->wire, (uint64_t)z->t0, SIM_SRC_NOISE, SIM_NOTE_LINE, "%s", line);
     }
 }
 
@@ -232,7 +243,11 @@ void sim_bus_tx(sim_bus_t *b, size_t m, const uint8_t *buf, uint16_t len, uint32
         blog(b, what, buf, len);
     }
     char label[48];
-    snprintf(label, sizeof label, "@%s slave %u", b->names[m], (unsigned)b->addr[m]);
+    if (b->solo) {
+        snprintf(label, sizeof label, "slave %u", (unsigned)b->addr[m]);
+    } else {
+        snprintf(label, sizeof label, "@%s slave %u", b->names[m], (unsigned)b->addr[m]);
+    }
     pthread_mutex_lock(&b->mu);
     sim_fault_t *f = &b->fault[m];
     f->replies++;
@@ -240,13 +255,13 @@ void sim_bus_tx(sim_bus_t *b, size_t m, const uint8_t *buf, uint16_t len, uint32
     if (f->silent_left > 0u) {
         f->silent_left--;
         f->silenced++;
-        trace_line(b, label, buf, len, t0, "(fault: silent, not on the line)");
+        trace_line(b, m, label, buf, len, t0, "(fault: silent, not on the line)", false);
         pthread_mutex_unlock(&b->mu);
         return;
     }
     if (chance(b, f->drop_pct)) {
         f->dropped++;
-        trace_line(b, label, buf, len, t0, "(fault: dropped, not on the line)");
+        trace_line(b, m, label, buf, len, t0, "(fault: dropped, not on the line)", false);
         pthread_mutex_unlock(&b->mu);
         return;
     }
@@ -261,17 +276,14 @@ void sim_bus_tx(sim_bus_t *b, size_t m, const uint8_t *buf, uint16_t len, uint32
     t0 += reply_faults(b, f, s->b, &s->len, note, sizeof note);
     s->t0 = t0;
     s->used = true;
-    uint8_t shown[MODCP_POSIX_TX_MAX];
-    uint16_t shown_len = s->len;
-    memcpy(shown, s->b, s->len);
     sender_t *extra[3];
     size_t n_extra = serial_faults(b, f, s, extra, note, sizeof note);
+    trace_line(b, m, label, s->b, s->len, t0, note, true); /* before its characters */
     line_put_sender(b, s);
     for (size_t i = 0; i < n_extra; i++) {
         line_put_sender(b, extra[i]);
     }
     b->reply_end = end_of(b, n_extra > 0u ? extra[n_extra - 1u] : s);
-    trace_line(b, label, shown, shown_len, t0, note[0] != '\0' ? note : NULL);
     if (f->noise_bytes > 0u) {
         add_noise(b, m, s);
     }
@@ -411,8 +423,7 @@ static double emit_due(sim_bus_t *b, double now, bool *later)
 
 /* How long the bus thread may sleep: until SPIN_US before the next character (then it
  * watches the clock: *spin), or until a later character of a frame, or the 5 ms tick. */
-static double wait_for(const sim_bus_t *b, double now, double next, bool later, bool frame_open,
-                       bool *spin)
+static double wait_for(double now, double next, bool later, bool *spin)
 {
     double wait_us = 5000.0;
     *spin = false;
@@ -425,9 +436,6 @@ static double wait_for(const sim_bus_t *b, double now, double next, bool later, 
             wait_us = d > SPIN_US ? d - SPIN_US : 0.0;
             *spin = true;
         }
-    }
-    if (frame_open && (double)b->tr.gap_us < wait_us) {
-        wait_us = (double)b->tr.gap_us; /* end the master's frame in the trace */
     }
     return wait_us;
 }
@@ -496,13 +504,6 @@ static void master_read(sim_bus_t *b, double t)
         }
         sim_line_put_arrived(b->wire, SIM_SRC_MASTER, buf, NULL, (size_t)n, (uint64_t)t);
     }
-    if (atomic_load(&b->trace_on)) {
-        pthread_mutex_lock(&b->mu);
-        for (ssize_t i = 0; i < n; i++) {
-            sim_trace_rx(&b->tr, buf[i], 0, (uint64_t)t);
-        }
-        pthread_mutex_unlock(&b->mu);
-    }
 }
 
 /* What the members' ptys gave: an external member's characters go on the line; a
@@ -544,7 +545,6 @@ void *sim_bus_thread(void *arg)
         bool later = false;
         double next = emit_due(b, now, &later);
         double mnext = master_due(b, now);
-        bool frame_open = b->tr.rx_len > 0u;
         pthread_mutex_unlock(&b->mu);
         if (mnext >= 0.0 && (next < 0.0 || mnext < next)) {
             next = mnext; /* the master's next character (a gap, a BREAK): on time */
@@ -552,7 +552,7 @@ void *sim_bus_thread(void *arg)
         }
         sim_line_tick(b->wire, (uint64_t)now);
         bool spin = false;
-        double wait_us = wait_for(b, now, next, later, frame_open, &spin);
+        double wait_us = wait_for(now, next, later, &spin);
         int pr = bus_poll(b, pf, nf, wait_us, spin, next);
         if (pr < 0) {
             continue;
@@ -565,11 +565,6 @@ void *sim_bus_thread(void *arg)
             master_read(b, t);
         }
         members_read(b, pf + 2);
-        if (atomic_load(&b->trace_on)) {
-            pthread_mutex_lock(&b->mu);
-            sim_trace_poll(&b->tr, (uint64_t)now_rel(b));
-            pthread_mutex_unlock(&b->mu);
-        }
     }
     return NULL;
 }

@@ -17,12 +17,14 @@
  *     member thread that runs late still sees the gaps (t1.5, t3.5) of the line;
  *   - applies the per-member faults (drop, delay, CRC, exception 06 / 04, silence,
  *     noise) to the replies before they reach the line, and counts them;
- *   - traces the line: the master's frames, each member's reply with its name,
- *     faults, and each collision with what the receiver heard.
+ *   - puts on the line model (line.h) what it carries, and, for the text trace, notes:
+ *     a reply's faults, a reply not sent, the noise, each collision with what the
+ *     receiver heard (the trace reads the frames themselves from the line).
  * All members share the line settings (the caller checks that they agree). */
 #ifndef MODCP_SIM_BUS_H
 #define MODCP_SIM_BUS_H
 
+#include <stdatomic.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -57,6 +59,7 @@ typedef struct {
     uint32_t dropped, crc_corrupted, exc06, exc04, delayed, silenced, noise_sent;
     uint32_t collisions;    /* replies that overlapped another sender's on the line */
     uint32_t parity_errs, framing_errs, breaks_sent, gaps_made, de_cuts, early_sent;
+    bool used; /* a fault was set (even off) */
 } sim_fault_t;
 
 typedef struct sim_bus sim_bus_t;
@@ -84,6 +87,12 @@ sim_bus_t *sim_bus_new(const sim_line_cfg_t *line, size_t n, const char *const n
  * (cap was reached). Returns how many (at most cap). */
 size_t sim_bus_take(sim_bus_t *b, size_t m, uint8_t *bytes, uint8_t *errors, uint32_t *t_us,
                     size_t cap, uint32_t until_us, bool *more);
+/* While *quiet (its CP has nothing to do: its thread sleeps, the scheduler's shared tick
+ * takes its characters, sim_bus_take), member m's thread is woken only by a frame it
+ * must answer or report promptly: one that begins with its address or 0 (broadcast),
+ * a character with a line error, and any ASCII character; the frames of the other
+ * addresses just wait in its queue. NULL (the default): every character wakes it. */
+void sim_bus_member_quiet(sim_bus_t *b, size_t m, const atomic_bool *quiet);
 /* The time of the next character member m has not taken (it may lie ahead: the
  * master's faulted requests are handed over with their times); false: none. */
 bool sim_bus_next_time(sim_bus_t *b, size_t m, uint32_t *t_us);
@@ -93,8 +102,9 @@ void sim_bus_free(sim_bus_t *b);
 void *sim_bus_thread(void *bus);
 void sim_bus_stop(sim_bus_t *b);
 void sim_bus_trace(sim_bus_t *b, bool on);
-/* The line model the bus's sources write to (before the bus thread starts). */
-void sim_bus_set_line(sim_bus_t *b, sim_line_t *wire);
+/* The line model the bus's sources write to (before the bus thread starts); solo: one
+ * slave, its trace lines "slave 5" (else "@a slave 5"). */
+void sim_bus_set_line(sim_bus_t *b, sim_line_t *wire, bool solo);
 
 /* A member's UART starts a reply (buf as handed to the UART) at now_us (the member's
  * clock as passed to its core). Any thread. */

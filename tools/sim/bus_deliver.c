@@ -3,18 +3,11 @@
 #define _GNU_SOURCE
 #include "bus_internal.h"
 
+/* What the receiver heard, cut at t3.5: a collision counted for each member that sent
+ * in it and, with the trace on, noted on the line at the frame's end (when it is known;
+ * the senders' own frames are traced from the line). */
 void heard_flush(sim_bus_t *b)
 {
-    if (b->heard_len > 0u && !b->heard_collided && atomic_load(&b->trace_on)) {
-        for (size_t m = 0; m < b->n; m++) { /* an external member's reply, as heard */
-            if (b->wake_fd[m] < 0 && mset_only(&b->heard_mask, m)) {
-                char label[48];
-                snprintf(label, sizeof label, "@%s (external)", b->names[m]);
-                sim_trace_frame(&b->tr, label, b->heard, b->heard_len, true,
-                                (uint64_t)b->heard_t0, NULL);
-            }
-        }
-    }
     if (b->heard_len > 0u && b->heard_collided) {
         for (size_t m = 0; m < b->n; m++) {
             if (mset_has(&b->heard_mask, m)) {
@@ -35,8 +28,10 @@ void heard_flush(sim_bus_t *b)
                 pos += (size_t)snprintf(label + pos, sizeof label - pos, " @%s", b->names[m]);
             }
             snprintf(label + pos, sizeof label - pos, ", the line carried");
-            sim_trace_frame(&b->tr, label, b->heard, b->heard_len, true, (uint64_t)b->heard_t0,
-                            NULL);
+            char line[SIM_TRACE_LINE];
+            sim_trace_format(&b->tr, label, b->heard, b->heard_len, true, false, NULL, line,
+                             sizeof line);
+            sim_line_note(b->wire, (uint64_t)b->heard_end, SIM_SRC_NOISE, SIM_NOTE_LINE, "%s", line);
         }
     }
     b->heard_len = 0;
@@ -76,8 +71,17 @@ void deliver(sim_bus_t *b, size_t m, const uint8_t *bytes, const uint8_t *errors
         write_all(b->member_fd[m], bytes, n);
         return;
     }
+    /* a frame begins after a silence of t1.5 at least (conservative: the core's t3.5) */
+    double gap_min = (double)b->line.t35_us * 3.0 / 7.0;
+    bool urgent = false;
     pthread_mutex_lock(&b->rx_mu);
     for (size_t i = 0; i < n; i++) {
+        bool starts = b->last_t[m] <= 0.0 || t[i] - b->last_t[m] >= gap_min;
+        uint8_t e = errors != NULL ? errors[i] : 0u;
+        if (e != 0u || (starts && (bytes[i] == b->addr[m] || bytes[i] == 0u))) {
+            urgent = true;
+        }
+        b->last_t[m] = t[i] > 0.0 ? t[i] : 1.0;
         size_t next = (b->rxq[m].head + 1u) % 8192u;
         if (next == b->rxq[m].tail) {
             break; /* the member does not read: drop, like an overrun */
@@ -88,9 +92,19 @@ void deliver(sim_bus_t *b, size_t m, const uint8_t *bytes, const uint8_t *errors
         b->rxq[m].head = next;
     }
     pthread_mutex_unlock(&b->rx_mu);
-    char c = 1;
-    ssize_t r = write(b->wake_fd[m], &c, 1);
-    (void)r;
+    /* after the queue: a member that goes quiet now finds the characters at its tick */
+    if (urgent || b->line.ascii || b->quiet[m] == NULL || !atomic_load(b->quiet[m])) {
+        char c = 1;
+        ssize_t r = write(b->wake_fd[m], &c, 1);
+        (void)r;
+    }
+}
+
+void sim_bus_member_quiet(sim_bus_t *b, size_t m, const atomic_bool *quiet)
+{
+    if (m < b->n) {
+        b->quiet[m] = quiet;
+    }
 }
 
 size_t sim_bus_take(sim_bus_t *b, size_t m, uint8_t *bytes, uint8_t *errors, uint32_t *t_us,

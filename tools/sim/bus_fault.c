@@ -436,6 +436,7 @@ bool sim_bus_fault_set(sim_bus_t *b, size_t m, const char *spec, char *err, size
         ok = false;
     }
     if (ok) {
+        f.used = true;
         *dst = f;
     }
     pthread_mutex_unlock(&b->mu);

@@ -44,17 +44,6 @@ static inline void mset_or(mset_t *a, const mset_t *b)
         a->w[i] |= b->w[i];
     }
 }
-/* s is exactly {m} */
-static inline bool mset_only(const mset_t *s, size_t m)
-{
-    for (size_t i = 0; i < MSET_WORDS; i++) {
-        uint64_t want = i == m / 64u ? (uint64_t)1u << (m % 64u) : 0u;
-        if (s->w[i] != want) {
-            return false;
-        }
-    }
-    return true;
-}
 #define NOISE (-1)
 #define SPIN_US 50.0
 
@@ -80,6 +69,7 @@ typedef struct {
 struct sim_bus {
     sim_line_cfg_t line;
     sim_line_t *wire; /* the line model (observers); NULL: none */
+    bool solo;        /* one slave: its trace lines without its name */
     double c_us;   /* character time */
     double bit_us; /* bit time */
     unsigned nbits;
@@ -88,6 +78,9 @@ struct sim_bus {
     uint8_t addr[SIM_BUS_MAX_MEMBERS];
     int member_fd[SIM_BUS_MAX_MEMBERS];
     int wake_fd[SIM_BUS_MAX_MEMBERS];
+    /* sim_bus_member_quiet: while *quiet[m], only a frame for member m wakes it */
+    const atomic_bool *quiet[SIM_BUS_MAX_MEMBERS];
+    double last_t[SIM_BUS_MAX_MEMBERS]; /* end of the last character handed to member m */
     /* what each member heard: byte + the member's clock at the end of its stop bit */
     pthread_mutex_t rx_mu;
     struct {
@@ -128,7 +121,7 @@ struct sim_bus {
     mset_t mdeaf[SIM_TRACE_MAX]; /* members sending while the character was on the line */
     double mt[SIM_TRACE_MAX];      /* end of its stop bit */
     size_t mlen;
-    sim_trace_t tr;      /* bus thread only (after init) */
+    sim_trace_t tr;      /* formats the trace's notes of the replies and collisions */
     /* MODCP_SIM_BUS_LOG=FILE: the bus thread's polls, reads and writes, each with its
      * CLOCK_MONOTONIC time (the times master_bus prints its errors with); off: NULL */
     FILE *log;

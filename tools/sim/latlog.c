@@ -56,6 +56,13 @@ void sim_latlog_after_wait(sim_latlog_t *l, const modcp_posix_port_t *p, int n, 
     }
 }
 
+void sim_latlog_rx(sim_latlog_t *l, size_t n, uint32_t now)
+{
+    if (l->f != NULL && n > 0u) {
+        l->rx = now;
+    }
+}
+
 void sim_latlog_after_core(sim_latlog_t *l, const modcp_cp_t *cp, const modcp_posix_port_t *p,
                            uint32_t now)
 {

@@ -3,6 +3,7 @@
 #define _GNU_SOURCE
 #include "line.h"
 
+#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
@@ -16,9 +17,11 @@ void sim_line_init(sim_line_t *l, const sim_line_cfg_t *cfg, uint64_t t0_us64)
     if (l->cfg.char_us == 0u) {
         l->cfg.char_us = 1u;
     }
-    /* a pty chunk of up to 512 characters is back-dated by as much; 50 ms at least */
-    uint64_t hold = (uint64_t)l->cfg.char_us * 520u;
-    l->hold_us = hold > 50000u ? hold : 50000u;
+    /* what comes late: a reply or an event stamped by a thread that ran late, a
+     * collision's note (at the end of the frame, known t3.5 after it). A pty chunk,
+     * back-dated, never goes before what is on the line already (put_arrived). */
+    uint64_t t35 = l->cfg.ascii ? 4u * (uint64_t)l->cfg.char_us : l->cfg.t35_us;
+    l->hold_us = 50000u + 2u * t35;
     struct timespec rt;
     clock_gettime(CLOCK_REALTIME, &rt);
     uint64_t real = (uint64_t)rt.tv_sec * 1000000u + (uint64_t)rt.tv_nsec / 1000u;
@@ -40,16 +43,19 @@ void sim_line_member(sim_line_t *l, size_t i, const char *name, uint8_t addr)
 
 bool sim_line_observe(sim_line_t *l, sim_observer_t *o)
 {
-    if (l->nobs >= SIM_LINE_MAX_OBSERVERS) {
-        return false;
+    pthread_mutex_lock(&l->mu);
+    bool ok = l->nobs < SIM_LINE_MAX_OBSERVERS;
+    if (ok) {
+        l->obs[l->nobs] = o;
+        atomic_store(&l->nobs, l->nobs + 1u);
     }
-    l->obs[l->nobs++] = o;
-    return true;
+    pthread_mutex_unlock(&l->mu);
+    return ok;
 }
 
 bool sim_line_watched(const sim_line_t *l)
 {
-    return l != NULL && l->nobs > 0u;
+    return l != NULL && atomic_load(&l->nobs) > 0u;
 }
 
 static size_t src_slot(int src)
@@ -63,8 +69,31 @@ static sim_char_t *held(sim_line_t *l, size_t i)
     return &l->q[(l->qh + i) % SIM_LINE_QUEUE];
 }
 
+/* The i-th held note (0: the oldest). */
+static sim_note_t *note_at(sim_line_t *l, size_t i)
+{
+    return &l->notes[(l->nh + i) % SIM_LINE_NOTES];
+}
+
+/* The oldest held note to the observers (l->mu held). */
+static void release_note(sim_line_t *l)
+{
+    sim_note_t *n = note_at(l, 0);
+    if (n->t_us < l->released) {
+        n->t_us = l->released;
+    }
+    l->released = n->t_us;
+    for (size_t k = 0; k < l->nobs; k++) {
+        if (l->obs[k]->on_note != NULL) {
+            l->obs[k]->on_note(l->obs[k], n);
+        }
+    }
+    l->nh = (l->nh + 1u) % SIM_LINE_NOTES;
+    l->nn--;
+}
+
 /* The oldest held character to the observers (l->mu held). */
-static void release_first(sim_line_t *l)
+static void release_char(sim_line_t *l)
 {
     sim_char_t c = *held(l, 0);
     l->qh = (l->qh + 1u) % SIM_LINE_QUEUE;
@@ -95,10 +124,38 @@ static void release_first(sim_line_t *l)
     }
 }
 
+/* The oldest held character or note (a note first at the same time); false: none. */
+static bool release_first(sim_line_t *l)
+{
+    if (l->nn > 0u && (l->qn == 0u || note_at(l, 0)->t_us <= held(l, 0)->t_us)) {
+        release_note(l);
+        return true;
+    }
+    if (l->qn > 0u) {
+        release_char(l);
+        return true;
+    }
+    return false;
+}
+
+/* The time from which the oldest held item may go (its end: a character is complete). */
+static bool oldest_end(sim_line_t *l, uint64_t *end)
+{
+    if (l->nn > 0u && (l->qn == 0u || note_at(l, 0)->t_us <= held(l, 0)->t_us)) {
+        *end = note_at(l, 0)->t_us;
+        return true;
+    }
+    if (l->qn > 0u) {
+        *end = held(l, 0)->t_us + held(l, 0)->len_us;
+        return true;
+    }
+    return false;
+}
+
 static void put_locked(sim_line_t *l, const sim_char_t *c)
 {
     if (l->qn == SIM_LINE_QUEUE) {
-        release_first(l);
+        release_char(l);
     }
     /* from the newest back: most characters come in time order */
     size_t i = l->qn;
@@ -159,14 +216,48 @@ void sim_line_put_arrived(sim_line_t *l, int src, const uint8_t *b, const uint8_
     sim_line_put_frame(l, src, b, flags, n, t0);
 }
 
+void sim_line_note(sim_line_t *l, uint64_t t_us, int src, unsigned kind, const char *fmt, ...)
+{
+    if (!sim_line_watched(l)) {
+        return;
+    }
+    sim_note_t n;
+    n.t_us = t_us;
+    n.src = (int16_t)src;
+    n.kind = (uint8_t)kind;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(n.text, sizeof n.text, fmt, ap);
+    va_end(ap);
+    pthread_mutex_lock(&l->mu);
+    if (l->nn == SIM_LINE_NOTES) {
+        release_note(l);
+    }
+    size_t i = l->nn; /* from the newest back; the same time: after those before */
+    while (i > 0u && note_at(l, i - 1u)->t_us > n.t_us) {
+        *note_at(l, i) = *note_at(l, i - 1u);
+        i--;
+    }
+    *note_at(l, i) = n;
+    l->nn++;
+    pthread_mutex_unlock(&l->mu);
+}
+
 void sim_line_tick(sim_line_t *l, uint64_t now)
 {
     if (!sim_line_watched(l)) {
         return;
     }
     pthread_mutex_lock(&l->mu);
-    while (l->qn > 0u && held(l, 0)->t_us + held(l, 0)->len_us + l->hold_us <= now) {
-        release_first(l);
+    uint64_t end = 0;
+    while (oldest_end(l, &end) && end + l->hold_us <= now) {
+        (void)release_first(l);
+    }
+    uint64_t upto = now > l->hold_us ? now - l->hold_us : 0u;
+    for (size_t k = 0; k < l->nobs; k++) {
+        if (l->obs[k]->on_time != NULL) {
+            l->obs[k]->on_time(l->obs[k], upto);
+        }
     }
     pthread_mutex_unlock(&l->mu);
 }
@@ -177,13 +268,12 @@ void sim_line_close(sim_line_t *l)
         return;
     }
     pthread_mutex_lock(&l->mu);
-    while (l->qn > 0u) {
-        release_first(l);
+    while (release_first(l)) {
     }
     for (size_t k = 0; k < l->nobs; k++) {
         l->obs[k]->on_close(l->obs[k]);
     }
-    l->nobs = 0;
+    atomic_store(&l->nobs, 0u);
     pthread_mutex_unlock(&l->mu);
 }
 

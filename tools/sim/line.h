@@ -12,13 +12,18 @@
  *              reply is handed over at its start) and releases them in the order of
  *              their start bits (sim_line_tick, sim_line_close). Characters of two
  *              sources that overlap are flagged SIM_CH_COLLIDED.
+ *   notes      lines of text for the text trace (events, fault remarks, collisions,
+ *              console output while the trace runs) are held and released with the
+ *              characters, in the same time order (sim_line_note).
  *   observers  read the released characters through one interface (sim_observer_t):
- *              the Wireshark capture (capture.c), the waveform (vcd.c).
+ *              the text trace (trace_obs.c), the Wireshark capture (capture.c), the
+ *              waveform (vcd.c).
  * Times are us since the simulator started (the trace's time), 64 bits. Any thread. */
 #ifndef MODCP_SIM_LINE_H
 #define MODCP_SIM_LINE_H
 
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -57,10 +62,30 @@ typedef struct {
     uint8_t flags;      /* SIM_CH_* */
 } sim_char_t;
 
+/* A line of text at a time, for the text trace: handed to the observers in the same
+ * time order as the characters (before a character of the same time). */
+#define SIM_NOTE_MAX 1024
+#define SIM_LINE_NOTES 256
+enum {
+    SIM_NOTE_LINE,   /* a trace line of its own: an event, a collision, a reply not sent */
+    SIM_NOTE_FRAME,  /* a remark on src's next frame ("(fault: CRC corrupted)") */
+    SIM_NOTE_OUTPUT  /* console output, printed as it is */
+};
+typedef struct {
+    uint64_t t_us;
+    int16_t src;
+    uint8_t kind; /* SIM_NOTE_* */
+    char text[SIM_NOTE_MAX];
+} sim_note_t;
+
 typedef struct sim_observer sim_observer_t;
 struct sim_observer {
     /* a character, in the order of t_us */
     void (*on_char)(sim_observer_t *o, const sim_char_t *c);
+    /* a note, in the same order (NULL: not read) */
+    void (*on_note)(sim_observer_t *o, const sim_note_t *n);
+    /* everything up to t has been handed over (NULL: not read) */
+    void (*on_time)(sim_observer_t *o, uint64_t t);
     /* the line closes: write what is left */
     void (*on_close)(sim_observer_t *o);
 };
@@ -75,20 +100,22 @@ typedef struct {
     pthread_mutex_t mu;
     sim_char_t q[SIM_LINE_QUEUE]; /* held, sorted by t_us: a ring from qh, qn of them */
     size_t qh, qn;
+    sim_note_t notes[SIM_LINE_NOTES]; /* held notes, sorted by t_us: a ring from nh, nn */
+    size_t nh, nn;
     uint64_t released; /* start of the last character released */
     uint64_t last_end[2 + SIM_LINE_MAX_MEMBERS]; /* end of each source's last character */
     int16_t last_src;  /* the last released character's source */
     uint64_t last_rel_end;
     sim_observer_t *obs[SIM_LINE_MAX_OBSERVERS];
-    size_t nobs;
+    _Atomic size_t nobs;
 } sim_line_t;
 
 void sim_line_init(sim_line_t *l, const sim_line_cfg_t *cfg, uint64_t t0_us64);
 /* Member i's name and address (for the observers' labels). */
 void sim_line_member(sim_line_t *l, size_t i, const char *name, uint8_t addr);
-/* false: too many observers */
+/* false: too many observers (any thread) */
 bool sim_line_observe(sim_line_t *l, sim_observer_t *o);
-/* Anyone watching? (Sources skip the work when not.) */
+/* Anyone watching? (Sources skip the work when not.) Any thread. */
 bool sim_line_watched(const sim_line_t *l);
 
 /* n characters of src back to back from t0 (a UART's transmission); flags: per
@@ -102,6 +129,9 @@ void sim_line_put_arrived(sim_line_t *l, int src, const uint8_t *b, const uint8_
                           uint64_t t_end);
 /* One character or BREAK. */
 void sim_line_put(sim_line_t *l, const sim_char_t *c);
+/* A note at t_us (printf-style text) from src; nothing when nobody watches. */
+void sim_line_note(sim_line_t *l, uint64_t t_us, int src, unsigned kind, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
 /* Release what is older than now - hold_us to the observers. */
 void sim_line_tick(sim_line_t *l, uint64_t now);
 /* Release everything and close the observers. */

@@ -7,9 +7,9 @@
  *             [--bus] [--fault [@M:]KIND=VALUE]... [--seed N] [--qemu-member PTY]...
  *
  * Every slave (member, up to 247: one per Modbus address) is one modcp_cp_t + modcp_fb_t;
- * with one config and no --bus / --fault it owns the pty itself, else each member gets a
- * pty of its own and a bus thread joins them, any --qemu-member board's UART pty and the
- * master's pty into one line.
+ * on a pty each member (one too: a line of one, so that it takes the line's faults) gets
+ * a pty of its own and a bus thread joins them, any --qemu-member board's UART pty and
+ * the master's pty into one line; on --device the one slave owns the serial port.
  *
  * The two sides of a member are joined only by the backplane (modcp_backplane_t):
  *   CP thread   one per member, the CP side: waits on the UART, the one-shot timer and
@@ -68,6 +68,36 @@ void printf_line(sim_t *s, const char *fmt, ...)
     print_line(s, buf);
 }
 
+void say(sim_t *s, const char *text)
+{
+    if (s->trace_obs == NULL || !atomic_load(&s->trace_on)) {
+        print_line(s, text);
+        return;
+    }
+    /* after every trace line of what happened before it */
+    uint64_t t = since_start(s);
+    const char *p = text;
+    for (;;) {
+        const char *nl = strchr(p, '\n');
+        int len = nl != NULL ? (int)(nl - p) : (int)strlen(p);
+        sim_line_note(&s->wire, t, SIM_SRC_MASTER, SIM_NOTE_OUTPUT, "%.*s", len, p);
+        if (nl == NULL || nl[1] == '\0') {
+            return;
+        }
+        p = nl + 1;
+    }
+}
+
+void sayf(sim_t *s, const char *fmt, ...)
+{
+    char buf[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf, sizeof buf, fmt, ap);
+    va_end(ap);
+    say(s, buf);
+}
+
 static void trace_print(void *user, const char *line)
 {
     member_t *m = user;
@@ -93,11 +123,8 @@ static void on_tx(void *user, const uint8_t *buf, uint16_t len, uint32_t now_us)
     if (s->bus == NULL) {
         /* one slave: the UART sends byte k from now + k characters on */
         sim_line_put_frame(&s->wire, (int)m->index, buf, NULL, len, since_start_of(s, now_us));
-    }
-    if (s->bus != NULL) {
-        sim_bus_tx(s->bus, m->index, buf, len, now_us); /* the bus traces the line */
-    } else if (atomic_load(&s->trace_on)) {
-        sim_trace_tx(&m->tr, buf, len, since_start(s));
+    } else {
+        sim_bus_tx(s->bus, m->index, buf, len, now_us); /* the bus puts it on the line */
     }
 }
 
@@ -210,7 +237,10 @@ static bool make_bus(sim_t *s, const modcp_params_t *p0, uint32_t char_us)
         fprintf(stderr, "modcp-sim: cannot set up the bus\n");
         return false;
     }
-    sim_bus_set_line(s->bus, &s->wire);
+    sim_bus_set_line(s->bus, &s->wire, s->solo);
+    for (size_t i = 0; i < s->n; i++) {
+        sim_bus_member_quiet(s->bus, i, &s->m[i].cp_quiet);
+    }
     if (!apply_cli_faults(s)) {
         sim_bus_free(s->bus);
         s->bus = NULL;
@@ -250,12 +280,12 @@ static bool init_sides(sim_t *s)
         bool ascii = p->framing == MODCP_FRAMING_ASCII;
         uint64_t gap = ascii ? (uint64_t)p->ascii_timeout_ms * 1000u : modcp_params_t35_us(p);
         sim_trace_init(&m->tr, p->slave_addr, ascii, gap, trace_print, m);
-        if (s->bus_mode) {
+        if (!s->solo) {
             char ev[32];
             snprintf(ev, sizeof ev, "@%s ", m->name);
             sim_trace_labels(&m->tr, NULL, NULL, ev);
         }
-        if (s->bus == NULL) {
+        if (s->solo) {
             sim_latlog_open(&m->lat);
         }
         cp_snapshot(m);
@@ -334,7 +364,7 @@ static void print_startup(sim_t *s, const modcp_params_t *p0)
     const char *line_link = s->bus_mode ? s->line_port.link : s->m[0].port.link;
     char settings[48];
     modcp_conf_line_settings(p0, settings, sizeof settings);
-    if (!s->bus_mode) {
+    if (s->solo) {
         printf_line(s, "modcp-sim: slave %u on %s (%s)", (unsigned)p0->slave_addr, line_path,
                     settings);
     } else {

@@ -7,9 +7,9 @@
  *             [--bus] [--fault [@M:]KIND=VALUE]... [--seed N] [--qemu-member PTY]...
  *
  * Every slave (member, up to 247: one per Modbus address) is one modcp_cp_t + modcp_fb_t;
- * with one config and no --bus / --fault it owns the pty itself, else each member gets a
- * pty of its own and a bus thread joins them, any --qemu-member board's UART pty and the
- * master's pty into one line.
+ * on a pty each member (one too: a line of one, so that it takes the line's faults) gets
+ * a pty of its own and a bus thread joins them, any --qemu-member board's UART pty and
+ * the master's pty into one line; on --device the one slave owns the serial port.
  *
  * The two sides of a member are joined only by the backplane (modcp_backplane_t):
  *   CP thread   one per member, the CP side: waits on the UART, the one-shot timer and
@@ -67,6 +67,7 @@
 #include "vcd.h"
 #include "latlog.h"
 #include "trace.h"
+#include "trace_obs.h"
 
 #define RX_CHUNK 512
 #define CMD_OUT_MAX 8192
@@ -165,6 +166,8 @@ struct sim {
     char ext_name[MAX_MEMBERS][24];
     long cycle_override;
     bool bus_mode;
+    bool bus_named; /* --bus */
+    bool solo;      /* one slave, shown as one (not a bus of one: --bus) */
     uint32_t seed;
     atomic_bool stop;
     atomic_bool trace_on;
@@ -187,6 +190,7 @@ struct sim {
     sim_line_t wire;
     sim_capture_t *capture;
     sim_vcd_t *vcd;
+    sim_trace_obs_t *trace_obs; /* --trace, `trace on`: the text trace, from the first on */
     /* --replay FILE.pcap [--speed F] */
     const char *replay_path;
     double speed;
@@ -209,6 +213,9 @@ extern int g_sigpipe[2];
 /* output (sim.c): one line at a time, from any thread */
 void print_line(sim_t *s, const char *line);
 void printf_line(sim_t *s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* console output: while the trace runs, through the line (in time order with it) */
+void say(sim_t *s, const char *text);
+void sayf(sim_t *s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 uint64_t since_start(const sim_t *s);
 uint64_t since_start_of(const sim_t *s, uint32_t now_us);
 
@@ -250,6 +257,8 @@ bool same_line(const sim_t *s);
 bool apply_cli_faults(sim_t *s);
 /* the line model and its observers: false (message printed) when a file cannot be made */
 bool open_observers(sim_t *s, const modcp_params_t *p0);
+/* The text trace reads the line from now on (--trace, `trace on`); false: no memory. */
+bool observe_trace(sim_t *s);
 void close_observers(sim_t *s);
 /* --replay: load the capture (false: message printed), start it after the start-up,
  * wait for it; the simulator stops when it has played the capture. */

@@ -23,15 +23,15 @@ static int usage(void)
             "  --set [@M:]S.K=V  override a key of the configuration (e.g. serial.baud=115200);\n"
             "                    on a bus, of every member, or of member M (@2:, @name:)\n"
             "  --control FIFO    also read console commands from a named pipe (made if missing)\n"
-            "  --bus             run even one config as a bus member (for --fault / fault)\n"
+            "  --bus             show even one config as a bus member (@name, every address)\n"
             "  --fault [@M:]K=V  a fault of member M's replies (default: every member); K: drop,\n"
             "                    crc, exc06, exc04 (V in %%), delay (MS or MIN-MAX), silent (N\n"
             "                    requests), noise (N bytes after each reply); serial: parity=K,\n"
             "                    framing=K (byte K), break=MS, gap=K:US, de_cut=BITS; @master:\n"
-            "                    the master's direction (serial kinds, early=US); implies --bus\n"
+            "                    the master's direction (serial kinds, early=US); not with --device\n"
             "  --seed N          seed of the faults' random choices (default 1)\n"
             "  --qemu-member PTY a QEMU board's Modbus pty (tools/run-qemu) as a member of the\n"
-            "                    bus (@qemu; its console is its own); implies --bus\n"
+            "                    line (@qemu; its console is its own); implies --bus\n"
             "  --capture FILE    write every frame on the line to FILE (pcap, Wireshark/tshark)\n"
             "  --vcd FILE        write the line at bit level to FILE (VCD, PulseView/sigrok)\n"
             "  --replay FILE     play the master's frames of a capture against the slave(s), report\n"
@@ -39,7 +39,7 @@ static int usage(void)
             "  --speed F         the replay's gaps divided by F (default 1)\n"
             "  --tcp [ADDR:]PORT RTU frames over TCP too (127.0.0.1 unless ADDR), a client at a time\n"
             "  --version         print modcp-sim's version and exit\n"
-            "Several configs: one line (bus), one pty for the master, every member on it.\n"
+            "On a pty the slaves are members of one simulated line (bus), one pty for the master.\n"
             "The console reads stdin; type help. Ctrl-C or SIGTERM stops.\n");
     return 1;
 }
@@ -141,7 +141,6 @@ static int value_option(sim_t *s, const char *a, const char *v)
         return push(s->sets, &s->set_count, s->arg_cap, v, a) ? 0 : 1;
     }
     if (strcmp(a, "--fault") == 0) {
-        s->bus_mode = true;
         return push(s->faults, &s->fault_count, s->arg_cap, v, a) ? 0 : 1;
     }
     if (strcmp(a, "--qemu-member") == 0) {
@@ -178,6 +177,7 @@ int parse_args(sim_t *s, int argc, char **argv)
             atomic_store(&s->trace_on, true);
         } else if (strcmp(a, "--bus") == 0) {
             s->bus_mode = true;
+            s->bus_named = true;
         } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             return usage();
         } else if (strcmp(a, "--version") == 0) {
@@ -201,11 +201,19 @@ int parse_args(sim_t *s, int argc, char **argv)
         fprintf(stderr, "modcp-sim: at most %d members on one bus\n", MAX_MEMBERS);
         return 1;
     }
-    if (s->n > 1u) {
+    /* on a pty every slave, one too, is a member of the simulated line: its faults, the
+     * capture and the trace work alike; a serial device is a line of its own */
+    if (s->device == NULL) {
         s->bus_mode = true;
     }
-    if (s->bus_mode && s->device != NULL) {
+    s->solo = s->n == 1u && s->n_ext == 0u && !s->bus_named;
+    if (s->device != NULL && (s->n > 1u || s->n_ext > 0u || s->bus_named)) {
         fprintf(stderr, "modcp-sim: --device works with one slave; a bus runs on a pty\n");
+        return 1;
+    }
+    if (s->device != NULL && s->fault_count > 0u) {
+        fprintf(stderr, "modcp-sim: --fault: faults are made by the simulated line, which runs on "
+                        "a pty, not on --device\n");
         return 1;
     }
     return 0;

@@ -71,12 +71,12 @@ static void fault_cmd(member_t *m, const char *args, bool prefix)
     for (char *tok = strtok_r(buf, " \t", &save); tok != NULL; tok = strtok_r(NULL, " \t", &save)) {
         char err[160];
         if (!sim_bus_fault_set(s->bus, m->index, tok, err, sizeof err)) {
-            printf_line(s, "%serror: fault %s", pre, err);
+            sayf(s, "%serror: fault %s", pre, err);
             return;
         }
     }
     sim_bus_fault_describe(s->bus, m->index, out, sizeof out);
-    printf_line(s, "%s%s", pre, out);
+    sayf(s, "%s%s", pre, out);
 }
 
 /* One console command for member m (prefix: name it in each output line). */
@@ -90,8 +90,8 @@ static void member_cmd(member_t *m, const char *line, const char *cmd, bool pref
         }
         args += strlen(cmd);
         if (s->bus == NULL) {
-            print_line(s, "error: faults are injected by the bus: start modcp-sim with --bus "
-                          "(or --fault)");
+            say(s, "error: faults are made by the simulated line, which runs on a pty, "
+                   "not on --device");
             return;
         }
         fault_cmd(m, args, prefix);
@@ -103,21 +103,23 @@ static void member_cmd(member_t *m, const char *line, const char *cmd, bool pref
         return;
     }
     if (!prefix) {
-        print_line(s, out);
+        say(s, out);
     } else {
         /* every line of the answer named by its member */
         char *save = NULL;
         for (char *l = strtok_r(out, "\n", &save); l != NULL; l = strtok_r(NULL, "\n", &save)) {
-            printf_line(s, "@%s %s", m->name, l);
+            sayf(s, "@%s %s", m->name, l);
         }
     }
-    if (s->bus != NULL && strcasecmp(cmd, "status") == 0) {
+    /* one slave: its faults' line once it had a fault (its status line last otherwise) */
+    if (s->bus != NULL && strcasecmp(cmd, "status") == 0 &&
+        (!s->solo || sim_bus_fault_get(s->bus, m->index).used)) {
         char f[512];
         sim_bus_fault_describe(s->bus, m->index, f, sizeof f);
         if (prefix) {
-            printf_line(s, "@%s %s", m->name, f);
+            sayf(s, "@%s %s", m->name, f);
         } else {
-            print_line(s, f);
+            say(s, f);
         }
     }
 }
@@ -125,7 +127,7 @@ static void member_cmd(member_t *m, const char *line, const char *cmd, bool pref
 static void list_members(sim_t *s, const char *indent)
 {
     for (size_t i = 0; i < s->n; i++) {
-        printf_line(s, "%s@%s = @%zu  slave %u  %s", indent, s->m[i].name, i + 1u,
+        sayf(s, "%s@%s = @%zu  slave %u  %s", indent, s->m[i].name, i + 1u,
                     (unsigned)s->m[i].conf->params.slave_addr, s->m[i].config);
     }
 }
@@ -142,19 +144,24 @@ static bool sim_cmd(sim_t *s, const char *cmd, const char *arg, int k, bool *don
         char *end = NULL;
         long ms = strtol(arg, &end, 10);
         if (k < 2 || *end != '\0' || ms < 0 || ms > 3600000L) {
-            print_line(s, "error: usage: sleep MS");
+            say(s, "error: usage: sleep MS");
         } else {
             (void)sleep_ms(s, ms);
         }
     } else if (strcasecmp(cmd, "trace") == 0) {
         if (k == 2 && (strcasecmp(arg, "on") == 0 || strcasecmp(arg, "off") == 0)) {
-            atomic_store(&s->trace_on, strcasecmp(arg, "on") == 0);
+            bool on = strcasecmp(arg, "on") == 0;
+            if (on && !observe_trace(s)) {
+                say(s, "error: trace: out of memory");
+                return true;
+            }
+            atomic_store(&s->trace_on, on);
             if (s->bus != NULL) {
                 sim_bus_trace(s->bus, strcasecmp(arg, "on") == 0);
             }
-            printf_line(s, "trace %s", arg);
+            sayf(s, "trace %s", arg);
         } else {
-            print_line(s, "error: usage: trace on|off");
+            say(s, "error: usage: trace on|off");
         }
     } else if (strcasecmp(cmd, "members") == 0) {
         list_members(s, "");
@@ -166,18 +173,18 @@ static bool sim_cmd(sim_t *s, const char *cmd, const char *arg, int k, bool *don
 
 static void sim_help(sim_t *s)
 {
-    print_line(s, "  trace on|off        frame trace (simulator)");
-    print_line(s, "  sleep MS            wait (simulator, for scripts)");
-    print_line(s, "  quit                stop the simulator");
+    say(s, "  trace on|off        frame trace (simulator)");
+    say(s, "  sleep MS            wait (simulator, for scripts)");
+    say(s, "  quit                stop the simulator");
     if (s->bus != NULL) {
-        print_line(s, "  members             the bus's members (@name = @index, address, config)");
-        print_line(s, "  @M COMMAND          run COMMAND on member M (@b, @2; @* = all); without");
-        print_line(s, "                      @M: status, diag and fault on all, the rest on the first");
-        print_line(s, "  fault [SPEC]...     faults of a member's replies: drop=P crc=P exc06=P");
-        print_line(s, "                      exc04=P (P in %), delay=MS|MIN-MAX, silent=N, noise=N,");
-        print_line(s, "                      serial: parity=K framing=K break=MS gap=K:US de_cut=BITS;");
-        print_line(s, "                      off; without SPEC: settings and counters");
-        print_line(s, "  @master fault ...   the master's direction: the serial faults and early=US");
+        say(s, "  members             the bus's members (@name = @index, address, config)");
+        say(s, "  @M COMMAND          run COMMAND on member M (@b, @2; @* = all); without");
+        say(s, "                      @M: status, diag and fault on all, the rest on the first");
+        say(s, "  fault [SPEC]...     faults of a member's replies: drop=P crc=P exc06=P");
+        say(s, "                      exc04=P (P in %), delay=MS|MIN-MAX, silent=N, noise=N,");
+        say(s, "                      serial: parity=K framing=K break=MS gap=K:US de_cut=BITS;");
+        say(s, "                      off; without SPEC: settings and counters");
+        say(s, "  @master fault ...   the master's direction: the serial faults and early=US");
     }
 }
 
@@ -206,7 +213,7 @@ static int member_prefix(sim_t *s, const char **rest)
     }
     int target = find_member(s, name);
     if (target < 0) {
-        printf_line(s, "error: no member @%s; members:", name);
+        sayf(s, "error: no member @%s; members:", name);
         list_members(s, "  ");
     }
     return target;
@@ -216,7 +223,7 @@ static int member_prefix(sim_t *s, const char **rest)
 static void master_cmd(sim_t *s, const char *rest, const char *cmd)
 {
     if (strcasecmp(cmd, "fault") != 0 && strcasecmp(cmd, "faults") != 0) {
-        print_line(s, "error: @master takes fault [SPEC]... (the master's direction of the line)");
+        say(s, "error: @master takes fault [SPEC]... (the master's direction of the line)");
         return;
     }
     char buf[256];
@@ -226,13 +233,13 @@ static void master_cmd(sim_t *s, const char *rest, const char *cmd)
     for (char *tok = strtok_r(NULL, " \t", &save); tok != NULL; tok = strtok_r(NULL, " \t", &save)) {
         char err[200];
         if (!sim_bus_fault_set(s->bus, SIM_BUS_MASTER, tok, err, sizeof err)) {
-            printf_line(s, "@master error: fault %s", err);
+            sayf(s, "@master error: fault %s", err);
             return;
         }
     }
     char out[512];
     sim_bus_fault_describe(s->bus, SIM_BUS_MASTER, out, sizeof out);
-    printf_line(s, "@master %s", out);
+    sayf(s, "@master %s", out);
 }
 
 /* One console line; returns false when the simulator should stop. */
@@ -254,7 +261,7 @@ static bool handle_line(sim_t *s, const char *line)
         }
     }
     if (k < 1 && target != -2) {
-        print_line(s, "error: @MEMBER needs a command (e.g. @b status)");
+        say(s, "error: @MEMBER needs a command (e.g. @b status)");
         return true;
     }
     if (target == MASTER_TARGET) {
@@ -284,7 +291,7 @@ static bool handle_line(sim_t *s, const char *line)
         sim_bus_master_faulted(s->bus)) {
         char out[512];
         sim_bus_fault_describe(s->bus, SIM_BUS_MASTER, out, sizeof out);
-        printf_line(s, "@master %s", out); /* the master's direction: its serial faults */
+        sayf(s, "@master %s", out); /* the master's direction: its serial faults */
     }
     return true;
 }
@@ -367,7 +374,7 @@ bool run_script(sim_t *s)
     wait_init(s); /* after the FB's init has finished (ready or CP_START_ERROR) */
     FILE *f = fopen(s->script, "r");
     if (f == NULL) {
-        printf_line(s, "modcp-sim: cannot open script %s: %s", s->script, strerror(errno));
+        sayf(s, "modcp-sim: cannot open script %s: %s", s->script, strerror(errno));
         return true;
     }
     char line[1024];

@@ -15,7 +15,9 @@ void cp_snapshot(member_t *m)
     pthread_mutex_unlock(&m->snap_mu);
 }
 
-static void trace_events(member_t *m)
+/* The events the core raised since the last call, to the trace at t (the core's time):
+ * through the line, in time order with the frames. */
+static void trace_events(member_t *m, uint64_t t)
 {
     uint32_t total = m->cp.diag.events_total;
     if (total == m->events_seen) {
@@ -29,9 +31,10 @@ static void trace_events(member_t *m)
     if (n > m->cp.diag.buffer_len) {
         n = m->cp.diag.buffer_len;
     }
-    uint64_t t = since_start(m->sim);
     for (uint32_t i = n; i > 0u; i--) {
-        sim_trace_event(&m->tr, m->cp.diag.buffer[i - 1u], t);
+        char line[512];
+        sim_trace_format_event(m->tr.ev_label, m->cp.diag.buffer[i - 1u], line, sizeof line);
+        sim_line_note(&m->sim->wire, t, (int)m->index, SIM_NOTE_LINE, "%s", line);
     }
 }
 
@@ -76,6 +79,21 @@ static void bus_tx_done(member_t *m, uint32_t now)
     m->core_t = end;
 }
 
+/* On a bus: the one-shot timer, each time it is due by t, at its deadline. */
+static void timers_due(member_t *m, uint32_t t)
+{
+    while (m->port.timer_armed && (int32_t)(t - m->port.timer_deadline_us) >= 0) {
+        uint32_t d = m->port.timer_deadline_us;
+        if ((int32_t)(d - m->core_t) < 0) {
+            d = m->core_t;
+        }
+        m->port.timer_armed = false;
+        m->port.now_us = d;
+        modcp_cp_on_timer(&m->cp, d);
+        m->core_t = d;
+    }
+}
+
 /* On a bus: one character heard at ti (the member's clock), after the timer when it fell
  * due first. */
 static void bus_char(member_t *m, uint8_t byte, uint8_t errors, uint32_t ti, uint32_t now, bool tr,
@@ -87,16 +105,7 @@ static void bus_char(member_t *m, uint8_t byte, uint8_t errors, uint32_t ti, uin
     if ((int32_t)(now - ti) < 0) {
         ti = now;
     }
-    while (m->port.timer_armed && (int32_t)(ti - m->port.timer_deadline_us) >= 0) {
-        uint32_t d = m->port.timer_deadline_us;
-        if ((int32_t)(d - m->core_t) < 0) {
-            d = m->core_t;
-        }
-        m->port.timer_armed = false;
-        m->port.now_us = d;
-        modcp_cp_on_timer(&m->cp, d);
-        m->core_t = d;
-    }
+    timers_due(m, ti);
     m->port.now_us = ti;
     if (tr) {
         uint64_t tb = n64 - (uint32_t)((uint32_t)n64 - ti) - m->sim->t0_us64;
@@ -127,6 +136,7 @@ static void bus_turn(member_t *m, uint32_t now, bool *tx_done, bool *timer, bool
     uint32_t bt[RX_CHUNK];
     bool more = false;
     size_t k = sim_bus_take(s->bus, m->index, bb, be, bt, RX_CHUNK, now, &more);
+    sim_latlog_rx(&m->lat, k, now);
     if (more) {
         modcp_posix_wake(&m->port); /* more due than one turn takes */
     }
@@ -144,10 +154,9 @@ static void bus_turn(member_t *m, uint32_t now, bool *tx_done, bool *timer, bool
     m->core_t = now;
 }
 
-/* One slave on its own line: the characters read at now (t: since start), to the line
- * model, the trace and the core. */
-static void own_line_rx(member_t *m, const modcp_posix_rx_t *rx, int n, uint32_t now, uint64_t t,
-                        bool tr)
+/* One slave on its own line (a serial device): the characters read at now (t: since
+ * start), to the line model (and so to the trace) and the core. */
+static void own_line_rx(member_t *m, const modcp_posix_rx_t *rx, int n, uint32_t now, uint64_t t)
 {
     if (n > 0 && m->sim->bus == NULL && sim_line_watched(&m->sim->wire)) {
         uint8_t b[RX_CHUNK], fl[RX_CHUNK];
@@ -161,9 +170,6 @@ static void own_line_rx(member_t *m, const modcp_posix_rx_t *rx, int n, uint32_t
         sim_line_put_arrived(&m->sim->wire, SIM_SRC_MASTER, b, fl, (size_t)n, t);
     }
     for (int i = 0; i < n; i++) {
-        if (tr) {
-            sim_trace_rx(&m->tr, rx[i].byte, rx[i].errors, t);
-        }
         if (rx[i].errors != 0u) {
             modcp_cp_on_line_error(&m->cp, rx[i].errors, now);
         } else {
@@ -178,10 +184,9 @@ bool cp_is_quiet(const member_t *m)
            !m->port.timer_armed && !m->port.tx_active && !ring_pending(&m->bp.to_cp);
 }
 
-/* Wait for the next event; n characters (< 0: a read error). quiet: nothing to do but
- * supervision, which the scheduler's shared tick does (cp_visit): sleep until work. */
-static int cp_wait(member_t *m, modcp_posix_rx_t *rx, bool *tx_done, bool *timer, uint32_t *now,
-                   bool quiet)
+/* How long the CP thread may wait, the reply it watches for (port.expect_*): decided
+ * under cp_mu, before the wait (the wait itself reads no core state). */
+static uint32_t cp_plan(member_t *m)
 {
     bool idle = modcp_cp_ready(&m->cp) && !modcp_job_busy(&m->cp.job) && !m->cp.request_pending;
     /* a job on the backplane: its reply comes at the CPU side's next FB call, watched
@@ -191,13 +196,57 @@ static int cp_wait(member_t *m, modcp_posix_rx_t *rx, bool *tx_done, bool *timer
                            !same_core(atomic_load_explicit(&m->cpu_core, memory_order_relaxed));
     m->port.expect_us = atomic_load_explicit(&m->cpu_due, memory_order_relaxed);
     sim_latlog_before_wait(&m->lat, &m->port);
-    uint32_t max_us = quiet ? QUIET_MAX_US : idle ? IDLE_TICK_US : BUSY_TICK_US;
+    uint32_t max_us = idle ? IDLE_TICK_US : BUSY_TICK_US;
     uint32_t next = 0;
     if (m->sim->bus != NULL && sim_bus_next_time(m->sim->bus, m->index, &next)) {
         int32_t d = (int32_t)(next - modcp_posix_now_us());
         max_us = d <= 0 ? 0u : (uint32_t)d < max_us ? (uint32_t)d : max_us;
     }
-    int n = modcp_posix_wait(&m->port, max_us, rx, RX_CHUNK, tx_done, timer, now);
+    return max_us;
+}
+
+/* A quiet CP's thread: asleep until its line has characters or it is woken (a frame for
+ * it, blocks from the FB, the scheduler's tick gave it work), QUIET_MAX_US at most. It
+ * touches nothing of the member: meanwhile the scheduler's tick runs its core
+ * (cp_visit), under cp_mu, which this thread does not hold. */
+static void quiet_sleep(const member_t *m)
+{
+    struct pollfd pfs[2] = {{m->port.fd, POLLIN, 0}, {m->port.wake.rd, POLLIN, 0}};
+    struct timespec ts;
+    timespec_of(QUIET_MAX_US, &ts);
+    (void)ppoll(pfs, m->port.wake.rd >= 0 ? 2u : 1u, &ts, NULL);
+}
+
+/* Wait for the next event with cp_mu held on entry and on return; n characters (< 0: a
+ * read error). Quiet (nothing to do but supervision): cp_quiet is set under cp_mu, so
+ * the scheduler's tick (cp_visit, which checks it under cp_mu) runs the core only while
+ * this thread is in quiet_sleep, and it is cleared under cp_mu before this thread
+ * touches the port or the core again: the two never run the member at once. */
+static int cp_wait(member_t *m, modcp_posix_rx_t *rx, bool *tx_done, bool *timer, uint32_t *now)
+{
+    uint32_t max_us = 0;
+    bool quiet = cp_is_quiet(m);
+    if (quiet) {
+        atomic_store(&m->cp_quiet, true);
+        sim_latlog_before_wait(&m->lat, &m->port);
+    } else {
+        max_us = cp_plan(m);
+    }
+    pthread_mutex_unlock(&m->cp_mu);
+    if (quiet) {
+        quiet_sleep(m);
+    } else {
+        /* not quiet: the scheduler's tick leaves the member alone */
+        int n = modcp_posix_wait(&m->port, max_us, rx, RX_CHUNK, tx_done, timer, now);
+        pthread_mutex_lock(&m->cp_mu);
+        sim_latlog_after_wait(&m->lat, &m->port, n, *timer, *now);
+        return n;
+    }
+    pthread_mutex_lock(&m->cp_mu);
+    atomic_store(&m->cp_quiet, false);
+    /* what woke it (and what the tick left due), without waiting */
+    m->port.expect_armed = false;
+    int n = modcp_posix_wait(&m->port, 0u, rx, RX_CHUNK, tx_done, timer, now);
     sim_latlog_after_wait(&m->lat, &m->port, n, *timer, *now);
     return n;
 }
@@ -212,9 +261,9 @@ void cp_after(member_t *m, uint32_t now, uint64_t t, bool tr)
         modcp_posix_event_signal(&m->sim->sched_irq); /* the backplane interrupt */
     }
     if (tr) {
-        sim_trace_poll(&m->tr, t);
+        sim_trace_poll(&m->tr, t); /* MODCP_SIM_MEMBER_RX: what the member heard */
     }
-    trace_events(m);
+    trace_events(m, t);
     cp_snapshot(m);
     if (m->sim->bus == NULL) {
         sim_line_tick(&m->sim->wire, t);
@@ -226,9 +275,9 @@ void *cp_thread(void *arg)
     member_t *m = arg;
     sim_t *s = m->sim;
     modcp_posix_rx_t rx[RX_CHUNK];
-    /* on a bus, the bus traces the line; MODCP_SIM_MEMBER_RX=1 adds what each member
+    /* the trace reads the line; on a bus MODCP_SIM_MEMBER_RX=1 adds what each member
      * heard (a debugging aid: "@b heard ...") */
-    bool line_trace = s->bus == NULL || getenv("MODCP_SIM_MEMBER_RX") != NULL;
+    bool line_trace = s->bus != NULL && getenv("MODCP_SIM_MEMBER_RX") != NULL;
     if (s->bus != NULL) {
         char l[32];
         snprintf(l, sizeof l, "@%s heard", m->name);
@@ -238,12 +287,7 @@ void *cp_thread(void *arg)
     while (!atomic_load(&s->stop)) {
         bool tx_done = false, timer = false;
         uint32_t now = 0;
-        bool quiet = cp_is_quiet(m);
-        atomic_store(&m->cp_quiet, quiet);
-        pthread_mutex_unlock(&m->cp_mu);
-        int n = cp_wait(m, rx, &tx_done, &timer, &now, quiet);
-        pthread_mutex_lock(&m->cp_mu);
-        atomic_store(&m->cp_quiet, false);
+        int n = cp_wait(m, rx, &tx_done, &timer, &now);
         if ((int32_t)(now - m->core_t) < 0) {
             now = m->core_t; /* the scheduler's tick polled the core meanwhile */
         }
@@ -272,7 +316,7 @@ void *cp_thread(void *arg)
         if (timer) {
             modcp_cp_on_timer(&m->cp, now);
         }
-        own_line_rx(m, rx, n, now, t, tr);
+        own_line_rx(m, rx, n, now, t);
         modcp_cp_poll(&m->cp, now);
         m->core_t = now;
         cp_after(m, now, t, tr);
@@ -281,24 +325,51 @@ void *cp_thread(void *arg)
     return NULL;
 }
 
+/* On a bus, a quiet member (its thread asleep): the characters of the line up to t
+ * (frames for other addresses, which did not wake it) and the timer due by then. */
+static void bus_catch_up(member_t *m, uint32_t t)
+{
+    uint8_t bb[RX_CHUNK], be[RX_CHUNK];
+    uint32_t bt[RX_CHUNK];
+    uint64_t n64 = modcp_posix_now_us64();
+    bool more = true;
+    while (more) {
+        size_t k = sim_bus_take(m->sim->bus, m->index, bb, be, bt, RX_CHUNK, t, &more);
+        for (size_t i = 0; i < k; i++) {
+            bus_char(m, bb[i], be[i], bt[i], t, false, n64);
+        }
+    }
+    timers_due(m, t);
+}
+
+/* The CP has work its thread must do (a timer alone waits for the next tick: a frame
+ * for another address, whose t3.5 ends it). */
+static bool cp_has_work(const member_t *m)
+{
+    return !modcp_cp_ready(&m->cp) || modcp_job_busy(&m->cp.job) || m->cp.request_pending ||
+           m->port.tx_active || ring_pending(&m->bp.to_cp);
+}
+
 void cp_visit(member_t *m, uint32_t now)
 {
     sim_t *s = m->sim;
     if (!atomic_load(&m->cp_quiet) || pthread_mutex_trylock(&m->cp_mu) != 0) {
         return; /* its thread runs it */
     }
-    uint32_t next = 0;
-    if (atomic_load(&m->cp_quiet) && !(s->bus != NULL && sim_bus_next_time(s->bus, m->index, &next))) {
+    if (atomic_load(&m->cp_quiet)) { /* under cp_mu: its thread is in quiet_sleep */
         /* a little in the past: characters the bus hands over late keep their times */
         uint32_t t = now - CP_VISIT_LAG_US;
         if ((int32_t)(t - m->core_t) < 0) {
             t = m->core_t;
         }
+        if (s->bus != NULL) {
+            bus_catch_up(m, t);
+        }
         m->port.now_us = t;
         modcp_cp_poll(&m->cp, t);
         m->core_t = t;
         cp_after(m, t, since_start_of(s, t), false);
-        if (!cp_is_quiet(m)) {
+        if (cp_has_work(m)) {
             modcp_posix_wake(&m->port); /* it has work now: its thread takes over */
         }
     }

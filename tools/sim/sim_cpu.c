@@ -53,7 +53,7 @@ void timespec_of(uint64_t us, struct timespec *ts)
 /* "modcp-sim: " or "modcp-sim: @b " */
 static const char *who(const member_t *m, char *buf, size_t cap)
 {
-    if (m->sim->bus != NULL) {
+    if (!m->sim->solo) {
         snprintf(buf, cap, "@%s ", m->name);
     } else {
         buf[0] = '\0';
@@ -93,7 +93,7 @@ static void cpu_report(member_t *m, const modcp_fb_out_t *out, cpu_report_t *r)
     atomic_store(&m->fb_state, r->last_state);
     if (r->last_state == MODCP_FBST_RUN && out->cp_start_ok && !r->ready_printed) {
         r->ready_printed = true;
-        if (s->bus == NULL) {
+        if (s->solo) {
             printf_line(s, "modcp-sim: ready");
             return;
         }

@@ -5,6 +5,20 @@
 #define _GNU_SOURCE
 #include "sim.h"
 
+static void obs_print(void *user, const char *line)
+{
+    print_line(user, line);
+}
+
+bool observe_trace(sim_t *s)
+{
+    if (s->trace_obs != NULL) {
+        return true;
+    }
+    s->trace_obs = sim_trace_obs_new(&s->wire, &s->trace_on, s->solo, obs_print, s);
+    return s->trace_obs != NULL && sim_line_observe(&s->wire, sim_trace_obs_observer(s->trace_obs));
+}
+
 bool open_observers(sim_t *s, const modcp_params_t *p0)
 {
     bool ascii = p0->framing == MODCP_FRAMING_ASCII;
@@ -35,12 +49,18 @@ bool open_observers(sim_t *s, const modcp_params_t *p0)
         }
         (void)sim_line_observe(&s->wire, sim_vcd_observer(s->vcd));
     }
+    if (atomic_load(&s->trace_on) && !observe_trace(s)) {
+        fprintf(stderr, "modcp-sim: --trace: out of memory\n");
+        return false;
+    }
     return true;
 }
 
 void close_observers(sim_t *s)
 {
     sim_line_close(&s->wire);
+    sim_trace_obs_free(s->trace_obs);
+    s->trace_obs = NULL;
     if (s->capture != NULL) {
         uint32_t n = sim_capture_close(s->capture);
         s->capture = NULL;

@@ -288,43 +288,50 @@ static void describe_adu(const sim_trace_t *t, const uint8_t *raw, size_t rlen, 
     }
 }
 
-static void print_frame(sim_trace_t *t, const char *dir, const uint8_t *b, size_t n, bool reply,
-                        bool errors, uint64_t t_us, const char *note)
+void sim_trace_format(const sim_trace_t *t, const char *label, const uint8_t *b, size_t n,
+                      bool reply, bool errors, const char *note, char *line, size_t cap)
 {
-    char line[4096];
-    size_t pos = 0;
-    pos += (size_t)snprintf(line + pos, sizeof line - pos, "[%5lu.%06lu] %s",
-                            (unsigned long)(t_us / 1000000u), (unsigned long)(t_us % 1000000u), dir);
-    for (size_t i = 0; i < n && pos + 8u < sizeof line - 400u; i++) {
+    size_t pos = (size_t)snprintf(line, cap, "%s", label);
+    for (size_t i = 0; i < n && pos + 420u < cap; i++) {
+        if (t->ascii && (b[i] < 0x20u || b[i] >= 0x7Fu) && i == 0u) {
+            line[pos++] = ' ';
+        }
         if (t->ascii && b[i] >= 0x20u && b[i] < 0x7Fu) {
             if (i == 0u) {
                 line[pos++] = ' ';
             }
             line[pos++] = (char)b[i];
+        } else if (t->ascii && (b[i] == '\r' || b[i] == '\n')) {
+            pos += (size_t)snprintf(line + pos, cap - pos, "%s", b[i] == '\r' ? "\\r" : "\\n");
         } else if (t->ascii) {
-            if (i == 0u) {
-                line[pos++] = ' ';
-            }
-            if (b[i] == '\r' || b[i] == '\n') {
-                pos += (size_t)snprintf(line + pos, sizeof line - pos, "%s",
-                                        b[i] == '\r' ? "\\r" : "\\n");
-            } else {
-                pos += (size_t)snprintf(line + pos, sizeof line - pos, "<%02X>", (unsigned)b[i]);
-            }
+            pos += (size_t)snprintf(line + pos, cap - pos, "<%02X>", (unsigned)b[i]);
         } else {
-            pos += (size_t)snprintf(line + pos, sizeof line - pos, " %02X", (unsigned)b[i]);
+            pos += (size_t)snprintf(line + pos, cap - pos, " %02X", (unsigned)b[i]);
         }
     }
     char what[400];
     describe_adu(t, b, n, reply, errors, what, sizeof what);
-    snprintf(line + pos, sizeof line - pos, " | %s%s%s", what, note != NULL ? " " : "",
+    snprintf(line + pos, cap - pos, " | %s%s%s", what, note != NULL ? " " : "",
              note != NULL ? note : "");
+}
+
+void sim_trace_print(sim_trace_t *t, const char *text, uint64_t t_us)
+{
+    char line[SIM_TRACE_LINE + 32];
+    snprintf(line, sizeof line, "[%5lu.%06lu] %s", (unsigned long)(t_us / 1000000u),
+             (unsigned long)(t_us % 1000000u), text);
     if (t->print != NULL) {
         t->print(t->user, line);
     }
 }
 
-static void print_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us);
+static void print_frame(sim_trace_t *t, const char *dir, const uint8_t *b, size_t n, bool reply,
+                        bool errors, uint64_t t_us, const char *note)
+{
+    char line[SIM_TRACE_LINE];
+    sim_trace_format(t, dir, b, n, reply, errors, note, line, sizeof line);
+    sim_trace_print(t, line, t_us);
+}
 
 static void rx_flush(sim_trace_t *t)
 {
@@ -333,10 +340,6 @@ static void rx_flush(sim_trace_t *t)
     }
     t->rx_len = 0;
     t->rx_errors = false;
-    for (size_t i = 0; i < t->ev_n; i++) {
-        print_event(t, t->ev_q[i], t->ev_t[i]);
-    }
-    t->ev_n = 0;
 }
 
 void sim_trace_rx(sim_trace_t *t, uint8_t byte, uint8_t errors, uint64_t t_us)
@@ -369,39 +372,9 @@ void sim_trace_poll(sim_trace_t *t, uint64_t t_us)
     }
 }
 
-void sim_trace_tx(sim_trace_t *t, const uint8_t *buf, size_t len, uint64_t t_us)
+void sim_trace_format_event(const char *prefix, modcp_event_t ev, char *out, size_t cap)
 {
-    rx_flush(t);
-    print_frame(t, t->tx_label, buf, len, true, false, t_us, NULL);
-}
-
-void sim_trace_frame(sim_trace_t *t, const char *label, const uint8_t *buf, size_t len, bool reply,
-                     uint64_t t_us, const char *note)
-{
-    rx_flush(t);
-    print_frame(t, label, buf, len, reply, false, t_us, note);
-}
-
-void sim_trace_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us)
-{
-    if (t->rx_len > 0u && t->ev_n < sizeof t->ev_q / sizeof t->ev_q[0]) {
-        t->ev_q[t->ev_n] = ev; /* after the frame being received, which began earlier */
-        t->ev_t[t->ev_n] = t_us;
-        t->ev_n++;
-        return;
-    }
-    print_event(t, ev, t_us);
-}
-
-static void print_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us)
-{
-    char line[512];
     const char *cls = modcp_event_class_text(MODCP_EVENT_CLASS(ev));
-    snprintf(line, sizeof line, "[%5lu.%06lu] %sevent (%02X)%02XH %s: %s",
-             (unsigned long)(t_us / 1000000u), (unsigned long)(t_us % 1000000u), t->ev_label,
-             (unsigned)MODCP_EVENT_CLASS(ev), (unsigned)MODCP_EVENT_NUMBER(ev), cls,
-             modcp_event_text(ev));
-    if (t->print != NULL) {
-        t->print(t->user, line);
-    }
+    snprintf(out, cap, "%sevent (%02X)%02XH %s: %s", prefix, (unsigned)MODCP_EVENT_CLASS(ev),
+             (unsigned)MODCP_EVENT_NUMBER(ev), cls, modcp_event_text(ev));
 }

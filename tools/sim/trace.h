@@ -1,6 +1,9 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* modcp-sim — frame trace: every frame received and sent with a microsecond time
  * stamp and its meaning, decoded in the tool from the bytes (the core is untouched).
+ * The text trace (--trace) reads the line (trace_obs.c) and formats with these; the
+ * receive side below (sim_trace_rx / _poll) serves the per-member debugging trace
+ * (MODCP_SIM_MEMBER_RX).
  *
  *   [    1.234567] master 05 03 00 50 00 02 C5 9E | slave 5 FC03 read holding registers addr 0x0050 (80) qty 2
  *   [    1.246012] slave 5 05 03 04 87 65 43 21 76 70 | FC03 reply, 4 data bytes
@@ -36,10 +39,6 @@ typedef struct {
     char tx_label[24]; /* sender of sent frames ("slave 5", "@b slave 5") */
     char ev_label[24]; /* prefix of event lines ("" or "@b ") */
     bool any_addr;     /* a bus's trace: no request is "not for us" */
-    /* events raised while a frame is being received: printed after it */
-    modcp_event_t ev_q[16];
-    uint64_t ev_t[16];
-    size_t ev_n;
 } sim_trace_t;
 
 void sim_trace_init(sim_trace_t *t, uint8_t own_addr, bool ascii, uint64_t gap_us,
@@ -50,13 +49,17 @@ void sim_trace_labels(sim_trace_t *t, const char *rx, const char *tx, const char
 void sim_trace_rx(sim_trace_t *t, uint8_t byte, uint8_t errors, uint64_t t_us);
 /* Ends a received frame after the gap. */
 void sim_trace_poll(sim_trace_t *t, uint64_t t_us);
-/* A frame sent (the whole reply, as handed to the UART). */
-void sim_trace_tx(sim_trace_t *t, const uint8_t *buf, size_t len, uint64_t t_us);
-/* A frame with its sender's label and an optional note ("fault: CRC corrupted"). */
-void sim_trace_frame(sim_trace_t *t, const char *label, const uint8_t *buf, size_t len, bool reply,
-                     uint64_t t_us, const char *note);
-/* A diagnostic event. */
-void sim_trace_event(sim_trace_t *t, modcp_event_t ev, uint64_t t_us);
+
+/* A trace line's length at most */
+#define SIM_TRACE_LINE 4096u
+/* A frame's trace line without its time: "LABEL BYTES | meaning[ NOTE]"; errors: a line
+ * error in it. */
+void sim_trace_format(const sim_trace_t *t, const char *label, const uint8_t *buf, size_t len,
+                      bool reply, bool errors, const char *note, char *out, size_t cap);
+/* An event's trace line without its time: "PREFIXevent (08)36H receive error: ...". */
+void sim_trace_format_event(const char *prefix, modcp_event_t ev, char *out, size_t cap);
+/* "[    1.234567] text" to the trace's print function. */
+void sim_trace_print(sim_trace_t *t, const char *text, uint64_t t_us);
 
 /* Meaning of a PDU (pdu[0] = function code) in words. */
 void sim_describe_pdu(const uint8_t *pdu, size_t len, bool reply, char *out, size_t cap);
