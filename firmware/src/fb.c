@@ -18,29 +18,28 @@
  *      answers "not ready" or is silent, push PARAMS then INIT.
  *
  * Data crosses the backplane once per 32-byte block each way: no job buffer, one copy
- * between a slot and controller memory. Consistency guarantee (docs/cpu-cp-interface.md): every block
- * is written or read within one call, so each block is consistent (a one-block job or
- * reply as a whole); a job whose blocks are all handled in one FB call is consistent
- * as a whole: a write job of up to
- * MODCP_BP_DEPTH blocks, header included, is executed only when all of them are in
- * (job_in_ring); a read's reply of up to MODCP_BP_DEPTH blocks goes out in the call
- * that answers it when the ring towards the CP is empty (as in normal operation); a
- * longer job whenever the other side keeps pace during the call.
+ * between a slot and controller memory. Consistency guarantee (docs/cpu-cp-interface.md):
+ * every block is written or read within one call, so each block is consistent (a one-block
+ * job or reply as a whole); a job whose blocks are all handled in one FB call is consistent
+ * as a whole: a write job of up to MODCP_BP_DEPTH blocks, header included, is executed only
+ * when all of them are in (job_in_ring); a read's reply of up to MODCP_BP_DEPTH blocks goes
+ * out in the call that answers it when the ring towards the CP is empty (as in normal
+ * operation); a longer job whenever the other side keeps pace during the call.
  *
  * Job validation by the FB ([RTU-2003] §7.6), replied as (0E)57H + ERROR_NR and shown on
- * ERROR_NR / ERROR_INFO (they stay until the next CP_START edge): 10 unknown op (INFO =
- * op) · 12 count or len 0 (INFO = count) · 13 len above MODCP_FB_JOB_MAX, or fewer data
- * bytes than the bit count needs (INFO = len / count), or a MASKWRITE (FC22) that is not
- * 4 data bytes on one word (INFO = len) · 18 area not allowed for the op: READ I Q M T C
- * DB, WRITE / MASKWRITE Q M DB, BITWRITE M Q DB (INFO 0) · 11 BITWRITE start bit > 7
- * (INFO = start byte) · 14 / 15 BITWRITE past the end of M / Q (INFO = last byte).
- * Other replies: (0E)56H FB not in RUN, (0E)3AH BITWRITE with the work DB missing,
- * (0E)38H / (0E)39H from plcmem (checked on the header: nothing is written), (0E)33H
- * write data not as announced (a data block of another size than announced, a header
- * flagged LAST for a write without exactly its data after it, or not LAST for a read:
- * nothing more of the job is written). A job whose tag is the backplane's abort_tag was
- * given up by the CP: nothing (more) of it is executed and it is not answered; a job that
- * loses a block (sequence gap) is not continued and not answered (the CP times out). */
+ * ERROR_NR / ERROR_INFO (they stay until the next CP_START edge): 10 unknown op (INFO = op)
+ * · 12 count or len 0 (INFO = count) · 13 len above MODCP_FB_JOB_MAX, or fewer data bytes
+ * than the bit count needs (INFO = len / count), or a MASKWRITE (FC22) that is not 4 data
+ * bytes on one word (INFO = len) · 18 area not allowed for the op: READ I Q M T C DB, WRITE
+ * / MASKWRITE Q M DB, BITWRITE M Q DB (INFO 0) · 11 BITWRITE start bit > 7 (INFO = start
+ * byte) · 14 / 15 BITWRITE past the end of M / Q (INFO = last byte). Other replies: (0E)56H
+ * FB not in RUN, (0E)3AH BITWRITE with the work DB missing, (0E)38H / (0E)39H from plcmem
+ * (checked on the header: nothing is written), (0E)33H write data not as announced (a data
+ * block of another size than announced, a header flagged LAST for a write without exactly
+ * its data after it, or not LAST for a read: nothing more of the job is written). A job
+ * whose tag is the backplane's abort_tag was given up by the CP: nothing (more) of it is
+ * executed and it is not answered; a job that loses a block (sequence gap) is not continued
+ * and not answered (the CP times out). */
 #include "modcp/fb.h"
 
 #include <stddef.h>
@@ -48,13 +47,14 @@
 
 #include "modcp/crc.h"
 #include "backplane_internal.h"
+#include "inline_internal.h"
 #include "plcmem_internal.h"
 
 void modcp_fb_init(modcp_fb_t *fb, modcp_backplane_t *bp, modcp_plcmem_t *mem,
                    const uint8_t *record, uint16_t record_len, uint16_t work_db,
                    uint32_t start_time_ms)
 {
-    memset(fb, 0, sizeof *fb);
+    (void)memset(fb, 0, sizeof *fb);
     fb->bp = bp;
     fb->mem = mem;
     fb->record = record;
@@ -78,7 +78,7 @@ static bool put_block(modcp_fb_t *fb, uint8_t kind, uint8_t flags, uint8_t tag,
 static modcp_operand_t opnd_at(const modcp_operand_t *o, uint16_t pos)
 {
     modcp_operand_t r = *o;
-    bool words = o->area == MODCP_AREA_T || o->area == MODCP_AREA_C;
+    bool words = o->area == (uint8_t)MODCP_AREA_T || o->area == (uint8_t)MODCP_AREA_C;
     r.offset = (uint16_t)(o->offset + (words ? pos / 2u : pos));
     return r;
 }
@@ -193,13 +193,14 @@ static bool check_bitwrite(modcp_fb_t *fb)
     }
     uint32_t end = (uint32_t)o->offset + ((uint32_t)o->bit + o->count - 1u) / 8u;
     uint8_t *base = NULL;
-    if (o->area == MODCP_AREA_M) {
+    if (o->area == (uint8_t)MODCP_AREA_M) {
         if (end >= fb->mem->m_size) {
             reply_fb_error(fb, MODCP_FB_ERR_M_END, end);
             return false;
         }
         base = fb->mem->m;
-    } else if (o->area == MODCP_AREA_Q) {
+    }
+    if (o->area == (uint8_t)MODCP_AREA_Q) {
         if (end >= fb->mem->q_size) {
             reply_fb_error(fb, MODCP_FB_ERR_Q_END, end);
             return false;
@@ -219,18 +220,12 @@ static bool check_bitwrite(modcp_fb_t *fb)
     return true;
 }
 
-#if defined(__GNUC__)
-#define FB_INLINE inline __attribute__((always_inline))
-#else
-#define FB_INLINE inline
-#endif
-
-static FB_INLINE void exec_data(modcp_fb_t *fb, const uint8_t *d, uint32_t n, bool last);
+static MODCP_ALWAYS_INLINE void exec_data(modcp_fb_t *fb, const uint8_t *d, uint32_t n, bool last);
 
 /* modcp_plcmem_locate into job_mem, its byte areas' lookup inline (plcmem_internal.h). */
-static FB_INLINE modcp_event_t locate(modcp_fb_t *fb, const modcp_operand_t *o, uint32_t len)
+static MODCP_ALWAYS_INLINE modcp_event_t locate(modcp_fb_t *fb, const modcp_operand_t *o, uint32_t len)
 {
-    if (o->area == MODCP_AREA_T || o->area == MODCP_AREA_C) { /* elements: read / write */
+    if ((o->area == (uint8_t)MODCP_AREA_T) || (o->area == (uint8_t)MODCP_AREA_C)) { /* elements */
         return modcp_plcmem_locate(fb->mem, o, (uint16_t)len, &fb->job_mem);
     }
     modcp_event_t ev;
@@ -249,7 +244,7 @@ static void start_job(modcp_fb_t *fb, const modcp_block_t *b)
     if (atomic_load_explicit(&fb->bp->abort_tag, memory_order_acquire) == (uint32_t)fb->job_tag) {
         return; /* the CP timed out on this job: nothing is written, nobody waits */
     }
-    if (fb->state != MODCP_FBST_RUN) {
+    if (fb->state != (uint8_t)MODCP_FBST_RUN) {
         reply(fb, MODCP_EV_FB_NOT_RUNNING, 0, 0);
         return;
     }
@@ -275,9 +270,9 @@ static void start_job(modcp_fb_t *fb, const modcp_block_t *b)
     }
     /* a READ is its header alone (LAST); a write's header is LAST exactly when all of
      * its data follows it in the block */
-    bool last = (b->flags & MODCP_BLK_LAST) != 0u;
-    if (last ? op != MODCP_JOB_READ && (uint32_t)b->len != MODCP_BP_JOB_HDR_LEN + jb->len
-             : op == MODCP_JOB_READ) {
+    const bool last = (b->flags & MODCP_BLK_LAST) != 0u;
+    const bool read = op == (uint8_t)MODCP_JOB_READ;
+    if (last ? (!read && ((uint32_t)b->len != ((uint32_t)MODCP_BP_JOB_HDR_LEN + jb->len))) : read) {
         reply(fb, MODCP_EV_XFER_STATE, 0, 0); /* data not as announced: execute nothing */
         return;
     }
@@ -338,7 +333,7 @@ static modcp_event_t exec_maskwrite(modcp_fb_t *fb, const uint8_t *masks)
 /* n bytes of the active write job's data at job_pos, read in place and written
  * straight into controller memory (one copy); last: the job's last bytes (CP_START_NDR
  * and the reply). */
-static FB_INLINE void exec_data(modcp_fb_t *fb, const uint8_t *d, uint32_t n, bool last)
+static MODCP_ALWAYS_INLINE void exec_data(modcp_fb_t *fb, const uint8_t *d, uint32_t n, bool last)
 {
     const modcp_bp_job_t *jb = &fb->job;
     /* WRITE / BITWRITE: only Q, M, DB (area_allowed), so job_mem is the storage */
@@ -347,7 +342,7 @@ static FB_INLINE void exec_data(modcp_fb_t *fb, const uint8_t *d, uint32_t n, bo
     switch (jb->op) {
     case MODCP_JOB_WRITE:
         if (n == 2u) { /* one register (FC06, FC16): no call */
-            memcpy(dst, d, 2);
+            (void)memcpy(dst, d, 2);
         } else {
             modcp_block_copy(dst, d, n);
         }
@@ -415,7 +410,7 @@ static bool job_in_ring(const modcp_fb_t *fb, const modcp_block_t *b)
 
 static void rx_ack(modcp_fb_t *fb, const modcp_block_t *b)
 {
-    if (fb->state == MODCP_FBST_INIT_WAIT) {
+    if (fb->state == (uint8_t)MODCP_FBST_INIT_WAIT) {
         modcp_event_t ev = b->len >= 2u ? modcp_bp_get16(b->data) : MODCP_EV_XFER_STATE;
         fb->cp_has_params = ev == MODCP_EV_NONE;
         if (ev == MODCP_EV_NONE) {
@@ -430,7 +425,7 @@ static void rx_ack(modcp_fb_t *fb, const modcp_block_t *b)
 
 /* A reply without data (a write's, an error's): its header alone, at once, when the
  * ring has room; false when it has none. */
-static FB_INLINE bool reply_header(modcp_fb_t *fb)
+static MODCP_ALWAYS_INLINE bool reply_header(modcp_fb_t *fb)
 {
     modcp_ring_t *out = &fb->bp->to_cp;
     modcp_block_t *rb = modcp_ring_slot(out);
@@ -476,12 +471,14 @@ static void rx_blocks(modcp_fb_t *fb)
                 }
             } else if (fb->job_active && b->tag == fb->job_tag) {
                 rx_data(fb, b);
+            } else {
+                /* remainder of a job we never saw the start of, or that was answered */
             }
-            /* else: remainder of a job we never saw the start of, or that was answered */
         } else if (kind == MODCP_BP_INIT_ACK) {
             rx_ack(fb, b);
+        } else {
+            /* PARAMS / INIT / REPLY travel the other way: ignored */
         }
-        /* PARAMS / INIT / REPLY travel the other way: ignored */
         modcp_ring_release(r);
         if (fb->reply_pending && (fb->reply.len != 0u || !reply_header(fb))) {
             pump_reply(fb);
@@ -538,7 +535,8 @@ static void send_init(modcp_fb_t *fb)
 /* Initialisation step; false when it failed in this call (START_TIME over). */
 static bool run_init(modcp_fb_t *fb, uint32_t now_ms)
 {
-    if (fb->state != MODCP_FBST_INIT_SEND && fb->state != MODCP_FBST_INIT_WAIT) {
+    if ((fb->state != (uint8_t)MODCP_FBST_INIT_SEND) &&
+        (fb->state != (uint8_t)MODCP_FBST_INIT_WAIT)) {
         if (fb->params_pending) {
             (void)push_params(fb); /* PARAMS of the first call */
         }
@@ -554,12 +552,12 @@ static bool run_init(modcp_fb_t *fb, uint32_t now_ms)
         fb->err_changed = true;
         return false;
     }
-    if (fb->state == MODCP_FBST_INIT_WAIT &&
+    if (fb->state == (uint8_t)MODCP_FBST_INIT_WAIT &&
         (uint32_t)(now_ms - fb->retry_t0_ms) >= MODCP_FB_RETRY_MS) {
         fb->cp_has_params = false; /* not ready or silent: the record goes again */
         start_attempt(fb, now_ms, true);
     }
-    if (fb->state == MODCP_FBST_INIT_SEND && push_params(fb) && !fb->init_sent) {
+    if (fb->state == (uint8_t)MODCP_FBST_INIT_SEND && push_params(fb) && !fb->init_sent) {
         send_init(fb);
     }
     return true;
@@ -570,7 +568,7 @@ void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint3
     bool start = in != NULL && in->cp_start;
     fb->out.cp_start_ndr = false;
     if (start && !fb->last_start) {
-        memset(&fb->out, 0, sizeof fb->out);
+        (void)memset(&fb->out, 0, sizeof fb->out);
         fb->err_changed = true;
         fb->init_event = MODCP_EV_NONE;
         fb->init_t0_ms = now_ms;

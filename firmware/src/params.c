@@ -1,72 +1,27 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — the parameter record: defaults, validation, effective copy, binary form.
+/* modcp — the parameter record: the rows of params_fields.h as modcp_param_rows[], defaults,
+ * validation, effective copy (the binary record: params_record.c).
  *
- * Validation rules and the events they raise ([RTU-2003] §2, §3, §7.5; [ASCII-32] §3, §4.5, §8.6).
- * One issue per bad field (per window / range / scanner entry / ID string); for a
- * field with several problems only the first one found is reported.
+ * Validation ([RTU-2003] §2, §3, §7.5; [ASCII-32] §3, §4.5, §8.6) walks the rows of
+ * params_fields.h in record order: a scalar row is checked against its range (min .. max,
+ * 0 too with MODCP_PF_ZERO_OK), then, marked MODCP_PF_CUSTOM, against its further rule
+ * (custom_ok: the baud table, RTU 8 data bits, the ASCII frame 7E1 / 7O1 / 7N2 on the stop
+ * bits, normal mode on two-wire RS485 only with rs485_sel ([RTU-2009] Table 5-2), rs232_auto
+ * on RS232 only, RTS delays in steps of 10 ms, receive preset break not on RS485, the job
+ * limit of the CPU model, the scanner's start + count, ID strings terminated). A group row
+ * has its own function: the bit windows and 32-bit ranges (check_ranges: area, from <= to,
+ * DB not 0, whole T/C elements, extent, then overlaps and, for the 32-bit ranges, the same
+ * DB twice), the write limits (check_limits), the scanner entries (check_scanner).
  *
- *   data_bits      RTU: 8; ASCII: 7 or 8 (8: modcp extension, docs/parameters.md) (0E)20H fatal
- *   stop_bits      ASCII: not 1 with parity even/odd, not 2 with parity none ([ASCII-32]
- *                  §3.1 "with even or odd parity 1 stop bit is pre-defined; none
- *                  parity effects two stop bits": 7E1, 7O1, 7N2; the same for the
- *                  8-bit extension) ... (0E)2EH fatal (the manual gives no event)
- *   slave_addr     0 ................................................ (0E)23H fatal
- *   opmode         not 0/1; normal on RS485 (two-wire) while rs485_sel is 0
- *                  ([RTU-2009] Table 5-2: without "enable operating-mode selection for
- *                  RS485" two-wire RS485 runs in modem = interference suppression
- *                  mode only; event (0E)22H "selected operating mode not allowed")
- *                  .................................................. (0E)22H fatal
- *   f_mul          outside 1..10 ................. (0E)21H NOT fatal, runs with 1
- *   ascii_timeout  outside 1..6500 ms ............ (0E)21H NOT fatal, runs with 1000
- *                  ([ASCII-32] §8.6 prints this as the second parameter event, at the
- *                  position of 21H; checked whatever the framing, the value is
- *                  corrected in either case)
- *   lim_db/m/q     max != 0 && min > max; lim_db: max != 0 && min == 0 (0E)24H fatal
- *                  value = min << 16 | max
- *   coils[i]       area not M/Q/T/C/DB, from > to, DB window with db 0, T/C window
- *                  size (to-from+1) not a multiple of 16, last byte / element
- *                  beyond 65535 .................................... (0E)25H fatal
- *                  two enabled windows overlapping ................. (0E)27H fatal
- *   inputs[i]      as coils with areas M/I/DB ....... (0E)26H / (0E)28H fatal
- *   r32[k]         (only when regs32 != 0) from > to, db 0, range larger than one
- *                  DB (2 bytes per int16 register, 4 per int32/float register,
- *                  65536 bytes), two ranges overlapping, two ranges on the same DB
- *                  .................................................. (0E)2EH fatal
- *                  [ASCII-32] §8.6 lists these four errors between "overlap FC02" (28H)
- *                  and "error reading the parameter file" (2EH), but their event
- *                  numbers are illegible in the OCR. We do not invent numbers and
- *                  report them as (0E)2EH. An all-zero entry (from = to = db = 0)
- *                  is an unused range (modcp extension: fewer than three ranges).
- *   everything else that has no event of its own (0E)2EH fatal ("error reading the
- *                  parameter file"): baud not in the table, parity > 2, stop bits
- *                  not 1/2, framing > 1, eof_timing > 1, t15_check > 1, iface > 2,
- *                  turnaround > 100 ms, rs232_auto > 1 or with an interface other
- *                  than RS232, regs32 > 1, r32_lim_db > 1, fset > 1, rs485_sel > 1, cpu_model > 1,
- *                  job_limit not 0
- *                  and not 32..model limit, cpu_timeout 0, start_time 0, commloss
- *                  not 0 and not 100..30000, scanner count > 16 or first + count
- *                  beyond 65535 (index 0xFF), an enabled scanner entry (index <
- *                  scan_count, area != NONE) that is not a word operand (M, I, Q,
- *                  DB with db != 0 with byte offset <= 65534, T, C), an ID string
- *                  not NUL-terminated within 17 bytes (index 0 vendor, 1 product,
- *                  2 revision, 3 app_name), diag_irq > 1.
- *   a feature compiled out of this image (modcp/features.h) .... (0E)2EH fatal
- *                  framing ascii without MODCP_WITH_ASCII; rs232_auto on without
- *                  MODCP_WITH_RS232_SIGNALS; without MODCP_WITH_EXTENDED: fset
- *                  extended, commloss not 0, scan_count not 0 (index 0xFF). The
- *                  CP stays "not ready" with that reason, never half-working.
- *
- * Values of issues: the offending field value; for from/to problems of a window
- * from << 16 | to; for a bad area the area; for db 0 the db (0); for a T/C size
- * the size; for an extent the last byte / element; for an overlap (windows and
- * 32-bit ranges) the index of the earlier window / range it collides with; for
- * a 32-bit same-DB the DB number; for a scanner entry the area (db 0: the db,
- * offset: the offset); for the scanner start/count (index 0xFF) scan_count.
- *
- * The fields, their order in the record, widths, defaults, ranges, events and INI keys
- * are the rows of params_fields.h; this file expands them into modcp_param_rows[] and
- * adds the rules a range cannot say (marked MODCP_PF_CUSTOM there, and the groups:
- * windows, 32-bit ranges, limits, scanner entries). The binary record: params_record.c. */
+ * Each bad field (window, range, limit, scanner entry, ID string) is one issue: its field,
+ * index, the row's event (class 0EH), fatal or not, the rule it breaks (modcp_param_rule_t,
+ * whose comments say what the value is) and the offending value; a field with several
+ * problems reports the first one found. Not fatal are only f_mul and ascii_timeout
+ * (MODCP_PF_WARN, (0E)21H): the effective copy runs with their defaults. The 32-bit range
+ * errors, whose event numbers are illegible in [ASCII-32] §8.6, and every field without an
+ * event of its own are (0E)2EH; so is a feature compiled out of this image
+ * (modcp/features.h: framing ascii, rs232_auto on, fset extended, commloss, scanner): the
+ * rows' ranges end at 0 there, and the CP stays "not ready", never half-working. */
 #include "modcp/params.h"
 
 #include <string.h>
@@ -77,20 +32,16 @@
 /* ---- the rows ------------------------------------------------------------------ */
 
 #define ROW_S(member, width, field, index, min, max, def, ev, flags, ...)                      \
-    {(uint16_t)((max) > 0xFFFF ? 0xFFFF : (max)), (uint8_t)MODCP_PARAM_OFF(member),           \
-     (uint8_t)((width) | ((flags) << 5)), (uint8_t)(field), MODCP_EVENT_NUMBER(ev),           \
-     (uint8_t)((min) > 0xFF ? 0 : (min)), (uint8_t)MODCP_PARAM_DEF_CODE(def)},
+    {(uint16_t)(((unsigned)(max) > 0xFFFFu) ? 0xFFFFu : (unsigned)(max)),                      \
+     (uint8_t)MODCP_PARAM_OFF(member),                                                          \
+     (uint8_t)((unsigned)(width) | ((unsigned)(uint8_t)(flags) << 5u)),                         \
+     (uint8_t)(field), (uint8_t)((unsigned)(ev) & 0xFFu),                                                  \
+     (uint8_t)(((unsigned)(min) > 0xFFu) ? 0u : (unsigned)(min)),                               \
+     (uint8_t)MODCP_PARAM_DEF_CODE(def)},
 #define ROW_G(member, count, type, members, field)                                           \
     {(uint16_t)(count), (uint8_t)MODCP_PARAM_OFF(member), 0u, (uint8_t)(field),              \
-     (uint8_t)(members), (uint8_t)sizeof(type), (uint8_t)FIRST_WIDTH_##type},
+     (uint8_t)(members), (uint8_t)sizeof(type), (uint8_t)MODCP_PARAM_FIRST_WIDTH_##type},
 #define ROW_M(...)
-
-/* A group's structs (packed): 2-byte members one after the other, the first possibly 1 byte
- * (FIRST_WIDTH_<type>); test_params checks that the rows list the members in this order. */
-#define FIRST_WIDTH_modcp_bitwin_t 1u
-#define FIRST_WIDTH_modcp_r32range_t 2u
-#define FIRST_WIDTH_modcp_limit_t 2u
-#define FIRST_WIDTH_modcp_operand_ref_t 1u
 
 const modcp_param_row_t modcp_param_rows[MODCP_PARAM_ROW_COUNT] = {
     MODCP_PARAM_ROWS(ROW_S, ROW_G, ROW_M)};
@@ -99,75 +50,69 @@ const modcp_param_row_t modcp_param_rows[MODCP_PARAM_ROW_COUNT] = {
  * rows up to 16 bits fit the table (a 32-bit row, the baud rate, is checked by its own
  * rule); the issue index of a row is the one run_checks derives (row_index). */
 #define CHECK_S(member, width, field, index, min, max, def, ev, flags, ...)                    \
-    _Static_assert(MODCP_EVENT_CLASS(ev) == 0x0Eu, #member ": event class 0EH");             \
-    _Static_assert(((width) > 2 && ((flags) & MODCP_PF_CUSTOM) != 0) ||                       \
-                       ((max) <= 0xFFFF && (min) <= 0xFF),                                    \
+    _Static_assert(((unsigned)(ev) >> 8u) == 0x0Eu, #member ": event class 0EH");            \
+    _Static_assert((((unsigned)(width) > 2u) &&                                               \
+                    (((uint8_t)(flags) & MODCP_PF_CUSTOM) != 0u)) ||                          \
+                       (((unsigned)(max) <= 0xFFFFu) && ((unsigned)(min) <= 0xFFu)),          \
                    #member ": range fits the row");                                           \
-    _Static_assert(MODCP_PARAM_DEF_CODE(def) <= 0xFFu && (flags) < 8, #member ": default");   \
-    _Static_assert(MODCP_PARAM_OFF(member) <= MODCP_PARAM_ABSENT, #member ": offset");        \
-    _Static_assert((field) == MODCP_PF_SCANNER ? (index) == 0xFF                              \
-                                               : (field) == MODCP_PF_ID_STRING || (index) == 0, \
+    _Static_assert((MODCP_PARAM_DEF_CODE(def) <= 0xFFu) && ((uint8_t)(flags) < 8u),          \
+                   #member ": default");                                                      \
+    _Static_assert((size_t)MODCP_PARAM_OFF(member) <= MODCP_PARAM_ABSENT, #member ": offset"); \
+    _Static_assert((((unsigned)(field) != (unsigned)MODCP_PF_SCANNER) ||                     \
+                    ((unsigned)(index) == 0xFFu)) &&                                           \
+                       (((unsigned)(field) == (unsigned)MODCP_PF_SCANNER) ||                  \
+                        ((unsigned)(field) == (unsigned)MODCP_PF_ID_STRING) ||                \
+                        ((unsigned)(index) == 0u)),                                           \
                    #member ": index");
-#define CHECK_G(member, count, type, members, field)                                         \
-    _Static_assert(sizeof(type) == MODCP_PARAM_SLOT(FIRST_WIDTH_##type) + 2u * ((members) - 1u) && \
-                       MODCP_PARAM_OFF(member) <= MODCP_PARAM_ABSENT,                         \
-                   #member ": members without a gap");
-#define CHECK_M(type, member, width, count)                                                  \
-    _Static_assert((offsetof(type, member) == 0u ||                                           \
-                    (offsetof(type, member) - MODCP_PARAM_SLOT(FIRST_WIDTH_##type)) % 2u == 0u) && \
-                       (width) == (offsetof(type, member) == 0u ? FIRST_WIDTH_##type : 2u),   \
-                   #type "." #member ": place");
+#define CHECK_G(...)
+#define CHECK_M(...)
 MODCP_PARAM_ROWS(CHECK_S, CHECK_G, CHECK_M)
 #if MODCP_WITH_EXTENDED
 #define CHECK_ID_S(member, width, field, index, ...)                                          \
-    _Static_assert((field) != MODCP_PF_ID_STRING ||                                            \
-                       (index) == (MODCP_PARAM_OFF(member) - offsetof(modcp_params_t, vendor)) / \
-                                      (MODCP_ID_STRING_MAX + 1u),                             \
+    _Static_assert(((field) != MODCP_PF_ID_STRING) ||                                          \
+                       ((size_t)(index) ==                                                      \
+                        (((size_t)MODCP_PARAM_OFF(member) - (size_t)offsetof(modcp_params_t, vendor)) / \
+                         ((size_t)MODCP_ID_STRING_MAX + 1u))),                                  \
                    #member ": index of an ID string");
-#define CHECK_ID_G(...)
-#define CHECK_ID_M(...)
-MODCP_PARAM_ROWS(CHECK_ID_S, CHECK_ID_G, CHECK_ID_M)
-_Static_assert(offsetof(modcp_params_t, scan) < MODCP_PARAM_ABSENT &&
-                   offsetof(modcp_params_t, app_name) < offsetof(modcp_params_t, scan),
+MODCP_PARAM_ROWS(CHECK_ID_S, CHECK_G, CHECK_M)
+_Static_assert(((size_t)offsetof(modcp_params_t, scan) < MODCP_PARAM_ABSENT) &&
+                   ((size_t)offsetof(modcp_params_t, app_name) <
+                    (size_t)offsetof(modcp_params_t, scan)),
                "the last row's member starts below MODCP_PARAM_ABSENT");
 #endif
-_Static_assert(offsetof(modcp_params_t, lim_q) ==
-                   offsetof(modcp_params_t, lim_db) + 2u * sizeof(modcp_limit_t),
-               "lim_db, lim_m, lim_q are one group of three");
 
 static const uint16_t big_defaults[] = {MODCP_PARAM_BIG_DEFAULTS};
 
 static uint32_t row_def(const modcp_param_row_t *r)
 {
-    return r->def < 240u ? r->def : big_defaults[r->def - 240u];
+    return (r->def < 240u) ? (uint32_t)r->def : (uint32_t)big_defaults[r->def - 240u];
 }
 
+/* A scalar row's value (width 1, 2 or 4) and its store; a scalar member is aligned to its
+ * width (modcp_params_t has no packed scalars). */
 static uint32_t param_get(const modcp_params_t *p, const modcp_param_row_t *r)
 {
-    const uint8_t *b = (const uint8_t *)p + r->off;
-    if (MODCP_PARAM_WIDTH(r) == 1u) {
-        return *b;
-    }
+    const void *b = (const uint8_t *)p + r->off;
+    uint32_t v = *(const uint8_t *)b;
     if (MODCP_PARAM_WIDTH(r) == 2u) {
-        uint16_t v;
-        memcpy(&v, b, sizeof v);
-        return v;
+        v = *(const uint16_t *)b;
+    } else if (MODCP_PARAM_WIDTH(r) == 4u) {
+        v = *(const uint32_t *)b;
+    } else {
+        /* one byte */
     }
-    uint32_t v;
-    memcpy(&v, b, sizeof v);
     return v;
 }
 
 static void param_put(modcp_params_t *p, const modcp_param_row_t *r, uint32_t v)
 {
-    uint8_t *b = (uint8_t *)p + r->off;
+    void *b = (uint8_t *)p + r->off;
     if (MODCP_PARAM_WIDTH(r) == 1u) {
-        *b = (uint8_t)v;
+        *(uint8_t *)b = (uint8_t)v;
     } else if (MODCP_PARAM_WIDTH(r) == 2u) {
-        uint16_t x = (uint16_t)v;
-        memcpy(b, &x, sizeof x);
+        *(uint16_t *)b = (uint16_t)v;
     } else {
-        memcpy(b, &v, sizeof v);
+        *(uint32_t *)b = v;
     }
 }
 
@@ -182,18 +127,18 @@ static void put_default(modcp_params_t *p, const modcp_param_row_t *r)
 /* An ID string's default into the zeroed member (a literal that fits, NUL included). */
 #define SET_ID(dst, lit)                                                                          \
     do {                                                                                          \
-        _Static_assert(sizeof(lit) <= MODCP_ID_STRING_MAX + 1u, "ID string default too long");    \
-        memcpy((dst), (lit), sizeof(lit));                                                        \
-    } while (0)
+        _Static_assert(sizeof(lit) <= ((size_t)MODCP_ID_STRING_MAX + 1u), "ID string too long"); \
+        (void)memcpy((dst), (lit), sizeof(lit));                                                  \
+    } while (false)
 
 void modcp_params_defaults(modcp_params_t *p)
 {
     /* everything not in a row is 0: no windows, no ranges, writes disabled */
-    memset(p, 0, sizeof *p);
-    for (uint8_t i = 0; i < MODCP_PARAM_ROW_COUNT; i++) {
+    (void)memset(p, 0, sizeof *p);
+    for (uint8_t i = 0u; i < MODCP_PARAM_ROW_COUNT; i++) {
         const modcp_param_row_t *r = &modcp_param_rows[i];
-        uint8_t w = MODCP_PARAM_WIDTH(r);
-        if (w != 0u && w != MODCP_PW_STR) {
+        const uint8_t w = MODCP_PARAM_WIDTH(r);
+        if ((w != 0u) && (w != MODCP_PW_STR)) {
             put_default(p, r);
         }
     }
@@ -206,10 +151,11 @@ void modcp_params_defaults(modcp_params_t *p)
 
 /* ---- validation ----------------------------------------------------------------- */
 
-/* Every function below has one caller and is inlined into it, and run_checks into
- * modcp_params_validate and modcp_params_apply: in apply's copy, the one the firmware
- * links, the sink has no issue array and the compiler drops what only the issues need
- * (their field, index and value), the tools' validate keeps it. */
+/* Every function below is inlined into run_checks and run_checks into modcp_params_validate
+ * and modcp_params_apply: in apply's copy, the one the firmware links, the sink has no issue
+ * array and the compiler drops what only the issues need (field, index, rule, value). Without
+ * it params.c's code in the firmware (Cortex-M3 -Os, validate not linked) grows from 1,316 to
+ * 1,614 bytes (manual set), from 1,576 to 1,928 (every feature). */
 #define CHECK_INLINE inline __attribute__((always_inline))
 
 typedef struct {
@@ -220,70 +166,91 @@ typedef struct {
     modcp_event_t first_warning;
 } issue_sink_t;
 
-/* field and index of an issue in one argument */
-#define FI(field, index) ((uint16_t)(((unsigned)(field) << 8) | (uint8_t)(index)))
+#define EV_NONE ((modcp_event_t)MODCP_EV_NONE)
+#define NO_OTHER 0xFFu /* modcp_param_issue_t.other when no other entry is involved */
 
-static CHECK_INLINE void add_issue(issue_sink_t *s, uint16_t fi, modcp_event_t ev, bool fatal,
-                                   uint32_t value)
+/* One issue: into out while there is room, counted always; the first fatal event and the
+ * first warning are what modcp_params_apply returns. */
+static CHECK_INLINE void report(issue_sink_t *s, const modcp_param_issue_t *is)
 {
-    if (s->out != NULL && s->n < s->max) {
-        modcp_param_issue_t *it = &s->out[s->n];
-        it->field = (uint8_t)(fi >> 8);
-        it->index = (uint8_t)fi;
-        it->event = ev;
-        it->fatal = fatal;
-        it->value = value;
+    if ((s->out != NULL) && (s->n < s->max)) {
+        s->out[s->n] = *is;
     }
     s->n++;
-    if (fatal) {
-        if (s->first_fatal == MODCP_EV_NONE) {
-            s->first_fatal = ev;
+    if (is->fatal) {
+        if (s->first_fatal == EV_NONE) {
+            s->first_fatal = is->event;
         }
-    } else if (s->first_warning == MODCP_EV_NONE) {
-        s->first_warning = ev;
+    } else if (s->first_warning == EV_NONE) {
+        s->first_warning = is->event;
+    } else {
+        /* an earlier warning stands */
     }
 }
 
-static CHECK_INLINE void add_fatal(issue_sink_t *s, uint16_t fi, modcp_event_t ev, uint32_t value)
+/* A fatal issue of entry index of field (a window, range, limit or scanner entry). */
+static CHECK_INLINE void report_fatal(issue_sink_t *s, uint8_t field, uint8_t index,
+                                      modcp_event_t ev, uint8_t rule, uint32_t value,
+                                      uint8_t other)
 {
-    add_issue(s, fi, ev, true, value);
+    const modcp_param_issue_t is = {field, index, ev, true, rule, other, value};
+    report(s, &is);
 }
 
 /* 300, 600, 1200, 2400, 4800, 9600, 19200, 38400, 76800 (300 x 2^k), 57600, 115200 */
 static CHECK_INLINE bool baud_ok(uint32_t baud)
 {
-    uint32_t k = baud / 300u;
-    return baud % 300u == 0u && ((k <= 256u && (k & (k - 1u)) == 0u) || k == 192u || k == 384u);
+    const uint32_t k = baud / 300u;
+    return ((baud % 300u) == 0u) &&
+           (((k <= 256u) && ((k & (k - 1u)) == 0u)) || (k == 192u) || (k == 384u));
 }
 
-static uint16_t model_limit(uint8_t cpu_model)
+static CHECK_INLINE uint16_t model_limit(uint8_t cpu_model)
 {
-    return cpu_model == MODCP_CPU_CP441 ? 450u : 1024u;
+    return (cpu_model == (uint8_t)MODCP_CPU_CP441) ? 450u : 1024u;
 }
 
 /* scan_count's range is its row (0 .. 16, 0 without the extended set); the entries must
  * also fit the register space. */
 static CHECK_INLINE bool scan_count_ok(const modcp_params_t *p)
 {
-    return p->scan_count <= (MODCP_WITH_EXTENDED ? MODCP_SCANNER_MAX : 0u) &&
-           (uint32_t)p->scan_start + (uint32_t)p->scan_count <= 0x10000u;
+    return (p->scan_count <= (MODCP_WITH_EXTENDED ? (uint8_t)MODCP_SCANNER_MAX : 0u)) &&
+           (((uint32_t)p->scan_start + (uint32_t)p->scan_count) <= 0x10000u);
 }
 
-/* A 2-byte member of a group struct: at any address when packed, else 2-byte aligned. */
-static CHECK_INLINE uint16_t get16(const uint8_t *b)
-{
-#if MODCP_PARAMS_PACKED_LAYOUT
-    uint16_t v;
-    memcpy(&v, b, sizeof v);
-    return v;
-#else
-    return *(const uint16_t *)(const void *)b;
-#endif
-}
+/* ---- windows and 32-bit ranges ---- */
 
-static CHECK_INLINE uint32_t pair(uint16_t hi, uint16_t lo)
+/* A bit window, or a 32-bit range seen as a DB window from byte 0 (area DB; NONE when
+ * from, to and db are all 0: an unused range). */
+typedef struct {
+    uint8_t area;
+    uint16_t from;
+    uint16_t to;
+    uint16_t start;
+    uint16_t db;
+} span_t;
+
+/* Entry k of the group row r (coils, inputs: a window; r32: a range). */
+static CHECK_INLINE void span_get(const modcp_params_t *p, const modcp_param_row_t *r, unsigned k,
+                                  span_t *sp)
 {
-    return ((uint32_t)hi << 16) | (uint32_t)lo;
+    const void *e = (const uint8_t *)p + r->off + ((size_t)k * r->min);
+    if (r->field == (uint8_t)MODCP_PF_R32) {
+        const modcp_r32range_t *g = (const modcp_r32range_t *)e;
+        sp->area = (((unsigned)g->from | g->to | g->db) != 0u) ? (uint8_t)MODCP_AREA_DB
+                                                                : (uint8_t)MODCP_AREA_NONE;
+        sp->from = g->from;
+        sp->to = g->to;
+        sp->start = 0u;
+        sp->db = g->db;
+    } else {
+        const modcp_bitwin_t *w = (const modcp_bitwin_t *)e;
+        sp->area = w->area;
+        sp->from = w->from;
+        sp->to = w->to;
+        sp->start = w->start;
+        sp->db = w->db;
+    }
 }
 
 /* The areas a bit window may map (bit n = modcp_area_t n). */
@@ -293,123 +260,157 @@ static CHECK_INLINE uint32_t pair(uint16_t hi, uint16_t lo)
      AREA_BIT(MODCP_AREA_C) | AREA_BIT(MODCP_AREA_DB))
 #define AREAS_INPUTS (AREA_BIT(MODCP_AREA_M) | AREA_BIT(MODCP_AREA_I) | AREA_BIT(MODCP_AREA_DB))
 
-#define WIN_FROM offsetof(modcp_bitwin_t, from) /* 1 packed, 2 otherwise */
-_Static_assert(offsetof(modcp_bitwin_t, area) == 0u && WIN_FROM == MODCP_PARAM_SLOT(1u) &&
-                   offsetof(modcp_bitwin_t, to) == WIN_FROM + 2u &&
-                   offsetof(modcp_bitwin_t, start) == WIN_FROM + 4u &&
-                   offsetof(modcp_bitwin_t, db) == WIN_FROM + 6u,
-               "area, from, to, start, db");
-_Static_assert(offsetof(modcp_r32range_t, from) == 0u && offsetof(modcp_r32range_t, to) == 2u &&
-                   offsetof(modcp_r32range_t, db) == 4u,
-               "from, to, db");
-_Static_assert(MODCP_EV_INPUT_FROMTO == MODCP_EV_COIL_FROMTO + 1 &&
-                   MODCP_PF_INPUTS == MODCP_PF_COILS + 1 &&
-                   MODCP_EV_COIL_OVERLAP == MODCP_EV_COIL_FROMTO + 2 &&
-                   MODCP_EV_INPUT_OVERLAP == MODCP_EV_INPUT_FROMTO + 2,
+/* The rule an entry in use breaks (MODCP_PR_NONE: none); *value: what its issue reports.
+ * shift: 0 for a bit window; a 32-bit range of 16 (int16) or 32 bits per register is 4 or
+ * 5, and its extent is reported in bytes. */
+static CHECK_INLINE uint8_t span_rule(const span_t *sp, unsigned areas, uint8_t shift,
+                                      uint32_t *value)
+{
+    uint8_t rule = (uint8_t)MODCP_PR_NONE;
+    if ((sp->area > (uint8_t)MODCP_AREA_DB) || ((areas & AREA_BIT(sp->area)) == 0u)) {
+        rule = (uint8_t)MODCP_PR_AREA;
+        *value = sp->area;
+    } else if (sp->from > sp->to) {
+        rule = (uint8_t)MODCP_PR_FROM_TO;
+        *value = ((uint32_t)sp->from << 16u) | sp->to;
+    } else if ((sp->area == (uint8_t)MODCP_AREA_DB) && (sp->db == 0u)) {
+        rule = (uint8_t)MODCP_PR_DB_ZERO;
+        *value = sp->db;
+    } else {
+        /* 16 bits per T / C element, 8 per byte */
+        const bool tc = (sp->area == (uint8_t)MODCP_AREA_T) || (sp->area == (uint8_t)MODCP_AREA_C);
+        const uint32_t bits = (((uint32_t)sp->to - (uint32_t)sp->from) + 1u) << shift;
+        const uint32_t last = (uint32_t)sp->start + (tc ? ((bits / 16u) - 1u) : ((bits - 1u) / 8u));
+        if (tc && ((bits % 16u) != 0u)) {
+            rule = (uint8_t)MODCP_PR_TC_SIZE;
+            *value = bits;
+        } else if (last > 0xFFFFu) {
+            rule = (uint8_t)MODCP_PR_EXTENT;
+            *value = (shift != 0u) ? (last + 1u) : last;
+        } else {
+            /* a usable entry */
+        }
+    }
+    return rule;
+}
+
+_Static_assert(((unsigned)MODCP_EV_INPUT_FROMTO == ((unsigned)MODCP_EV_COIL_FROMTO + 1u)) &&
+                   ((unsigned)MODCP_PF_INPUTS == ((unsigned)MODCP_PF_COILS + 1u)) &&
+                   ((unsigned)MODCP_EV_COIL_OVERLAP == ((unsigned)MODCP_EV_COIL_FROMTO + 2u)) &&
+                   ((unsigned)MODCP_EV_INPUT_OVERLAP == ((unsigned)MODCP_EV_INPUT_FROMTO + 2u)),
                "the overlap event follows the from/to event by 2");
 
+typedef struct { /* the usable entries of a group (bit k of ok), as check_ranges read them */
+    uint32_t ok;
+    uint16_t from[MODCP_COIL_WINDOWS];
+    uint16_t to[MODCP_COIL_WINDOWS];
+    uint16_t db[MODCP_COIL_WINDOWS];
+} spans_t;
+_Static_assert((MODCP_INPUT_WINDOWS <= MODCP_COIL_WINDOWS) && (3 <= MODCP_COIL_WINDOWS),
+               "spans_t holds every group of windows or ranges");
+
+/* Every usable entry against the earlier usable ones: an overlap is reported once per
+ * entry, with the earlier entry's index as the value; two 32-bit ranges on the same DB
+ * with that DB number. ev: the group's overlap event. */
+static CHECK_INLINE void check_overlaps(issue_sink_t *s, const modcp_param_row_t *r,
+                                        const spans_t *u, modcp_event_t ev)
+{
+    const bool r32 = r->field == (uint8_t)MODCP_PF_R32;
+    for (unsigned j = 1u; j < r->max; j++) {
+        for (unsigned i = 0u; (((u->ok >> j) & 1u) != 0u) && (i < j); i++) {
+            uint8_t rule = (uint8_t)MODCP_PR_NONE;
+            uint32_t value = i;
+            if (((u->ok >> i) & 1u) == 0u) {
+                /* not usable: reported on its own */
+            } else if ((u->from[i] <= u->to[j]) && (u->from[j] <= u->to[i])) {
+                rule = (uint8_t)MODCP_PR_OVERLAP;
+            } else if (r32 && (u->db[i] == u->db[j])) {
+                rule = (uint8_t)MODCP_PR_SAME_DB;
+                value = u->db[j];
+            } else {
+                /* disjoint */
+            }
+            if (rule != (uint8_t)MODCP_PR_NONE) {
+                report_fatal(s, r->field, (uint8_t)j, ev, rule, value, (uint8_t)i);
+                break;
+            }
+        }
+    }
+}
+
 /* The bit windows (coils, inputs) and the 32-bit ranges (only when regs32 != 0): each
- * entry on its own, then every usable entry against the earlier usable ones. A 32-bit
- * range is checked as a DB window from byte 0 of 16 (int16) or 32 bits per register; it
- * is unused when from, to and db are all 0, and its extent is reported in bytes. An
- * overlap is reported once per entry, with the earlier entry's index as the value; two
- * 32-bit ranges on the same DB with that DB number. */
+ * entry in use on its own (span_rule), then against the earlier ones (check_overlaps). */
 static CHECK_INLINE void check_ranges(issue_sink_t *s, const modcp_params_t *p,
                                       const modcp_param_row_t *r)
 {
-    const bool r32 = r->field == MODCP_PF_R32;
-    const bool coils = r->field == MODCP_PF_COILS;
-    const modcp_event_t ev = r32 ? MODCP_EV_PARAM_RECORD
-                                 : (modcp_event_t)(MODCP_EV_COIL_FROMTO + (r->field - MODCP_PF_COILS));
-    const unsigned areas = r32 ? AREA_BIT(MODCP_AREA_DB) : coils ? AREAS_COILS : AREAS_INPUTS;
-    const uint8_t *base = (const uint8_t *)p + r->off;
-    const size_t ft = r32 ? 0u : WIN_FROM; /* from, to, then start, db (window) or db (range) */
-    const unsigned count = r->max;
-    uint32_t ok = 0;
-    if (r32 && p->regs32 == 0u) {
-        return;
-    }
-    for (unsigned k = 0; k < count; k++) {
-        const uint8_t *e = base + (size_t)k * r->min;
-        const uint8_t *f = e + ft;
-        const uint16_t from = get16(f);
-        const uint16_t to = get16(f + 2);
-        const uint16_t db = get16(f + (r32 ? 4 : 6));
-        const uint8_t area = !r32                        ? e[0]
-                             : (from | to | db) != 0u ? (uint8_t)MODCP_AREA_DB
-                                                      : (uint8_t)MODCP_AREA_NONE;
-        uint32_t bad;
-        if (area == MODCP_AREA_NONE) {
-            continue;
-        }
-        if (area > MODCP_AREA_DB || (areas & AREA_BIT(area)) == 0u) {
-            bad = area;
-        } else if (from > to) {
-            bad = pair(from, to);
-        } else if (area == MODCP_AREA_DB && db == 0u) {
-            bad = db;
-        } else {
-            bool tc = area == MODCP_AREA_T || area == MODCP_AREA_C; /* 16 bits per element */
-            uint32_t bits = (uint32_t)to - (uint32_t)from + 1u;
+    const bool r32 = r->field == (uint8_t)MODCP_PF_R32;
+    const bool coils = r->field == (uint8_t)MODCP_PF_COILS;
+    const modcp_event_t ev =
+        r32 ? (modcp_event_t)MODCP_EV_PARAM_RECORD
+            : (modcp_event_t)((uint32_t)MODCP_EV_COIL_FROMTO +
+                              ((uint32_t)r->field - (uint32_t)MODCP_PF_COILS));
+    const unsigned areas = r32 ? AREA_BIT(MODCP_AREA_DB) : (coils ? AREAS_COILS : AREAS_INPUTS);
+    spans_t u;
+    u.ok = 0u;
+    if (!r32 || (p->regs32 != 0u)) {
+        for (unsigned k = 0u; k < r->max; k++) {
+            span_t sp;
+            uint32_t value = 0u;
+            span_get(p, r, k, &sp);
+            uint8_t shift = 0u; /* a bit window */
             if (r32) {
-                bits <<= k == MODCP_R32_INT16 ? 4u : 5u;
+                shift = (k == (unsigned)MODCP_R32_INT16) ? 4u : 5u;
             }
-            uint32_t last = (r32 ? 0u : get16(f + 4)) + (tc ? bits / 16u - 1u : (bits - 1u) / 8u);
-            if (tc && bits % 16u != 0u) {
-                bad = bits;
-            } else if (last > 0xFFFFu) {
-                bad = last + (r32 ? 1u : 0u);
+            const uint8_t rule = (sp.area == (uint8_t)MODCP_AREA_NONE)
+                                     ? (uint8_t)MODCP_PR_NONE
+                                     : span_rule(&sp, areas, shift, &value);
+            if (rule != (uint8_t)MODCP_PR_NONE) {
+                report_fatal(s, r->field, (uint8_t)k, ev, rule, value, NO_OTHER);
+            } else if (sp.area != (uint8_t)MODCP_AREA_NONE) {
+                u.ok |= (uint32_t)1u << k;
+                u.from[k] = sp.from;
+                u.to[k] = sp.to;
+                u.db[k] = sp.db;
             } else {
-                ok |= 1u << k;
-                continue;
+                /* unused */
             }
         }
-        add_fatal(s, FI(r->field, k), ev, bad);
-    }
-    for (unsigned j = 1; j < count; j++) {
-        const uint8_t *b = base + (size_t)j * r->min + ft;
-        if ((ok & (1u << j)) == 0u) {
-            continue;
-        }
-        for (unsigned i = 0; i < j; i++) {
-            const uint8_t *a = base + (size_t)i * r->min + ft;
-            uint32_t bad;
-            if ((ok & (1u << i)) == 0u) {
-                continue;
-            }
-            if (get16(a) <= get16(b + 2) && get16(b) <= get16(a + 2)) {
-                bad = i;
-            } else if (r32 && get16(a + 4) == get16(b + 4)) {
-                bad = get16(b + 4);
-            } else {
-                continue;
-            }
-            add_fatal(s, FI(r->field, j), r32 ? ev : (modcp_event_t)(ev + 2u), bad);
-            break;
-        }
+        check_overlaps(s, r, &u, r32 ? ev : (modcp_event_t)(ev + 2u));
     }
 }
 
-/* lim_db, lim_m, lim_q (one group of three): max 0 = not writable, any min is fine */
+/* lim_db, lim_m, lim_q: max 0 = not writable, any min is fine; the DB limit's min >= 1 */
 static CHECK_INLINE void check_limits(issue_sink_t *s, const modcp_params_t *p)
 {
-    for (unsigned k = 0; k < 3u; k++) {
-        const modcp_limit_t *l = (const modcp_limit_t *)(const void *)((const uint8_t *)p +
-            offsetof(modcp_params_t, lim_db) + k * sizeof(modcp_limit_t));
-        if (l->max != 0u && (l->min > l->max || (k == 0u && l->min == 0u))) {
-            add_fatal(s, FI(MODCP_PF_LIM_DB + k, 0u), MODCP_EV_WRITE_LIMITS, pair(l->min, l->max));
+    for (uint8_t k = 0u; k < 3u; k++) {
+        const void *at = (const uint8_t *)p + (size_t)offsetof(modcp_params_t, lim_db) +
+                         ((size_t)k * sizeof(modcp_limit_t));
+        const modcp_limit_t *l = (const modcp_limit_t *)at;
+        uint8_t rule = (uint8_t)MODCP_PR_NONE;
+        if (l->max == 0u) {
+            /* not writable: any min */
+        } else if (l->min > l->max) {
+            rule = (uint8_t)MODCP_PR_FROM_TO;
+        } else if ((k == 0u) && (l->min == 0u)) {
+            rule = (uint8_t)MODCP_PR_DB_ZERO;
+        } else {
+            /* a range */
+        }
+        if (rule != (uint8_t)MODCP_PR_NONE) {
+            report_fatal(s, (uint8_t)((uint8_t)MODCP_PF_LIM_DB + k), 0u,
+                         (modcp_event_t)MODCP_EV_WRITE_LIMITS, rule,
+                         ((uint32_t)l->min << 16u) | l->max, NO_OTHER);
         }
     }
 }
-_Static_assert(offsetof(modcp_params_t, lim_m) ==
-                   offsetof(modcp_params_t, lim_db) + sizeof(modcp_limit_t) &&
-                   MODCP_PF_LIM_M == MODCP_PF_LIM_DB + 1 && MODCP_PF_LIM_Q == MODCP_PF_LIM_DB + 2,
+_Static_assert(((unsigned)MODCP_PF_LIM_M == ((unsigned)MODCP_PF_LIM_DB + 1u)) &&
+                   ((unsigned)MODCP_PF_LIM_Q == ((unsigned)MODCP_PF_LIM_DB + 2u)),
                "lim_db, lim_m, lim_q in a row");
 
 #if MODCP_WITH_EXTENDED
 static CHECK_INLINE bool id_terminated(const char *str)
 {
-    for (size_t i = 0; i <= MODCP_ID_STRING_MAX; i++) {
+    for (size_t i = 0u; i <= (size_t)MODCP_ID_STRING_MAX; i++) {
         if (str[i] == '\0') {
             return true;
         }
@@ -417,86 +418,110 @@ static CHECK_INLINE bool id_terminated(const char *str)
     return false;
 }
 
-/* The entries, when the count is usable (its own row reports it otherwise). */
+/* The entries in use (area not NONE) up to scan_count, when the count is usable (its own
+ * row reports it otherwise): a word operand, T and C by element number. */
 static CHECK_INLINE void check_scanner(issue_sink_t *s, const modcp_params_t *p)
 {
     if (!scan_count_ok(p)) {
         return;
     }
-    for (uint8_t i = 0; i < p->scan_count; i++) {
+    for (unsigned i = 0u; i < p->scan_count; i++) {
         const modcp_operand_ref_t *e = &p->scan[i];
-        uint32_t bad;
-        if (e->area == MODCP_AREA_NONE || e->area == MODCP_AREA_T || e->area == MODCP_AREA_C) {
-            continue; /* unused entry, or an element number */
-        }
-        if (e->area > MODCP_AREA_DB) {
-            bad = e->area;
-        } else if (e->area == MODCP_AREA_DB && e->db == 0u) {
-            bad = e->db;
+        uint8_t rule = (uint8_t)MODCP_PR_NONE;
+        uint32_t value = 0u;
+        if ((e->area == (uint8_t)MODCP_AREA_NONE) || (e->area == (uint8_t)MODCP_AREA_T) ||
+            (e->area == (uint8_t)MODCP_AREA_C)) {
+            /* unused, or an element number */
+        } else if (e->area > (uint8_t)MODCP_AREA_DB) {
+            rule = (uint8_t)MODCP_PR_AREA;
+            value = e->area;
+        } else if ((e->area == (uint8_t)MODCP_AREA_DB) && (e->db == 0u)) {
+            rule = (uint8_t)MODCP_PR_DB_ZERO;
+            value = e->db;
         } else if (e->offset > 0xFFFEu) { /* the word's second byte must exist */
-            bad = e->offset;
+            rule = (uint8_t)MODCP_PR_EXTENT;
+            value = e->offset;
         } else {
-            continue;
+            /* a word operand */
         }
-        add_fatal(s, FI(MODCP_PF_SCANNER, i), MODCP_EV_PARAM_RECORD, bad);
+        if (rule != (uint8_t)MODCP_PR_NONE) {
+            report_fatal(s, (uint8_t)MODCP_PF_SCANNER, (uint8_t)i,
+                         (modcp_event_t)MODCP_EV_PARAM_RECORD, rule, value, NO_OTHER);
+        }
     }
 }
 #endif
 
-/* The rules a row's range cannot say (MODCP_PF_CUSTOM); *v: the value to report. */
+/* ---- one row ---- */
+
+/* The rules a row's range cannot say (MODCP_PF_CUSTOM); *v: the value to report. The ASCII
+ * character frame ([ASCII-32] §3.1) and the RS485 operating mode ([RTU-2009] Table 5-2) are
+ * tested before the switch, which then stays a compare chain (no jump table). */
 static CHECK_INLINE bool custom_ok(const modcp_params_t *p, const modcp_param_row_t *r,
                                    uint32_t *v)
 {
-    /* The ASCII character frame ([ASCII-32] §3.1) and the RS485 operating mode ([RTU-2009] Table 5-2);
-     * tested before the switch, which then stays a compare chain (no jump table). */
-    if (r->field == MODCP_PF_STOP_BITS) {
-        return p->framing != MODCP_FRAMING_ASCII ||
-               *v == (p->parity == MODCP_PARITY_NONE ? 2u : 1u);
-    }
-    if (r->field == MODCP_PF_OPMODE) {
-        return *v != MODCP_OPMODE_NORMAL || p->iface != MODCP_IFACE_RS485 || p->rs485_sel != 0u;
-    }
-    switch (r->field) {
-    case MODCP_PF_BAUD: return baud_ok(*v);
-    case MODCP_PF_DATA_BITS: return p->framing == MODCP_FRAMING_ASCII || *v == 8u;
-    case MODCP_PF_RS232_AUTO: return *v == 0u || p->iface == MODCP_IFACE_RS232;
-    case MODCP_PF_RTS_ON_DELAY:
-    case MODCP_PF_RTS_OFF_DELAY: return *v % 10u == 0u; /* [VIPA-341] §1.6: steps of 10 ms */
-    case MODCP_PF_RX_PRESET: return *v != MODCP_RXP_BREAK || p->iface != MODCP_IFACE_RS485;
-    case MODCP_PF_JOB_LIMIT: return *v <= model_limit(p->cpu_model);
-    case MODCP_PF_SCANNER: return MODCP_PARAM_WIDTH(r) != 1u || scan_count_ok(p);
+    bool ok = true;
+    if (r->field == (uint8_t)MODCP_PF_STOP_BITS) {
+        ok = (p->framing != (uint8_t)MODCP_FRAMING_ASCII) ||
+             (*v == ((p->parity == (uint8_t)MODCP_PARITY_NONE) ? 2u : 1u));
+    } else if (r->field == (uint8_t)MODCP_PF_OPMODE) {
+        ok = (*v != (uint32_t)MODCP_OPMODE_NORMAL) || (p->iface != (uint8_t)MODCP_IFACE_RS485) ||
+             (p->rs485_sel != 0u);
+    } else {
+        switch (r->field) {
+        case (uint8_t)MODCP_PF_BAUD: ok = baud_ok(*v); break;
+        case (uint8_t)MODCP_PF_DATA_BITS:
+            ok = (p->framing == (uint8_t)MODCP_FRAMING_ASCII) || (*v == 8u);
+            break;
+        case (uint8_t)MODCP_PF_RS232_AUTO:
+            ok = (*v == 0u) || (p->iface == (uint8_t)MODCP_IFACE_RS232);
+            break;
+        case (uint8_t)MODCP_PF_RTS_ON_DELAY: /* [VIPA-341] §1.6: steps of 10 ms */
+        case (uint8_t)MODCP_PF_RTS_OFF_DELAY: ok = (*v % 10u) == 0u; break;
+        case (uint8_t)MODCP_PF_RX_PRESET:
+            ok = (*v != (uint32_t)MODCP_RXP_BREAK) || (p->iface != (uint8_t)MODCP_IFACE_RS485);
+            break;
+        case (uint8_t)MODCP_PF_JOB_LIMIT: ok = *v <= model_limit(p->cpu_model); break;
+        case (uint8_t)MODCP_PF_SCANNER:
+            ok = (MODCP_PARAM_WIDTH(r) != 1u) || scan_count_ok(p);
+            break;
 #if MODCP_WITH_EXTENDED
-    case MODCP_PF_ID_STRING: {
-        const char *str = (const char *)p + r->off;
-        *v = (uint8_t)str[MODCP_ID_STRING_MAX];
-        return id_terminated(str);
-    }
+        case (uint8_t)MODCP_PF_ID_STRING: {
+            const char *str = (const char *)p + r->off;
+            *v = (uint8_t)str[MODCP_ID_STRING_MAX];
+            ok = id_terminated(str);
+            break;
+        }
 #endif
-    default: return true;
+        default: break;
+        }
     }
+    return ok;
 }
 
 /* The index of a row's issue: 0xFF for the scanner's start and count, the string's number
  * for an ID string (the rows' index column, checked at compile time above). */
 static CHECK_INLINE uint8_t row_index(const modcp_param_row_t *r)
 {
-    if (r->field == MODCP_PF_SCANNER) {
-        return 0xFFu;
+    uint8_t index = 0u;
+    if (r->field == (uint8_t)MODCP_PF_SCANNER) {
+        index = 0xFFu;
     }
 #if MODCP_WITH_EXTENDED
-    if (r->field == MODCP_PF_ID_STRING) {
-        return (uint8_t)((r->off - offsetof(modcp_params_t, vendor)) / (MODCP_ID_STRING_MAX + 1u));
+    if (r->field == (uint8_t)MODCP_PF_ID_STRING) {
+        index = (uint8_t)(((size_t)r->off - (size_t)offsetof(modcp_params_t, vendor)) /
+                          ((size_t)MODCP_ID_STRING_MAX + 1u));
     }
 #endif
-    return 0u;
+    return index;
 }
 
-static CHECK_INLINE void check_group(const modcp_params_t *p, issue_sink_t *s,
+static CHECK_INLINE void check_group(issue_sink_t *s, const modcp_params_t *p,
                                      const modcp_param_row_t *r)
 {
-    if (r->field == MODCP_PF_LIM_DB) {
+    if (r->field == (uint8_t)MODCP_PF_LIM_DB) {
         check_limits(s, p);
-    } else if (r->field != MODCP_PF_SCANNER) {
+    } else if (r->field != (uint8_t)MODCP_PF_SCANNER) {
         check_ranges(s, p, r);
     } else {
 #if MODCP_WITH_EXTENDED
@@ -505,37 +530,51 @@ static CHECK_INLINE void check_group(const modcp_params_t *p, issue_sink_t *s,
     }
 }
 
-/* Every row in record order; fix != NULL: a bad MODCP_PF_WARN field gets its default. */
+/* A scalar row (or an ID string): its range, then its further rule. fix != NULL: a bad
+ * MODCP_PF_WARN field gets its default there. */
+static CHECK_INLINE void check_row(issue_sink_t *s, const modcp_params_t *p,
+                                   const modcp_param_row_t *r, modcp_params_t *fix)
+{
+    const uint8_t w = MODCP_PARAM_WIDTH(r);
+    const uint8_t flags = MODCP_PARAM_FLAGS(r);
+    uint32_t v = (w == MODCP_PW_STR) ? 0u : param_get(p, r);
+    uint8_t rule = (uint8_t)MODCP_PR_NONE;
+    if ((w <= 2u) && ((v < r->min) || (v > r->max)) &&
+        (((flags & MODCP_PF_ZERO_OK) == 0u) || (v != 0u))) {
+        rule = (uint8_t)MODCP_PR_RANGE;
+    } else if (((flags & MODCP_PF_CUSTOM) != 0u) && !custom_ok(p, r, &v)) {
+        rule = (uint8_t)MODCP_PR_RULE;
+    } else {
+        /* legal */
+    }
+    if (rule != (uint8_t)MODCP_PR_NONE) {
+        const bool warn = (flags & MODCP_PF_WARN) != 0u;
+        const modcp_param_issue_t is = {r->field, row_index(r),
+                                        (modcp_event_t)(0x0E00u | (uint32_t)r->event), !warn,
+                                        rule, NO_OTHER, v};
+        report(s, &is);
+        if (warn && (fix != NULL)) {
+            put_default(fix, r);
+        }
+    }
+}
+
+/* Every row in record order. */
 static CHECK_INLINE void run_checks(const modcp_params_t *p, issue_sink_t *s, modcp_params_t *fix)
 {
-    for (uint8_t i = 0; i < MODCP_PARAM_ROW_COUNT; i++) {
+    for (uint8_t i = 0u; i < MODCP_PARAM_ROW_COUNT; i++) {
         const modcp_param_row_t *r = &modcp_param_rows[i];
-        uint8_t w = MODCP_PARAM_WIDTH(r);
-        uint8_t flags = MODCP_PARAM_FLAGS(r);
-        if (w == 0u) {
-            check_group(p, s, r);
-            continue;
-        }
-        uint32_t v = w == MODCP_PW_STR ? 0u : param_get(p, r);
-        bool ok = w > 2u || (v >= r->min && v <= r->max) ||
-                  ((flags & MODCP_PF_ZERO_OK) != 0u && v == 0u);
-        if (ok && (flags & MODCP_PF_CUSTOM) != 0u) {
-            ok = custom_ok(p, r, &v);
-        }
-        if (!ok) {
-            bool warn = (flags & MODCP_PF_WARN) != 0u;
-            add_issue(s, FI(r->field, row_index(r)), (modcp_event_t)(0x0E00u | r->event), !warn,
-                      v);
-            if (warn && fix != NULL) {
-                put_default(fix, r);
-            }
+        if (MODCP_PARAM_WIDTH(r) == 0u) {
+            check_group(s, p, r);
+        } else {
+            check_row(s, p, r, fix);
         }
     }
 }
 
 size_t modcp_params_validate(const modcp_params_t *p, modcp_param_issue_t *out, size_t max)
 {
-    issue_sink_t s = {out, max, 0u, MODCP_EV_NONE, MODCP_EV_NONE};
+    issue_sink_t s = {out, max, 0u, EV_NONE, EV_NONE};
     run_checks(p, &s, NULL);
     return s.n;
 }
@@ -543,9 +582,9 @@ size_t modcp_params_validate(const modcp_params_t *p, modcp_param_issue_t *out, 
 modcp_event_t modcp_params_apply(const modcp_params_t *in, modcp_params_t *out,
                                  modcp_event_t *first_warning)
 {
-    issue_sink_t s = {NULL, 0u, 0u, MODCP_EV_NONE, MODCP_EV_NONE};
+    issue_sink_t s = {NULL, 0u, 0u, EV_NONE, EV_NONE};
     if (out != in) {
-        memcpy(out, in, sizeof *out);
+        (void)memcpy(out, in, sizeof *out);
     }
     run_checks(out, &s, out);
     if (first_warning != NULL) {
@@ -556,5 +595,5 @@ modcp_event_t modcp_params_apply(const modcp_params_t *in, modcp_params_t *out,
 
 uint16_t modcp_params_job_limit(const modcp_params_t *p)
 {
-    return p->job_limit != 0u ? p->job_limit : model_limit(p->cpu_model);
+    return (p->job_limit != 0u) ? p->job_limit : model_limit(p->cpu_model);
 }

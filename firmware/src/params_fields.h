@@ -35,11 +35,9 @@
 
 #define MODCP_PW_STR 16u /* width of an ID string in the record */
 
-enum {
-    MODCP_PF_ZERO_OK = 0x01, /* 0 is legal besides min .. max ("0 = off") */
-    MODCP_PF_WARN = 0x02,    /* not fatal: the CP runs with the default */
-    MODCP_PF_CUSTOM = 0x04,  /* a further rule in params.c */
-};
+#define MODCP_PF_ZERO_OK 0x01u /* 0 is legal besides min .. max ("0 = off") */
+#define MODCP_PF_WARN 0x02u    /* not fatal: the CP runs with the default */
+#define MODCP_PF_CUSTOM 0x04u  /* a further rule in params.c */
 
 /* The rows as the core keeps them (params.c), 8 bytes each:
  *   S: wf = width | flags << 5 (width 1, 2, 4 or MODCP_PW_STR), field != 0, min .. max the
@@ -68,7 +66,11 @@ typedef struct {
  * a few times in ms) as 240 + their index in MODCP_PARAM_BIG_DEFAULTS. */
 #define MODCP_PARAM_BIG_DEFAULTS 9600u, 1000u, 5000u
 #define MODCP_PARAM_DEF_CODE(v)                                                                   \
-    ((v) < 240u ? (v) : (v) == 9600u ? 240u : (v) == 1000u ? 241u : (v) == 5000u ? 242u : 0x100u)
+    (((unsigned)(v) < 240u)      ? (unsigned)(v)                                              \
+     : ((unsigned)(v) == 9600u) ? 240u                                                       \
+     : ((unsigned)(v) == 1000u) ? 241u                                                       \
+     : ((unsigned)(v) == 5000u) ? 242u                                                       \
+                                : 0x100u)
 
 /* A row whose member this build does not keep (modcp/params.h: the scanner entries and
  * the ID strings without MODCP_WITH_EXTENDED) has off == MODCP_PARAM_ABSENT: its bytes
@@ -98,6 +100,12 @@ typedef struct {
 /* The bytes a member of width w takes in its struct: a one-byte member of a group struct
  * has a 2-byte slot unless the structs are packed (modcp/params.h). */
 #define MODCP_PARAM_SLOT(w) (MODCP_PARAMS_PACKED_LAYOUT ? (w) : ((w) + 1u) & ~1u)
+/* The width of a group struct's first member (1 or 2; the others are 2 bytes wide), by type;
+ * test_params checks that the rows list the members in the order of the struct. */
+#define MODCP_PARAM_FIRST_WIDTH_modcp_bitwin_t 1u
+#define MODCP_PARAM_FIRST_WIDTH_modcp_r32range_t 2u
+#define MODCP_PARAM_FIRST_WIDTH_modcp_limit_t 2u
+#define MODCP_PARAM_FIRST_WIDTH_modcp_operand_ref_t 1u
 #define MODCP_PARAM_WIDTH(r) ((uint8_t)((r)->wf & 0x1Fu))
 #define MODCP_PARAM_FLAGS(r) ((uint8_t)((r)->wf >> 5))
 
@@ -271,7 +279,7 @@ typedef struct {
       "FB init time START_TIME (CP_START_ERROR after it); `modcp-conf` also refuses "            \
       "(P − 1) × `cycle_ms` or less, see below",                                                  \
       "1 … 65535", "[RTU-2003] §4.1")                                                                    \
-    S(commloss_ms, 2, MODCP_PF_COMMLOSS, 0, 100, MODCP_WITH_EXTENDED ? 30000 : 0, 0,              \
+    S(commloss_ms, 2, MODCP_PF_COMMLOSS, 0, 100, MODCP_WITH_EXTENDED ? 30000u : 0u, 0,              \
       MODCP_EV_PARAM_RECORD, MODCP_PF_ZERO_OK, "supervision", "commloss_ms", NUM, none,           \
       "must be 0 (off) or 100..30000 ms",                                                         \
       "comm-loss supervision: no valid request for our address within this time (armed after "   \

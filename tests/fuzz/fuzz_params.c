@@ -10,7 +10,8 @@
  * Invariants:
  *   - decode: a record that decodes re-encodes to a record that decodes to the same
  *     parameters; validate lists a fatal issue exactly when apply refuses, and apply's
- *     event is the first fatal issue's; apply's output applies again unchanged;
+ *     event is the first fatal issue's; every issue names the rule it breaks (an overlap
+ *     or a shared DB the earlier entry); apply's output applies again unchanged;
  *   - configure: the FB hands the record to the CP; after the start the CP is ready
  *     exactly when the record decodes and applies (otherwise it stays not ready);
  *   - a ready CP answers a diagnostic echo (FC08/0000) in its own framing at its own
@@ -173,6 +174,11 @@ static int check_record(const uint8_t *rec, size_t len, modcp_params_t *eff)
     for (size_t k = 0; k < count && k < 64; k++) {
         if (issues[k].fatal && first_fatal == MODCP_EV_NONE) {
             first_fatal = issues[k].event;
+        }
+        bool pair = issues[k].rule == MODCP_PR_OVERLAP || issues[k].rule == MODCP_PR_SAME_DB;
+        if (issues[k].rule == MODCP_PR_NONE || issues[k].rule > MODCP_PR_SAME_DB ||
+            pair != (issues[k].other < issues[k].index)) {
+            die("an issue names no rule, or no earlier entry for an overlap");
         }
     }
     modcp_event_t warning;

@@ -350,6 +350,27 @@ def event_table_matches(t, a):
                                                             got.split("\n")) if x != y)))
 
 
+
+def r32_messages(t, a, tmp):
+    """Issue 25 §2.2: the message names the rule validation decided (the issue's rule and the
+    range it collides with), the tool does not test again: an int16 range too large for one
+    DB is reported on its own and left out of the overlap checks, so the float range that
+    overlaps both int16 and int32 is reported against int32, the range the core names."""
+    text = ("[registers]\nwith_32bit_registers = on\nint16 = 0-40000 @ 2\n"
+            "int32 = 1000-1999 @ 3\nfloat = 1500-2500 @ 4\n")
+    p, rc, out, lines = check_text(a, tmp, "r32.ini", text)
+    t.ok(rc == 2 and lines == [
+        "%s:3: registers.int16 = 0-40000 @ 2: the range needs more than one DB (80002 bytes > "
+        "65536) (event (0E)2EH)" % p,
+        "%s:5: registers.float = 1500-2500 @ 4: overlaps the range registers.int32 "
+        "(event (0E)2EH)" % p],
+         "32-bit ranges: extent, then the overlap with the range validation names (%r)" % lines)
+    p, rc, out, lines = check_text(a, tmp, "r32db.ini", text.replace("1500-2500 @ 4", "3000-3999 @ 3"))
+    t.ok(rc == 2 and lines[1:] == [
+        "%s:5: registers.float = 3000-3999 @ 3: uses the same DB as registers.int32 "
+        "(event (0E)2EH)" % p],
+         "32-bit ranges: the same DB as int32 (%r)" % lines)
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--conf", required=True)
@@ -409,6 +430,7 @@ def main():
     ascii_frame(t, a, tmp)
     quantity_limits(t, a, tmp)
     db_in_32bit_mode(t, a, tmp)
+    r32_messages(t, a, tmp)
 
     # binary record
     binf = os.path.join(tmp, "default.bin")

@@ -753,6 +753,74 @@ static void test_r32_ranges(void **state)
     assert_int_equal(modcp_params_validate(&p, NULL, 0), 0);
 }
 
+/* The rule each issue names (modcp_param_rule_t): what tools/conf turns into words
+ * without deciding again. */
+static uint8_t only_rule(const modcp_params_t *p, uint8_t *other)
+{
+    modcp_param_issue_t is[2];
+    assert_int_equal(modcp_params_validate(p, is, 2), 1);
+    *other = is[0].other;
+    return is[0].rule;
+}
+
+static void test_issue_rules(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    uint8_t other = 0;
+    params_004_9(&p);
+    p.slave_addr = 0; /* outside 1..255 */
+    assert_int_equal(only_rule(&p, &other), MODCP_PR_RANGE);
+    assert_int_equal(other, 0xFF);
+    params_004_9(&p);
+    p.framing = MODCP_FRAMING_ASCII; /* 8 data bits, parity even: 1 stop bit */
+    p.stop_bits = 2;                 /* in 1..2, not for this ASCII frame */
+    assert_int_equal(only_rule(&p, &other), MODCP_PR_RULE);
+    params_004_9(&p);
+    p.coils[1].area = MODCP_AREA_I;
+    assert_int_equal(only_rule(&p, &other), MODCP_PR_AREA);
+    params_004_9(&p);
+    set_win(&p.coils[0], MODCP_AREA_M, 2047, 0, 1000, 0);
+    assert_int_equal(only_rule(&p, &other), MODCP_PR_FROM_TO);
+    params_004_9(&p);
+    set_win(&p.coils[4], MODCP_AREA_DB, 8192, 8255, 0, 0);
+    assert_int_equal(only_rule(&p, &other), MODCP_PR_DB_ZERO);
+    params_004_9(&p);
+    set_win(&p.coils[2], MODCP_AREA_T, 4096, 4195, 100, 0);
+    assert_int_equal(only_rule(&p, &other), MODCP_PR_TC_SIZE);
+    params_004_9(&p);
+    p.inputs[1].start = 65535;
+    assert_int_equal(only_rule(&p, &other), MODCP_PR_EXTENT);
+    params_004_9(&p);
+    p.inputs[1].from = 4000; /* into the M window (0) */
+    assert_int_equal(only_rule(&p, &other), MODCP_PR_OVERLAP);
+    assert_int_equal(other, 0);
+    params_004_9(&p);
+    p.lim_db = (modcp_limit_t){700, 699};
+    assert_int_equal(only_rule(&p, &other), MODCP_PR_FROM_TO);
+    p.lim_db = (modcp_limit_t){0, 699};
+    assert_int_equal(only_rule(&p, &other), MODCP_PR_DB_ZERO);
+    /* 32-bit ranges: an unusable range (int16, more than one DB) is left out of the
+     * overlap checks, the overlap names the range validation compared with */
+    params_004_9(&p);
+    p.regs32 = 1;
+    p.r32[0] = (modcp_r32range_t){0, 40000, 2};
+    p.r32[1] = (modcp_r32range_t){1000, 1999, 3};
+    p.r32[2] = (modcp_r32range_t){1500, 2500, 4};
+    modcp_param_issue_t is[3];
+    assert_int_equal(modcp_params_validate(&p, is, 3), 2);
+    assert_int_equal(is[0].rule, MODCP_PR_EXTENT);
+    assert_int_equal(is[0].value, 80002);
+    assert_int_equal(is[1].index, 2);
+    assert_int_equal(is[1].rule, MODCP_PR_OVERLAP);
+    assert_int_equal(is[1].other, 1);
+    p.r32[2] = (modcp_r32range_t){3000, 3999, 3};
+    assert_int_equal(modcp_params_validate(&p, is, 3), 2);
+    assert_int_equal(is[1].rule, MODCP_PR_SAME_DB);
+    assert_int_equal(is[1].value, 3);
+    assert_int_equal(is[1].other, 1);
+}
+
 static void test_many_issues(void **state)
 {
     (void)state;
@@ -1132,6 +1200,7 @@ int main(void)
         cmocka_unit_test(test_scanner_errors),
         cmocka_unit_test(test_id_strings),
         cmocka_unit_test(test_r32_ranges),
+        cmocka_unit_test(test_issue_rules),
         cmocka_unit_test(test_many_issues),
         cmocka_unit_test(test_record_layout),
         cmocka_unit_test(test_record_round_trip),

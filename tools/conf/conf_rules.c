@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* modcp-conf — rules in words: the message for each problem that validation
- * (modcp_params_validate) reports, at the key and value it came from. */
+ * (modcp_params_validate) reports, at the key and value it came from. The issue says which
+ * rule the value breaks (modcp_param_issue_t.rule, .other); nothing here decides again. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <string.h>
@@ -51,59 +52,81 @@ static const char *default_key(uint8_t field, unsigned index, const char **secti
     }
 }
 
-static void window_rule(const modcp_conf_t *c, const modcp_param_issue_t *is, char *rule, size_t cap)
+/* A window's or 32-bit range's rule (what check_ranges decided: is->rule) in words. */
+static const char *const r32_keys[3] = {"int16", "int32", "float"};
+
+static void range_rule(const modcp_conf_t *c, const modcp_param_issue_t *is, char *rule, size_t cap)
 {
-    bool coils = is->field == MODCP_PF_COILS;
-    const modcp_bitwin_t *w = coils ? &c->params.coils[is->index] : &c->params.inputs[is->index];
-    if (is->event == MODCP_EV_COIL_OVERLAP || is->event == MODCP_EV_INPUT_OVERLAP) {
-        const char *other = "?";
-        if (is->value < (coils ? MODCP_COIL_WINDOWS : MODCP_INPUT_WINDOWS)) {
-            other = coils ? c->coil_keys[is->value] : c->input_keys[is->value];
-        }
-        (void)snprintf(rule, cap, "overlaps the window %s.%s", coils ? "coils" : "inputs", other);
-        return;
+    const bool r32 = is->field == MODCP_PF_R32;
+    const bool coils = is->field == MODCP_PF_COILS;
+    const char *illegal = r32 ? "" : "illegal from/to: ";
+    const char *other = "?";
+    if (is->other < (r32 ? 3u : coils ? MODCP_COIL_WINDOWS : MODCP_INPUT_WINDOWS)) {
+        other = r32 ? r32_keys[is->other] : coils ? c->coil_keys[is->other] : c->input_keys[is->other];
     }
-    if (w->from > w->to) {
-        (void)snprintf(rule, cap, "illegal from/to: from must not be greater than to");
-    } else if (w->area == MODCP_AREA_DB && w->db == 0u) {
-        (void)snprintf(rule, cap, "illegal from/to: the DB number must be 1..65535");
-    } else if (conf_is_tc(w->area) && ((uint32_t)w->to - w->from + 1u) % 16u != 0u) {
-        (void)snprintf(rule, cap,
-                       "illegal from/to: a T/C window must span a multiple of 16 bits (it spans %u)",
-                       (unsigned)((uint32_t)w->to - w->from + 1u));
-    } else if (conf_is_tc(w->area)) {
-        (void)snprintf(rule, cap, "illegal from/to: the window ends beyond element 65535");
-    } else {
-        (void)snprintf(rule, cap, "illegal from/to: the window ends beyond byte 65535");
+    switch (is->rule) {
+    case MODCP_PR_AREA:
+        (void)snprintf(rule, cap, "%sarea %lu cannot be mapped here", illegal, (unsigned long)is->value);
+        break;
+    case MODCP_PR_FROM_TO:
+        (void)snprintf(rule, cap, "%sfrom must not be greater than to", illegal);
+        break;
+    case MODCP_PR_DB_ZERO:
+        (void)snprintf(rule, cap, "%sthe DB number must be 1..65535", illegal);
+        break;
+    case MODCP_PR_TC_SIZE:
+        (void)snprintf(rule, cap, "%sa T/C window must span a multiple of 16 bits (it spans %lu)",
+                       illegal, (unsigned long)is->value);
+        break;
+    case MODCP_PR_EXTENT:
+        if (r32) {
+            (void)snprintf(rule, cap, "the range needs more than one DB (%lu bytes > 65536)",
+                           (unsigned long)is->value);
+        } else {
+            const modcp_bitwin_t *w = coils ? &c->params.coils[is->index % MODCP_COIL_WINDOWS]
+                                            : &c->params.inputs[is->index % MODCP_INPUT_WINDOWS];
+            (void)snprintf(rule, cap, "%sthe window ends beyond %s 65535", illegal,
+                           conf_is_tc(w->area) ? "element" : "byte");
+        }
+        break;
+    case MODCP_PR_OVERLAP:
+        (void)snprintf(rule, cap, "overlaps the %s %s.%s", r32 ? "range" : "window",
+                       r32 ? "registers" : coils ? "coils" : "inputs", other);
+        break;
+    case MODCP_PR_SAME_DB:
+        (void)snprintf(rule, cap, "uses the same DB as registers.%s", other);
+        break;
+    default: (void)snprintf(rule, cap, "%sinvalid", illegal); break;
     }
 }
 
-static const char *const r32_keys[3] = {"int16", "int32", "float"};
-
-static void r32_rule(const modcp_conf_t *c, const modcp_param_issue_t *is, char *rule, size_t cap)
+/* A scalar's rule in words: its row's text, or, for a legal value that the other fields
+ * forbid (MODCP_PR_RULE), what forbids it. */
+static void field_rule(const modcp_conf_t *c, const modcp_param_issue_t *is, char *rule, size_t cap)
 {
-    const modcp_r32range_t *r = &c->params.r32[is->index % 3u];
-    uint32_t per = is->index == MODCP_R32_INT16 ? 2u : 4u;
-    if (r->from > r->to) {
-        (void)snprintf(rule, cap, "from must not be greater than to");
-    } else if (r->db == 0u) {
-        (void)snprintf(rule, cap, "the DB number must be 1..65535");
-    } else if (((uint32_t)r->to - r->from + 1u) * per > 65536u) {
-        (void)snprintf(rule, cap, "the range needs more than one DB (%u bytes > 65536)",
-                       (unsigned)(((uint32_t)r->to - r->from + 1u) * per));
+    const modcp_params_t *p = &c->params;
+    if (is->rule == MODCP_PR_RULE && is->field == MODCP_PF_STOP_BITS) {
+        bool none = p->parity == MODCP_PARITY_NONE;
+        char par = none ? 'N' : (p->parity == MODCP_PARITY_ODD ? 'O' : 'E');
+        (void)snprintf(rule, cap,
+                       "the ASCII character frame %u%c%lu is not allowed: with parity even or "
+                       "odd 1 stop bit, with parity none 2 ([ASCII-32] §3.1: 7E1, 7O1 or 7N2); "
+                       "stop_bits = %u",
+                       (unsigned)p->data_bits, par, (unsigned long)is->value, none ? 2u : 1u);
+    } else if (is->rule == MODCP_PR_RULE && is->field == MODCP_PF_OPMODE) {
+        (void)snprintf(rule, cap,
+                       "normal is not allowed with interface.type = rs485 (two-wire runs in "
+                       "interference suppression = modem mode) unless "
+                       "protocol.rs485_mode_select = on ([RTU-2009] Table 5-2)");
+    } else if (is->field == MODCP_PF_SCANNER && is->index == 0xFFu) {
+        (void)snprintf(rule, cap, "at most 16 entries, and start + entries must not exceed 65536");
+    } else if (is->field == MODCP_PF_SCANNER) {
+        (void)snprintf(rule, cap,
+                       "entry %u must be a word operand (MWn, IWn, QWn, DBn.DBWm with DB "
+                       "1..65535, Tn, Cn)",
+                       (unsigned)is->index + 1u);
     } else {
-        for (unsigned i = 0; i < is->index && i < 3u; i++) {
-            const modcp_r32range_t *a = &c->params.r32[i];
-            if (a->from <= r->to && r->from <= a->to) {
-                (void)snprintf(rule, cap, "overlaps the range registers.%s", r32_keys[i]);
-                return;
-            }
-            if (a->db == r->db) {
-                (void)snprintf(rule, cap, "uses the same DB as registers.%s", r32_keys[i]);
-                return;
-            }
-        }
-        (void)snprintf(rule, cap, "illegal 32-bit register range");
+        conf_copy_str(rule, cap, conf_field_rule(is->field));
     }
 }
 
@@ -127,46 +150,10 @@ void conf_report_issue(modcp_conf_t *c, const modcp_param_issue_t *is)
         (void)snprintf(valbuf, sizeof valbuf, "%lu (default)", (unsigned long)is->value);
         value = valbuf;
     }
-    switch (is->field) {
-    case MODCP_PF_COILS:
-    case MODCP_PF_INPUTS: window_rule(c, is, rule, sizeof rule); break;
-    case MODCP_PF_R32: r32_rule(c, is, rule, sizeof rule); break;
-    case MODCP_PF_SCANNER:
-        if (is->index == 0xFFu) {
-            (void)snprintf(rule, sizeof rule,
-                           "at most 16 entries, and start + entries must not exceed 65536");
-        } else {
-            (void)snprintf(rule, sizeof rule,
-                           "entry %u must be a word operand (MWn, IWn, QWn, DBn.DBWm with DB "
-                           "1..65535, Tn, Cn)",
-                           (unsigned)is->index + 1u);
-        }
-        break;
-    case MODCP_PF_STOP_BITS:
-        if (is->value == 1u || is->value == 2u) { /* legal value, not for this ASCII frame */
-            const modcp_params_t *p = &c->params;
-            bool none = p->parity == MODCP_PARITY_NONE;
-            char par = none ? 'N' : (p->parity == MODCP_PARITY_ODD ? 'O' : 'E');
-            (void)snprintf(rule, sizeof rule,
-                           "the ASCII character frame %u%c%lu is not allowed: with parity even or "
-                           "odd 1 stop bit, with parity none 2 ([ASCII-32] §3.1: 7E1, 7O1 or 7N2); "
-                           "stop_bits = %u",
-                           (unsigned)p->data_bits, par, (unsigned long)is->value, none ? 2u : 1u);
-        } else {
-            conf_copy_str(rule, sizeof rule, conf_field_rule(is->field));
-        }
-        break;
-    case MODCP_PF_OPMODE:
-        if (is->value == MODCP_OPMODE_NORMAL) { /* legal value, not on two-wire RS485 */
-            (void)snprintf(rule, sizeof rule,
-                           "normal is not allowed with interface.type = rs485 (two-wire runs in "
-                           "interference suppression = modem mode) unless "
-                           "protocol.rs485_mode_select = on ([RTU-2009] Table 5-2)");
-        } else {
-            conf_copy_str(rule, sizeof rule, conf_field_rule(is->field));
-        }
-        break;
-    default: conf_copy_str(rule, sizeof rule, conf_field_rule(is->field)); break;
+    if (is->field == MODCP_PF_COILS || is->field == MODCP_PF_INPUTS || is->field == MODCP_PF_R32) {
+        range_rule(c, is, rule, sizeof rule);
+    } else {
+        field_rule(c, is, rule, sizeof rule);
     }
     conf_key_problem_at(c, is->fatal, loc, section, key, value, rule, is->event);
 }

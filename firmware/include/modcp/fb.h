@@ -42,7 +42,7 @@
 #define MODCP_FB_RETRY_MS 200u /* init retry interval */
 
 /* FB error numbers ([RTU-2003] §7.6). */
-enum {
+enum modcp_fb_error {
     MODCP_FB_ERR_NONE = 0,
     MODCP_FB_ERR_INIT = 2,       /* CP initialisation timeout or error */
     MODCP_FB_ERR_PROC_CODE = 10, /* illegal processing code */

@@ -227,11 +227,28 @@ typedef enum {
     MODCP_PF_COUNT
 } modcp_param_field_t;
 
+/* The rule a field breaks (the reason of an issue; tools/conf says it in words). */
+typedef enum {
+    MODCP_PR_NONE = 0,
+    MODCP_PR_RANGE,   /* outside the row's range (params_fields.h: min .. max, 0 if allowed) */
+    MODCP_PR_RULE,    /* in the range, refused by the row's further rule (MODCP_PF_CUSTOM) */
+    MODCP_PR_AREA,    /* a window's or scanner entry's area is not allowed there: the area */
+    MODCP_PR_FROM_TO, /* from > to (a write limit: min > max): from << 16 | to */
+    MODCP_PR_DB_ZERO, /* DB 0 (a write limit: DB MIN 0) */
+    MODCP_PR_TC_SIZE, /* a T/C window is not whole 16-bit elements: its size in bits */
+    MODCP_PR_EXTENT,  /* ends beyond byte / element 65535 (a 32-bit range: its bytes, more than
+                         one DB; a scanner entry: its offset) */
+    MODCP_PR_OVERLAP, /* overlaps an earlier window / range: the index of that one (other) */
+    MODCP_PR_SAME_DB  /* a 32-bit range on the DB of an earlier one (other): the DB number */
+} modcp_param_rule_t;
+
 typedef struct {
     uint8_t field;       /* modcp_param_field_t */
     uint8_t index;       /* window / range / entry index where the field is an array */
     modcp_event_t event; /* the manual's event, e.g. MODCP_EV_SLAVE_ADDR */
     bool fatal;          /* true: CP stays not ready; false: corrected (e.g. f_MUL -> 1) */
+    uint8_t rule;        /* modcp_param_rule_t: which rule the value breaks */
+    uint8_t other;       /* OVERLAP, SAME_DB: the earlier entry's index; else 0xFF */
     uint32_t value;      /* the offending value */
 } modcp_param_issue_t;
 
