@@ -201,7 +201,7 @@ static CHECK_INLINE void report_fatal(issue_sink_t *s, uint8_t field, uint8_t in
 static CHECK_INLINE bool baud_ok(uint32_t baud)
 {
     const uint32_t k = baud / 300u;
-    return ((baud % 300u) == 0u) &&
+    return ((baud % 300u) == 0u) && (k != 0u) &&
            (((k <= 256u) && ((k & (k - 1u)) == 0u)) || (k == 192u) || (k == 384u));
 }
 

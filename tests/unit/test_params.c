@@ -578,6 +578,8 @@ static void test_record_field_errors(void **state)
     params_004_9(&p);
     p.baud = 14400; /* not in the table */
     expect_one(&p, MODCP_PF_BAUD, 0, rec, true, 14400);
+    p.baud = 0; /* no rate at all: 0 / 300 passed the power-of-two test once */
+    expect_one(&p, MODCP_PF_BAUD, 0, rec, true, 0);
     params_004_9(&p);
     p.parity = 3;
     expect_one(&p, MODCP_PF_PARITY, 0, rec, true, 3);
