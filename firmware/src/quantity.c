@@ -34,28 +34,3 @@ const uint16_t modcp_qty_limits[MODCP_QLIM_ROWS - 1][6] = {
     [MODCP_QLIM_RW_WRITE - 1] = {121u, 121u, 121u, 60u, 60u, 60u},
 #endif
 };
-
-uint16_t modcp_qty_max(const modcp_params_t *p, uint8_t fc, uint8_t r32_kind)
-{
-    uint8_t lim;
-    switch (fc) {
-    case 1u:
-    case 2u:
-        lim = MODCP_QLIM_READ_BITS;
-        break;
-    case 15u:
-        lim = MODCP_QLIM_WRITE_BITS;
-        break;
-    case 3u:
-    case 4u:
-        lim = MODCP_QLIM_READ_REGS;
-        break;
-    case 16u:
-        lim = MODCP_QLIM_WRITE_REGS;
-        break;
-    default:
-        lim = MODCP_QLIM_NONE;
-        break;
-    }
-    return modcp_qty_limit(p, lim, r32_kind);
-}

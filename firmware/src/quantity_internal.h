@@ -40,9 +40,4 @@ static inline uint16_t modcp_qty_limit(const modcp_params_t *p, uint8_t lim, uin
     }
     return modcp_qty_limits[lim - 1u][col];
 }
-/* Largest quantity of fc (01, 02, 03, 04, 15, 16) for the quantity_limits set and the
- * framing of p and the register kind (0 for bits and 16-bit registers). 0 for other
- * function codes. */
-uint16_t modcp_qty_max(const modcp_params_t *p, uint8_t fc, uint8_t r32_kind);
-
 #endif

@@ -17,7 +17,7 @@
  *         damaged one. Nothing is stored, only the stretch's CRC for the bus counters;
  *         our address (or 0) starts a candidate frame.
  *   RX    a candidate: stored with a CRC step per character (the hot path, up to
- *         r->stop). Its function code gives its length (req_len below): fixed, or by
+ *         r->stop). Its function code gives its length (fc_table.c): fixed, or by
  *         its byte count; at that length a valid CRC ends the frame at once (EOF, handed
  *         over on a 1 us timer: no t3.5 wait), a wrong one drops the candidate's first
  *         character and looks for our address again in the rest (resync), so a stray
@@ -42,31 +42,9 @@
 #include "modcp/link.h"
 #include "link_internal.h"
 #include "crc_internal.h"
+#include "fc_table_internal.h"
 
 enum { M_CONT, M_FAIL, M_DONE };
-
-#define RQ_BC 0x80u    /* length by the byte count at index (code & RQ_N) */
-#define RQ_OPEN 0x40u  /* the usual length; longer requests end by t3.5 */
-#define RQ_BCAST 0x20u /* broadcast may use it: 00 starts a candidate anywhere */
-#define RQ_N 0x1Fu     /* the length, or the byte count's index */
-
-/* Request lengths (address and CRC included) by function code. */
-static const uint8_t req_len_tab[][2] = {
-    {0x03u, 8u}, {0x10u, RQ_BCAST | RQ_BC | 6u}, {0x06u, RQ_BCAST | 8u}, {0x01u, 8u},
-    {0x02u, 8u}, {0x04u, 8u}, {0x05u, RQ_BCAST | 8u}, {0x0Fu, RQ_BCAST | RQ_BC | 6u},
-    {0x08u, RQ_OPEN | 8u}, {0x17u, RQ_BC | 10u}, {0x16u, 10u}, {0x0Bu, 4u}, {0x0Cu, 4u},
-    {0x11u, 4u}, {0x2Bu, RQ_OPEN | 7u},
-};
-
-static uint8_t req_len(uint8_t fc)
-{
-    for (size_t i = 0; i < sizeof req_len_tab / sizeof req_len_tab[0]; i++) {
-        if (req_len_tab[i][0] == fc) {
-            return req_len_tab[i][1];
-        }
-    }
-    return 0u; /* unknown: t3.5 (and no broadcast) */
-}
 
 static bool m_addr(const modcp_link_t *l, uint8_t b)
 {
@@ -79,24 +57,28 @@ static int m_check(modcp_link_t *l)
     modcp_rtu_t *r = &l->fr.rtu;
     const uint16_t n = l->len;
     if (n == 2u) {
-        uint8_t fc = l->buf[1];
-        uint8_t code = req_len(fc);
-        if (l->buf[0] == 0u && (r->flags & RTU_M_FIRST) == 0u && (code & RQ_BCAST) == 0u) {
+        /* the request's length by its function code (fc_table.c): fixed, or by its byte
+         * count; unknown (no row): t3.5 and no broadcast */
+        const uint8_t fc = l->buf[1];
+        const modcp_fc_row_t *row = modcp_fc_row(fc);
+        if (l->buf[0] == 0u && (r->flags & RTU_M_FIRST) == 0u &&
+            (row == NULL || (row->flags & F_BCAST) == 0u)) {
             return M_FAIL; /* no broadcast request */
         }
         if (fc == 0u || fc >= 0x80u) {
             return M_FAIL; /* no request has this function code */
         }
-        if (code == 0u) {
+        if (row == NULL) {
             r->stop = l->cap; /* unknown function code: t3.5 */
             return M_CONT;
         }
-        if ((code & RQ_BC) != 0u) {
-            r->stop = code & RQ_N; /* the byte count */
+        if ((row->form & FC_COUNT) != 0u) {
+            r->stop = row->min_len; /* the byte count (address before the PDU) */
             return M_CONT;
         }
-        r->total = code & RQ_N;
-        if ((code & RQ_OPEN) != 0u) {
+        /* address, PDU in its usual form, CRC */
+        r->total = (uint16_t)(row->min_len + ((row->form & FC_PLUS2) != 0u ? 5u : 3u));
+        if ((row->form & FC_OPEN) != 0u) {
             r->flags |= RTU_M_OPEN;
         }
     } else if (r->total == 0u) { /* the byte count */

@@ -33,7 +33,7 @@
 
 #include "modcp/params.h"
 
-/* Limit classes: the function-code table (pdu.c) names one per function code. */
+/* Limit classes: the function-code table (fc_table.c) names one per function code. */
 enum {
     MODCP_QLIM_NONE = 0,   /* no quantity field */
     MODCP_QLIM_READ_BITS,  /* FC01 / FC02 */
