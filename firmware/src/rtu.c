@@ -8,8 +8,8 @@
  * The backend behind rtu_ops (modcp_framing_ops_t, link_internal.h; chosen by
  * rtu_configure), its state in l->fr (modcp_rtu_t, rtu_internal.h). A character of our
  * frame is stored by the link itself (link_rx_store: the character and its time, below
- * l->rx_stop; with the t1.5 check on, a second entry, rtu_t15_ops, looks at the time
- * first); its CRC is computed over the buffer once the frame has ended, as FreeMODBUS
+ * l->rx_stop; with the t1.5 check on, every character reaches rtu_on_byte, which looks
+ * at the time first); its CRC is computed over the buffer once the frame has ended, as FreeMODBUS
  * does. The end-of-frame timer is armed once, by the frame's first character (or line
  * error in place of one), and link.c re-arms it for the rest of t3.5 after the last
  * one; the frame is checked only when t3.5 has passed. Time stamps are the ends of
@@ -59,7 +59,7 @@ static void count_char(modcp_rtu_t *r)
 
 bool rtu_crc_ok(const modcp_link_t *l)
 {
-    return l->len >= RTU_MIN_FRAME && modcp_crc16(l->buf, l->len) == 0u;
+    return l->len >= RTU_MIN_FRAME && modcp_crc16_update(MODCP_CRC_INIT, l->buf, l->len) == 0u;
 }
 
 /* A character of the stretch that is not (or no longer) part of our frame (modem
@@ -238,36 +238,33 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
     l->last_us = now_us;
 }
 
-/* A character the link did not store itself: with the t1.5 check on every one
- * (rx_stop 0), else those at or past the stop or in another state. */
-static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
+bool rtu_t15_violated(modcp_link_t *l, uint32_t now_us)
 {
-    if (!link_store_below(l, l->run_stop, b, now_us)) {
-        byte_other(l, b, now_us, false);
+    if (l->t15_us == 0u || l->state != MODCP_LINK_RX ||
+        now_us - l->last_us <= l->t15_us + l->char_us) {
+        return false;
     }
-}
-
-void rtu_t15_discard(modcp_link_t *l, bool first)
-{
-    if (first) {
+    if (!l->rx_bad) {
         l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
         if (!l->suppress) {
             link_event(l, MODCP_EV_ZVZ);
         }
     }
+    return true;
 }
 
-/* With the t1.5 check on: the silence before a character of our frame (distance of the
- * two character ends minus one character time) must not exceed t1.5. A separate entry,
- * so that the check costs nothing when it is off. */
-static void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
+/* A character the link did not store itself: with the t1.5 check on every one
+ * (rx_stop 0: the silence before a character of our frame, the distance of the two
+ * character ends minus one character time, must not exceed t1.5), else those at or
+ * past the stop or in another state. */
+static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
-    if (l->state == MODCP_LINK_RX && now_us - l->last_us > l->t15_us + l->char_us) {
-        const bool first = !l->rx_bad;
-        link_mark_bad(l);
-        rtu_t15_discard(l, first);
+    if (rtu_t15_violated(l, now_us)) {
+        link_mark_bad(l); /* the frame goes on, damaged */
     }
-    rtu_on_byte(l, b, now_us);
+    if (!link_store_below(l, l->run_stop, b, now_us)) {
+        byte_other(l, b, now_us, false);
+    }
 }
 
 static void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
@@ -354,19 +351,10 @@ static const modcp_framing_ops_t rtu_ops = {.on_byte = rtu_on_byte,
                                             .in_frame = rtu_in_frame,
                                             .on_timer = rtu_on_timer,
                                             .encode = rtu_encode};
-static const modcp_framing_ops_t rtu_t15_ops = {.on_byte = rtu_on_byte_t15,
-                                                .on_error = rtu_on_error,
-                                                .in_frame = rtu_in_frame,
-                                                .on_timer = rtu_on_timer,
-                                                .encode = rtu_encode};
 
-/* Normal operation (the operating mode parameter; modem mode: rtu_modem_configure);
- * the variant is the t1.5 check. */
+/* Normal operation (the operating mode parameter; modem mode: rtu_modem_configure). */
 const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
 {
     (void)p;
-    if (!rtu_setup(l, false)) {
-        return NULL;
-    }
-    return l->t15_us != 0u ? &rtu_t15_ops : &rtu_ops;
+    return rtu_setup(l, false) ? &rtu_ops : NULL;
 }

@@ -67,9 +67,10 @@ void rtu_unclaim(modcp_link_t *l, uint16_t n);
  * start (IDLE, SKIP after t3.5), the busy states, a state RTU never uses. False: RX or
  * SKIP within t3.5, the variant's own (nothing done). */
 bool rtu_other_common(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err);
-/* A t1.5 violation in our frame (before the frame is dropped: first, whether it was
- * still undamaged): counted once per frame, (08)0EH in normal mode. */
-void rtu_t15_discard(modcp_link_t *l, bool first);
+/* With the t1.5 check on: does a character at now_us come too late for our frame (RX)?
+ * Counted once per frame (the caller damages or drops it next), (08)0EH in normal
+ * mode. */
+bool rtu_t15_violated(modcp_link_t *l, uint32_t now_us);
 /* The rest of the ops, the same for both variants. */
 bool rtu_in_frame(const modcp_link_t *l);
 bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f);

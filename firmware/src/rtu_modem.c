@@ -192,22 +192,16 @@ static MODCP_NOINLINE void m_other(modcp_link_t *l, uint8_t b, uint32_t now_us, 
     l->last_us = now_us;
 }
 
+/* A character the link did not store itself (see rtu.c rtu_on_byte): a t1.5 violation
+ * drops the candidate, b may start the next. */
 static void m_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
+    if (rtu_t15_violated(l, now_us)) {
+        m_cand_bad(l);
+    }
     if (!link_store_below(l, l->run_stop, b, now_us)) {
         m_other(l, b, now_us, false);
     }
-}
-
-/* The t1.5 check (see rtu.c): a violation drops the candidate; b may start the next. */
-static void m_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
-{
-    if (l->state == MODCP_LINK_RX && now_us - l->last_us > l->t15_us + l->char_us) {
-        const bool first = !l->rx_bad;
-        m_cand_bad(l);
-        rtu_t15_discard(l, first);
-    }
-    m_on_byte(l, b, now_us);
 }
 
 static void m_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
@@ -221,19 +215,10 @@ static const modcp_framing_ops_t m_ops = {.on_byte = m_on_byte,
                                           .in_frame = rtu_in_frame,
                                           .on_timer = rtu_on_timer,
                                           .encode = rtu_encode};
-static const modcp_framing_ops_t m_t15_ops = {.on_byte = m_on_byte_t15,
-                                              .on_error = m_on_error,
-                                              .in_frame = rtu_in_frame,
-                                              .on_timer = rtu_on_timer,
-                                              .encode = rtu_encode};
 
-/* Interference suppression (the operating mode parameter); the variant is the t1.5
- * check. */
+/* Interference suppression (the operating mode parameter). */
 const modcp_framing_ops_t *rtu_modem_configure(modcp_link_t *l, const modcp_params_t *p)
 {
     (void)p;
-    if (!rtu_setup(l, true)) {
-        return NULL;
-    }
-    return l->t15_us != 0u ? &m_t15_ops : &m_ops;
+    return rtu_setup(l, true) ? &m_ops : NULL;
 }
