@@ -69,7 +69,6 @@ typedef struct {
     uint8_t char_mask; /* 7 data bits: 7FH, the eighth bit of a character is masked */
 } modcp_ascii_t;
 _Static_assert(sizeof(modcp_ascii_t) <= sizeof(modcp_link_fr_t), "modcp_link_fr_t holds it");
-_Static_assert(_Alignof(modcp_ascii_t) <= _Alignof(modcp_link_fr_t), "aligned as l->fr");
 
 static modcp_ascii_t *ascii_of(modcp_link_t *l)
 {
@@ -124,7 +123,8 @@ static MODCP_NOINLINE int hex_pair(modcp_ascii_t *a, uint8_t c)
         return PAIR_HALF;
     }
     a->hex_half = false;
-    return (int)((unsigned)a->hex_hi << 4 | v);
+    const unsigned pair = ((unsigned)a->hex_hi << 4) | (unsigned)v;
+    return (int)pair;
 }
 
 /* A ':' starts a frame (in_frame; false: a run of stray characters); the timer is
@@ -150,7 +150,7 @@ static MODCP_NOINLINE void frame_start(modcp_link_t *l, uint32_t now_us)
  * follow it to its end without storing. */
 static void discard(modcp_link_t *l, modcp_event_t ev)
 {
-    if (l->state == MODCP_LINK_RX && !l->rx_bad) {
+    if (l->state == (uint8_t)MODCP_LINK_RX && !l->rx_bad) {
         link_event(l, ev);
     }
     l->state = MODCP_LINK_SKIP;
@@ -160,7 +160,7 @@ static void discard(modcp_link_t *l, modcp_event_t ev)
 /* CR + delimiter: the end of the frame in RX or SKIP. */
 static void frame_end(modcp_link_t *l)
 {
-    const bool ours = l->state == MODCP_LINK_RX; /* else SKIP: another slave's frame */
+    const bool ours = l->state == (uint8_t)MODCP_LINK_RX; /* else SKIP: another slave's frame */
     link_arm(l, 0);
     l->state = MODCP_LINK_IDLE;
     if (l->rx_bad) {
@@ -193,7 +193,7 @@ static void frame_byte(modcp_link_t *l, uint8_t b)
     if (a->count < ASCII_MIN_FRAME) {
         a->count++; /* only the first byte and ">= ASCII_MIN_FRAME" are looked at */
     }
-    if (l->state != MODCP_LINK_RX) {
+    if (l->state != (uint8_t)MODCP_LINK_RX) {
         return;
     }
     if (a->count == 1u && b != l->own_addr && b != 0u) {
@@ -242,6 +242,8 @@ static void frame_char(modcp_link_t *l, uint8_t c, uint32_t now_us)
         discard(l, MODCP_EV_ASCII_NOT_HEX);
     } else if (v >= 0) {
         frame_byte(l, (uint8_t)v);
+    } else {
+        /* the first character of a pair: kept */
     }
 }
 
@@ -249,7 +251,7 @@ static void frame_char(modcp_link_t *l, uint8_t c, uint32_t now_us)
 static void busy_track(modcp_link_t *l, uint8_t c, uint32_t now_us)
 {
     modcp_ascii_t *a = ascii_of(l);
-    if (l->rs485 && l->state == MODCP_LINK_TX) {
+    if (l->rs485 && l->state == (uint8_t)MODCP_LINK_TX) {
         return; /* echo of our own transmission */
     }
     l->last_us = now_us;
@@ -313,7 +315,7 @@ static void ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 static void ascii_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
     (void)line_errors; /* every kind of error has the same effect on framing */
-    if (l->state != MODCP_LINK_RX && l->state != MODCP_LINK_SKIP) {
+    if (l->state != (uint8_t)MODCP_LINK_RX && l->state != (uint8_t)MODCP_LINK_SKIP) {
         return; /* between frames, after CR LF, or while busy: the frame is not touched */
     }
     if (!ascii_of(l)->in_frame) {
@@ -335,7 +337,7 @@ static bool ascii_in_frame(const modcp_link_t *l)
 static bool ascii_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
     (void)now_us;
-    if (l->state == MODCP_LINK_EOF) {
+    if (l->state == (uint8_t)MODCP_LINK_EOF) {
         uint32_t room = ((uint32_t)l->size - 3u) / 2u; /* binary bytes the reply may have */
         if (room > l->cap) {
             room = l->cap;
@@ -348,7 +350,7 @@ static bool ascii_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         l->busy_rx = false;
         return true;
     }
-    if (l->state != MODCP_LINK_RX && l->state != MODCP_LINK_SKIP) {
+    if (l->state != (uint8_t)MODCP_LINK_RX && l->state != (uint8_t)MODCP_LINK_SKIP) {
         return false; /* stale or spurious expiry */
     }
     if (ascii_of(l)->in_frame) {
@@ -367,8 +369,10 @@ static uint16_t ascii_encode(modcp_link_t *l, uint16_t pdu_len)
     }
     l->buf[n] = modcp_lrc(l->buf, n);
     /* in place from the back: byte i goes to 1 + 2i and 2 + 2i, both beyond i */
-    for (uint32_t i = n + 1u; i-- > 0u;) {
-        uint8_t b = l->buf[i];
+    uint32_t i = n + 1u;
+    while (i > 0u) {
+        i--;
+        const uint8_t b = l->buf[i];
         l->buf[1u + 2u * i] = hex_digit(b >> 4);
         l->buf[2u + 2u * i] = hex_digit(b & 0x0Fu);
     }

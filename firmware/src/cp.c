@@ -211,7 +211,7 @@ void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
 static MODCP_NOINLINE void rx_block_signals(modcp_cp_t *cp, const uint8_t *b, uint16_t n,
                                                uint32_t end_us)
 {
-    uint32_t t = end_us - (uint32_t)(n - 1u) * cp->link.char_us;
+    uint32_t t = end_us - ((uint32_t)n - 1u) * cp->link.char_us;
     for (uint16_t k = 0; k < n; k++) {
         rx_signals(cp, b[k], t);
         t += cp->link.char_us;

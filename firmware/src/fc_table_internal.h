@@ -16,16 +16,14 @@
 
 /* Flags of a row (modcp_fc_row_t.flags; the PDU handlers see them in s->fcflags). A row
  * with no flags is no function code. */
-enum {
-    F_CP341 = 1u << 0, /* in function set cp341 (the manual's, [RTU-2003] §6) */
-    F_EXT = 1u << 1,   /* in function set extended (docs/extended-functions.md) */
-    F_BCAST = 1u << 2, /* broadcast may run it (docs/diagnostics.md: FC 05, 06, 15, 16) */
-    F_ADDR = 1u << 3,  /* start address at pdu[1..2] (s->addr) */
-    F_R32 = 1u << 4,   /* holding registers: width by the start address ([ASCII-32] §4.5) */
-    F_SCAN = 1u << 5,  /* extended: on scanner addresses the scanner's handler runs */
-    F_WRITE = 1u << 6, /* writes controller memory (arms the comm-loss supervision) */
-    F_NOCOUNT = 1u << 7, /* not counted by the FC11 event counter (FC11, FC12) */
-};
+#define F_CP341 0x01u   /* in function set cp341 (the manual's, [RTU-2003] §6) */
+#define F_EXT 0x02u     /* in function set extended (docs/extended-functions.md) */
+#define F_BCAST 0x04u   /* broadcast may run it (docs/diagnostics.md: FC 05, 06, 15, 16) */
+#define F_ADDR 0x08u    /* start address at pdu[1..2] (s->addr) */
+#define F_R32 0x10u     /* holding registers: width by the start address ([ASCII-32] §4.5) */
+#define F_SCAN 0x20u    /* extended: on scanner addresses the scanner's handler runs */
+#define F_WRITE 0x40u   /* writes controller memory (arms the comm-loss supervision) */
+#define F_NOCOUNT 0x80u /* not counted by the FC11 event counter (FC11, FC12) */
 
 /* modcp_fc_row_t.form: the quantity limit class (MODCP_QLIM_*, quantity at pdu[3..4],
  * limits in quantity.c) in the low bits, and the form of the request PDU (its length
@@ -42,20 +40,18 @@ _Static_assert(MODCP_QLIM_COUNT <= FC_LIM + 1u, "the limit classes fit FC_LIM");
 
 /* The handlers (pdu.c handlers[]) by index; a row of a function code the build does not
  * serve names H_BITS and is in no function set of it. */
-enum {
-    H_BITS,  /* pdu_rw.c: FC01 / 02 / 05 / 15 */
-    H_REGS,  /* pdu_rw.c: FC03 / 04 / 06 / 16 */
-    H_DIAG0, /* pdu_rw.c: FC08 sub 0000 (cp341 set) */
+#define H_BITS 0u  /* pdu_rw.c: FC01 / 02 / 05 / 15 */
+#define H_REGS 1u  /* pdu_rw.c: FC03 / 04 / 06 / 16 */
+#define H_DIAG0 2u /* pdu_rw.c: FC08 sub 0000 (cp341 set) */
 #if MODCP_WITH_EXTENDED
-    H_FC08, /* serial_diag.c */
-    H_FC11,
-    H_FC12,
-    H_FC17, /* devid.c */
-    H_FC43,
-    H_FC22, /* pdu_ext.c */
-    H_FC23,
+#define H_FC08 3u /* serial_diag.c */
+#define H_FC11 4u
+#define H_FC12 5u
+#define H_FC17 6u /* devid.c */
+#define H_FC43 7u
+#define H_FC22 8u /* pdu_ext.c */
+#define H_FC23 9u
 #endif
-};
 
 typedef struct { /* 4 bytes */
     uint8_t min_len; /* request PDU length, function code included */

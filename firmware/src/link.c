@@ -48,7 +48,7 @@ static void reset_rx(modcp_link_t *l)
     l->busy_rx = false;
     l->rx_stop = 0;
     l->run_stop = 0;
-    memset(&l->fr, 0, sizeof l->fr);
+    (void)memset(&l->fr, 0, sizeof l->fr);
 }
 
 /* A disabled (or not yet configured) link, state IDLE: the line and the timer are
@@ -111,7 +111,7 @@ static MODCP_SIZE_NOINLINE void resume_rx(modcp_link_t *l, uint32_t now_us, bool
 void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag, uint8_t *buf,
                      uint16_t cap)
 {
-    memset(l, 0, sizeof *l);
+    (void)memset(l, 0, sizeof *l);
     l->hal = hal;
     l->diag = diag;
     l->buf = buf;
@@ -182,7 +182,7 @@ void modcp_link_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
         return;
     }
     const uint32_t c = l->char_us;
-    uint32_t t = end_us - (uint32_t)(n - 1u) * c; /* end of the character at b[0] */
+    uint32_t t = end_us - ((uint32_t)n - 1u) * c; /* end of the character at b[0] */
     l->ops->on_byte(l, b[0], t);
 #if defined(__OPTIMIZE_SIZE__) /* -Os (the MCU builds): a character at a time (68 B less) */
     for (uint16_t k = 1; k < n; k++) {
@@ -202,7 +202,7 @@ void modcp_link_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
             (void)memcpy(&l->buf[len], &b[k], m);
             l->len = (uint16_t)(len + m);
             k = (uint16_t)(k + m);
-            t += (uint32_t)(m - 1u) * c;
+            t += ((uint32_t)m - 1u) * c;
             l->last_us = t;
         } else {
             l->ops->on_byte(l, b[k], t);
@@ -226,7 +226,7 @@ static bool error_reported(const modcp_link_t *l, uint32_t now_us)
     if (!l->rs485) {
         return true;
     }
-    return (l->state == MODCP_LINK_RX || l->state == MODCP_LINK_SKIP) &&
+    return (l->state == (uint8_t)MODCP_LINK_RX || l->state == (uint8_t)MODCP_LINK_SKIP) &&
            now_us - l->last_us < LINK_SILENCE(l) && l->ops->in_frame(l);
 }
 
@@ -251,7 +251,7 @@ bool modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 
 bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
-    if (l->state == MODCP_LINK_TURNAROUND) {
+    if (l->state == (uint8_t)MODCP_LINK_TURNAROUND) {
         uint32_t waited = now_us - l->tx_at_us;
         if (TX_HOLD(l)) {
             return false; /* RS232 automatic signals: signals.c releases the reply */
@@ -271,7 +271,7 @@ bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 
 void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, bool same, uint32_t now_us)
 {
-    if (l->state != MODCP_LINK_BUSY) {
+    if (l->state != (uint8_t)MODCP_LINK_BUSY) {
         return; /* (a disabled link is IDLE) */
     }
     l->reply_same = same;
@@ -299,7 +299,7 @@ void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, bool same, uint32_t now
 
 void modcp_link_done(modcp_link_t *l)
 {
-    if (l->state != MODCP_LINK_BUSY) {
+    if (l->state != (uint8_t)MODCP_LINK_BUSY) {
         return;
     }
     resume_rx(l, 0, false);
@@ -316,7 +316,7 @@ void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us)
     if (l->tx_on) { /* (with RS232 signals: already at modcp_link_tx_complete) */
         modcp_link_tx_complete(l, now_us);
     }
-    if (l->state != MODCP_LINK_TX) {
+    if (l->state != (uint8_t)MODCP_LINK_TX) {
         return;
     }
     if (l->rs485) {
@@ -327,7 +327,7 @@ void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us)
 
 void modcp_link_tx_release(modcp_link_t *l, bool send, uint32_t now_us)
 {
-    if (l->state != MODCP_LINK_TURNAROUND) {
+    if (l->state != (uint8_t)MODCP_LINK_TURNAROUND) {
         return;
     }
     if (send) {
@@ -344,7 +344,7 @@ void modcp_link_set_delimiter(modcp_link_t *l, uint8_t delim)
 
 void modcp_link_rx_discard(modcp_link_t *l)
 {
-    if (l->state == MODCP_LINK_RX) {
+    if (l->state == (uint8_t)MODCP_LINK_RX) {
         l->rx_bad = true;
     }
 }

@@ -45,9 +45,8 @@ typedef struct modcp_framing_ops {
  * the t1.5 check), NULL if the buffer is too small. */
 const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p);
 const modcp_framing_ops_t *rtu_modem_configure(modcp_link_t *l, const modcp_params_t *p);
-#if MODCP_WITH_ASCII
-const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p);
-#endif
+const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p); /* ascii.c:
+                                                                  built with ASCII only */
 
 /* The receive hot path (the port's receive interrupt, modcp_cp_on_rx): a character of a
  * frame the framing stores as it is, below stop (l->rx_stop; a framing's own entry, e.g.
@@ -92,7 +91,7 @@ static inline void link_arm(const modcp_link_t *l, uint32_t us)
  * or SKIP is enabled: stopping it resets the state to IDLE.) */
 static inline bool link_timer_rearm(const modcp_link_t *l, uint32_t now_us)
 {
-    if (l->state != MODCP_LINK_RX && l->state != MODCP_LINK_SKIP) {
+    if (l->state != (uint8_t)MODCP_LINK_RX && l->state != (uint8_t)MODCP_LINK_SKIP) {
         return false;
     }
     uint32_t gap = now_us - l->last_us;
@@ -104,12 +103,12 @@ static inline bool link_timer_rearm(const modcp_link_t *l, uint32_t now_us)
 }
 
 /* The link's diagnostics (l->diag, never NULL: modcp_link_init). */
-static inline void link_event(const modcp_link_t *l, modcp_event_t ev)
+static inline void link_event(modcp_link_t *l, modcp_event_t ev)
 {
     modcp_diag_event(l->diag, ev);
 }
 
-static inline void link_count(const modcp_link_t *l, modcp_counter_t c)
+static inline void link_count(modcp_link_t *l, modcp_counter_t c)
 {
     modcp_diag_count(l->diag, c);
 }

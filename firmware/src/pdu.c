@@ -87,7 +87,7 @@ uint16_t modcp_pdu_exception(uint8_t *pdu, uint8_t fc, uint8_t code)
 #define EXC_ROW(NAME, cls, num, exc, ...) EXC_ENTRY_##exc(cls, num)
 static const uint16_t exc_rows[] = {MODCP_EVENT_ROWS(EXC_ROW)};
 #undef EXC_ROW
-#define EXC_CLASS_ROW(NAME, cls, num, ...) _Static_assert((cls) < 16u, #NAME ": class < 10H");
+#define EXC_CLASS_ROW(NAME, cls, num, ...) _Static_assert((unsigned)(cls) < 16u, #NAME ": class < 10H");
 MODCP_EVENT_ROWS(EXC_CLASS_ROW)
 #undef EXC_CLASS_ROW
 
@@ -188,6 +188,8 @@ static bool listen_only(modcp_pdu_t *s, const modcp_pdu_env_t *env, const uint8_
             s->x.after = MODCP_X_AFTER_RESTART;
         } else if (data == 0xFF00u) {
             s->x.after = MODCP_X_AFTER_RESTART_CLEAR;
+        } else {
+            /* another value: the request is monitored only */
         }
     }
     return true;
@@ -240,7 +242,7 @@ modcp_pdu_action_t modcp_pdu_request(modcp_pdu_t *s, const modcp_pdu_env_t *env,
                                      uint8_t *pdu, uint16_t len, uint16_t cap, uint16_t *out_len)
 {
     *out_len = 0;
-    memset(s, 0, MODCP_PDU_CLEARED); /* the request's state; the rest is set before use */
+    (void)memset(s, 0, (size_t)MODCP_PDU_CLEARED); /* the request's state; the rest is set before use */
     s->job.op = 0;
     if (len < 1u) {
         return MODCP_PDU_NO_REPLY;
@@ -299,6 +301,8 @@ static uint8_t send_event(const modcp_pdu_t *s, const modcp_comm_t *c)
         ev |= MODCP_COMM_TX_ABORT_EXC;
     } else if (s->x.exc != (uint8_t)MODCP_EXC_NONE) {
         ev |= MODCP_COMM_TX_READ_EXC; /* 01 .. 03 (the engine answers no 05 .. 07) */
+    } else {
+        /* no exception */
     }
     if (s->x.timeout != 0u && write_op(s->job.op)) {
         ev |= MODCP_COMM_TX_WRITE_TIMEOUT;
@@ -328,6 +332,8 @@ void modcp_pdu_finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_pdu_ac
                 x->cpu_stalled = true;
             } else if (s->job.op != 0u && s->x.exc == MODCP_EXC_NONE) {
                 x->cpu_stalled = false;
+            } else {
+                /* no job ran: the CPU side's state is unchanged */
             }
             if (!s->broadcast && s->x.exc == MODCP_EXC_NONE && (s->fcflags & F_WRITE) != 0u) {
                 modcp_commloss_write(x, env->p, now_us);

@@ -160,7 +160,7 @@ static void stretch_end(modcp_link_t *l)
  * interference suppression (or RS485) is ignored, as between messages. */
 static void busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
 {
-    if (l->rs485 && l->state == MODCP_LINK_TX) {
+    if (l->rs485 && l->state == (uint8_t)MODCP_LINK_TX) {
         return; /* echo of our own transmission */
     }
     if (!l->busy_rx || now_us - l->last_us >= l->t35_us) {
@@ -225,11 +225,11 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
     if (rtu_other_common(l, b, now_us, err)) {
         return;
     }
-    if (l->state == MODCP_LINK_RX && !err) {
+    if (l->state == (uint8_t)MODCP_LINK_RX && !err) {
         l->rx_overflow = true; /* the buffer is full: the frame is too long */
-    } else if (l->state == MODCP_LINK_SKIP && !err) {
+    } else if (l->state == (uint8_t)MODCP_LINK_SKIP && !err) {
         rtu_fold(l, b);
-    } else if (l->state == MODCP_LINK_RX && !l->rx_bad && !l->rx_overflow && rtu_crc_ok(l)) {
+    } else if (l->state == (uint8_t)MODCP_LINK_RX && !l->rx_bad && !l->rx_overflow && rtu_crc_ok(l)) {
         return; /* after the CRC: not part of the frame */
     } else {
         link_mark_bad(l); /* (the count of our frame is not looked at: it is bad) */
@@ -240,7 +240,7 @@ static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_u
 
 bool rtu_t15_violated(modcp_link_t *l, uint32_t now_us)
 {
-    if (l->t15_us == 0u || l->state != MODCP_LINK_RX ||
+    if (l->t15_us == 0u || l->state != (uint8_t)MODCP_LINK_RX ||
         now_us - l->last_us <= l->t15_us + l->char_us) {
         return false;
     }
@@ -277,7 +277,7 @@ static void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
  * unless our frame is complete (its CRC in: what follows is "after the telegram"). */
 bool rtu_in_frame(const modcp_link_t *l)
 {
-    return !(l->state == MODCP_LINK_RX && !l->rx_bad && !l->rx_overflow && rtu_crc_ok(l));
+    return !(l->state == (uint8_t)MODCP_LINK_RX && !l->rx_bad && !l->rx_overflow && rtu_crc_ok(l));
 }
 
 /* A formally correct frame for us (or broadcast) in buf[0 .. len): counted and handed
@@ -305,12 +305,12 @@ bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
     (void)now_us;
     modcp_rtu_t *r = rtu_of(l);
-    if (l->state == MODCP_LINK_EOF ||
-        (l->state == MODCP_LINK_RX && !l->rx_bad && !l->rx_overflow && r->total == 0u &&
+    if (l->state == (uint8_t)MODCP_LINK_EOF ||
+        (l->state == (uint8_t)MODCP_LINK_RX && !l->rx_bad && !l->rx_overflow && r->total == 0u &&
          rtu_crc_ok(l))) { /* modem mode: also by t3.5 (unknown FC) */
         return deliver(l, f);
     }
-    if (l->state == MODCP_LINK_RX) {
+    if (l->state == (uint8_t)MODCP_LINK_RX) {
         if (l->rx_overflow) {
             if (!l->rx_bad && (r->flags & RTU_M_FIRST) != 0u) {
                 link_frame_too_long(l);
@@ -319,7 +319,7 @@ bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         }
         rtu_unclaim(l, l->len);
     }
-    if (l->state == MODCP_LINK_SKIP) {
+    if (l->state == (uint8_t)MODCP_LINK_SKIP) {
         stretch_end(l);
     }
     return false; /* else a stale or spurious expiry */

@@ -28,7 +28,6 @@ typedef struct {
     bool modem;        /* interference suppression = modem mode (rtu_modem.c) */
 } modcp_rtu_t;
 _Static_assert(sizeof(modcp_rtu_t) <= sizeof(modcp_link_fr_t), "modcp_link_fr_t holds it");
-_Static_assert(_Alignof(modcp_rtu_t) <= _Alignof(modcp_link_fr_t), "aligned as l->fr");
 
 /* modcp_rtu_t.flags (modem mode) */
 #define RTU_M_LEAD 0x01u  /* the stretch began with our address or 0 */

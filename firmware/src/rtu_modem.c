@@ -40,7 +40,9 @@
 #include "rtu_internal.h"
 #include "fc_table_internal.h"
 
-enum { M_CONT, M_FAIL, M_DONE };
+#define M_CONT 0 /* m_feed / m_check: follow on */
+#define M_FAIL 1 /* the candidate failed: resync */
+#define M_DONE 2 /* a frame (EOF) */
 
 static bool m_addr(const modcp_link_t *l, uint8_t b)
 {
@@ -79,6 +81,8 @@ static int m_check(modcp_link_t *l)
         }
     } else if (r->total == 0u) { /* the byte count */
         r->total = (uint16_t)(n + l->buf[n - 1u] + 2u);
+    } else {
+        /* the last character: the length is known */
     }
     if (r->total > l->cap) {
         r->total = 0;
@@ -113,7 +117,7 @@ static int m_check(modcp_link_t *l)
 static int m_feed(modcp_link_t *l, uint8_t b)
 {
     modcp_rtu_t *r = rtu_of(l);
-    if (l->state == MODCP_LINK_SKIP) {
+    if (l->state == (uint8_t)MODCP_LINK_SKIP) {
         if (m_addr(l, b)) {
             /* a candidate inside the stretch: whether the stretch had a line error */
             r->flags = (uint8_t)((r->flags & ~(RTU_M_FIRST | RTU_M_SBAD)) |
@@ -151,7 +155,7 @@ static void m_resync(modcp_link_t *l)
         if (res != M_FAIL) {
             return; /* following, in a candidate, or a frame (what followed it: after the CRC) */
         }
-        memmove(&l->buf[l->len], &l->buf[k], (size_t)(n - k));
+        (void)memmove(&l->buf[l->len], &l->buf[k], (size_t)n - (size_t)k);
         n = (uint16_t)(l->len + (n - k));
         l->len = n;
     }
@@ -184,7 +188,7 @@ static MODCP_NOINLINE void m_other(modcp_link_t *l, uint8_t b, uint32_t now_us, 
     }
     if (!err) {
         m_push(l, b);
-    } else if (l->state == MODCP_LINK_RX) {
+    } else if (l->state == (uint8_t)MODCP_LINK_RX) {
         m_cand_bad(l);
     } else {
         l->rx_bad = true; /* among stray characters / another frame: not counted */
