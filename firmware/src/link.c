@@ -90,7 +90,7 @@ static const modcp_framing_ops_t *framing_configure(modcp_link_t *l, const modcp
  * still arriving (RTU: less than t3.5 since its last character), follow its tail in
  * SKIP so it is never taken for a new request. Without a time (have_now false) the
  * timer is armed for a full t3.5 and its expiry or the next character decides. */
-static MODCP_SIZE_NOINLINE void resume_rx(modcp_link_t *l, uint32_t now_us, bool have_now)
+static void resume_rx(modcp_link_t *l, uint32_t now_us, bool have_now)
 {
     if (l->busy_rx) {
         uint32_t gap = have_now ? now_us - l->last_us : 0u;

@@ -52,8 +52,8 @@ const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t
  * frame the framing stores as it is, below stop (l->rx_stop; a framing's own entry, e.g.
  * with the t1.5 check, l->run_stop), is stored with its time; nothing else. False: the
  * framing's on_byte decides. */
-static MODCP_ALWAYS_INLINE bool link_store_below(modcp_link_t *l, uint16_t stop, uint8_t b,
-                                                 uint32_t now_us)
+static inline bool link_store_below(modcp_link_t *l, uint16_t stop, uint8_t b,
+                                    uint32_t now_us)
 {
     const uint16_t n = l->len;
     if (n >= stop) {
@@ -65,7 +65,7 @@ static MODCP_ALWAYS_INLINE bool link_store_below(modcp_link_t *l, uint16_t stop,
     return true;
 }
 
-static MODCP_ALWAYS_INLINE bool link_rx_store(modcp_link_t *l, uint8_t b, uint32_t now_us)
+static inline bool link_rx_store(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     return link_store_below(l, l->rx_stop, b, now_us);
 }

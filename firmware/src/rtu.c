@@ -220,7 +220,7 @@ bool rtu_other_common(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
 /* Normal operation: every character the link did not store (the buffer is full, or
  * another state), and a line error in place of a character (err, b 0). Kept out of
  * line so that the entries stay leaves. */
-static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
+static void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
 {
     if (rtu_other_common(l, b, now_us, err)) {
         return;

@@ -181,7 +181,7 @@ static void m_cand_bad(modcp_link_t *l)
 
 /* Every character the link did not store (a stretch, or a candidate's character that
  * needs a look), and a line error in place of a character (err, b 0). */
-static MODCP_NOINLINE void m_other(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
+static void m_other(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
 {
     if (rtu_other_common(l, b, now_us, err)) {
         return;
