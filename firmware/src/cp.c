@@ -129,7 +129,7 @@ bool modcp_cp_ready(const modcp_cp_t *cp)
  * or (f NULL) on the result of its job, then its next job (a request of the extended set
  * may need several in sequence: modcp_pdu_complete() then returns the next) or the end
  * of the request. The request's PDU, where the reply is built, is at buf + 1 (after the
- * address, RTU and ASCII alike: rtu_deliver, ascii_on_timer); the frame is not kept.
+ * address, RTU and ASCII alike: rtu.c deliver, ascii_on_timer); the frame is not kept.
  * Built for size one copy, shared by the end of a frame and the poll; built for speed
  * inline in each (no call and no stack frame of its own per request). */
 static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, const modcp_frame_t *f,
@@ -140,7 +140,8 @@ static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, const modcp
     uint16_t out_len = 0;
     modcp_pdu_action_t a;
     if (f != NULL) {
-        a = modcp_pdu_request(&cp->pdu, env, f->addr, f->pdu, f->pdu_len, f->pdu_cap, &out_len);
+        uint8_t *const req = f->pdu; /* in cp->buf, after the address */
+        a = modcp_pdu_request(&cp->pdu, env, f->addr, req, f->pdu_len, f->pdu_cap, &out_len);
     } else {
         a = modcp_pdu_complete(&cp->pdu, env, cp->job.event, pdu, &out_len);
     }

@@ -138,7 +138,8 @@ static inline modcp_pdu_action_t encode(modcp_pdu_t *s, const modcp_pdu_env_t *e
                                  uint16_t *out_len)
 {
     if (s->broadcast) {
-        modcp_diag_count(env->diag, MODCP_CNT_NO_RESPONSE);
+        modcp_diag_t *const d = env->diag;
+        modcp_diag_count(d, MODCP_CNT_NO_RESPONSE);
         return MODCP_PDU_NO_REPLY;
     }
     if (s->x.echo != 0u) {
@@ -181,7 +182,8 @@ static bool listen_only(modcp_pdu_t *s, const modcp_pdu_env_t *env, const uint8_
         return false;
     }
     s->x.quiet = 1;
-    modcp_diag_count(env->diag, MODCP_CNT_NO_RESPONSE);
+    modcp_diag_t *const d = env->diag;
+    modcp_diag_count(d, MODCP_CNT_NO_RESPONSE);
     if (!s->broadcast && s->fc == 0x08u && len == 5u && modcp_get16(pdu + 1) == 0x0001u) {
         uint16_t data = modcp_get16(pdu + 3);
         if (data == 0x0000u) {
@@ -242,7 +244,8 @@ modcp_pdu_action_t modcp_pdu_request(modcp_pdu_t *s, const modcp_pdu_env_t *env,
                                      uint8_t *pdu, uint16_t len, uint16_t cap, uint16_t *out_len)
 {
     *out_len = 0;
-    (void)memset(s, 0, (size_t)MODCP_PDU_CLEARED); /* the request's state; the rest is set before use */
+    const size_t cleared = MODCP_PDU_CLEARED; /* the request's state; the rest is set before use */
+    (void)memset(s, 0, cleared);
     s->job.op = 0;
     if (len < 1u) {
         return MODCP_PDU_NO_REPLY;

@@ -48,9 +48,9 @@ typedef modcp_pdu_action_t (*modcp_pdu_handler_t)(modcp_pdu_t *s, const modcp_pd
 
 /* Bytes of modcp_pdu_t cleared for every request: fc .. x.rbytes (and x.seq). */
 #if MODCP_WITH_EXTENDED
-#define MODCP_PDU_CLEARED (offsetof(modcp_pdu_t, x) + offsetof(modcp_pdu_x_t, phase))
+#define MODCP_PDU_CLEARED ((size_t)offsetof(modcp_pdu_t, x) + (size_t)offsetof(modcp_pdu_x_t, phase))
 #else
-#define MODCP_PDU_CLEARED (offsetof(modcp_pdu_t, x) + sizeof(modcp_pdu_x_t))
+#define MODCP_PDU_CLEARED ((size_t)offsetof(modcp_pdu_t, x) + sizeof(modcp_pdu_x_t))
 #endif
 
 /* Refuse the request with event ev and exception exc (MODCP_EXC_*). */

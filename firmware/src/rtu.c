@@ -158,7 +158,7 @@ static void stretch_end(modcp_link_t *l)
  * (08)37H ([RTU-2003] §7.5): neither is executed, and no request is lost without a trace.
  * A line error that is not inside a frame (modem mode: after the CRC) with
  * interference suppression (or RS485) is ignored, as between messages. */
-static void busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
+static void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
 {
     if (l->rs485 && l->state == (uint8_t)MODCP_LINK_TX) {
         return; /* echo of our own transmission */
@@ -196,7 +196,7 @@ bool rtu_other_common(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
     case MODCP_LINK_BUSY:
     case MODCP_LINK_TURNAROUND:
     case MODCP_LINK_TX:
-        busy_track(l, b, err, now_us);
+        rtu_busy_track(l, b, err, now_us);
         return true;
     case MODCP_LINK_IDLE:
         break;
