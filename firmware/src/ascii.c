@@ -5,7 +5,7 @@
  * the ones RTU uses.
  *
  * The backend behind ascii_ops (modcp_framing_ops_t, link_internal.h; chosen by
- * ascii_configure), its state in l->fr.ascii.
+ * ascii_configure), its state in l->fr (modcp_ascii_t below).
  *
  * Receive, by link state:
  *   IDLE  waiting for ':'. Any other character: wrong start character, event (08)38H
@@ -57,6 +57,29 @@
 #include "modcp/link.h"
 #include "link_internal.h"
 
+/* ASCII receive state, in l->fr. */
+typedef struct {
+    uint16_t count;  /* bytes decoded in the current frame, up to 3 (busy: address
+                        decoded) */
+    uint8_t lrc;     /* running byte sum */
+    uint8_t hex_hi;  /* first hex character of a pair */
+    bool hex_half;   /* a pair is half received */
+    bool got_cr;     /* the last character was CR */
+    bool in_frame;   /* a ':' started what is being followed (false: stray characters) */
+    uint8_t char_mask; /* 7 data bits: 7FH, the eighth bit of a character is masked */
+} modcp_ascii_t;
+_Static_assert(sizeof(modcp_ascii_t) <= sizeof(modcp_link_fr_t), "modcp_link_fr_t holds it");
+
+static modcp_ascii_t *ascii_of(modcp_link_t *l)
+{
+    return (modcp_ascii_t *)(void *)&l->fr;
+}
+
+static const modcp_ascii_t *ascii_of_c(const modcp_link_t *l)
+{
+    return (const modcp_ascii_t *)(const void *)&l->fr;
+}
+
 #define ASCII_COLON 0x3Au
 #define ASCII_CR 0x0Du
 #define ASCII_MIN_FRAME 3u /* address, function, LRC */
@@ -100,14 +123,15 @@ static MODCP_NOINLINE int hex_pair(modcp_ascii_t *a, uint8_t c)
         return PAIR_HALF;
     }
     a->hex_half = false;
-    return (int)((unsigned)a->hex_hi << 4 | v);
+    const unsigned pair = ((unsigned)a->hex_hi << 4) | (unsigned)v;
+    return (int)pair;
 }
 
 /* A ':' starts a frame (in_frame; false: a run of stray characters); the timer is
  * armed here, once per frame. */
 static MODCP_NOINLINE void frame_start(modcp_link_t *l, uint32_t now_us)
 {
-    modcp_ascii_t *a = &l->fr.ascii;
+    modcp_ascii_t *a = ascii_of(l);
     l->state = MODCP_LINK_RX;
     a->in_frame = true;
     l->len = 0;
@@ -126,7 +150,7 @@ static MODCP_NOINLINE void frame_start(modcp_link_t *l, uint32_t now_us)
  * follow it to its end without storing. */
 static void discard(modcp_link_t *l, modcp_event_t ev)
 {
-    if (l->state == MODCP_LINK_RX && !l->rx_bad) {
+    if (l->state == (uint8_t)MODCP_LINK_RX && !l->rx_bad) {
         link_event(l, ev);
     }
     l->state = MODCP_LINK_SKIP;
@@ -136,7 +160,7 @@ static void discard(modcp_link_t *l, modcp_event_t ev)
 /* CR + delimiter: the end of the frame in RX or SKIP. */
 static void frame_end(modcp_link_t *l)
 {
-    const bool ours = l->state == MODCP_LINK_RX; /* else SKIP: another slave's frame */
+    const bool ours = l->state == (uint8_t)MODCP_LINK_RX; /* else SKIP: another slave's frame */
     link_arm(l, 0);
     l->state = MODCP_LINK_IDLE;
     if (l->rx_bad) {
@@ -146,7 +170,7 @@ static void frame_end(modcp_link_t *l)
         link_frame_too_long(l); /* ours only: SKIP stores nothing */
         return;
     }
-    if (l->fr.ascii.count < ASCII_MIN_FRAME || l->fr.ascii.lrc != 0u) {
+    if (ascii_of(l)->count < ASCII_MIN_FRAME || ascii_of(l)->lrc != 0u) {
         if (ours) {
             link_event(l, MODCP_EV_CRC); /* [ASCII-32] §8.5 (08)36H "LRC incorrect" */
         }
@@ -164,12 +188,12 @@ static void frame_end(modcp_link_t *l)
 /* One decoded byte of the frame in RX / SKIP. */
 static void frame_byte(modcp_link_t *l, uint8_t b)
 {
-    modcp_ascii_t *a = &l->fr.ascii;
+    modcp_ascii_t *a = ascii_of(l);
     a->lrc = (uint8_t)(a->lrc + b);
     if (a->count < ASCII_MIN_FRAME) {
         a->count++; /* only the first byte and ">= ASCII_MIN_FRAME" are looked at */
     }
-    if (l->state != MODCP_LINK_RX) {
+    if (l->state != (uint8_t)MODCP_LINK_RX) {
         return;
     }
     if (a->count == 1u && b != l->own_addr && b != 0u) {
@@ -187,7 +211,7 @@ static void frame_byte(modcp_link_t *l, uint8_t b)
 /* A character in RX / SKIP (a frame or a run of stray characters). */
 static void frame_char(modcp_link_t *l, uint8_t c, uint32_t now_us)
 {
-    modcp_ascii_t *a = &l->fr.ascii;
+    modcp_ascii_t *a = ascii_of(l);
     if (c == ASCII_COLON) {
         if (a->in_frame) {
             /* the first part is discarded ([ASCII-32] §8.5 (08)39H; another slave's: silently) */
@@ -218,14 +242,16 @@ static void frame_char(modcp_link_t *l, uint8_t c, uint32_t now_us)
         discard(l, MODCP_EV_ASCII_NOT_HEX);
     } else if (v >= 0) {
         frame_byte(l, (uint8_t)v);
+    } else {
+        /* the first character of a pair: kept */
     }
 }
 
 /* A character while a request is processed or its reply pending. */
 static void busy_track(modcp_link_t *l, uint8_t c, uint32_t now_us)
 {
-    modcp_ascii_t *a = &l->fr.ascii;
-    if (l->rs485 && l->state == MODCP_LINK_TX) {
+    modcp_ascii_t *a = ascii_of(l);
+    if (l->rs485 && l->state == (uint8_t)MODCP_LINK_TX) {
         return; /* echo of our own transmission */
     }
     l->last_us = now_us;
@@ -260,7 +286,7 @@ static void busy_track(modcp_link_t *l, uint8_t c, uint32_t now_us)
 
 static void ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
-    b &= l->fr.ascii.char_mask;
+    b &= ascii_of(l)->char_mask;
     switch (l->state) {
     case MODCP_LINK_IDLE:
         if (b == ASCII_COLON) {
@@ -271,7 +297,7 @@ static void ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
             link_event(l, MODCP_EV_ASCII_START);
         }
         l->state = MODCP_LINK_SKIP; /* ignore the rest of the stray characters */
-        l->fr.ascii.in_frame = false;
+        ascii_of(l)->in_frame = false;
         l->rx_bad = true;
         l->last_us = now_us;
         link_arm(l, l->silence_us); /* once, for the whole run */
@@ -289,21 +315,21 @@ static void ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 static void ascii_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
     (void)line_errors; /* every kind of error has the same effect on framing */
-    if (l->state != MODCP_LINK_RX && l->state != MODCP_LINK_SKIP) {
+    if (l->state != (uint8_t)MODCP_LINK_RX && l->state != (uint8_t)MODCP_LINK_SKIP) {
         return; /* between frames, after CR LF, or while busy: the frame is not touched */
     }
-    if (!l->fr.ascii.in_frame) {
+    if (!ascii_of(l)->in_frame) {
         return; /* among stray characters */
     }
     discard(l, MODCP_EV_NONE); /* link.c reported it (normal mode) */
-    l->fr.ascii.got_cr = false;
+    ascii_of(l)->got_cr = false;
     l->last_us = now_us;
 }
 
 /* RS485 normal mode (link.c error_reported): a ':' started what is followed. */
 static bool ascii_in_frame(const modcp_link_t *l)
 {
-    return l->fr.ascii.in_frame;
+    return ascii_of_c(l)->in_frame;
 }
 
 /* EOF: hand the frame over. RX / SKIP: the character delay time has passed since the
@@ -311,7 +337,7 @@ static bool ascii_in_frame(const modcp_link_t *l)
 static bool ascii_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
     (void)now_us;
-    if (l->state == MODCP_LINK_EOF) {
+    if (l->state == (uint8_t)MODCP_LINK_EOF) {
         uint32_t room = ((uint32_t)l->size - 3u) / 2u; /* binary bytes the reply may have */
         if (room > l->cap) {
             room = l->cap;
@@ -324,10 +350,10 @@ static bool ascii_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         l->busy_rx = false;
         return true;
     }
-    if (l->state != MODCP_LINK_RX && l->state != MODCP_LINK_SKIP) {
+    if (l->state != (uint8_t)MODCP_LINK_RX && l->state != (uint8_t)MODCP_LINK_SKIP) {
         return false; /* stale or spurious expiry */
     }
-    if (l->fr.ascii.in_frame) {
+    if (ascii_of(l)->in_frame) {
         discard(l, MODCP_EV_ZVZ); /* character delay time exceeded inside a frame */
     }
     l->state = MODCP_LINK_IDLE;
@@ -343,8 +369,10 @@ static uint16_t ascii_encode(modcp_link_t *l, uint16_t pdu_len)
     }
     l->buf[n] = modcp_lrc(l->buf, n);
     /* in place from the back: byte i goes to 1 + 2i and 2 + 2i, both beyond i */
-    for (uint32_t i = n + 1u; i-- > 0u;) {
-        uint8_t b = l->buf[i];
+    uint32_t i = n + 1u;
+    while (i > 0u) {
+        i--;
+        const uint8_t b = l->buf[i];
         l->buf[1u + 2u * i] = hex_digit(b >> 4);
         l->buf[2u + 2u * i] = hex_digit(b & 0x0Fu);
     }
@@ -362,7 +390,7 @@ static const modcp_framing_ops_t ascii_ops = {.on_byte = ascii_on_byte,
 
 const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p)
 {
-    l->fr.ascii.char_mask = p->data_bits == 7u ? 0x7Fu : 0xFFu;
+    ascii_of(l)->char_mask = p->data_bits == 7u ? 0x7Fu : 0xFFu;
     /* the character delay time plays t3.5's part */
     l->silence_us = (uint32_t)p->ascii_timeout_ms * 1000u;
     return l->cap >= ASCII_MIN_FRAME && l->size >= 11u ? &ascii_ops : NULL;

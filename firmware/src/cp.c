@@ -45,8 +45,7 @@ static void line_reply(modcp_cp_t *cp, uint16_t out_len, uint32_t now_us)
 {
     /* FC05 / FC06: the reply is the request, unchanged (out_len is the request's
      * length; RTU sends the frame with its CRC as received) */
-    cp->link.reply_same = cp->pdu.same;
-    modcp_link_reply(&cp->link, out_len, now_us);
+    modcp_link_reply(&cp->link, out_len, cp->pdu.same, now_us);
 #if MODCP_WITH_RS232_SIGNALS
     if (cp->sig.enabled) { /* disabled signals are idle (see sig_on_timer) */
         modcp_sig_on_reply(&cp->sig, &cp->link, now_us);
@@ -130,7 +129,7 @@ bool modcp_cp_ready(const modcp_cp_t *cp)
  * or (f NULL) on the result of its job, then its next job (a request of the extended set
  * may need several in sequence: modcp_pdu_complete() then returns the next) or the end
  * of the request. The request's PDU, where the reply is built, is at buf + 1 (after the
- * address, RTU and ASCII alike: rtu_deliver, ascii_on_timer); the frame is not kept.
+ * address, RTU and ASCII alike: rtu.c deliver, ascii_on_timer); the frame is not kept.
  * Built for size one copy, shared by the end of a frame and the poll; built for speed
  * inline in each (no call and no stack frame of its own per request). */
 static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, modcp_frame_t *f,
@@ -141,7 +140,8 @@ static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, modcp_frame
     uint16_t out_len = 0;
     modcp_pdu_action_t a;
     if (f != NULL) {
-        a = modcp_pdu_request(&cp->pdu, env, f->addr, f->pdu, f->pdu_len, f->pdu_cap, &out_len);
+        uint8_t *const req = f->pdu; /* in cp->buf, after the address */
+        a = modcp_pdu_request(&cp->pdu, env, f->addr, req, f->pdu_len, f->pdu_cap, &out_len);
     } else {
         a = modcp_pdu_complete(&cp->pdu, env, cp->job.event, pdu, &out_len);
     }
@@ -158,7 +158,7 @@ static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, modcp_frame
     modcp_pdu_finished(&cp->pdu, env, a, now_us); /* FC11/12 accounting, comm loss */
     uint8_t delim;
     if (modcp_ext_take_delimiter(&cp->ext, &delim)) { /* FC08 sub 03 / 01 */
-        cp->link.ascii_delim = delim; /* the ASCII input delimiter */
+        modcp_link_set_delimiter(&cp->link, delim); /* the ASCII input delimiter */
     }
 #endif
     if (a == MODCP_PDU_REPLY) {
@@ -168,9 +168,9 @@ static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, modcp_frame
     }
 }
 
-/* Cold part of modcp_cp_on_rx: RS232 automatic signals configured (DSR gates the
- * reception, a character ends the time to RTS off). */
-static MODCP_NOINLINE void rx_signals(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
+/* RS232 automatic signals configured: DSR gates the reception, a character ends the
+ * time to RTS off. */
+static void rx_signals(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
 {
     if (!sig_rx_allowed(cp)) {
         return; /* RS232 automatic signals: no reception while DSR is OFF */
@@ -180,18 +180,31 @@ static MODCP_NOINLINE void rx_signals(modcp_cp_t *cp, uint8_t byte, uint32_t now
     modcp_link_on_byte(&cp->link, byte, now_us);
 }
 
-/* The receive interrupt's entry. Without RS232 automatic signals it only notes that
- * the status area may change and tail-calls the link (the framing's store and CRC
- * step). The LEDs and the end of a wire break read the link's record of the last
- * received character (link.last_us) at poll time: nothing else runs per byte. */
-void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
+/* The cold part of modcp_cp_on_rx: every character the link does not store at once (a
+ * frame's start and end, the framing's checks, ASCII) and every one with the RS232
+ * automatic signals. */
+static MODCP_NOINLINE void rx_other(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
 {
     if (sig_enabled(cp)) {
         rx_signals(cp, byte, now_us);
         return;
     }
     cp->published = false; /* see publish() */
-    cp->link.ops->on_byte(&cp->link, byte, now_us); /* = modcp_link_on_byte(), inlined */
+    modcp_link_on_byte(&cp->link, byte, now_us);
+}
+
+/* The receive interrupt's entry. A character inside a frame the link stores as it is
+ * (RTU) costs a store, its time and a mark that the status area may change
+ * (link_rx_store); the rest is rx_other. The LEDs and the end of a wire break read the
+ * link's record of the last received character (link.last_us) at poll time: nothing
+ * else runs per byte. */
+void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
+{
+    if (!sig_enabled(cp) && link_rx_store(&cp->link, byte, now_us)) {
+        cp->published = false; /* see publish() */
+        return;
+    }
+    rx_other(cp, byte, now_us);
 }
 
 /* Characters back to back (DMA, FIFO): the link's block path; with RS232 automatic
@@ -346,7 +359,7 @@ static void configure(modcp_cp_t *cp)
                         (uint32_t)cp->params.cpu_timeout_ms * 1000u);
     modcp_link_configure(&cp->link, &cp->params);
 #if MODCP_WITH_EXTENDED && MODCP_WITH_ASCII
-    cp->link.ascii_delim = cp->ext.ascii_delimiter; /* FC08 sub 03's, kept */
+    modcp_link_set_delimiter(&cp->link, cp->ext.ascii_delimiter); /* FC08 sub 03's, kept */
 #endif
 #if MODCP_WITH_RS232_SIGNALS
     modcp_sig_configure(&cp->sig, &cp->params);

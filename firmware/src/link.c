@@ -46,7 +46,9 @@ static void reset_rx(modcp_link_t *l)
     l->rx_bad = false;
     l->rx_overflow = false;
     l->busy_rx = false;
-    memset(&l->fr, 0, sizeof l->fr);
+    l->rx_stop = 0;
+    l->run_stop = 0;
+    (void)memset(&l->fr, 0, sizeof l->fr);
 }
 
 /* A disabled (or not yet configured) link, state IDLE: the line and the timer are
@@ -72,8 +74,9 @@ static const modcp_framing_ops_t off_ops = {.on_byte = off_byte, .on_timer = off
 static const modcp_framing_ops_t *framing_configure(modcp_link_t *l, const modcp_params_t *p)
 {
     switch (p->framing) {
-    case MODCP_FRAMING_RTU:
-        return rtu_configure(l, p);
+    case MODCP_FRAMING_RTU: /* interference suppression: modem mode, rtu_modem.c */
+        return p->opmode == (uint8_t)MODCP_OPMODE_SUPPRESS ? rtu_modem_configure(l, p)
+                                                          : rtu_configure(l, p);
 #if MODCP_WITH_ASCII
     case MODCP_FRAMING_ASCII:
         return ascii_configure(l, p);
@@ -83,17 +86,11 @@ static const modcp_framing_ops_t *framing_configure(modcp_link_t *l, const modcp
     }
 }
 
-void link_frame_too_long(modcp_link_t *l)
-{
-    l->diag->frames_too_long = (uint16_t)(l->diag->frames_too_long + 1u);
-    link_event(l, MODCP_EV_FRAME_TOO_LONG);
-}
-
 /* Back to receiving after a request. If a frame that started while we were busy is
  * still arriving (RTU: less than t3.5 since its last character), follow its tail in
  * SKIP so it is never taken for a new request. Without a time (have_now false) the
  * timer is armed for a full t3.5 and its expiry or the next character decides. */
-static MODCP_SIZE_NOINLINE void resume_rx(modcp_link_t *l, uint32_t now_us, bool have_now)
+static void resume_rx(modcp_link_t *l, uint32_t now_us, bool have_now)
 {
     if (l->busy_rx) {
         uint32_t gap = have_now ? now_us - l->last_us : 0u;
@@ -114,7 +111,7 @@ static MODCP_SIZE_NOINLINE void resume_rx(modcp_link_t *l, uint32_t now_us, bool
 void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag, uint8_t *buf,
                      uint16_t cap)
 {
-    memset(l, 0, sizeof *l);
+    (void)memset(l, 0, sizeof *l);
     l->hal = hal;
     l->diag = diag;
     l->buf = buf;
@@ -164,41 +161,55 @@ void modcp_link_disable(modcp_link_t *l)
     stop(l);
 }
 
-/* The hot path: straight to the framing (a disabled link has the "off" backend). */
+/* A character: stored by the link (the hot path) or given to the framing. */
 void modcp_link_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
-    l->ops->on_byte(l, b, now_us);
-}
-
-/* Characters back to back: the framing's block path (RTU built for speed: store and CRC
- * in one loop), or its on_byte for each at the time it ended (ASCII; RTU built for size). A disabled link has
- * the "off" backend (its on_byte ignores the line). A block holds no silence, so it
- * never contains the end of one frame and the start of the next. Only
- * modcp_cp_on_rx_block calls this: a port that never does links none of it. */
-/* Built for speed block_bytes stays out of the RTU block path; for size it is the only
- * one (no framing has a block path) and is inlined. */
-static MODCP_SPEED_NOINLINE void block_bytes(modcp_link_t *l, const uint8_t *b, uint16_t n,
-                                            uint32_t end_us)
-{
-    uint32_t t = end_us - (uint32_t)(n - 1u) * l->char_us;
-    for (uint16_t k = 0; k < n; k++) {
-        l->ops->on_byte(l, b[k], t);
-        t += l->char_us;
+    if (!link_rx_store(l, b, now_us)) {
+        l->ops->on_byte(l, b, now_us); /* (a disabled link has the "off" backend) */
     }
 }
 
+/* Characters back to back (the k-th of n ended at end_us - (n-1-k) * char_us), with the
+ * effect of the characters one by one at their ends: the first (the only one that can
+ * follow a silence: a frame's start, the t1.5 check) goes to the framing, then each run
+ * the framing lets the link store (below l->run_stop) is copied at once, every other
+ * character goes to the framing at its time. A block holds no silence, so it never
+ * contains the end of one frame and the start of the next. Only modcp_cp_on_rx_block
+ * calls this: a port that never does links none of it. */
 void modcp_link_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us)
 {
     if (n == 0u) {
         return;
     }
-#if !defined(__OPTIMIZE_SIZE__) /* built for size there is no block path */
-    if (l->ops->on_block != NULL) {
-        l->ops->on_block(l, b, n, end_us);
-        return;
+    const uint32_t c = l->char_us;
+    uint32_t t = end_us - ((uint32_t)n - 1u) * c; /* end of the character at b[0] */
+    l->ops->on_byte(l, b[0], t);
+#if defined(__OPTIMIZE_SIZE__) /* -Os (the MCU builds): a character at a time (68 B less) */
+    for (uint16_t k = 1; k < n; k++) {
+        t += c;
+        modcp_link_on_byte(l, b[k], t);
+    }
+#else
+    uint16_t k = 1;
+    while (k < n) {
+        t += c; /* end of the character at b[k] */
+        const uint16_t len = l->len;
+        if (len < l->run_stop) {
+            uint16_t m = (uint16_t)(n - k); /* a run of our frame: as many as fit */
+            if (m > (uint16_t)(l->run_stop - len)) {
+                m = (uint16_t)(l->run_stop - len);
+            }
+            (void)memcpy(&l->buf[len], &b[k], m);
+            l->len = (uint16_t)(len + m);
+            k = (uint16_t)(k + m);
+            t += ((uint32_t)m - 1u) * c;
+            l->last_us = t;
+        } else {
+            l->ops->on_byte(l, b[k], t);
+            k++;
+        }
     }
 #endif
-    block_bytes(l, b, n, end_us); /* for speed out of line: the RTU path needs no stack frame */
 }
 
 /* Whether a line error is reported ((08)0CH / (08)0DH): in normal mode; never in
@@ -215,7 +226,7 @@ static bool error_reported(const modcp_link_t *l, uint32_t now_us)
     if (!l->rs485) {
         return true;
     }
-    return (l->state == MODCP_LINK_RX || l->state == MODCP_LINK_SKIP) &&
+    return (l->state == (uint8_t)MODCP_LINK_RX || l->state == (uint8_t)MODCP_LINK_SKIP) &&
            now_us - l->last_us < LINK_SILENCE(l) && l->ops->in_frame(l);
 }
 
@@ -240,7 +251,7 @@ bool modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 
 bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
-    if (l->state == MODCP_LINK_TURNAROUND) {
+    if (l->state == (uint8_t)MODCP_LINK_TURNAROUND) {
         uint32_t waited = now_us - l->tx_at_us;
         if (TX_HOLD(l)) {
             return false; /* RS232 automatic signals: signals.c releases the reply */
@@ -258,11 +269,12 @@ bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
     return l->ops->on_timer(l, now_us, f);
 }
 
-void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us)
+void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, bool same, uint32_t now_us)
 {
-    if (l->state != MODCP_LINK_BUSY) {
+    if (l->state != (uint8_t)MODCP_LINK_BUSY) {
         return; /* (a disabled link is IDLE) */
     }
+    l->reply_same = same;
     l->tx_at_us = now_us;
     l->len = l->ops->encode(l, pdu_len); /* now the reply's length on the line */
     if (l->len == 0u) {
@@ -287,7 +299,7 @@ void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us)
 
 void modcp_link_done(modcp_link_t *l)
 {
-    if (l->state != MODCP_LINK_BUSY) {
+    if (l->state != (uint8_t)MODCP_LINK_BUSY) {
         return;
     }
     resume_rx(l, 0, false);
@@ -304,7 +316,7 @@ void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us)
     if (l->tx_on) { /* (with RS232 signals: already at modcp_link_tx_complete) */
         modcp_link_tx_complete(l, now_us);
     }
-    if (l->state != MODCP_LINK_TX) {
+    if (l->state != (uint8_t)MODCP_LINK_TX) {
         return;
     }
     if (l->rs485) {
@@ -315,7 +327,7 @@ void modcp_link_on_tx_done(modcp_link_t *l, uint32_t now_us)
 
 void modcp_link_tx_release(modcp_link_t *l, bool send, uint32_t now_us)
 {
-    if (l->state != MODCP_LINK_TURNAROUND) {
+    if (l->state != (uint8_t)MODCP_LINK_TURNAROUND) {
         return;
     }
     if (send) {
@@ -325,9 +337,14 @@ void modcp_link_tx_release(modcp_link_t *l, bool send, uint32_t now_us)
     }
 }
 
+void modcp_link_set_delimiter(modcp_link_t *l, uint8_t delim)
+{
+    l->ascii_delim = delim;
+}
+
 void modcp_link_rx_discard(modcp_link_t *l)
 {
-    if (l->state == MODCP_LINK_RX) {
+    if (l->state == (uint8_t)MODCP_LINK_RX) {
         l->rx_bad = true;
     }
 }

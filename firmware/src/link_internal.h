@@ -10,14 +10,19 @@
 
 /* A framing backend. The link calls it and never asks which one it runs; the backend
  * keeps its own state in l->fr and uses the link's shared fields (state, buffer, len,
- * rx_bad, rx_overflow, last_us, busy_rx) and configuration.
+ * rx_stop, run_stop, rx_bad, rx_overflow, last_us, busy_rx) and configuration.
+ *
+ * Receive hot path: a framing that stores characters as they are (RTU) sets l->rx_stop
+ * (and l->run_stop) to the buffer index up to which the link stores them itself
+ * (link_rx_store: the character and its time, nothing else); every other character goes
+ * to on_byte. Both are 0 while no frame is stored.
  *
  * Timer contract: the backend arms the one-shot timer (link_arm) once when a frame
  * starts (RX / SKIP entered from IDLE), never per character; it keeps l->last_us at the
  * end of the last character of the frame. The link handles every expiry in RX / SKIP
  * that comes before LINK_SILENCE(l) has passed since l->last_us by re-arming the rest. */
 typedef struct modcp_framing_ops {
-    /* A received character (the hot path: per byte a store and a check step). */
+    /* A received character the link did not store. */
     void (*on_byte)(modcp_link_t *l, uint8_t b, uint32_t now_us);
     /* A line error in place of a character (counted and reported by link.c). */
     void (*on_error)(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
@@ -32,23 +37,38 @@ typedef struct modcp_framing_ops {
     /* The reply PDU at buf + 1 (address at buf[0]) framed in place; its length on the
      * line, 0 if it does not fit. */
     uint16_t (*encode)(modcp_link_t *l, uint16_t pdu_len);
-#if !defined(__OPTIMIZE_SIZE__)
-    /* Optional: n > 0 characters back to back, the last one ended at end_us (the k-th
-     * of n at end_us - (n-1-k) * char_us); must have exactly the effect of n on_byte
-     * calls at those times. NULL: the link calls on_byte for each. Built for size
-     * (-Os: the MCU builds) there is none: the link always does. */
-    void (*on_block)(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us);
-#endif
 } modcp_framing_ops_t;
 
-/* A framing's part of modcp_link_configure() (rtu_configure, ascii_configure; the link
- * calls the one of the framing parameter): its state (already zeroed), and
- * l->silence_us (built with ASCII). Returns the ops to run (the backend may have variants, e.g. RTU with
- * and without the t1.5 check), NULL if the buffer is too small. */
+/* A framing's part of modcp_link_configure() (the link calls the one of the framing and
+ * operating mode parameters): its state (already zeroed), and l->silence_us (built with
+ * ASCII). Returns the ops to run (a backend may have variants, e.g. RTU with and without
+ * the t1.5 check), NULL if the buffer is too small. */
 const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p);
-#if MODCP_WITH_ASCII
-const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p);
-#endif
+const modcp_framing_ops_t *rtu_modem_configure(modcp_link_t *l, const modcp_params_t *p);
+const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p); /* ascii.c:
+                                                                  built with ASCII only */
+
+/* The receive hot path (the port's receive interrupt, modcp_cp_on_rx): a character of a
+ * frame the framing stores as it is, below stop (l->rx_stop; a framing's own entry, e.g.
+ * with the t1.5 check, l->run_stop), is stored with its time; nothing else. False: the
+ * framing's on_byte decides. */
+static inline bool link_store_below(modcp_link_t *l, uint16_t stop, uint8_t b,
+                                    uint32_t now_us)
+{
+    const uint16_t n = l->len;
+    if (n >= stop) {
+        return false;
+    }
+    l->buf[n] = b;
+    l->len = (uint16_t)(n + 1u);
+    l->last_us = now_us;
+    return true;
+}
+
+static inline bool link_rx_store(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    return link_store_below(l, l->rx_stop, b, now_us);
+}
 
 /* The silence that ends a frame (RTU t3.5, ASCII the character delay time). */
 #if MODCP_WITH_ASCII
@@ -71,7 +91,7 @@ static inline void link_arm(const modcp_link_t *l, uint32_t us)
  * or SKIP is enabled: stopping it resets the state to IDLE.) */
 static inline bool link_timer_rearm(const modcp_link_t *l, uint32_t now_us)
 {
-    if (l->state != MODCP_LINK_RX && l->state != MODCP_LINK_SKIP) {
+    if (l->state != (uint8_t)MODCP_LINK_RX && l->state != (uint8_t)MODCP_LINK_SKIP) {
         return false;
     }
     uint32_t gap = now_us - l->last_us;
@@ -83,12 +103,12 @@ static inline bool link_timer_rearm(const modcp_link_t *l, uint32_t now_us)
 }
 
 /* The link's diagnostics (l->diag, never NULL: modcp_link_init). */
-static inline void link_event(const modcp_link_t *l, modcp_event_t ev)
+static inline void link_event(modcp_link_t *l, modcp_event_t ev)
 {
     modcp_diag_event(l->diag, ev);
 }
 
-static inline void link_count(const modcp_link_t *l, modcp_counter_t c)
+static inline void link_count(modcp_link_t *l, modcp_counter_t c)
 {
     modcp_diag_count(l->diag, c);
 }
@@ -106,43 +126,11 @@ static inline void link_mark_bad(modcp_link_t *l)
 }
 
 /* A frame for us was too long for the buffer: (08)16H. */
-void link_frame_too_long(modcp_link_t *l);
-
-/* ---- shared by the RTU variants (rtu.c, rtu_modem.c) ---- */
-#define RTU_MIN_FRAME 4u /* address, function, CRC */
-/* modcp_rtu_t.flags (modem mode) */
-#define RTU_M_LEAD 0x01u  /* the stretch began with our address or 0 */
-#define RTU_M_FIRST 0x02u /* the candidate is the stretch's first character */
-#define RTU_M_OPEN 0x04u  /* a wrong CRC at the length: continue to t3.5 (FC08, FC43) */
-#define RTU_M_SBAD 0x08u  /* the stretch around the candidate had a line error */
-void rtu_count_char(modcp_rtu_t *r);
-/* A character of the stretch that is not part of our frame (bus counters only). */
-void rtu_fold(modcp_link_t *l, uint8_t b);
-/* Our address (or 0) starts our frame (modem mode: a candidate) at buf[0]. */
-void rtu_cand_start(modcp_link_t *l, uint8_t b);
-/* Our frame (modem mode: the candidate) given up: its first n characters folded into
- * the stretch, state SKIP. */
-void rtu_unclaim(modcp_link_t *l, uint16_t n);
-/* t3.5 after a frame followed in SKIP (modem mode: a stretch without a frame). */
-void rtu_stretch_end(modcp_link_t *l);
-/* A character (or line error) while a request is processed or its reply pending. */
-void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us);
-/* A state RTU never uses: (0E)11H, back to idle. */
-void rtu_internal_error(modcp_link_t *l);
-/* A formally correct frame in the buffer: counted, handed over (BUSY). */
-bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f);
-/* The receive automaton of both variants (rtu.c). The hot path: a character of the
- * frame (modem mode: the candidate) below r->stop (normal operation: the capacity) is
- * stored and goes through one CRC step. Where modem mode differs (the characters of a
- * stretch it looks at, line errors, t1.5, the end of our frame) it calls rtu_m_* by
- * l->modem. */
-void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us);
-void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us);
-void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
-/* Modem mode's part of that automaton (rtu_modem.c). */
-void rtu_m_push(modcp_link_t *l, uint8_t b);   /* a character of the stretch / candidate */
-void rtu_m_cand_bad(modcp_link_t *l);          /* a line error in the candidate */
-uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len);
+static inline void link_frame_too_long(modcp_link_t *l)
+{
+    l->diag->frames_too_long = (uint16_t)(l->diag->frames_too_long + 1u);
+    link_event(l, MODCP_EV_FRAME_TOO_LONG);
+}
 
 /* Moved from modcp/link.h: the core's own interface. */
 /* hal: the port's (never NULL, see link_arm); diag: where the link counts and reports,
@@ -162,8 +150,11 @@ bool modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us);
 /* Timer expiry. Returns true when a valid frame for us or broadcast is ready in *f (f
  * never NULL); the link is then BUSY until modcp_link_reply() or modcp_link_done(). */
 bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f);
-/* Send the reply PDU that was written to f->pdu[0 .. pdu_len). */
-void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, uint32_t now_us);
+/* Send the reply PDU that was written to f->pdu[0 .. pdu_len); same: it is the request's
+ * PDU, unchanged (FC05 / FC06: RTU sends the frame as received, its CRC in place). */
+void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, bool same, uint32_t now_us);
+/* ASCII: the end of a frame is CR and this character (FC08 sub-function 03). */
+void modcp_link_set_delimiter(modcp_link_t *l, uint8_t delim);
 /* Request finished without a reply (broadcast, error). */
 void modcp_link_done(modcp_link_t *l);
 /* Transmission complete: the driver is released and the link receives again. */

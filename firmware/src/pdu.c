@@ -26,30 +26,13 @@
 #include "commlog_internal.h"
 #include "diag_internal.h"
 #include "events_internal.h"
+#include "fc_table_internal.h"
 #include "ext_internal.h"
 #include "quantity_internal.h"
 
-/* ---- the function-code table ------------------------------------------------------ */
+/* ---- the function-code table (fc_table.c) ------------------------------------------ */
 
-/* In fc_row_t.lim next to the limit class: the request PDU has exactly min_len bytes
- * (without it: at least min_len, the handler checks the rest against the byte count). */
-#define L_EXACT 0x80u
-
-/* The handlers, by index (a row holds the index: 4-byte rows). */
-enum {
-    H_BITS,  /* pdu_rw.c: FC01 / 02 / 05 / 15 */
-    H_REGS,  /* pdu_rw.c: FC03 / 04 / 06 / 16 */
-    H_DIAG0, /* pdu_rw.c: FC08 sub 0000 (cp341 set) */
-#if MODCP_WITH_EXTENDED
-    H_FC08, /* serial_diag.c */
-    H_FC11,
-    H_FC12,
-    H_FC17, /* devid.c */
-    H_FC43,
-    H_FC22, /* pdu_ext.c */
-    H_FC23,
-#endif
-};
+/* The handlers, by the index a row of the table holds (fc_table_internal.h: H_*). */
 static const modcp_pdu_handler_t handlers[] = {
     [H_BITS] = modcp_pdu_bits, [H_REGS] = modcp_pdu_regs, [H_DIAG0] = modcp_pdu_diag0,
 #if MODCP_WITH_EXTENDED
@@ -59,77 +42,23 @@ static const modcp_pdu_handler_t handlers[] = {
 #endif
 };
 
-typedef struct { /* 4 bytes */
-    uint8_t min_len; /* request PDU length, function code included */
-    uint8_t flags;   /* F_*; 0: no function code */
-    uint8_t lim;     /* MODCP_QLIM_*: quantity at pdu[3..4], limits in quantity.c;
-                        | L_EXACT: the length is exactly min_len */
-    uint8_t run;     /* H_*: the handler */
-} fc_row_t;
-_Static_assert(MODCP_QLIM_COUNT <= L_EXACT, "L_EXACT shares the byte of the limit class");
-
-#if MODCP_WITH_EXTENDED
-#define EXT_ONLY(...) __VA_ARGS__,
-/* Rows past the last fc below 0x18 (row_of): FC43 (2BH) and FC08 of the extended set
- * (FC08's own row is the cp341 set's). */
-#define ROW_FC43 0x18u
-#define ROW_FC08_EXT 0x19u
-#define FC_ROWS 0x1Au
-#else
-#define EXT_ONLY(...)
-#define FC_ROWS 0x11u
-#endif
-#define BOTH (F_CP341 | F_EXT)
-
-/* The function codes, indexed by fc (one row per function set where the handlers
- * differ: FC08). */
-static const fc_row_t fc_table[FC_ROWS] = {
-    /* fc                    {min, function sets and flags,                         quantity limits | exact length,  handler} */
-    [0x01u] =                {5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS | L_EXACT, H_BITS},
-    [0x02u] =                {5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_BITS | L_EXACT, H_BITS},
-    [0x03u] =                {5u,  BOTH | F_ADDR | F_R32 | F_SCAN,                    MODCP_QLIM_READ_REGS | L_EXACT, H_REGS},
-    [0x04u] =                {5u,  BOTH | F_ADDR,                                     MODCP_QLIM_READ_REGS | L_EXACT, H_REGS},
-    [0x05u] =                {5u,  BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_NONE | L_EXACT,      H_BITS},
-    [0x06u] =                {3u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_NONE,                H_REGS},
-    [0x08u] =                {3u,  F_CP341,                                           MODCP_QLIM_NONE,                H_DIAG0},
-    [0x0Fu] =                {6u,  BOTH | F_ADDR | F_BCAST | F_WRITE,                 MODCP_QLIM_WRITE_BITS,          H_BITS},
-    [0x10u] =                {6u,  BOTH | F_ADDR | F_R32 | F_SCAN | F_BCAST | F_WRITE, MODCP_QLIM_WRITE_REGS,          H_REGS},
-    EXT_ONLY([ROW_FC08_EXT] ={3u,  F_EXT,                                             MODCP_QLIM_NONE,                H_FC08})
-    EXT_ONLY([0x0Bu] =       {1u,  F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE | L_EXACT,      H_FC11})
-    EXT_ONLY([0x0Cu] =       {1u,  F_EXT | F_NOCOUNT,                                 MODCP_QLIM_NONE | L_EXACT,      H_FC12})
-    EXT_ONLY([0x11u] =       {1u,  F_EXT,                                             MODCP_QLIM_NONE | L_EXACT,      H_FC17})
-    EXT_ONLY([0x16u] =       {7u,  F_EXT | F_WRITE,                                   MODCP_QLIM_NONE | L_EXACT,      H_FC22})
-    EXT_ONLY([0x17u] =       {10u, F_EXT | F_WRITE,                                   MODCP_QLIM_NONE,                H_FC23})
-    EXT_ONLY([ROW_FC43] =    {2u,  F_EXT,                                             MODCP_QLIM_NONE,                H_FC43}) /* 2BH */
-};
-
 /* The row of fc in the function set of p (NULL: not in it). Built without the
  * extended set, the engine is the cp341 set whatever p says. */
-static const fc_row_t *row_of(const modcp_params_t *p, uint8_t fc)
+static const modcp_fc_row_t *row_of(const modcp_params_t *p, uint8_t fc)
 {
 #if MODCP_WITH_EXTENDED
     const uint8_t set = p->fset == (uint8_t)MODCP_FSET_EXTENDED ? F_EXT : F_CP341;
-    unsigned i = fc;
-    if (fc == 0x2Bu) {
-        i = ROW_FC43;
-    } else if (fc >= ROW_FC43) {
-        return NULL;
-    }
 #else
     (void)p;
     const uint8_t set = F_CP341;
-    const unsigned i = fc;
-    if (fc >= FC_ROWS) {
-        return NULL;
-    }
 #endif
-    const fc_row_t *r = &fc_table[i];
-    if ((r->flags & set) != 0u) {
+    const modcp_fc_row_t *r = modcp_fc_row(fc);
+    if (r != NULL && (r->flags & set) != 0u) {
         return r;
     }
 #if MODCP_WITH_EXTENDED
     if (fc == 0x08u && set == F_EXT) {
-        return &fc_table[ROW_FC08_EXT];
+        return &modcp_fc_table[MODCP_FC_ROW_FC08_EXT];
     }
 #endif
     return NULL; /* no such fc, or not in this set */
@@ -158,7 +87,7 @@ uint16_t modcp_pdu_exception(uint8_t *pdu, uint8_t fc, uint8_t code)
 #define EXC_ROW(NAME, cls, num, exc, ...) EXC_ENTRY_##exc(cls, num)
 static const uint16_t exc_rows[] = {MODCP_EVENT_ROWS(EXC_ROW)};
 #undef EXC_ROW
-#define EXC_CLASS_ROW(NAME, cls, num, ...) _Static_assert((cls) < 16u, #NAME ": class < 10H");
+#define EXC_CLASS_ROW(NAME, cls, num, ...) _Static_assert((unsigned)(cls) < 16u, #NAME ": class < 10H");
 MODCP_EVENT_ROWS(EXC_CLASS_ROW)
 #undef EXC_CLASS_ROW
 
@@ -209,7 +138,8 @@ static inline modcp_pdu_action_t encode(modcp_pdu_t *s, const modcp_pdu_env_t *e
                                  uint16_t *out_len)
 {
     if (s->broadcast) {
-        modcp_diag_count(env->diag, MODCP_CNT_NO_RESPONSE);
+        modcp_diag_t *const d = env->diag;
+        modcp_diag_count(d, MODCP_CNT_NO_RESPONSE);
         return MODCP_PDU_NO_REPLY;
     }
     if (s->x.echo != 0u) {
@@ -252,13 +182,16 @@ static bool listen_only(modcp_pdu_t *s, const modcp_pdu_env_t *env, const uint8_
         return false;
     }
     s->x.quiet = 1;
-    modcp_diag_count(env->diag, MODCP_CNT_NO_RESPONSE);
+    modcp_diag_t *const d = env->diag;
+    modcp_diag_count(d, MODCP_CNT_NO_RESPONSE);
     if (!s->broadcast && s->fc == 0x08u && len == 5u && modcp_get16(pdu + 1) == 0x0001u) {
         uint16_t data = modcp_get16(pdu + 3);
         if (data == 0x0000u) {
             s->x.after = MODCP_X_AFTER_RESTART;
         } else if (data == 0xFF00u) {
             s->x.after = MODCP_X_AFTER_RESTART_CLEAR;
+        } else {
+            /* another value: the request is monitored only */
         }
     }
     return true;
@@ -271,7 +204,7 @@ static modcp_pdu_action_t dispatch(modcp_pdu_t *s, const modcp_pdu_env_t *env, u
     if (!env->fb_ready) {
         return modcp_pdu_err(s, MODCP_EV_FB_NOT_RUNNING, MODCP_EXC_DEVICE_FAILURE);
     }
-    const fc_row_t *r = row_of(env->p, s->fc);
+    const modcp_fc_row_t *r = row_of(env->p, s->fc);
     if (r == NULL || (s->broadcast && (r->flags & F_BCAST) == 0u)) {
         /* a broadcast stays silent: (08)30H, else (08)31H */
         return modcp_pdu_err(s, s->broadcast ? MODCP_EV_BCAST_FC : MODCP_EV_ILLEGAL_FC,
@@ -279,11 +212,11 @@ static modcp_pdu_action_t dispatch(modcp_pdu_t *s, const modcp_pdu_env_t *env, u
     }
     s->fcflags = r->flags;
     modcp_pdu_handler_t h = handlers[r->run];
-    if (len < r->min_len || ((r->lim & L_EXACT) != 0u && len != r->min_len)) {
+    if (len < r->min_len || ((r->form & FC_EXACT) != 0u && len != r->min_len)) {
         return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
     }
     if ((r->flags & F_ADDR) != 0u) {
-        const uint8_t lim = (uint8_t)(r->lim & ~L_EXACT);
+        const uint8_t lim = (uint8_t)(r->form & FC_LIM);
         s->addr = modcp_get16(pdu + 1);
         uint16_t qty = lim != (uint8_t)MODCP_QLIM_NONE ? modcp_get16(pdu + 3) : 1u;
         bool scan = false;
@@ -311,7 +244,8 @@ modcp_pdu_action_t modcp_pdu_request(modcp_pdu_t *s, const modcp_pdu_env_t *env,
                                      uint8_t *pdu, uint16_t len, uint16_t cap, uint16_t *out_len)
 {
     *out_len = 0;
-    memset(s, 0, MODCP_PDU_CLEARED); /* the request's state; the rest is set before use */
+    const size_t cleared = MODCP_PDU_CLEARED; /* the request's state; the rest is set before use */
+    (void)memset(s, 0, cleared);
     s->job.op = 0;
     if (len < 1u) {
         return MODCP_PDU_NO_REPLY;
@@ -370,6 +304,8 @@ static uint8_t send_event(const modcp_pdu_t *s, const modcp_comm_t *c)
         ev |= MODCP_COMM_TX_ABORT_EXC;
     } else if (s->x.exc != (uint8_t)MODCP_EXC_NONE) {
         ev |= MODCP_COMM_TX_READ_EXC; /* 01 .. 03 (the engine answers no 05 .. 07) */
+    } else {
+        /* no exception */
     }
     if (s->x.timeout != 0u && write_op(s->job.op)) {
         ev |= MODCP_COMM_TX_WRITE_TIMEOUT;

@@ -21,6 +21,7 @@
 #include <stdint.h>
 
 #include "modcp/pdu.h"
+#include "fc_table_internal.h"
 
 /* Modbus exception codes (Application Protocol V1.1b3 §7). */
 enum {
@@ -35,18 +36,8 @@ enum {
     MODCP_EXC_NAK = 7,
 };
 
-/* Flags of a function-code table row (pdu.c); the handlers see them in s->fcflags. */
-enum {
-    F_CP341 = 1u << 0, /* in function set cp341 (the manual's, [RTU-2003] §6) */
-    F_EXT = 1u << 1,   /* in function set extended (docs/extended-functions.md) */
-    F_BCAST = 1u << 2, /* broadcast may run it (docs/diagnostics.md: FC 05, 06, 15, 16) */
-    F_ADDR = 1u << 3,  /* start address at pdu[1..2] (s->addr) */
-    F_R32 = 1u << 4,   /* holding registers: width by the start address ([ASCII-32] §4.5) */
-    F_SCAN = 1u << 5,  /* extended: on scanner addresses the scanner's handler runs */
-    F_WRITE = 1u << 6, /* writes controller memory (arms the comm-loss supervision) */
-    F_NOCOUNT = 1u << 7, /* not counted by the FC11 event counter (FC11, FC12) */
-};
-
+/* The flags of a function-code table row (F_*, fc_table_internal.h) the handlers see
+ * in s->fcflags. */
 /* A handler of the function-code table: the request is pdu[0 .. len) (pdu[0] = fc),
  * its length already checked against the table's minimum / maximum, s->addr and
  * s->qty set for function codes with a quantity field (checked against the table's
@@ -57,9 +48,9 @@ typedef modcp_pdu_action_t (*modcp_pdu_handler_t)(modcp_pdu_t *s, const modcp_pd
 
 /* Bytes of modcp_pdu_t cleared for every request: fc .. x.rbytes (and x.seq). */
 #if MODCP_WITH_EXTENDED
-#define MODCP_PDU_CLEARED (offsetof(modcp_pdu_t, x) + offsetof(modcp_pdu_x_t, phase))
+#define MODCP_PDU_CLEARED ((size_t)offsetof(modcp_pdu_t, x) + (size_t)offsetof(modcp_pdu_x_t, phase))
 #else
-#define MODCP_PDU_CLEARED (offsetof(modcp_pdu_t, x) + sizeof(modcp_pdu_x_t))
+#define MODCP_PDU_CLEARED ((size_t)offsetof(modcp_pdu_t, x) + sizeof(modcp_pdu_x_t))
 #endif
 
 /* Refuse the request with event ev and exception exc (MODCP_EXC_*). */

@@ -24,38 +24,13 @@ uint8_t modcp_regs32_kind(const modcp_params_t *p, uint8_t fc, uint16_t reg)
 }
 
 /*                                 RTU    ASCII  spec   RTU32  ASCII32 spec32 */
-const uint16_t modcp_qty_limits[MODCP_QLIM_ROWS - 1][6] = {
-    [MODCP_QLIM_READ_BITS - 1] = {2040u, 2008u, 2000u, 2040u, 2008u, 2000u},
-    [MODCP_QLIM_WRITE_BITS - 1] = {2040u, 1976u, 1968u, 2040u, 1976u, 1968u},
-    [MODCP_QLIM_READ_REGS - 1] = {127u, 125u, 125u, 63u, 62u, 62u},
-    [MODCP_QLIM_WRITE_REGS - 1] = {127u, 123u, 123u, 63u, 61u, 61u},
+const uint16_t modcp_qty_limits[MODCP_QLIM_ROWS - 1u][6] = {
+    [MODCP_QLIM_READ_BITS - 1u] = {2040u, 2008u, 2000u, 2040u, 2008u, 2000u},
+    [MODCP_QLIM_WRITE_BITS - 1u] = {2040u, 1976u, 1968u, 2040u, 1976u, 1968u},
+    [MODCP_QLIM_READ_REGS - 1u] = {127u, 125u, 125u, 63u, 62u, 62u},
+    [MODCP_QLIM_WRITE_REGS - 1u] = {127u, 123u, 123u, 63u, 61u, 61u},
 #if MODCP_WITH_EXTENDED
-    [MODCP_QLIM_RW_READ - 1] = {125u, 125u, 125u, 62u, 62u, 62u},
-    [MODCP_QLIM_RW_WRITE - 1] = {121u, 121u, 121u, 60u, 60u, 60u},
+    [MODCP_QLIM_RW_READ - 1u] = {125u, 125u, 125u, 62u, 62u, 62u},
+    [MODCP_QLIM_RW_WRITE - 1u] = {121u, 121u, 121u, 60u, 60u, 60u},
 #endif
 };
-
-uint16_t modcp_qty_max(const modcp_params_t *p, uint8_t fc, uint8_t r32_kind)
-{
-    uint8_t lim;
-    switch (fc) {
-    case 1u:
-    case 2u:
-        lim = MODCP_QLIM_READ_BITS;
-        break;
-    case 15u:
-        lim = MODCP_QLIM_WRITE_BITS;
-        break;
-    case 3u:
-    case 4u:
-        lim = MODCP_QLIM_READ_REGS;
-        break;
-    case 16u:
-        lim = MODCP_QLIM_WRITE_REGS;
-        break;
-    default:
-        lim = MODCP_QLIM_NONE;
-        break;
-    }
-    return modcp_qty_limit(p, lim, r32_kind);
-}

@@ -1,23 +1,21 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — RTU framing ([RTU-2003] §5, docs/diagnostics.md): frame boundaries by the t3.5 gap, address
  * filter, running CRC, t1.5 check, frames that arrive while a request is in progress;
- * one receive automaton (rtu_on_byte, byte_other, rtu_on_error, rtu_on_block) with
- * one frame start and one end of a skipped frame for normal operation and interference
- * suppression = modem mode, whose differences (the characters of a stretch it looks
- * at, line errors inside a frame, the end of our frame) are the rtu_m_* hooks of
- * rtu_modem.c, called by l->modem off the hot path.
+ * the common part of the receive automaton (frame start, the end of a skipped frame, the
+ * busy states, the end of our frame), shared with interference suppression = modem mode
+ * (rtu_modem.c, which calls it: rtu_internal.h), and normal operation's own part.
  *
  * The backend behind rtu_ops (modcp_framing_ops_t, link_internal.h; chosen by
- * rtu_configure), its state in l->fr.rtu. A
- * character of our frame costs a store and one table-CRC step (plus one comparison with
- * the t1.5 check on: a second entry, rtu_t15_ops, chosen at configuration); the
- * end-of-frame timer is armed once, by the frame's first character (or line error
- * in place of one), and link.c re-arms it for the rest of t3.5 after the last one; the
- * frame is checked only when t3.5 has passed. Time stamps are the ends of characters,
- * as the UART receive interrupt sees them. A block of characters back to back
- * (modcp_cp_on_rx_block: DMA, FIFO) has the effect of its characters one by one at
- * their ends; a run of our frame is stored and CRC'd in one loop (built for speed; for
- * size the link hands them to on_byte one by one).
+ * rtu_configure), its state in l->fr (modcp_rtu_t, rtu_internal.h). A character of our
+ * frame is stored by the link itself (link_rx_store: the character and its time, below
+ * l->rx_stop; with the t1.5 check on, every character reaches rtu_on_byte, which looks
+ * at the time first); its CRC is computed over the buffer once the frame has ended, as FreeMODBUS
+ * does. The end-of-frame timer is armed once, by the frame's first character (or line
+ * error in place of one), and link.c re-arms it for the rest of t3.5 after the last
+ * one; the frame is checked only when t3.5 has passed. Time stamps are the ends of
+ * characters, as the UART receive interrupt sees them. A block of characters back to
+ * back (modcp_cp_on_rx_block: DMA, FIFO) has the effect of its characters one by one at
+ * their ends (link.c copies the runs of our frame).
  * The reply of an FC05 / FC06 is the request unchanged (l->reply_same, set by the CP
  * from the PDU engine): its frame goes out as received, the CRC already in place.
  *
@@ -49,54 +47,50 @@
 #include <stdint.h>
 
 #include "modcp/crc.h"
-#include "modcp/link.h"
-#include "link_internal.h"
+#include "rtu_internal.h"
 #include "crc_internal.h"
 
-/* Placement by build goal. For speed (-O2): frame_start inlined in its two callers
- * (byte_other, rtu_on_block), t15_violated kept out of the t1.5 entry (a leaf with a
- * tail call). For size (-Os) neither has more than one caller (no block path): the
- * compiler inlines them (MODCP_SPEED_INLINE / MODCP_SPEED_NOINLINE, inline_internal.h). */
-
-void rtu_count_char(modcp_rtu_t *r)
+static void count_char(modcp_rtu_t *r)
 {
     if (r->count < RTU_MIN_FRAME) {
         r->count++; /* only ">= RTU_MIN_FRAME" is looked at */
     }
 }
 
+bool rtu_crc_ok(const modcp_link_t *l)
+{
+    return l->len >= RTU_MIN_FRAME && modcp_crc16_update(MODCP_CRC_INIT, l->buf, l->len) == 0u;
+}
+
 /* A character of the stretch that is not (or no longer) part of our frame (modem
  * mode: of a candidate): only for the bus counters. */
 void rtu_fold(modcp_link_t *l, uint8_t b)
 {
-    modcp_rtu_t *r = &l->fr.rtu;
+    modcp_rtu_t *r = rtu_of(l);
     r->skip_crc = modcp_crc16_byte(r->skip_crc, b);
-    rtu_count_char(r);
+    count_char(r);
 }
 
-/* Our address (or 0) starts our frame (modem mode: a candidate) at buf[0]. */
-MODCP_SIZE_NOINLINE void rtu_cand_start(modcp_link_t *l, uint8_t b)
+/* Our address (or 0) starts our frame (modem mode: a candidate) at buf[0]: the link
+ * stores what follows up to the capacity (modem mode: up to the function code). */
+void rtu_cand_start(modcp_link_t *l, uint8_t b)
 {
-    modcp_rtu_t *r = &l->fr.rtu;
+    modcp_rtu_t *r = rtu_of(l);
     l->rx_bad = false;
     l->rx_overflow = false;
     l->buf[0] = b; /* configured: cap >= RTU_MIN_FRAME */
     l->len = 1;
-    r->crc = modcp_crc16_byte(MODCP_CRC_INIT, b);
-    r->stop = l->cap; /* normal operation: the hot path runs up to the capacity */
-    r->total = 0;     /* normal operation: always (the length by t3.5) */
-    if (l->modem) {
-        r->stop = 1; /* the function code is looked at */
-    }
+    r->total = 0; /* normal operation: always (the length by t3.5) */
     l->state = MODCP_LINK_RX;
+    rtu_stop(l, r->modem ? 1u : l->cap);
 }
 
 /* Our frame (modem mode: the candidate) is given up: its first n characters belong to
  * the stretch again (modem mode: the rest, if any, stays in the buffer for its resync),
  * the line is followed in SKIP. */
-MODCP_NOINLINE void rtu_unclaim(modcp_link_t *l, uint16_t n)
+void rtu_unclaim(modcp_link_t *l, uint16_t n)
 {
-    modcp_rtu_t *r = &l->fr.rtu;
+    modcp_rtu_t *r = rtu_of(l);
     for (uint16_t i = 0; i < n; i++) {
         rtu_fold(l, l->buf[i]);
     }
@@ -104,6 +98,7 @@ MODCP_NOINLINE void rtu_unclaim(modcp_link_t *l, uint16_t n)
     r->flags = (uint8_t)(r->flags & ~(RTU_M_FIRST | RTU_M_OPEN));
     l->len = 0;
     l->state = MODCP_LINK_SKIP;
+    rtu_stop(l, 0);
 }
 
 /* A frame (modem mode: a stretch) starts after t3.5 (IDLE, or SKIP whose frame ended)
@@ -111,10 +106,9 @@ MODCP_NOINLINE void rtu_unclaim(modcp_link_t *l, uint16_t n)
  * frame. Our address (or 0) starts our frame (modem mode: a candidate); any other
  * character starts one followed in SKIP (not ours: not checked, not answered), a line
  * error an erroneous one, skipped to its t3.5. */
-static MODCP_SPEED_INLINE void frame_start(modcp_link_t *l, uint8_t b,
-                                                          uint32_t now_us, bool err)
+static void frame_start(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
 {
-    modcp_rtu_t *r = &l->fr.rtu;
+    modcp_rtu_t *r = rtu_of(l);
     r->skip_crc = MODCP_CRC_INIT;
     r->count = 0;
     r->flags = 0;
@@ -125,7 +119,7 @@ static MODCP_SPEED_INLINE void frame_start(modcp_link_t *l, uint8_t b,
     l->state = MODCP_LINK_SKIP;
     if (err) {
         link_mark_bad(l);
-        rtu_count_char(r);
+        count_char(r);
     } else if (b == l->own_addr || b == 0u) {
         rtu_cand_start(l, b);
         r->flags = RTU_M_LEAD | RTU_M_FIRST;
@@ -139,9 +133,9 @@ static MODCP_SPEED_INLINE void frame_start(modcp_link_t *l, uint8_t b,
  * after our frame that was not formally correct (rtu_on_timer): a frame that began
  * with our address reports (08)36H and counts in BUS_CRC; another slave's frame counts
  * in BUS_MSG or BUS_CRC (modem mode: only in BUS_MSG, other stretches not at all). */
-void rtu_stretch_end(modcp_link_t *l)
+static void stretch_end(modcp_link_t *l)
 {
-    const modcp_rtu_t *r = &l->fr.rtu;
+    const modcp_rtu_t *r = rtu_of_c(l);
     l->state = MODCP_LINK_IDLE;
     if (l->rx_bad) {
         return; /* damaged: counted once already (modem mode: if a candidate was) */
@@ -151,19 +145,11 @@ void rtu_stretch_end(modcp_link_t *l)
     } else if ((r->flags & RTU_M_LEAD) != 0u) {
         link_event(l, MODCP_EV_CRC);
         link_count(l, MODCP_CNT_BUS_CRC);
-    } else if (!l->modem) {
+    } else if (!r->modem) {
         link_count(l, MODCP_CNT_BUS_CRC);
+    } else {
+        /* modem mode: stray characters, not counted */
     }
-}
-
-/* Default branch of the receive automaton (a state RTU never uses, i.e. corrupted):
- * (0E)11H, back to idle; the character that found it starts a new frame. */
-void rtu_internal_error(modcp_link_t *l)
-{
-    link_event(l, MODCP_EV_INTERNAL_RECEIVE);
-    l->state = MODCP_LINK_IDLE;
-    l->busy_rx = false;
-    l->len = 0;
 }
 
 /* A character (or line error) while a request is processed or its reply is pending:
@@ -172,9 +158,9 @@ void rtu_internal_error(modcp_link_t *l)
  * (08)37H ([RTU-2003] §7.5): neither is executed, and no request is lost without a trace.
  * A line error that is not inside a frame (modem mode: after the CRC) with
  * interference suppression (or RS485) is ignored, as between messages. */
-void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
+static void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
 {
-    if (l->rs485 && l->state == MODCP_LINK_TX) {
+    if (l->rs485 && l->state == (uint8_t)MODCP_LINK_TX) {
         return; /* echo of our own transmission */
     }
     if (!l->busy_rx || now_us - l->last_us >= l->t35_us) {
@@ -184,197 +170,119 @@ void rtu_busy_track(modcp_link_t *l, uint8_t b, bool error, uint32_t now_us)
             }
         } else if (b == l->own_addr || b == 0u) {
             link_event(l, MODCP_EV_SEQUENCE);
+        } else {
+            /* another slave's frame: followed */
         }
         l->busy_rx = true;
     }
     l->last_us = now_us;
 }
 
-/* Every case but the plain one of rtu_on_byte() (another state or a full buffer), and
- * a line error in place of a character (err, b 0): the one receive automaton of both
- * modes. Kept out of line so that the hot path stays a leaf. Modem mode implies
- * l->suppress. */
-static MODCP_NOINLINE void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
+/* The states both variants handle alike; a state RTU never uses (corrupted) reports
+ * (0E)11H and goes back to idle, the character that found it starts a new frame. Modem
+ * mode implies l->suppress. */
+bool rtu_other_common(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
 {
-    modcp_rtu_t *r = &l->fr.rtu;
     switch (l->state) {
     case MODCP_LINK_SKIP:
-        if (now_us - l->last_us >= l->t35_us) {
-            rtu_stretch_end(l); /* modem mode: a line error would begin a stretch, ignored */
-            goto start;         /* the skipped frame ended: b starts a new one */
+        if (now_us - l->last_us < l->t35_us) {
+            return false;
         }
-        if (l->modem) {
-            if (err) {
-                l->rx_bad = true; /* among stray characters / another frame: not counted */
-            } else {
-                rtu_m_push(l, b);
-            }
-        } else if (err) {
-            goto bad;
-        } else {
-            rtu_fold(l, b);
-        }
-        break;
-    case MODCP_LINK_RX: /* normal: the buffer is full, the frame is too long; modem mode:
-                           function code, byte count, last character, or a full buffer */
-        if (l->modem) {
-            if (err) {
-                rtu_m_cand_bad(l);
-            } else {
-                rtu_m_push(l, b);
-            }
-        } else if (!err) {
-            l->rx_overflow = true;
-        } else if (!l->rx_bad && !l->rx_overflow && l->len >= RTU_MIN_FRAME && r->crc == 0u) {
-            return; /* after the CRC: not part of the frame */
-        } else {
-            goto bad; /* (its count is not looked at: the frame is bad) */
-        }
-        break;
+        stretch_end(l); /* modem mode: a line error would begin a stretch, ignored */
+        break;          /* the skipped frame ended: b starts a new one */
+    case MODCP_LINK_RX:
+        return false;
     case MODCP_LINK_EOF:
     case MODCP_LINK_BUSY:
     case MODCP_LINK_TURNAROUND:
     case MODCP_LINK_TX:
         rtu_busy_track(l, b, err, now_us);
-        return;
+        return true;
+    case MODCP_LINK_IDLE:
+        break;
     default:
-        if (l->state != MODCP_LINK_IDLE) {
-            rtu_internal_error(l);
-            if (err) {
-                return;
-            }
+        link_event(l, MODCP_EV_INTERNAL_RECEIVE);
+        l->state = MODCP_LINK_IDLE;
+        l->busy_rx = false;
+        l->len = 0;
+        rtu_stop(l, 0);
+        if (err) {
+            return true;
         }
-    start:
-        if (err && (l->suppress || l->rs485)) { /* RS485 normal mode too (link.c) */
-            return; /* between messages: ignored, a frame starts only with a good character */
-        }
-        frame_start(l, b, now_us, err);
-        return;
-    bad:
-        link_mark_bad(l);
-        rtu_count_char(r);
         break;
     }
-    l->last_us = now_us;
+    if (!err || (!l->suppress && !l->rs485)) { /* RS485 normal mode too (link.c) */
+        frame_start(l, b, now_us, err);
+    } /* else between messages: ignored, a frame starts only with a good character */
+    return true;
 }
 
-/* The hot path: a character of our frame, with room in the buffer (r->stop is the
- * capacity in normal operation; modem mode: see rtu_modem.c), is stored and goes
- * through one CRC step; nothing else. */
-void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
+/* Normal operation: every character the link did not store (the buffer is full, or
+ * another state), and a line error in place of a character (err, b 0). Kept out of
+ * line so that the entries stay leaves. */
+static void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
 {
-    if (l->state != MODCP_LINK_RX || l->len >= l->fr.rtu.stop) {
-        byte_other(l, b, now_us, false);
+    if (rtu_other_common(l, b, now_us, err)) {
         return;
     }
+    if (l->state == (uint8_t)MODCP_LINK_RX && !err) {
+        l->rx_overflow = true; /* the buffer is full: the frame is too long */
+    } else if (l->state == (uint8_t)MODCP_LINK_SKIP && !err) {
+        rtu_fold(l, b);
+    } else if (l->state == (uint8_t)MODCP_LINK_RX && !l->rx_bad && !l->rx_overflow && rtu_crc_ok(l)) {
+        return; /* after the CRC: not part of the frame */
+    } else {
+        link_mark_bad(l); /* (the count of our frame is not looked at: it is bad) */
+        count_char(rtu_of(l));
+    }
     l->last_us = now_us;
-    l->fr.rtu.crc = modcp_crc16_byte(l->fr.rtu.crc, b);
-    l->buf[l->len++] = b;
 }
 
-/* With the t1.5 check on: the silence before a character of our frame (distance of the
- * two character ends minus one character time) must not exceed t1.5. A separate entry,
- * so that the check costs nothing when it is off. */
-static MODCP_SPEED_NOINLINE void t15_violated(modcp_link_t *l, uint8_t b, uint32_t now_us)
+bool rtu_t15_violated(modcp_link_t *l, uint32_t now_us)
 {
-    const bool first = !l->rx_bad;
-    if (l->modem) {
-        rtu_m_cand_bad(l); /* the candidate is dropped; b may start the next one */
-    } else {
-        link_mark_bad(l);
+    if (l->t15_us == 0u || l->state != (uint8_t)MODCP_LINK_RX ||
+        now_us - l->last_us <= l->t15_us + l->char_us) {
+        return false;
     }
-    if (first) {
+    if (!l->rx_bad) {
         l->diag->t15_discards = (uint16_t)(l->diag->t15_discards + 1u);
         if (!l->suppress) {
             link_event(l, MODCP_EV_ZVZ);
         }
     }
-    rtu_on_byte(l, b, now_us);
+    return true;
 }
 
-void rtu_on_byte_t15(modcp_link_t *l, uint8_t b, uint32_t now_us)
+/* A character the link did not store itself: with the t1.5 check on every one
+ * (rx_stop 0: the silence before a character of our frame, the distance of the two
+ * character ends minus one character time, must not exceed t1.5), else those at or
+ * past the stop or in another state. */
+static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
-    if (l->state == MODCP_LINK_RX && now_us - l->last_us > l->t15_us + l->char_us) {
-        t15_violated(l, b, now_us);
-        return;
+    if (rtu_t15_violated(l, now_us)) {
+        link_mark_bad(l); /* the frame goes on, damaged */
     }
-    rtu_on_byte(l, b, now_us);
-}
-
-/* Characters back to back (the k-th of n ended at end_us - (n-1-k) * char_us): runs of
- * our frame with room in the buffer are stored and CRC'd in one loop, every other
- * character goes through byte_other() at its own time, exactly as one by one. Only the
- * block's first character can follow a silence (the others come one character time
- * after the one before): it goes through the ops' on_byte, with the t1.5 check if on,
- * or straight to frame_start() when the line is idle (byte_other()'s way there; no
- * t1.5 check before a frame's first character).
- * Built for size (-Os: the MCU builds) there is no block path: the link gives each
- * character to on_byte at its time (block_bytes, link.c), with the same effect and
- * about 110 bytes less (a few instructions more per character). */
-#if !defined(__OPTIMIZE_SIZE__)
-static void rtu_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t end_us)
-{
-    const uint32_t c = l->char_us;
-    const uint8_t *const e = b + n;
-    uint32_t t = end_us - (uint32_t)(n - 1u) * c; /* end of the character at b */
-    const uint8_t a = *b++; /* the only one that may follow a silence: t1.5 */
-    if (l->state == MODCP_LINK_IDLE) {
-        frame_start(l, a, t, false); /* byte_other()'s, without the detour */
-    } else {
-        l->ops->on_byte(l, a, t);
-    }
-    t += c;
-    while (b < e) {
-        const uint16_t stop = l->fr.rtu.stop;
-        if (l->state != MODCP_LINK_RX || l->len >= stop) {
-            byte_other(l, *b++, t, false); /* a frame's start included */
-            t += c;
-            continue;
-        }
-        unsigned m = (unsigned)(e - b); /* a run of our frame: as many as fit */
-        if (m > (unsigned)(stop - l->len)) {
-            m = (unsigned)(stop - l->len);
-        }
-        uint8_t *d = &l->buf[l->len];
-        uint16_t crc = l->fr.rtu.crc;
-        l->len = (uint16_t)(l->len + m);
-        t += (m - 1u) * c;
-        l->last_us = t;
-        t += c;
-        for (; m >= 2u; m -= 2u) { /* two per turn, half the loop */
-            uint8_t c0 = b[0], c1 = b[1];
-            d[0] = c0;
-            d[1] = c1;
-            crc = modcp_crc16_byte(modcp_crc16_byte(crc, c0), c1);
-            b += 2;
-            d += 2;
-        }
-        for (; m > 0u; m--) {
-            crc = modcp_crc16_byte(crc, *b);
-            *d++ = *b++;
-        }
-        l->fr.rtu.crc = crc;
+    if (!link_store_below(l, l->run_stop, b, now_us)) {
+        byte_other(l, b, now_us, false);
     }
 }
-#endif
 
-/* RS485 normal mode (link.c error_reported): RX / SKIP within t3.5 is inside a frame,
- * unless our frame is complete (its CRC in: what follows is "after the telegram"). */
-static bool rtu_in_frame(const modcp_link_t *l)
-{
-    return !(l->state == MODCP_LINK_RX && !l->rx_bad && !l->rx_overflow &&
-             l->len >= RTU_MIN_FRAME && l->fr.rtu.crc == 0u);
-}
-
-void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
+static void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
     (void)line_errors; /* every kind of error has the same effect on framing */
     byte_other(l, 0, now_us, true);
 }
 
+/* RS485 normal mode (link.c error_reported): RX / SKIP within t3.5 is inside a frame,
+ * unless our frame is complete (its CRC in: what follows is "after the telegram"). */
+bool rtu_in_frame(const modcp_link_t *l)
+{
+    return !(l->state == (uint8_t)MODCP_LINK_RX && !l->rx_bad && !l->rx_overflow && rtu_crc_ok(l));
+}
+
 /* A formally correct frame for us (or broadcast) in buf[0 .. len): counted and handed
  * to the CP in *f (state BUSY). */
-bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f)
+static bool deliver(modcp_link_t *l, modcp_frame_t *f)
 {
     link_count(l, MODCP_CNT_BUS_MSG);
     link_count(l, MODCP_CNT_SLAVE_MSG);
@@ -384,24 +292,25 @@ bool rtu_deliver(modcp_link_t *l, modcp_frame_t *f)
     f->pdu_cap = (uint16_t)(l->cap - 3u);
     l->state = MODCP_LINK_BUSY;
     l->busy_rx = false;
+    rtu_stop(l, 0);
     return true;
 }
 
 /* Modem mode: EOF, hand the frame over. RX / SKIP: t3.5 has passed since the last
  * character (link.c checked it). Our frame (modem mode: a candidate whose length is
  * known only by t3.5) is delivered if it is formally correct; else its characters
- * belong to the stretch again and its end is the stretch's (rtu_stretch_end): (08)36H
+ * belong to the stretch again and its end is the stretch's (stretch_end): (08)36H
  * for a frame that began with our address, (08)16H once for one too long. */
-static bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
+bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
     (void)now_us;
-    modcp_rtu_t *r = &l->fr.rtu;
-    if (l->state == MODCP_LINK_EOF ||
-        (l->state == MODCP_LINK_RX && !l->rx_bad && !l->rx_overflow && r->total == 0u &&
-         l->len >= RTU_MIN_FRAME && r->crc == 0u)) { /* modem mode: also by t3.5 (unknown FC) */
-        return rtu_deliver(l, f);
+    modcp_rtu_t *r = rtu_of(l);
+    if (l->state == (uint8_t)MODCP_LINK_EOF ||
+        (l->state == (uint8_t)MODCP_LINK_RX && !l->rx_bad && !l->rx_overflow && r->total == 0u &&
+         rtu_crc_ok(l))) { /* modem mode: also by t3.5 (unknown FC) */
+        return deliver(l, f);
     }
-    if (l->state == MODCP_LINK_RX) {
+    if (l->state == (uint8_t)MODCP_LINK_RX) {
         if (l->rx_overflow) {
             if (!l->rx_bad && (r->flags & RTU_M_FIRST) != 0u) {
                 link_frame_too_long(l);
@@ -410,8 +319,8 @@ static bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         }
         rtu_unclaim(l, l->len);
     }
-    if (l->state == MODCP_LINK_SKIP) {
-        rtu_stretch_end(l);
+    if (l->state == (uint8_t)MODCP_LINK_SKIP) {
+        stretch_end(l);
     }
     return false; /* else a stale or spurious expiry */
 }
@@ -428,32 +337,24 @@ uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
     return modcp_crc16_append(l->buf, (uint16_t)n); /* a tail call: no stack frame */
 }
 
-static const modcp_framing_ops_t rtu_ops, rtu_t15_ops;
-
-/* Normal operation or interference suppression (modem mode, the operating mode
- * parameter: l->modem, one ops table for both); the variant is the t1.5 check. */
-const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
+bool rtu_setup(modcp_link_t *l, bool modem)
 {
 #if MODCP_WITH_ASCII
     l->silence_us = l->t35_us; /* (built without ASCII the silence is t35_us) */
 #endif
-    l->modem = p->opmode == (uint8_t)MODCP_OPMODE_SUPPRESS;
-    if (l->cap < RTU_MIN_FRAME) {
-        return NULL;
-    }
-    return l->t15_us != 0u ? &rtu_t15_ops : &rtu_ops;
+    rtu_of(l)->modem = modem;
+    return l->cap >= RTU_MIN_FRAME;
 }
 
-#if defined(__OPTIMIZE_SIZE__)
-#define RTU_ON_BLOCK /* no block path (link_internal.h) */
-#else
-#define RTU_ON_BLOCK .on_block = rtu_on_block,
-#endif
-static const modcp_framing_ops_t rtu_ops = {.on_byte = rtu_on_byte, .on_error = rtu_on_error,
-                                            .in_frame = rtu_in_frame, .on_timer = rtu_on_timer, .encode = rtu_encode,
-                                            RTU_ON_BLOCK};
-static const modcp_framing_ops_t rtu_t15_ops = {.on_byte = rtu_on_byte_t15,
-                                                .on_error = rtu_on_error,
-                                                .in_frame = rtu_in_frame,
-                                                .on_timer = rtu_on_timer,
-                                                .encode = rtu_encode, RTU_ON_BLOCK};
+static const modcp_framing_ops_t rtu_ops = {.on_byte = rtu_on_byte,
+                                            .on_error = rtu_on_error,
+                                            .in_frame = rtu_in_frame,
+                                            .on_timer = rtu_on_timer,
+                                            .encode = rtu_encode};
+
+/* Normal operation (the operating mode parameter; modem mode: rtu_modem_configure). */
+const modcp_framing_ops_t *rtu_configure(modcp_link_t *l, const modcp_params_t *p)
+{
+    (void)p;
+    return rtu_setup(l, false) ? &rtu_ops : NULL;
+}

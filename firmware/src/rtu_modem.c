@@ -1,12 +1,11 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — RTU framing in interference suppression = modem mode ([RTU-2009] §5.6.1, §8;
- * [RTU-2003] §2.2): the part of the RTU backend (rtu.c, rtu_ops) that runs for the
- * operating mode `suppression` (l->modem, set by rtu_configure). It shares rtu.c's ops
- * table, receive automaton, block path and hot path (a character below r->stop: a store
- * and a CRC step), its frame and stretch starts and ends (frame_start, rtu_cand_start,
- * rtu_unclaim, rtu_stretch_end, rtu_on_timer); rtu.c calls the rtu_m_* hooks below
- * where modem mode differs: a character of a stretch or candidate that needs a look
- * (rtu_m_push), a line error in a candidate (rtu_m_cand_bad).
+ * [RTU-2003] §2.2): the RTU backend's variant for the operating mode `suppression`, its
+ * own ops (chosen by rtu_modem_configure) built on the common part of rtu.c's receive
+ * automaton (rtu_internal.h: frame and stretch starts and ends, the busy states, the end
+ * of a frame by t3.5, the encoder); rtu.c never calls it. The link stores a candidate's
+ * characters below l->run_stop (the hot path); the ones that need a look (function
+ * code, byte count, last character) and the characters of a stretch come here.
  *
  * "The start of a message is recognised by a correctly received slave address"; "the
  * end of the message by a formally correct message with a correct CRC". The line is
@@ -16,8 +15,8 @@
  *   SKIP  following a stretch: stray characters, another slave's frame, the tail of a
  *         damaged one. Nothing is stored, only the stretch's CRC for the bus counters;
  *         our address (or 0) starts a candidate frame.
- *   RX    a candidate: stored with a CRC step per character (the hot path, up to
- *         r->stop). Its function code gives its length (req_len below): fixed, or by
+ *   RX    a candidate: stored by the link (the hot path, up to
+ *         l->run_stop). Its function code gives its length (fc_table.c): fixed, or by
  *         its byte count; at that length a valid CRC ends the frame at once (EOF, handed
  *         over on a 1 us timer: no t3.5 wait), a wrong one drops the candidate's first
  *         character and looks for our address again in the rest (resync), so a stray
@@ -38,77 +37,60 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "modcp/crc.h"
-#include "modcp/link.h"
-#include "link_internal.h"
-#include "crc_internal.h"
+#include "rtu_internal.h"
+#include "fc_table_internal.h"
 
-enum { M_CONT, M_FAIL, M_DONE };
-
-#define RQ_BC 0x80u    /* length by the byte count at index (code & RQ_N) */
-#define RQ_OPEN 0x40u  /* the usual length; longer requests end by t3.5 */
-#define RQ_BCAST 0x20u /* broadcast may use it: 00 starts a candidate anywhere */
-#define RQ_N 0x1Fu     /* the length, or the byte count's index */
-
-/* Request lengths (address and CRC included) by function code. */
-static const uint8_t req_len_tab[][2] = {
-    {0x03u, 8u}, {0x10u, RQ_BCAST | RQ_BC | 6u}, {0x06u, RQ_BCAST | 8u}, {0x01u, 8u},
-    {0x02u, 8u}, {0x04u, 8u}, {0x05u, RQ_BCAST | 8u}, {0x0Fu, RQ_BCAST | RQ_BC | 6u},
-    {0x08u, RQ_OPEN | 8u}, {0x17u, RQ_BC | 10u}, {0x16u, 10u}, {0x0Bu, 4u}, {0x0Cu, 4u},
-    {0x11u, 4u}, {0x2Bu, RQ_OPEN | 7u},
-};
-
-static uint8_t req_len(uint8_t fc)
-{
-    for (size_t i = 0; i < sizeof req_len_tab / sizeof req_len_tab[0]; i++) {
-        if (req_len_tab[i][0] == fc) {
-            return req_len_tab[i][1];
-        }
-    }
-    return 0u; /* unknown: t3.5 (and no broadcast) */
-}
+#define M_CONT 0 /* m_feed / m_check: follow on */
+#define M_FAIL 1 /* the candidate failed: resync */
+#define M_DONE 2 /* a frame (EOF) */
 
 static bool m_addr(const modcp_link_t *l, uint8_t b)
 {
     return b == l->own_addr || b == 0u;
 }
 
-/* The character at index r->stop was stored: function code, byte count or the last. */
+/* The character at index l->run_stop was stored: function code, byte count or the last. */
 static int m_check(modcp_link_t *l)
 {
-    modcp_rtu_t *r = &l->fr.rtu;
+    modcp_rtu_t *r = rtu_of(l);
     const uint16_t n = l->len;
     if (n == 2u) {
-        uint8_t fc = l->buf[1];
-        uint8_t code = req_len(fc);
-        if (l->buf[0] == 0u && (r->flags & RTU_M_FIRST) == 0u && (code & RQ_BCAST) == 0u) {
+        /* the request's length by its function code (fc_table.c): fixed, or by its byte
+         * count; unknown (no row): t3.5 and no broadcast */
+        const uint8_t fc = l->buf[1];
+        const modcp_fc_row_t *row = modcp_fc_row(fc);
+        if (l->buf[0] == 0u && (r->flags & RTU_M_FIRST) == 0u &&
+            (row == NULL || (row->flags & F_BCAST) == 0u)) {
             return M_FAIL; /* no broadcast request */
         }
         if (fc == 0u || fc >= 0x80u) {
             return M_FAIL; /* no request has this function code */
         }
-        if (code == 0u) {
-            r->stop = l->cap; /* unknown function code: t3.5 */
+        if (row == NULL) {
+            rtu_stop(l, l->cap); /* unknown function code: t3.5 */
             return M_CONT;
         }
-        if ((code & RQ_BC) != 0u) {
-            r->stop = code & RQ_N; /* the byte count */
+        if ((row->form & FC_COUNT) != 0u) {
+            rtu_stop(l, row->min_len); /* the byte count (address before the PDU) */
             return M_CONT;
         }
-        r->total = code & RQ_N;
-        if ((code & RQ_OPEN) != 0u) {
+        /* address, PDU in its usual form, CRC */
+        r->total = (uint16_t)(row->min_len + ((row->form & FC_PLUS2) != 0u ? 5u : 3u));
+        if ((row->form & FC_OPEN) != 0u) {
             r->flags |= RTU_M_OPEN;
         }
     } else if (r->total == 0u) { /* the byte count */
         r->total = (uint16_t)(n + l->buf[n - 1u] + 2u);
+    } else {
+        /* the last character: the length is known */
     }
     if (r->total > l->cap) {
         r->total = 0;
-        r->stop = l->cap; /* too long for the buffer: t3.5 ends it */
+        rtu_stop(l, l->cap); /* too long for the buffer: t3.5 ends it */
         return M_CONT;
     }
     if (n < r->total) {
-        r->stop = (uint16_t)(r->total - 1u);
+        rtu_stop(l, (uint16_t)(r->total - 1u));
         return M_CONT;
     }
     /* dropped by the link (DSR OFF, modcp_link_rx_discard: only with the RS232 signals;
@@ -117,14 +99,15 @@ static int m_check(modcp_link_t *l)
         rtu_unclaim(l, l->len);
         return M_CONT;
     }
-    if (r->crc == 0u) {
+    if (rtu_crc_ok(l)) {
         l->state = MODCP_LINK_EOF; /* formally correct, valid CRC: the end */
+        rtu_stop(l, 0);
         link_arm(l, 1u);
         return M_DONE;
     }
     if ((r->flags & RTU_M_OPEN) != 0u) {
         r->total = 0;
-        r->stop = l->cap; /* FC08 / FC43 longer than usual: t3.5 */
+        rtu_stop(l, l->cap); /* FC08 / FC43 longer than usual: t3.5 */
         return M_CONT;
     }
     return M_FAIL;
@@ -133,8 +116,8 @@ static int m_check(modcp_link_t *l)
 /* One character through the automaton, SKIP or RX (no time: the callers keep it). */
 static int m_feed(modcp_link_t *l, uint8_t b)
 {
-    modcp_rtu_t *r = &l->fr.rtu;
-    if (l->state == MODCP_LINK_SKIP) {
+    modcp_rtu_t *r = rtu_of(l);
+    if (l->state == (uint8_t)MODCP_LINK_SKIP) {
         if (m_addr(l, b)) {
             /* a candidate inside the stretch: whether the stretch had a line error */
             r->flags = (uint8_t)((r->flags & ~(RTU_M_FIRST | RTU_M_SBAD)) |
@@ -149,9 +132,9 @@ static int m_feed(modcp_link_t *l, uint8_t b)
         l->rx_overflow = true;
         return M_CONT;
     }
-    r->crc = modcp_crc16_byte(r->crc, b);
-    l->buf[l->len++] = b;
-    return l->len - 1u == r->stop ? m_check(l) : M_CONT;
+    l->buf[l->len] = b;
+    l->len++;
+    return l->len - 1u == l->run_stop ? m_check(l) : M_CONT;
 }
 
 /* The candidate in buf[0 .. len) failed its length and CRC: drop its first character
@@ -172,13 +155,13 @@ static void m_resync(modcp_link_t *l)
         if (res != M_FAIL) {
             return; /* following, in a candidate, or a frame (what followed it: after the CRC) */
         }
-        memmove(&l->buf[l->len], &l->buf[k], (size_t)(n - k));
+        (void)memmove(&l->buf[l->len], &l->buf[k], (size_t)n - (size_t)k);
         n = (uint16_t)(l->len + (n - k));
         l->len = n;
     }
 }
 
-void rtu_m_push(modcp_link_t *l, uint8_t b)
+static void m_push(modcp_link_t *l, uint8_t b)
 {
     if (m_feed(l, b) == M_FAIL) {
         m_resync(l);
@@ -186,7 +169,7 @@ void rtu_m_push(modcp_link_t *l, uint8_t b)
 }
 
 /* A damaged candidate: counted once when it has its function code, dropped. */
-void rtu_m_cand_bad(modcp_link_t *l)
+static void m_cand_bad(modcp_link_t *l)
 {
     if (l->len >= 2u) {
         link_mark_bad(l);
@@ -194,4 +177,52 @@ void rtu_m_cand_bad(modcp_link_t *l)
         l->rx_bad = true; /* a lone address character: before the frame, not counted */
     }
     rtu_unclaim(l, l->len);
+}
+
+/* Every character the link did not store (a stretch, or a candidate's character that
+ * needs a look), and a line error in place of a character (err, b 0). */
+static void m_other(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
+{
+    if (rtu_other_common(l, b, now_us, err)) {
+        return;
+    }
+    if (!err) {
+        m_push(l, b);
+    } else if (l->state == (uint8_t)MODCP_LINK_RX) {
+        m_cand_bad(l);
+    } else {
+        l->rx_bad = true; /* among stray characters / another frame: not counted */
+    }
+    l->last_us = now_us;
+}
+
+/* A character the link did not store itself (see rtu.c rtu_on_byte): a t1.5 violation
+ * drops the candidate, b may start the next. */
+static void m_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    if (rtu_t15_violated(l, now_us)) {
+        m_cand_bad(l);
+    }
+    if (!link_store_below(l, l->run_stop, b, now_us)) {
+        m_other(l, b, now_us, false);
+    }
+}
+
+static void m_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
+{
+    (void)line_errors; /* every kind of error has the same effect on framing */
+    m_other(l, 0, now_us, true);
+}
+
+static const modcp_framing_ops_t m_ops = {.on_byte = m_on_byte,
+                                          .on_error = m_on_error,
+                                          .in_frame = rtu_in_frame,
+                                          .on_timer = rtu_on_timer,
+                                          .encode = rtu_encode};
+
+/* Interference suppression (the operating mode parameter). */
+const modcp_framing_ops_t *rtu_modem_configure(modcp_link_t *l, const modcp_params_t *p)
+{
+    (void)p;
+    return rtu_setup(l, true) ? &m_ops : NULL;
 }

@@ -677,7 +677,7 @@ static void test_encoder_in_place(void **state)
     }
     o += (size_t)snprintf(expect + o, sizeof expect - o, "%02X\r\n", modcp_lrc(bin, sizeof bin));
     assert_int_equal(o, MODCP_ASCII_ADU_MAX);
-    modcp_link_reply(&l, MODCP_ASCII_PDU_MAX, t);
+    modcp_link_reply(&l, MODCP_ASCII_PDU_MAX, false, t);
     assert_int_equal(f.tx_len, MODCP_ASCII_ADU_MAX);
     assert_memory_equal(f.tx, expect, MODCP_ASCII_ADU_MAX);
     for (size_t k = MODCP_LINK_BUF_MAX; k < sizeof buf; k++) {
@@ -693,7 +693,7 @@ static void test_encoder_in_place(void **state)
     }
     assert_true(modcp_link_on_timer(&l, t, &fr));
     unsigned calls = f.tx_calls;
-    modcp_link_reply(&l, MODCP_ASCII_PDU_MAX + 1, t);
+    modcp_link_reply(&l, MODCP_ASCII_PDU_MAX + 1, false, t);
     assert_int_equal(f.tx_calls, calls);
     assert_int_equal(d.buffer[0], MODCP_EV_INTERNAL_SEND);
     assert_int_equal(l.state, MODCP_LINK_IDLE);

@@ -542,7 +542,7 @@ static void test_tail_after_tx_done_skipped(void **state)
      * request while we are still sending */
     uint8_t rsp[] = {0x03, 0x04, 0x87, 0x65, 0x43, 0x21};
     memcpy(c->fr.pdu, rsp, sizeof rsp);
-    modcp_link_reply(&c->l, sizeof rsp, end + 100);
+    modcp_link_reply(&c->l, sizeof rsp, false, end + 100);
     assert_int_equal(c->l.state, MODCP_LINK_TX);
     uint8_t req[8];
     hex_frame(FC03_REQ, req, sizeof req);
@@ -571,7 +571,7 @@ static void test_tail_after_tx_done_skipped(void **state)
 
     /* tx_done long after that frame: straight to idle */
     assert_true(frame_hex(c, FC03_REQ, last + 10000, &end));
-    modcp_link_reply(&c->l, sizeof rsp, end);
+    modcp_link_reply(&c->l, sizeof rsp, false, end);
     feed(c, req, 8, end + 100);
     c->f.now = end + 100 + 7 * 1146 + 4000;
     modcp_link_on_tx_done(&c->l, c->f.now);
@@ -800,7 +800,7 @@ static void test_reply_fc03(void **state)
     uint8_t rsp[] = {0x03, 0x04, 0x87, 0x65, 0x43, 0x21};
     memcpy(c->fr.pdu, rsp, sizeof rsp);
     c->f.now = end + 50;
-    modcp_link_reply(&c->l, sizeof rsp, end + 50);
+    modcp_link_reply(&c->l, sizeof rsp, false, end + 50);
     assert_int_equal(c->l.state, MODCP_LINK_TX);
     assert_int_equal(c->f.tx_calls, 1);
     assert_tx(c, FC03_RSP);
@@ -822,7 +822,7 @@ static void test_reply_exception(void **state)
     assert_pdu(c, 5, "05 08 09 FF 00");
     c->fr.pdu[0] = 0x85;
     c->fr.pdu[1] = 0x02;
-    modcp_link_reply(&c->l, 2, end);
+    modcp_link_reply(&c->l, 2, false, end);
     assert_tx(c, "05 85 02 82 90");
 }
 
@@ -832,14 +832,14 @@ static void test_reply_too_long(void **state)
     configure(c);
     uint32_t end;
     assert_true(frame_hex(c, FC03_REQ, 500, &end));
-    modcp_link_reply(&c->l, MODCP_ADU_MAX - 2, end); /* 1 byte too many */
+    modcp_link_reply(&c->l, MODCP_ADU_MAX - 2, false, end); /* 1 byte too many */
     assert_int_equal(c->f.tx_calls, 0);
     assert_int_equal(c->l.state, MODCP_LINK_IDLE);
     assert_int_equal(c->d.buffer[0], MODCP_EV_INTERNAL_SEND);
     assert_canary(c);
     /* the largest reply fits: FC01 2040 bits (docs/mapping.md) */
     assert_true(frame_hex(c, FC03_REQ, end + 10000, &end));
-    modcp_link_reply(&c->l, MODCP_ADU_MAX - 3, end);
+    modcp_link_reply(&c->l, MODCP_ADU_MAX - 3, false, end);
     assert_int_equal(c->f.tx_calls, 1);
     assert_int_equal(c->f.tx_len, MODCP_ADU_MAX);
     assert_int_equal(modcp_crc16(c->f.tx, MODCP_ADU_MAX), 0);
@@ -857,7 +857,7 @@ static void test_rs485_de_without_turnaround(void **state)
     uint8_t rsp[] = {0x03, 0x04, 0x87, 0x65, 0x43, 0x21};
     memcpy(c->fr.pdu, rsp, sizeof rsp);
     c->f.now = end + 10;
-    modcp_link_reply(&c->l, sizeof rsp, end + 10);
+    modcp_link_reply(&c->l, sizeof rsp, false, end + 10);
     /* docs/diagnostics.md: DE on before the first byte */
     long de_on = fake_hal_log_find(&c->f, FHL_DE, 0);
     long tx = fake_hal_log_find(&c->f, FHL_TX, 0);
@@ -902,7 +902,7 @@ static void test_rs485_turnaround(void **state)
     memcpy(c->fr.pdu, rsp, sizeof rsp);
     uint32_t t = end + 20;
     c->f.now = t;
-    modcp_link_reply(&c->l, sizeof rsp, t);
+    modcp_link_reply(&c->l, sizeof rsp, false, t);
     assert_int_equal(c->l.state, MODCP_LINK_TURNAROUND);
     assert_int_equal(c->f.n, 2);
     assert_int_equal(c->f.log[0].kind, FHL_DE);
@@ -941,7 +941,7 @@ static void test_rs485_null_de(void **state)
     assert_true(frame_hex(c, FC03_REQ, 500, &end));
     uint8_t rsp[] = {0x03, 0x04, 0x87, 0x65, 0x43, 0x21};
     memcpy(c->fr.pdu, rsp, sizeof rsp);
-    modcp_link_reply(&c->l, sizeof rsp, end);
+    modcp_link_reply(&c->l, sizeof rsp, false, end);
     assert_false(timer_at(c, end + 1000));
     assert_tx(c, FC03_RSP);
     modcp_link_on_tx_done(&c->l, end + 20000);

@@ -304,6 +304,41 @@ static void test_modem_frame_lengths_by_function_code(void **state)
     lw_free(x);
 }
 
+/* Every request whose length its function code tells (the function-code table,
+ * fc_table.c) ends at its CRC, in either function set: not one character earlier (the
+ * link still receives), at the last one the frame is complete (EOF, handed over on the
+ * 1 us timer). Fixed lengths, lengths by the byte count (FC15, FC16, FC23) and the usual
+ * form of FC06, FC08 and FC43. */
+static void test_modem_every_known_request_ends_at_its_crc(void **state)
+{
+    (void)state;
+    static const char *const reqs[] = {
+        "05 01 00 00 00 08", "05 02 00 00 00 08", "05 03 00 50 00 02", "05 04 00 00 00 01",
+        "05 05 00 00 FF 00", "05 06 00 04 AB CD", "05 08 00 00 12 34", "05 0B", "05 0C",
+        "05 0F 00 00 00 08 01 FF", "05 10 00 00 00 01 02 12 34", "05 11",
+        "05 16 00 00 FF FF 00 00", "05 17 00 00 00 01 00 00 00 01 02 12 34", "05 2B 0E 01 00",
+    };
+    for (int set = 0; set < 2; set++) {
+        modcp_params_t p = params(MODCP_OPMODE_SUPPRESS);
+        p.fset = set ? MODCP_FSET_EXTENDED : MODCP_FSET_CP341;
+        lw_t *x = lw_new(&p);
+        for (size_t i = 0; i < sizeof reqs / sizeof reqs[0]; i++) {
+            uint8_t b[32];
+            size_t n = add_crc(b, hex_frame(reqs[i], b, sizeof b - 2));
+            uint32_t t = lw_now(x);
+            for (size_t k = 0; k < n; k++) {
+                t += CHAR_US;
+                lw_advance(x, t);
+                assert_int_equal(x->w->cp.link.state, k == 0 ? MODCP_LINK_IDLE : MODCP_LINK_RX);
+                lw_byte(x, b[k]);
+            }
+            assert_int_equal(x->w->cp.link.state, MODCP_LINK_EOF);
+            lw_advance(x, t + 80000); /* answered (or refused), the line idle again */
+        }
+        lw_free(x);
+    }
+}
+
 /* Function codes without a known length end by t3.5: an unsupported one (FC07) is
  * answered with exception 01 at t3.5, also after a stray character; FC08 with more
  * data than usual continues to t3.5 and is echoed. */
@@ -382,6 +417,7 @@ int main(void)
         cmocka_unit_test(test_modem_errors_after_crc_ignored_not_counted),
         cmocka_unit_test(test_modem_frame_ends_by_crc_without_t35),
         cmocka_unit_test(test_modem_frame_lengths_by_function_code),
+        cmocka_unit_test(test_modem_every_known_request_ends_at_its_crc),
         cmocka_unit_test(test_modem_unknown_length_ends_by_t35),
         cmocka_unit_test(test_slave_time_normal_and_modem),
     };

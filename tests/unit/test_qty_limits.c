@@ -221,14 +221,14 @@ static void test_mbap6_spec_table_in_both_framings(void **state)
     const uint8_t f32 = MODCP_R32_FLOAT + 1;
     for (uint8_t framing = MODCP_FRAMING_RTU; framing <= MODCP_FRAMING_ASCII; framing++) {
         p.framing = framing;
-        assert_int_equal(modcp_qty_max(&p, 1, 0), 2000);
-        assert_int_equal(modcp_qty_max(&p, 2, 0), 2000);
-        assert_int_equal(modcp_qty_max(&p, 15, 0), 1968);
-        assert_int_equal(modcp_qty_max(&p, 3, 0), 125);
-        assert_int_equal(modcp_qty_max(&p, 4, 0), 125);
-        assert_int_equal(modcp_qty_max(&p, 16, 0), 123);
-        assert_int_equal(modcp_qty_max(&p, 3, f32), 62);
-        assert_int_equal(modcp_qty_max(&p, 16, f32), 61);
+        assert_int_equal(world_qty_max(&p, 1, 0), 2000);
+        assert_int_equal(world_qty_max(&p, 2, 0), 2000);
+        assert_int_equal(world_qty_max(&p, 15, 0), 1968);
+        assert_int_equal(world_qty_max(&p, 3, 0), 125);
+        assert_int_equal(world_qty_max(&p, 4, 0), 125);
+        assert_int_equal(world_qty_max(&p, 16, 0), 123);
+        assert_int_equal(world_qty_max(&p, 3, f32), 62);
+        assert_int_equal(world_qty_max(&p, 16, f32), 61);
         assert_int_equal(modcp_qty_limit(&p, MODCP_QLIM_RW_READ, 0), 125);
         assert_int_equal(modcp_qty_limit(&p, MODCP_QLIM_RW_WRITE, 0), 121);
         for (uint8_t lim = 0; lim < MODCP_QLIM_COUNT; lim++) {

@@ -405,7 +405,7 @@ static void test_limits_rtu(void **state)
     read_n(w, false, 3000, 127, 5 + 254);
     read_n(w, false, 3000, 128, 5);
     write_n(w, false, 3000, 127, 2, 8);
-    assert_int_equal(modcp_qty_max(&w->cp.params, 16, 0), 127);
+    assert_int_equal(world_qty_max(&w->cp.params, 16, 0), 127);
     ascii_world_free(w);
 }
 
@@ -426,23 +426,23 @@ static void test_quantity_table(void **state)
     assert_int_equal(modcp_reg_bytes(MODCP_R32_INT32 + 1), 4);
     assert_int_equal(modcp_reg_bytes(MODCP_R32_FLOAT + 1), 4);
     const uint8_t f32 = MODCP_R32_FLOAT + 1;
-    assert_int_equal(modcp_qty_max(&p, 1, 0), 2040);
-    assert_int_equal(modcp_qty_max(&p, 15, 0), 2040);
-    assert_int_equal(modcp_qty_max(&p, 3, 0), 127);
-    assert_int_equal(modcp_qty_max(&p, 3, f32), 63);
-    assert_int_equal(modcp_qty_max(&p, 16, f32), 63);
+    assert_int_equal(world_qty_max(&p, 1, 0), 2040);
+    assert_int_equal(world_qty_max(&p, 15, 0), 2040);
+    assert_int_equal(world_qty_max(&p, 3, 0), 127);
+    assert_int_equal(world_qty_max(&p, 3, f32), 63);
+    assert_int_equal(world_qty_max(&p, 16, f32), 63);
     p.framing = MODCP_FRAMING_ASCII;
-    assert_int_equal(modcp_qty_max(&p, 1, 0), 2008);
-    assert_int_equal(modcp_qty_max(&p, 2, 0), 2008);
-    assert_int_equal(modcp_qty_max(&p, 15, 0), 1976);
-    assert_int_equal(modcp_qty_max(&p, 3, 0), 125);
-    assert_int_equal(modcp_qty_max(&p, 4, 0), 125);
-    assert_int_equal(modcp_qty_max(&p, 16, 0), 123);
-    assert_int_equal(modcp_qty_max(&p, 3, f32), 62);
-    assert_int_equal(modcp_qty_max(&p, 16, f32), 61);
-    assert_int_equal(modcp_qty_max(&p, 16, MODCP_R32_INT32 + 1), 61);
-    assert_int_equal(modcp_qty_max(&p, 16, MODCP_R32_INT16 + 1), 123);
-    assert_int_equal(modcp_qty_max(&p, 8, 0), 0);
+    assert_int_equal(world_qty_max(&p, 1, 0), 2008);
+    assert_int_equal(world_qty_max(&p, 2, 0), 2008);
+    assert_int_equal(world_qty_max(&p, 15, 0), 1976);
+    assert_int_equal(world_qty_max(&p, 3, 0), 125);
+    assert_int_equal(world_qty_max(&p, 4, 0), 125);
+    assert_int_equal(world_qty_max(&p, 16, 0), 123);
+    assert_int_equal(world_qty_max(&p, 3, f32), 62);
+    assert_int_equal(world_qty_max(&p, 16, f32), 61);
+    assert_int_equal(world_qty_max(&p, 16, MODCP_R32_INT32 + 1), 61);
+    assert_int_equal(world_qty_max(&p, 16, MODCP_R32_INT16 + 1), 123);
+    assert_int_equal(world_qty_max(&p, 8, 0), 0);
 }
 
 /* overlapping ranges, DB 0, one DB twice: refused, the CP stays not ready ([ASCII-32] §8.6) */

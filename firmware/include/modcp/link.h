@@ -5,8 +5,9 @@
  * link.c never asks which one it runs. The transmit side, turnaround, driver enable
  * and the end-of-frame silence are shared.
  *
- * Receive: per byte the framing stores it and updates its check (CRC / LRC) and the
- * time of the last character. (RTU in interference suppression = modem mode,
+ * Receive: per byte the character is stored with the time of the last character (RTU:
+ * by the link itself, the CRC checked over the buffer when the frame has ended; ASCII:
+ * the framing decodes the hex pair and sums the LRC). (RTU in interference suppression = modem mode,
  * rtu_modem.c: a frame starts at our own address and ends at its valid CRC, its length
  * from the function code, handed over at once; the silence below ends only frames of
  * unknown length and everything that is not ours.) The end-of-frame timer is armed once, at a frame's first
@@ -67,31 +68,12 @@ typedef struct {
     uint16_t pdu_cap;    /* room for the reply PDU at pdu[] */
 } modcp_frame_t;
 
-/* RTU receive state (rtu.c). */
-typedef struct {
-    uint16_t crc;   /* running CRC over our frame (modem mode: the candidate) */
-    uint16_t count; /* characters of the stretch that is not our frame (a skipped frame;
-                       modem mode: the stretch being followed), counted up to 4 */
-    uint16_t stop;  /* buffer index of the next character that needs a look; the hot
-                       path runs below it (normal operation: the capacity; modem mode:
-                       function code, byte count, last character) */
-    uint16_t total; /* modem mode: the candidate's length by its function code, 0: by
-                       t3.5 (normal operation: always 0) */
-    uint16_t skip_crc; /* CRC over the stretch that is not our frame (bus counters) */
-    uint8_t flags;  /* RTU_M_* (link_internal.h) */
-} modcp_rtu_t;
-
-/* ASCII receive state (ascii.c). */
-typedef struct {
-    uint16_t count;  /* bytes decoded in the current frame, up to 3 (busy: address
-                        decoded) */
-    uint8_t lrc;     /* running byte sum */
-    uint8_t hex_hi;  /* first hex character of a pair */
-    bool hex_half;   /* a pair is half received */
-    bool got_cr;     /* the last character was CR */
-    bool in_frame;   /* a ':' started what is being followed (false: stray characters) */
-    uint8_t char_mask; /* 7 data bits: 7FH, the eighth bit of a character is masked */
-} modcp_ascii_t;
+/* The framing's own receive state: opaque here, defined by its backend (rtu_internal.h,
+ * ascii.c), which checks that it fits. */
+typedef union {
+    uint32_t align_;
+    uint16_t words_[6];
+} modcp_link_fr_t;
 
 struct modcp_framing_ops; /* link_internal.h */
 
@@ -104,27 +86,27 @@ typedef struct { /* members by size, the small ones first: every byte within rea
     bool busy_rx;     /* a frame is being followed while BUSY/TURNAROUND/TX */
     uint8_t own_addr;
     bool suppress;    /* interference suppression (also RS485) */
-    bool modem;       /* RTU in interference suppression = modem mode (rtu_modem.c) */
     bool rs485;
     bool enabled;     /* configured; a disabled link ignores the line */
     bool tx_on;       /* a transmission is on the line: from its start to transmission
                          complete (or its abort) */
-    bool reply_same;  /* set by the caller before every modcp_link_reply(): the reply is
-                         the request's PDU, unchanged (FC05 / FC06 echo), so a framing
-                         may send the frame as received (RTU: its CRC in place) */
+    bool reply_same;  /* the reply being sent is the request's PDU, unchanged (FC05 /
+                         FC06 echo; modcp_link_reply), so a framing may send the frame as
+                         received (RTU: its CRC in place) */
 #if MODCP_WITH_RS232_SIGNALS
     bool tx_hold;     /* RS232 automatic signals: a reply waits in TURNAROUND until
                          modcp_link_tx_release() (signals.c decides RTS / CTS) */
 #endif
     uint8_t ascii_delim; /* ASCII: end of frame is CR + this (LF; FC08 sub-function 03) */
-    union {           /* the framing's own receive state */
-        modcp_rtu_t rtu;
-#if MODCP_WITH_ASCII
-        modcp_ascii_t ascii;
-#endif
-    } fr;
+    modcp_link_fr_t fr; /* the framing's own receive state */
     uint16_t len;     /* bytes stored; from modcp_link_reply() on (TURNAROUND, TX) the
                          reply's length on the line */
+    uint16_t rx_stop; /* the receive hot path (link_rx_store, link_internal.h): a
+                         character is stored at buf[len] by the link itself while len is
+                         below it; 0 while no frame is stored (set by the framing) */
+    uint16_t run_stop; /* the same for the characters of a block after its first
+                          (rx_stop, or more where a per-character check is on: RTU's
+                          t1.5) */
     uint16_t cap;     /* receive / RTU capacity: the buffer, at most MODCP_ADU_MAX */
     uint16_t size;    /* the whole buffer (ASCII replies are hex-encoded in place) */
     uint16_t tx_starts; /* transmissions started (the TXD LED reads it, leds.h) */

@@ -33,27 +33,28 @@
 
 #include "modcp/params.h"
 
-/* Limit classes: the function-code table (pdu.c) names one per function code. */
-enum {
-    MODCP_QLIM_NONE = 0,   /* no quantity field */
-    MODCP_QLIM_READ_BITS,  /* FC01 / FC02 */
-    MODCP_QLIM_WRITE_BITS, /* FC15 */
-    MODCP_QLIM_READ_REGS,  /* FC03 / FC04, the scanner's FC03 */
-    MODCP_QLIM_WRITE_REGS, /* FC16, the scanner's FC16 */
-    MODCP_QLIM_RW_READ,    /* FC23 read part: 125, 32-bit 62 (both framings) */
-    MODCP_QLIM_RW_WRITE,   /* FC23 write part: 121, 32-bit 60 (both framings) */
-    MODCP_QLIM_COUNT
-};
+/* Limit classes: the function-code table (fc_table.c) names one per function code. */
+#define MODCP_QLIM_NONE 0u       /* no quantity field */
+#define MODCP_QLIM_READ_BITS 1u  /* FC01 / FC02 */
+#define MODCP_QLIM_WRITE_BITS 2u /* FC15 */
+#define MODCP_QLIM_READ_REGS 3u  /* FC03 / FC04, the scanner's FC03 */
+#define MODCP_QLIM_WRITE_REGS 4u /* FC16, the scanner's FC16 */
+#define MODCP_QLIM_RW_READ 5u    /* FC23 read part: 125, 32-bit 62 (both framings) */
+#define MODCP_QLIM_RW_WRITE 6u   /* FC23 write part: 121, 32-bit 60 (both framings) */
+#define MODCP_QLIM_COUNT 7u
 
 /* The limits: [class - 1][column] (no row for MODCP_QLIM_NONE; the FC23 rows only with
  * the extended set), columns RTU, ASCII, spec (either framing), then the same three
  * for 32-bit registers. */
-enum { MODCP_QCOL_RTU = 0, MODCP_QCOL_ASCII = 1, MODCP_QCOL_SPEC = 2, MODCP_QCOL_R32 = 3 };
+#define MODCP_QCOL_RTU 0u
+#define MODCP_QCOL_ASCII 1u
+#define MODCP_QCOL_SPEC 2u
+#define MODCP_QCOL_R32 3u
 #if MODCP_WITH_EXTENDED
 #define MODCP_QLIM_ROWS MODCP_QLIM_COUNT
 #else
 #define MODCP_QLIM_ROWS MODCP_QLIM_RW_READ
 #endif
-extern const uint16_t modcp_qty_limits[MODCP_QLIM_ROWS - 1][6];
+extern const uint16_t modcp_qty_limits[MODCP_QLIM_ROWS - 1u][6];
 
 #endif

@@ -14,6 +14,8 @@
 #include "modcp/fb.h"
 #include "modcp/params.h"
 #include "modcp/plcmem.h"
+#include "fc_table_internal.h"
+#include "quantity_internal.h"
 
 #define WORLD_DBS 7
 #define WORLD_WORK_DB 80
@@ -76,5 +78,14 @@ const char *world_reply_hex(const world_t *w);
 /* Newest event of the diagnostic buffer. */
 modcp_event_t world_last_event(const world_t *w);
 uint8_t *world_db(world_t *w, uint16_t number);
+
+/* The largest quantity of function code fc for the limit set and framing of p and the
+ * register kind (modcp_regs32_kind), by fc's limit class in the function-code table
+ * (fc_table.c); 0 for a function code without a quantity. */
+static inline uint16_t world_qty_max(const modcp_params_t *p, uint8_t fc, uint8_t r32_kind)
+{
+    const modcp_fc_row_t *r = modcp_fc_row(fc);
+    return modcp_qty_limit(p, r != NULL ? (uint8_t)(r->form & FC_LIM) : 0u, r32_kind);
+}
 
 #endif
