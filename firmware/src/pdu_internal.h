@@ -23,18 +23,17 @@
 #include "modcp/pdu.h"
 #include "fc_table_internal.h"
 
-/* Modbus exception codes (Application Protocol V1.1b3 §7). */
-enum {
-    MODCP_EXC_NONE = 0,              /* s->x.exc: no exception (yet) */
-    MODCP_EXC_OF_MAP = 0,            /* modcp_pdu_map_err: the mapping event's code */
-    MODCP_EXC_ILLEGAL_FUNCTION = 1,
-    MODCP_EXC_ILLEGAL_ADDRESS = 2,
-    MODCP_EXC_ILLEGAL_VALUE = 3,
-    MODCP_EXC_DEVICE_FAILURE = 4,
-    MODCP_EXC_ACKNOWLEDGE = 5,
-    MODCP_EXC_BUSY = 6,
-    MODCP_EXC_NAK = 7,
-};
+/* Modbus exception codes ([MB-APP] §7); unsigned macros, not an anonymous
+ * enum (MISRA rules 5.7 and 10.4, docs/misra.md). */
+#define MODCP_EXC_NONE 0u             /* s->x.exc: no exception (yet) */
+#define MODCP_EXC_OF_MAP 0u           /* modcp_pdu_map_err: the mapping event's code */
+#define MODCP_EXC_ILLEGAL_FUNCTION 1u
+#define MODCP_EXC_ILLEGAL_ADDRESS 2u
+#define MODCP_EXC_ILLEGAL_VALUE 3u
+#define MODCP_EXC_DEVICE_FAILURE 4u
+#define MODCP_EXC_ACKNOWLEDGE 5u
+#define MODCP_EXC_BUSY 6u
+#define MODCP_EXC_NAK 7u
 
 /* The flags of a function-code table row (F_*, fc_table_internal.h) the handlers see
  * in s->fcflags. */

@@ -32,13 +32,12 @@
  *     in DR) reports OVERRUN, then delivers that character. One event per character
  *     on the line keeps the core's timing and frame length right. */
 
-/* Line errors reported with a received character (or alone for BREAK). */
-enum {
-    MODCP_LINE_PARITY = 0x01,
-    MODCP_LINE_FRAMING = 0x02,
-    MODCP_LINE_OVERRUN = 0x04,
-    MODCP_LINE_BREAK = 0x08,
-};
+/* Line errors reported with a received character (or alone for BREAK): bits of an
+ * unsigned mask (macros, not an anonymous enum: MISRA rules 5.7 and 10.4, docs/misra.md). */
+#define MODCP_LINE_PARITY 0x01u
+#define MODCP_LINE_FRAMING 0x02u
+#define MODCP_LINE_OVERRUN 0x04u
+#define MODCP_LINE_BREAK 0x08u
 
 typedef enum { MODCP_LED_SF = 0, MODCP_LED_TXD = 1, MODCP_LED_RXD = 2 } modcp_led_t;
 
