@@ -66,8 +66,10 @@ static void line_poll(modcp_cp_t *cp, uint32_t now_us)
     /* (the poll always has its backplane: modcp_job_poll and publish() use it too) */
     uint32_t req = atomic_load_explicit(&cp->job.bp->systat_req, memory_order_acquire);
     if (req != cp->cpdiag.systat_ack) { /* a new SYSTAT request */
-        /* byte 0 ([RTU-2003] §7.4): RUN once parameterised, fault without valid parameters */
-        modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, req, cp->configured);
+        /* the image straight into the status area (publish() then publishes the answer,
+         * systat_ack, at the end of this poll); byte 0 ([RTU-2003] §7.4): RUN once
+         * parameterised, fault without valid parameters */
+        modcp_cpdiag_systat(&cp->cpdiag, &cp->diag, cp->job.bp, req, cp->configured);
     }
     const uint8_t errors = modcp_job_take_errors(&cp->job);
     if (errors != 0u) { /* new backplane errors */
@@ -471,7 +473,7 @@ static uint32_t ext_flags(const modcp_cp_t *cp)
 #define ST_DIAG(f) ST_SAME(events_total, f, modcp_diag_t, events_total, f)
 #define ST_CPDIAG(f, tf) ST_SAME(diag_irq, f, modcp_cpdiag_t, irq, tf)
 #define ST_DIAG_RUN ((ST_AT(buffer_len) - ST_AT(events_total)) + ST_SIZE(modcp_cp_status_t, buffer_len))
-#define ST_CPDIAG_RUN ((ST_AT(systat) - ST_AT(diag_irq)) + ST_SIZE(modcp_cp_status_t, systat))
+#define ST_CPDIAG_RUN ((ST_AT(systat_ack) - ST_AT(diag_irq)) + ST_SIZE(modcp_cp_status_t, systat_ack))
 #define ST_SIZE(T, f) sizeof(((T *)0)->f)
 _Static_assert(ST_DIAG(counters) && ST_DIAG(frames_too_long) && ST_DIAG(char_errors) &&
                    ST_DIAG(breaks) && ST_DIAG(t15_discards) && ST_DIAG(status) &&
@@ -480,10 +482,9 @@ _Static_assert(ST_DIAG(counters) && ST_DIAG(frames_too_long) && ST_DIAG(char_err
                    ST_SIZE(modcp_cp_status_t, buffer) == ST_SIZE(modcp_diag_t, buffer),
                "status area: events_total ... buffer_len as in modcp_diag_t");
 _Static_assert(ST_CPDIAG(diag_irq_count, irq_count) && ST_CPDIAG(systat_ack, systat_ack) &&
-                   ST_CPDIAG(systat, systat) &&
                    ST_SIZE(modcp_cp_status_t, diag_irq) == MODCP_DIAG_IRQ_BYTES &&
-                   ST_SIZE(modcp_cpdiag_t, systat) == 16u,
-               "status area: diag_irq ... systat as in modcp_cpdiag_t");
+                   ST_SIZE(modcp_cp_status_t, systat) == 16u,
+               "status area: diag_irq ... systat_ack as in modcp_cpdiag_t");
 
 /* Publish the status area, written in place under the seqlock (no copy of it). */
 static MODCP_SIZE_NOINLINE void publish(modcp_cp_t *cp)

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "modcp/hal.h"
+#include "backplane_internal.h"
 #include "cpdiag_internal.h"
 #include "diag_internal.h"
 #include "job_internal.h"
@@ -66,12 +67,12 @@ void modcp_cpdiag_params(modcp_cpdiag_t *d, bool ok, int irq_setting)
     }
 }
 
-void modcp_cpdiag_systat(modcp_cpdiag_t *d, modcp_diag_t *diag, uint32_t req, bool run)
+void modcp_cpdiag_systat(modcp_cpdiag_t *d, modcp_diag_t *diag, modcp_backplane_t *bp,
+                         uint32_t req, bool run)
 {
-    if (req == d->systat_ack) {
-        return;
-    }
-    modcp_diag_read_systat(diag, run, d->systat);
+    modcp_cp_status_t *st = modcp_bp_status_begin(bp); /* the CP is its only writer */
+    modcp_diag_read_systat(diag, run, st->systat);
+    modcp_bp_status_end(bp);
     d->systat_ack = req;
 }
 

@@ -4,6 +4,7 @@
 #ifndef MODCP_CPDIAG_INTERNAL_H
 #define MODCP_CPDIAG_INTERNAL_H
 
+#include "modcp/backplane.h"
 #include "modcp/cpdiag.h"
 
 void modcp_cpdiag_init(modcp_cpdiag_t *d);
@@ -21,7 +22,10 @@ void modcp_cpdiag_params(modcp_cpdiag_t *d, bool ok, int irq_setting);
  * continuation without a start, short INIT) -> (0E)30H "unexpected acknowledgement". At
  * most one of each per call (per poll). */
 void modcp_cpdiag_backplane(modcp_diag_t *diag, unsigned errors);
-/* Serve a SYSTAT request (number req) if it is new: image + clear. run: CP in RUN. */
-void modcp_cpdiag_systat(modcp_cpdiag_t *d, modcp_diag_t *diag, uint32_t req, bool run);
+/* Serve a new SYSTAT request (number req, not systat_ack): the image straight into the
+ * status area's systat[] (under its seqlock; the CP publishes systat_ack = req with the
+ * rest of the status area) + clear. run: CP in RUN. */
+void modcp_cpdiag_systat(modcp_cpdiag_t *d, modcp_diag_t *diag, modcp_backplane_t *bp,
+                         uint32_t req, bool run);
 
 #endif

@@ -36,13 +36,13 @@
 
 #define MODCP_DIAG_IRQ_BYTES 4u
 
-/* From irq to systat the fields are in the order of the CP status area
+/* From irq to systat_ack the fields are in the order of the CP status area
  * (modcp/backplane.h): cp.c publishes them as one copy (static asserts in cp.c). */
 typedef struct {
     uint8_t irq[MODCP_DIAG_IRQ_BYTES]; /* last diagnostic interrupt record */
     uint32_t irq_count; /* interrupts raised since start */
-    uint32_t systat_ack; /* number of the last SYSTAT request answered */
-    uint8_t systat[16];  /* the image given with it */
+    uint32_t systat_ack; /* number of the last SYSTAT request answered (the image given
+                            with it is in the status area only: modcp_cpdiag_systat) */
     bool wire_break;    /* BREAK in normal mode, until the next good character */
     bool param_error;   /* the last PARAMS record was rejected */
     bool irq_enabled;   /* params.diag_irq of the last decodable record */
