@@ -190,8 +190,8 @@ static size_t pdu_data(drng_t *r, const modcp_params_t *p, uint8_t fc, uint8_t *
 
 size_t diff_request(drng_t *r, const modcp_params_t *p, uint8_t *out, size_t cap)
 {
-    static const uint8_t fcs[] = {1, 1, 2, 3, 3, 4, 5, 6, 15, 16, 16, 8, 8, 11,
-                                  12, 17, 22, 23, 43, 1, 3, 16, 5, 6, 15, 2, 4};
+    static const uint8_t fcs[] = {1, 1, 2, 3, 3, 4, 5, 6, 15, 16, 16, 8, 8, 11, 12,
+                                  12, 17, 22, 23, 43, 1, 3, 16, 5, 6, 15, 2, 4, 12};
     uint32_t a = drng_below(r, 100);
     out[0] = a < 80u ? p->slave_addr : (a < 88u ? 0u : (uint8_t)drng_next(r));
     uint32_t k = drng_below(r, sizeof fcs + 2u);

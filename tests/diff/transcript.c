@@ -13,8 +13,8 @@
  * job limit, timeouts, DB sizes that make jobs fail), a CPU cycle time, then steps:
  * requests (requests.c) character by character or as blocks, with gaps at and around
  * t1.5, t3.5 and the ASCII timeout inside them and after them, corrupted frames, noise,
- * line errors, a stalled CPU side (jobs time out), CP_START dropped (the FB
- * initialises the CP again), CTS / DSR changes, SYSTAT requests, comm-loss resets,
+ * line errors, a stalled CPU side (jobs time out), a stalled CP task, CP_START dropped
+ * (the FB initialises the CP again), CTS / DSR changes, SYSTAT requests, comm-loss resets,
  * long silences, a late transmission complete. The CPU side runs one FB call and one
  * CP poll per cycle throughout, the timer fires when it is due, the transmission
  * completes len characters after uart_tx.
@@ -65,6 +65,7 @@ typedef struct {
     uint32_t t0, now_us, timer_at, tx_done_at, next_cycle; /* 0: none */
     uint32_t char_us, t15_us, t35_us, cycle_us, stall_until, tx_extra_us;
     bool stalled, restart;
+    uint32_t cp_stall_until; /* the CP task does not run (no modcp_cp_poll) until then */
     modcp_fb_in_t fb_in;
     modcp_fb_out_t fb_out, fb_last;
     bool rts, cts_stuck_off, dsr_off, signals_changed; /* the partner's CTS / DSR */
@@ -297,8 +298,11 @@ static void cpu_cycle(void)
             observe_mem();
         }
     }
-    modcp_cp_poll(&W.cp, W.now_us);
-    observe_status();
+    if (W.cp_stall_until == 0u || (int32_t)(W.now_us - W.cp_stall_until) >= 0) {
+        W.cp_stall_until = 0;
+        modcp_cp_poll(&W.cp, W.now_us);
+        observe_status();
+    }
 }
 
 static bool due(uint32_t at, uint32_t end)
@@ -462,9 +466,12 @@ static void step_other(drng_t *r, uint32_t k)
         W.stalled = true;
         W.stall_until = W.now_us + 1000u * drng_below(r, 2u * W.p.cpu_timeout_ms + 20u);
         say("cpu-stall until %u", (unsigned)(W.stall_until - W.t0));
-    } else if (k < 55u) {
+    } else if (k < 50u) {
         W.restart = true;
         say("cp-start-drop");
+    } else if (k < 55u) {
+        W.cp_stall_until = W.now_us + 1000u * (1u + drng_below(r, 3u * W.p.cpu_timeout_ms + 20u));
+        say("cp-task-stall until %u", (unsigned)(W.cp_stall_until - W.t0));
     } else if (k < 70u) {
         if (drng_below(r, 2) == 0) {
             W.cts_stuck_off = !W.cts_stuck_off;
@@ -605,6 +612,7 @@ static void run_input(uint64_t seed, uint64_t input)
         observe_mem();
     }
     W.stalled = false;
+    W.cp_stall_until = 0;
     W.cts_stuck_off = W.dsr_off = false;
     W.signals_changed = true;
     advance(quiet_us() + 1000u * W.p.cpu_timeout_ms);
