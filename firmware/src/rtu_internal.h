@@ -26,13 +26,16 @@ typedef struct {
     uint16_t skip_crc; /* CRC over the stretch that is not our frame (bus counters) */
     uint8_t flags;     /* RTU_M_* */
     bool modem;        /* interference suppression = modem mode (rtu_modem.c) */
+    bool fc06_open;    /* modem mode with 32-bit registers: FC06 has a longer form (4 data
+                          bytes to an int32 / float register, [ASCII-32] §4.5) */
 } modcp_rtu_t;
 _Static_assert(sizeof(modcp_rtu_t) <= sizeof(modcp_link_fr_t), "modcp_link_fr_t holds it");
 
 /* modcp_rtu_t.flags (modem mode) */
 #define RTU_M_LEAD 0x01u  /* the stretch began with our address or 0 */
 #define RTU_M_FIRST 0x02u /* the candidate is the stretch's first character */
-#define RTU_M_OPEN 0x04u  /* a wrong CRC at the length: continue to t3.5 (FC08, FC43) */
+#define RTU_M_OPEN 0x04u  /* a wrong CRC at the length: continue to t3.5 (FC08, FC43; FC06
+                           with 32-bit registers) */
 #define RTU_M_SBAD 0x08u  /* the stretch around the candidate had a line error */
 
 static inline modcp_rtu_t *rtu_of(modcp_link_t *l)

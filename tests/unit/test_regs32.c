@@ -111,6 +111,25 @@ static void test_fc06_float_example(void **state)
     ascii_world_free(w);
 }
 
+/* The same FC06 32-bit request in interference suppression (modem mode: the frame ends at
+ * its CRC, not by t3.5): its 4 data bytes make it 10 characters, 2 more than FC06's usual
+ * form, so a wrong CRC at the 8th character is no end of the frame; the 16-bit form on
+ * the same slave still ends at its CRC. */
+static void test_fc06_32bit_in_modem_mode(void **state)
+{
+    (void)state;
+    modcp_params_t p;
+    world_example_params(&p);
+    regs32_example_ranges(&p);
+    p.opmode = MODCP_OPMODE_SUPPRESS;
+    world_t *w = ascii_world_started(&p);
+    rtu_expect(w, "05 06 1B 5A 12 23 34 45", "05 06 1B 5A 12 23 34 45");
+    assert_memory_equal(world_db(w, 4) + 8, "\x12\x23\x34\x45", 4);
+    rtu_expect(w, "05 06 0D 37 2B 1A", "05 06 0D 37 2B 1A");
+    assert_memory_equal(world_db(w, 2) + 766, "\x2B\x1A", 2);
+    ascii_world_free(w);
+}
+
 /* FC16 16-bit: 0C1CH = 3100 -> DB2.DBW200, 202, 204 */
 static void test_fc16_int16_example(void **state)
 {
@@ -476,6 +495,7 @@ int main(void)
         cmocka_unit_test(test_fc03_float_example),
         cmocka_unit_test(test_fc06_int16_example),
         cmocka_unit_test(test_fc06_float_example),
+        cmocka_unit_test(test_fc06_32bit_in_modem_mode),
         cmocka_unit_test(test_fc16_int16_example),
         cmocka_unit_test(test_fc16_int32_example),
         cmocka_unit_test(test_address_table),
