@@ -88,8 +88,8 @@ static uint32_t row_def(const modcp_param_row_t *r)
     return (r->def < 240u) ? (uint32_t)r->def : (uint32_t)big_defaults[r->def - 240u];
 }
 
-/* A scalar row's value (width 1, 2 or 4) and its store; a scalar member is aligned to its
- * width (modcp_params_t has no packed scalars). */
+/* A scalar row's value (width 1, 2 or 4) and its store; a scalar member has its row's
+ * width and is aligned to it (asserted in params_record.c). */
 static uint32_t param_get(const modcp_params_t *p, const modcp_param_row_t *r)
 {
     const void *b = (const uint8_t *)p + r->off;

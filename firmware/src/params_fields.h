@@ -96,6 +96,10 @@ typedef struct {
 #define MODCP_PARAM_OFF(member)                                                                   \
     MODCP_PX_CAT(MODCP_PX_IF_, MODCP_PX_IS(MODCP_PX_ABSENT_##member))                             \
     (MODCP_PARAM_ABSENT, offsetof(modcp_params_t, member))
+/* sizeof the member (0 for an ID string the build leaves out) */
+#define MODCP_PARAM_SIZE(member)                                                                  \
+    MODCP_PX_CAT(MODCP_PX_IF_, MODCP_PX_IS(MODCP_PX_ABSENT_##member))                             \
+    ((size_t)0u, sizeof(((modcp_params_t *)0)->member))
 
 /* The bytes a member of width w takes in its struct: a one-byte member of a group struct
  * has a 2-byte slot unless the structs are packed (modcp/params.h). */

@@ -39,7 +39,13 @@ _Static_assert(PAYLOAD_BYTES <= 0xFFFFu, "payload length must fit u16");
                     (((OFF_IN(type, member) - SLOT_OF(type)) % 2u) == 0u)) &&                   \
                        ((size_t)(width) == ((OFF_IN(type, member) == 0u) ? FIRST_W(type) : 2u)), \
                    #type "." #member ": place");
-#define LAYOUT_S(...)
+/* A scalar row names a member of its width, aligned to it (params.c's param_get reads it
+ * through a pointer of that width). */
+#define LAYOUT_S(member, width, ...)                                                            \
+    _Static_assert(((unsigned)(width) == MODCP_PW_STR) ||                                       \
+                       ((MODCP_PARAM_SIZE(member) == (size_t)(width)) &&                        \
+                        (((size_t)MODCP_PARAM_OFF(member) % (size_t)(width)) == 0u)),           \
+                   #member ": a scalar of its row's width, aligned to it");
 MODCP_PARAM_ROWS(LAYOUT_S, LAYOUT_G, LAYOUT_M)
 _Static_assert(OFF_IN(modcp_params_t, lim_q) ==
                    (OFF_IN(modcp_params_t, lim_db) + (2u * sizeof(modcp_limit_t))),

@@ -154,8 +154,8 @@ static bool oldest_end(sim_line_t *l, uint64_t *end)
 
 static void put_locked(sim_line_t *l, const sim_char_t *c)
 {
-    if (l->qn == SIM_LINE_QUEUE) {
-        release_char(l);
+    while (l->qn == SIM_LINE_QUEUE) { /* full: what is oldest goes first, note or character */
+        (void)release_first(l);
     }
     /* from the newest back: most characters come in time order */
     size_t i = l->qn;
@@ -230,8 +230,8 @@ void sim_line_note(sim_line_t *l, uint64_t t_us, int src, unsigned kind, const c
     vsnprintf(n.text, sizeof n.text, fmt, ap);
     va_end(ap);
     pthread_mutex_lock(&l->mu);
-    if (l->nn == SIM_LINE_NOTES) {
-        release_note(l);
+    while (l->nn == SIM_LINE_NOTES) { /* full: what is oldest goes first, note or character */
+        (void)release_first(l);
     }
     size_t i = l->nn; /* from the newest back; the same time: after those before */
     while (i > 0u && note_at(l, i - 1u)->t_us > n.t_us) {

@@ -74,7 +74,8 @@ typedef struct {
 
 /* Two runs of fields are laid out as their owners hold them, so that the CP publishes
  * each as one copy: events_total ... buffer_len as in modcp_diag_t (diag.h), diag_irq ...
- * systat as in modcp_cpdiag_t (cpdiag.h). */
+ * systat_ack as in modcp_cpdiag_t (cpdiag.h); the SYSTAT image (systat) is written here
+ * directly by modcp_cpdiag_systat. */
 typedef struct {
     uint32_t flags;        /* MODCP_CPST_* */
     /* line discipline (leds.h, signals.h) */

@@ -34,8 +34,8 @@ typedef struct {
     bool cl_lost;        /* expired: MODCP_CPST_COMMLOSS set */
     uint32_t cl_last_us; /* last valid request for our address */
     uint32_t cl_reset_seen; /* backplane commloss_reset as last seen (latched mode) */
-    /* FC08 sub 03: end-of-frame character of ASCII framing (replaces LF); the CP copies
-     * it to modcp_link_t.ascii_delim when delimiter_changed is set (sub 03, sub 01) */
+    /* FC08 sub 03: end-of-frame character of ASCII framing (replaces LF); the CP takes
+     * it for the link with modcp_ext_take_delimiter when it changed (sub 03, sub 01) */
     uint8_t ascii_delimiter;
     bool delimiter_changed;
     /* the last CPU job timed out and none has succeeded since (FC17 run indicator) */
