@@ -496,39 +496,6 @@ static void step_other(drng_t *r, uint32_t k)
     }
 }
 
-static void base_params(modcp_params_t *p, bool ascii)
-{
-    modcp_params_defaults(p);
-    p->slave_addr = 5;
-    p->coils[0] = (modcp_bitwin_t){MODCP_AREA_M, 0, 2047, 1000, 0};
-    p->coils[1] = (modcp_bitwin_t){MODCP_AREA_Q, 2048, 2559, 256, 0};
-    p->coils[2] = (modcp_bitwin_t){MODCP_AREA_T, 4096, 4607, 100, 0};
-    p->coils[3] = (modcp_bitwin_t){MODCP_AREA_C, 4608, 5119, 200, 0};
-    p->inputs[0] = (modcp_bitwin_t){MODCP_AREA_M, 0, 4095, 2000, 0};
-    p->inputs[1] = (modcp_bitwin_t){MODCP_AREA_I, 4096, 5119, 128, 0};
-    p->hr_base_db = 700;
-    p->ir_base_db = 900;
-    p->lim_db = (modcp_limit_t){800, 899};
-    p->lim_m = (modcp_limit_t){1000, 1255};
-    p->lim_q = (modcp_limit_t){256, 319};
-    p->cpu_timeout_ms = 50;
-    p->r32[MODCP_R32_INT16] = (modcp_r32range_t){3000, 3199, 800};
-    p->r32[MODCP_R32_INT32] = (modcp_r32range_t){5000, 5099, 801};
-    p->r32[MODCP_R32_FLOAT] = (modcp_r32range_t){7000, 7199, 900};
-#if MODCP_WITH_EXTENDED
-    p->scan_start = 40000;
-    static const modcp_operand_ref_t scan[5] = {{MODCP_AREA_M, 0, 1000}, {MODCP_AREA_I, 0, 4},
-                                                {MODCP_AREA_DB, 800, 10}, {MODCP_AREA_T, 0, 7},
-                                                {MODCP_AREA_Q, 0, 256}};
-    memcpy(p->scan, scan, sizeof scan);
-#endif
-    if (ascii) {
-        p->framing = MODCP_FRAMING_ASCII;
-        p->data_bits = 7;
-        p->ascii_timeout_ms = 20;
-    }
-}
-
 static void fill_memory(void)
 {
     for (unsigned k = 0; k < sizeof W.m; k++) W.m[k] = (uint8_t)(k * 7u);
@@ -555,7 +522,7 @@ static void setup(drng_t *r)
         h[k] = d == 0u || drng_below(r, d) != 0 ? 0u : (uint8_t)drng_next(r);
     }
     modcp_params_t base;
-    base_params(&base, drng_below(r, 3) == 0);
+    fuzz_cfg_base(&base, drng_below(r, 3) == 0);
     fuzz_cfg_stats_t stats;
     fuzz_cfg_build(h, &base, &W.p, &W.mem, &stats);
     say("cfg %s", hex(h, sizeof h));

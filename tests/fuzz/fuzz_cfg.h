@@ -8,6 +8,7 @@
 #ifndef FUZZ_CFG_H
 #define FUZZ_CFG_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -28,6 +29,9 @@ typedef struct {
     unsigned fallbacks; /* fields set back to the base set */
     unsigned whole;     /* 1: the whole set fell back to the base set */
 } fuzz_cfg_stats_t;
+
+/* The base set: the manual's example (fuzz_cfg.c), RTU or ASCII (7 data bits). */
+void fuzz_cfg_base(modcp_params_t *p, bool ascii);
 
 /* Build p (and mem) from h[0 .. FUZZ_CFG_BYTES) over base; base must be valid (and
  * framed as the target's framing; byte 47 bit 0 switches to the other one). */
