@@ -32,25 +32,13 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(ROOT, "tests", "integration"))
-from simlib import Sim  # noqa: E402
+from simlib import Sim, member_configs  # noqa: E402
 
 
 def cpu_ticks(pid):
     with open("/proc/%d/stat" % pid) as f:
         fields = f.read().rsplit(")", 1)[1].split()
     return int(fields[11]) + int(fields[12])  # utime, stime (fields 14, 15)
-
-
-def configs(src, tmp, n):
-    with open(src) as f:
-        text = f.read()
-    out = []
-    for addr in range(1, n + 1):
-        p = os.path.join(tmp, "b%d.ini" % addr)
-        with open(p, "w") as f:
-            f.write(re.sub(r"(?m)^slave_address = \d+", "slave_address = %d" % addr, text))
-        out.append(p)
-    return out
 
 
 def run(a, cfgs):
@@ -92,7 +80,7 @@ def main():
     atexit.register(shutil.rmtree, tmp, True)  # the 247 configs go however the run ends
     out = []
     for n in [int(x) for x in a.members.split(",")]:
-        startup, idle, tps, line = run(a, configs(a.config, tmp, n))
+        startup, idle, tps, line = run(a, member_configs(a.config, tmp, [("b%d" % k, k) for k in range(1, n + 1)]))
         print("%3d member%s, %d baud, cycle %d ms: start-up %.2f s, idle %.1f %% of a core; %s"
               % (n, " " if n == 1 else "s", a.baud, a.cycle_ms, startup, idle, line), flush=True)
         out += ["line_startup_s_%d=%.2f" % (n, startup), "line_idle_cpu_%d=%.1f" % (n, idle),

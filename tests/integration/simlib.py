@@ -231,6 +231,25 @@ def with_crc(hexstr):
     return b + crc16(b)
 
 
+def member_configs(src, tmp, specs):
+    """Copies of the configuration src in tmp, one per member: specs is a list of
+    (name, slave address) or (name, slave address, {key: value}) -> their paths."""
+    with open(src) as f:
+        text = f.read()
+    out = []
+    for spec in specs:
+        name, addr = spec[0], spec[1]
+        t = re.sub(r"(?m)^slave_address = \d+", "slave_address = %d" % addr, text)
+        for k, v in (spec[2] if len(spec) > 2 else {}).items():
+            t, n = re.subn(r"(?m)^%s = .*$" % re.escape(k), "%s = %s" % (k, v), t)
+            assert n == 1, k
+        p = os.path.join(tmp, name + ".ini")
+        with open(p, "w") as f:
+            f.write(t)
+        out.append(p)
+    return out
+
+
 class RawLine:
     """The pty opened raw (no parity: a pty has none), for byte-exact exchanges."""
 

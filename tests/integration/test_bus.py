@@ -25,26 +25,9 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from simlib import Checks, RawLine, Sim, crc16, with_crc  # noqa: E402
+from simlib import Checks, RawLine, Sim, crc16, member_configs, with_crc  # noqa: E402
 
 FAST = ["serial.baud=115200"]
-
-
-def make_configs(src, tmp, specs):
-    """specs: [(name, address, {key: value})] -> paths of copies of src."""
-    with open(src) as f:
-        text = f.read()
-    out = []
-    for name, addr, changes in specs:
-        t = re.sub(r"(?m)^slave_address = \d+", "slave_address = %d" % addr, text)
-        for k, v in changes.items():
-            t, n = re.subn(r"(?m)^%s = .*$" % re.escape(k), "%s = %s" % (k, v), t)
-            assert n == 1, k
-        p = os.path.join(tmp, name + ".ini")
-        with open(p, "w") as f:
-            f.write(t)
-        out.append(p)
-    return out
 
 
 def bus(a, cfgs, sets=FAST, cycle_ms=1, trace=False, extra=()):
@@ -76,7 +59,7 @@ def refused(t, a, tmp):
         if key == "framing":
             changes["data_bits"] = "8"
             shown = "protocol.framing = ascii, but the bus runs protocol.framing = rtu"
-        c = make_configs(a.config, tmp, [("r1", 1, {}), ("r2", 2, changes)])
+        c = member_configs(a.config, tmp, [("r1", 1, {}), ("r2", 2, changes)])
         p = subprocess.run([a.sim] + c, stdin=subprocess.DEVNULL, capture_output=True, text=True,
                            timeout=20)
         want = ("modcp-sim: member @r2 (%s): %s (@r1, %s); all members of one line need the same "
@@ -125,7 +108,7 @@ def pty_stalls(before):
 
 
 def three(t, a, tmp):
-    c = make_configs(a.config, tmp, [("s1", 1, {}), ("s2", 2, {}), ("s3", 3, {})])
+    c = member_configs(a.config, tmp, [("s1", 1, {}), ("s2", 2, {}), ("s3", 3, {})])
     # the members' CPU cycle: three CPU threads waking every 1 ms, with other processes
     # keeping the host busy, starve the kernel worker that moves a pty's data
     # (flush_to_ldisc, see pty_stalls): the master's requests then wait in its pty for
@@ -192,7 +175,7 @@ print("pymodbus bus ok")
 
 
 def duplicate(t, a, tmp):
-    c = make_configs(a.config, tmp, [("d1", 1, {}), ("d2", 2, {}), ("e2", 2, {})])
+    c = member_configs(a.config, tmp, [("d1", 1, {}), ("d2", 2, {}), ("e2", 2, {})])
     # 2400 baud: a reply lasts 41 ms, so the two members' replies overlap unless one of
     # them is more than that late (at 19200 a host stall of 5 ms under load let one reply
     # through alone now and then)
@@ -228,7 +211,7 @@ def duplicate(t, a, tmp):
 
 
 def faults(t, a, tmp):
-    c = make_configs(a.config, tmp, [("f1", 1, {}), ("f2", 2, {})])
+    c = member_configs(a.config, tmp, [("f1", 1, {}), ("f2", 2, {})])
     sim = bus(a, c, sets=["serial.baud=19200"], cycle_ms=1, trace=True,
               extra=["--fault", "@f2:silent=2"])
     line = RawLine(sim.device)

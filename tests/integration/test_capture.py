@@ -29,7 +29,7 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from simlib import Checks, RawLine, Sim, with_crc  # noqa: E402
+from simlib import Checks, RawLine, Sim, member_configs, with_crc  # noqa: E402
 
 T35_9600_US = 4010  # 3.5 characters of 11 bits at 9600 baud (timing.c: 3.5 * 1146 us)
 
@@ -114,20 +114,8 @@ def one_slave(a, t, tmp):
         t.ok(want in ann, "sigrok: '%s'" % want)
 
 
-def make_configs(src, tmp, specs):
-    with open(src) as f:
-        text = f.read()
-    out = []
-    for name, addr in specs:
-        p = os.path.join(tmp, name + ".ini")
-        with open(p, "w") as f:
-            f.write(re.sub(r"(?m)^slave_address = \d+", "slave_address = %d" % addr, text))
-        out.append(p)
-    return out
-
-
 def bus(a, t, tmp):
-    cfgs = make_configs(a.config, tmp, [("a", 1), ("b", 1), ("c", 2)])
+    cfgs = member_configs(a.config, tmp, [("a", 1), ("b", 1), ("c", 2)])
     pcap = os.path.join(tmp, "bus.pcap")
     vcd = os.path.join(tmp, "bus.vcd")
     # 9600 baud: a reply of 9 bytes is on the line for 10.3 ms; @b, at @a's address,

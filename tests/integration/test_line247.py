@@ -24,19 +24,7 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from simlib import Checks, Sim  # noqa: E402
-
-
-def make_configs(src, tmp, n):
-    with open(src) as f:
-        text = f.read()
-    out = []
-    for addr in range(1, n + 1):
-        p = os.path.join(tmp, "s%d.ini" % addr)
-        with open(p, "w") as f:
-            f.write(re.sub(r"(?m)^slave_address = \d+", "slave_address = %d" % addr, text))
-        out.append(p)
-    return out
+from simlib import Checks, Sim, member_configs  # noqa: E402
 
 
 def main():
@@ -51,7 +39,7 @@ def main():
     t = Checks()
     tmp = tempfile.mkdtemp(prefix="modcp-line247-")
     atexit.register(shutil.rmtree, tmp, True)  # the 247 configs go however the run ends
-    cfgs = make_configs(a.config, tmp, a.members)
+    cfgs = member_configs(a.config, tmp, [("s%d" % k, k) for k in range(1, a.members + 1)])
     t0 = time.monotonic()
     sim = Sim(a.sim, cfgs[0], sets=["serial.baud=%d" % a.baud], cycle_ms=10,
               extra=cfgs[1:], start_timeout=60.0).start()

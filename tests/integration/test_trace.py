@@ -26,7 +26,7 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from simlib import Checks, RawLine, Sim, with_crc  # noqa: E402
+from simlib import Checks, RawLine, Sim, member_configs, with_crc  # noqa: E402
 
 FRAME = re.compile(r"\[\s*(\d+)\.(\d{6})\] (master|slave \d+|@\w+ slave \d+) ((?:[0-9A-F]{2} )*[0-9A-F]{2}) \| (.*)")
 
@@ -115,20 +115,8 @@ def one_slave(a, t, tmp):
     t.ok("CRC error, slave 5 FC03" in lines[fr[2][4]], "the wrong CRC named")
 
 
-def make_configs(src, tmp, specs):
-    with open(src) as f:
-        text = f.read()
-    out = []
-    for name, addr in specs:
-        p = os.path.join(tmp, name + ".ini")
-        with open(p, "w") as f:
-            f.write(re.sub(r"(?m)^slave_address = \d+", "slave_address = %d" % addr, text))
-        out.append(p)
-    return out
-
-
 def bus(a, t, tmp):
-    cfgs = make_configs(a.config, tmp, [("a", 1), ("b", 2)])
+    cfgs = member_configs(a.config, tmp, [("a", 1), ("b", 2)])
     pcap = os.path.join(tmp, "bus.pcap")
     sim = Sim(a.sim, cfgs[0], trace=True, extra=cfgs[1:] + ["--capture", pcap]).start()
     line = RawLine(sim.device)
