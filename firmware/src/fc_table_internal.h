@@ -34,8 +34,9 @@
 #define FC_PLUS2 0x20u /* in its usual form min_len + 2 bytes (FC06's 16-bit value, FC08's
                           sub-function and data, FC43's object id): modem mode expects its
                           CRC there */
-#define FC_OPEN 0x10u  /* longer forms exist (FC08, FC43): a wrong CRC at the usual
-                          length is no end of the frame (modem mode: t3.5 ends it) */
+#define FC_OPEN 0x10u  /* longer forms exist (FC08, FC43; an F_R32 row of FC_PLUS2 form, FC06,
+                          too while 32-bit registers are on): a wrong CRC at the usual length
+                          is no end of the frame (modem mode: t3.5 ends it) */
 _Static_assert(MODCP_QLIM_COUNT <= FC_LIM + 1u, "the limit classes fit FC_LIM");
 
 /* The handlers (pdu.c handlers[]) by index; a row of a function code the build does not

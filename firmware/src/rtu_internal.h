@@ -26,8 +26,9 @@ typedef struct {
     uint16_t skip_crc; /* CRC over the stretch that is not our frame (bus counters) */
     uint8_t flags;     /* RTU_M_* */
     bool modem;        /* interference suppression = modem mode (rtu_modem.c) */
-    bool fc06_open;    /* modem mode with 32-bit registers: FC06 has a longer form (4 data
-                          bytes to an int32 / float register, [ASCII-32] §4.5) */
+    bool r32_on;       /* 32-bit registers on: a register write of a width set by the start
+                          address (F_R32, FC_PLUS2: FC06) has a longer form (4 data bytes to
+                          an int32 / float register, [ASCII-32] §4.5) */
 } modcp_rtu_t;
 _Static_assert(sizeof(modcp_rtu_t) <= sizeof(modcp_link_fr_t), "modcp_link_fr_t holds it");
 

@@ -76,7 +76,8 @@ static int m_check(modcp_link_t *l)
         }
         /* address, PDU in its usual form, CRC */
         r->total = (uint16_t)(row->min_len + ((row->form & FC_PLUS2) != 0u ? 5u : 3u));
-        if (((row->form & FC_OPEN) != 0u) || ((fc == 0x06u) && r->fc06_open)) {
+        if (((row->form & FC_OPEN) != 0u) ||
+            (r->r32_on && ((row->flags & F_R32) != 0u) && ((row->form & FC_PLUS2) != 0u))) {
             r->flags |= RTU_M_OPEN;
         }
     } else if (r->total == 0u) { /* the byte count */
@@ -224,6 +225,6 @@ static const modcp_framing_ops_t m_ops = {.on_byte = m_on_byte,
 const modcp_framing_ops_t *rtu_modem_configure(modcp_link_t *l, const modcp_params_t *p)
 {
     const bool ok = rtu_setup(l, true);
-    rtu_of(l)->fc06_open = p->regs32 != 0u; /* the 16-bit form still ends at its CRC */
+    rtu_of(l)->r32_on = p->regs32 != 0u; /* without them FC06 still ends at its CRC */
     return ok ? &m_ops : NULL;
 }
