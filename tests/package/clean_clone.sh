@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 # What a new user does, checked in CI: a fresh `git clone` of this tree into an empty
 # temporary folder (nothing beside it, no build folder), then the first
-# steps of `tools/test --quick` there: install-deps --host-only (a no-op when everything
+# steps of `tools/test --quick` there: install-deps --host-tests (a no-op when everything
 # is installed), check-deps, the host preset's configure and the simulator's and
 # modcp-conf's build. Then the same check-deps from a source tarball (`git archive`,
 # no .git). Only committed files are cloned: commit before running it by hand.
@@ -20,8 +20,8 @@ mkdir "$T/clone" "$T/tarball"
 git clone -q "$ROOT" "$T/clone/modcp"
 cd "$T/clone/modcp"
 echo "== clone: $(git log -1 --format='%h %s' | cut -c1-72)"
-echo "== clone: tools/install-deps --host-only"
-tools/install-deps --host-only
+echo "== clone: tools/install-deps --host-tests"
+tools/install-deps --host-tests
 echo "== clone: tools/check-deps"
 tools/check-deps
 echo "== clone: cmake --preset host, build modcp-sim and modcp-conf"
