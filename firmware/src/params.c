@@ -31,16 +31,23 @@
 
 /* ---- the rows ------------------------------------------------------------------ */
 
-#define ROW_S(member, width, field, index, min, max, def, ev, flags, ...)                      \
-    {(uint16_t)(((unsigned)(max) > 0xFFFFu) ? 0xFFFFu : (unsigned)(max)),                      \
-     (uint8_t)MODCP_PARAM_OFF(member),                                                          \
+#define ROW_S(member, ...) MODCP_PARAM_IF_PRESENT(member, ROW_NONE, ROW_S_)(member, __VA_ARGS__)
+#define ROW_NONE(...)
+#define ROW_S_(member, width, field, index, min, max, def, ev, flags, ...)                     \
+    {(uint8_t)MODCP_PARAM_OFF(member),                                                          \
      (uint8_t)((unsigned)(width) | ((unsigned)(uint8_t)(flags) << 5u)),                         \
-     (uint8_t)(field), (uint8_t)((unsigned)(ev) & 0xFFu),                                                  \
+     (uint8_t)(field), (uint8_t)((unsigned)(ev) & 0xFFu),                                       \
      (uint8_t)(((unsigned)(min) > 0xFFu) ? 0u : (unsigned)(min)),                               \
-     (uint8_t)MODCP_PARAM_DEF_CODE(def)},
-#define ROW_G(member, count, type, members, field)                                           \
-    {(uint16_t)(count), (uint8_t)MODCP_PARAM_OFF(member), 0u, (uint8_t)(field),              \
-     (uint8_t)(members), (uint8_t)sizeof(type), (uint8_t)MODCP_PARAM_FIRST_WIDTH_##type},
+     (uint8_t)MODCP_PARAM_CODE(max), (uint8_t)MODCP_PARAM_CODE(def)},
+#define ROW_G(member, ...) MODCP_PARAM_IF_PRESENT(member, ROW_SKIP, ROW_G_)(member, __VA_ARGS__)
+#define ROW_G_(member, count, type, members, field)                                          \
+    {(uint8_t)MODCP_PARAM_OFF(member), 0u, (uint8_t)(field), (uint8_t)(members),             \
+     (uint8_t)sizeof(type), (uint8_t)(count), (uint8_t)MODCP_PARAM_FIRST_WIDTH_##type},
+/* the run of absent members (params_fields.h): one field of MODCP_PARAM_ABSENT_BYTES */
+#define ROW_SKIP(member, count, type, members, field)                                        \
+    {MODCP_PARAM_ABSENT, 0u, (uint8_t)(field), 1u, 0u, 1u, (uint8_t)ABSENT_BYTES},
+enum { ABSENT_BYTES = MODCP_PARAM_ABSENT_BYTES }; /* (not expandable inside the rows) */
+_Static_assert(ABSENT_BYTES <= 0xFFu, "the absent run fits a row's width");
 #define ROW_M(...)
 
 const modcp_param_row_t modcp_param_rows[MODCP_PARAM_ROW_COUNT] = {
@@ -55,8 +62,9 @@ const modcp_param_row_t modcp_param_rows[MODCP_PARAM_ROW_COUNT] = {
                     (((uint8_t)(flags) & MODCP_PF_CUSTOM) != 0u)) ||                          \
                        (((unsigned)(max) <= 0xFFFFu) && ((unsigned)(min) <= 0xFFu)),          \
                    #member ": range fits the row");                                           \
-    _Static_assert((MODCP_PARAM_DEF_CODE(def) <= 0xFFu) && ((uint8_t)(flags) < 8u),          \
-                   #member ": default");                                                      \
+    _Static_assert((MODCP_PARAM_CODE(def) <= 0xFFu) && (MODCP_PARAM_CODE(max) <= 0xFFu) &&    \
+                       ((uint8_t)(flags) < 8u),                                               \
+                   #member ": default and maximum");                                                      \
     _Static_assert((size_t)MODCP_PARAM_OFF(member) <= MODCP_PARAM_ABSENT, #member ": offset"); \
     _Static_assert((((unsigned)(field) != (unsigned)MODCP_PF_SCANNER) ||                     \
                     ((unsigned)(index) == 0xFFu)) &&                                           \
@@ -81,11 +89,12 @@ _Static_assert(((size_t)offsetof(modcp_params_t, scan) < MODCP_PARAM_ABSENT) &&
                "the last row's member starts below MODCP_PARAM_ABSENT");
 #endif
 
-static const uint16_t big_defaults[] = {MODCP_PARAM_BIG_DEFAULTS};
+static const uint16_t big_values[] = {MODCP_PARAM_BIG};
 
-static uint32_t row_def(const modcp_param_row_t *r)
+/* A row's max or def column (MODCP_PARAM_CODE). */
+static uint32_t row_value(uint8_t code)
 {
-    return (r->def < 240u) ? (uint32_t)r->def : (uint32_t)big_defaults[r->def - 240u];
+    return (code < 240u) ? (uint32_t)code : (uint32_t)big_values[code - 240u];
 }
 
 /* A scalar row's value (width 1, 2 or 4) and its store; a scalar member has its row's
@@ -119,7 +128,7 @@ static void param_put(modcp_params_t *p, const modcp_param_row_t *r, uint32_t v)
 /* The row's default into p (modcp_params_defaults, and a corrected field in apply). */
 static void put_default(modcp_params_t *p, const modcp_param_row_t *r)
 {
-    param_put(p, r, row_def(r));
+    param_put(p, r, row_value(r->def));
 }
 
 /* ---- defaults ----------------------------------------------------------------- */
@@ -539,7 +548,7 @@ static CHECK_INLINE void check_row(issue_sink_t *s, const modcp_params_t *p,
     const uint8_t flags = MODCP_PARAM_FLAGS(r);
     uint32_t v = (w == MODCP_PW_STR) ? 0u : param_get(p, r);
     uint8_t rule = (uint8_t)MODCP_PR_NONE;
-    if ((w <= 2u) && ((v < r->min) || (v > r->max)) &&
+    if ((w <= 2u) && ((v < r->min) || (v > row_value(r->max))) &&
         (((flags & MODCP_PF_ZERO_OK) == 0u) || (v != 0u))) {
         rule = (uint8_t)MODCP_PR_RANGE;
     } else if (((flags & MODCP_PF_CUSTOM) != 0u) && !custom_ok(p, r, &v)) {
