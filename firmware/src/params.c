@@ -482,9 +482,11 @@ static CHECK_INLINE bool custom_ok(const modcp_params_t *p, const modcp_param_ro
         case (uint8_t)MODCP_PF_DATA_BITS:
             ok = (p->framing == (uint8_t)MODCP_FRAMING_ASCII) || (*v == 8u);
             break;
+#if MODCP_WITH_RS232_SIGNALS /* (without them the row's range is 0 .. 0: nothing to add) */
         case (uint8_t)MODCP_PF_RS232_AUTO:
             ok = (*v == 0u) || (p->iface == (uint8_t)MODCP_IFACE_RS232);
             break;
+#endif
         case (uint8_t)MODCP_PF_RTS_ON_DELAY: /* [VIPA-341] §1.6: steps of 10 ms */
         case (uint8_t)MODCP_PF_RTS_OFF_DELAY: ok = (*v % 10u) == 0u; break;
         case (uint8_t)MODCP_PF_RX_PRESET:
