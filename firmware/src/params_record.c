@@ -7,7 +7,8 @@
  * struct. ID strings occupy 16 bytes each (the characters up to the NUL, zero padded;
  * the decoder always terminates them). The payload length is the sum of the rows'
  * widths (308 bytes in version 2, record 318); decode accepts trailing bytes after the
- * record (it may sit in a padded block). */
+ * record (it may sit in a padded block). The rows' columns (params.c's table) are checked
+ * at compile time here too. */
 #include <stdbool.h>
 #include <string.h>
 
@@ -50,6 +51,42 @@ MODCP_PARAM_ROWS(LAYOUT_S, LAYOUT_G, LAYOUT_M)
 _Static_assert(OFF_IN(modcp_params_t, lim_q) ==
                    (OFF_IN(modcp_params_t, lim_db) + (2u * sizeof(modcp_limit_t))),
                "lim_db, lim_m, lim_q are one group of three");
+
+/* Every event of a row is a parameter event of class 0EH; the ranges and defaults of the
+ * rows up to 16 bits fit the table (a 32-bit row, the baud rate, is checked by its own
+ * rule); the issue index of a row is the one params.c's run_checks derives (row_index). */
+#define CHECK_S(member, width, field, index, min, max, def, ev, flags, ...)                    \
+    _Static_assert(((unsigned)(ev) >> 8u) == 0x0Eu, #member ": event class 0EH");            \
+    _Static_assert((((unsigned)(width) > 2u) &&                                               \
+                    (((uint8_t)(flags) & MODCP_PF_CUSTOM) != 0u)) ||                          \
+                       (((unsigned)(max) <= 0xFFFFu) && ((unsigned)(min) <= 0xFFu)),          \
+                   #member ": range fits the row");                                           \
+    _Static_assert((MODCP_PARAM_CODE(def) <= 0xFFu) && (MODCP_PARAM_CODE(max) <= 0xFFu) &&    \
+                       ((uint8_t)(flags) < 8u),                                               \
+                   #member ": default and maximum");                                                      \
+    _Static_assert((size_t)MODCP_PARAM_OFF(member) <= MODCP_PARAM_ABSENT, #member ": offset"); \
+    _Static_assert((((unsigned)(field) != (unsigned)MODCP_PF_SCANNER) ||                     \
+                    ((unsigned)(index) == 0xFFu)) &&                                           \
+                       (((unsigned)(field) == (unsigned)MODCP_PF_SCANNER) ||                  \
+                        ((unsigned)(field) == (unsigned)MODCP_PF_ID_STRING) ||                \
+                        ((unsigned)(index) == 0u)),                                           \
+                   #member ": index");
+#define CHECK_G(...)
+#define CHECK_M(...)
+MODCP_PARAM_ROWS(CHECK_S, CHECK_G, CHECK_M)
+#if MODCP_WITH_EXTENDED
+#define CHECK_ID_S(member, width, field, index, ...)                                          \
+    _Static_assert(((field) != MODCP_PF_ID_STRING) ||                                          \
+                       ((size_t)(index) ==                                                      \
+                        (((size_t)MODCP_PARAM_OFF(member) - (size_t)offsetof(modcp_params_t, vendor)) / \
+                         ((size_t)MODCP_ID_STRING_MAX + 1u))),                                  \
+                   #member ": index of an ID string");
+MODCP_PARAM_ROWS(CHECK_ID_S, CHECK_G, CHECK_M)
+_Static_assert(((size_t)offsetof(modcp_params_t, scan) < MODCP_PARAM_ABSENT) &&
+                   ((size_t)offsetof(modcp_params_t, app_name) <
+                    (size_t)offsetof(modcp_params_t, scan)),
+               "the last row's member starts below MODCP_PARAM_ABSENT");
+#endif
 
 /* "MCPR", read and written as one little-endian word (no memcmp: in the manual's core the
  * record was its only caller) */
