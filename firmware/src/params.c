@@ -31,61 +31,34 @@
 
 /* ---- the rows ------------------------------------------------------------------ */
 
-#define ROW_S(member, width, field, index, min, max, def, ev, flags, ...)                      \
-    {(uint16_t)(((unsigned)(max) > 0xFFFFu) ? 0xFFFFu : (unsigned)(max)),                      \
-     (uint8_t)MODCP_PARAM_OFF(member),                                                          \
+#define ROW_S(member, ...) MODCP_PARAM_IF_PRESENT(member, ROW_NONE, ROW_S_)(member, __VA_ARGS__)
+#define ROW_NONE(...)
+#define ROW_S_(member, width, field, index, min, max, def, ev, flags, ...)                     \
+    {(uint8_t)MODCP_PARAM_OFF(member),                                                          \
      (uint8_t)((unsigned)(width) | ((unsigned)(uint8_t)(flags) << 5u)),                         \
-     (uint8_t)(field), (uint8_t)((unsigned)(ev) & 0xFFu),                                                  \
+     (uint8_t)(field), (uint8_t)((unsigned)(ev) & 0xFFu),                                       \
      (uint8_t)(((unsigned)(min) > 0xFFu) ? 0u : (unsigned)(min)),                               \
-     (uint8_t)MODCP_PARAM_DEF_CODE(def)},
-#define ROW_G(member, count, type, members, field)                                           \
-    {(uint16_t)(count), (uint8_t)MODCP_PARAM_OFF(member), 0u, (uint8_t)(field),              \
-     (uint8_t)(members), (uint8_t)sizeof(type), (uint8_t)MODCP_PARAM_FIRST_WIDTH_##type},
+     (uint8_t)MODCP_PARAM_CODE(max), (uint8_t)MODCP_PARAM_CODE(def)},
+#define ROW_G(member, ...) MODCP_PARAM_IF_PRESENT(member, ROW_SKIP, ROW_G_)(member, __VA_ARGS__)
+#define ROW_G_(member, count, type, members, field)                                          \
+    {(uint8_t)MODCP_PARAM_OFF(member), 0u, (uint8_t)(field), (uint8_t)(members),             \
+     (uint8_t)sizeof(type), (uint8_t)(count), (uint8_t)MODCP_PARAM_FIRST_WIDTH_##type},
+/* the run of absent members (params_fields.h): one field of MODCP_PARAM_ABSENT_BYTES */
+#define ROW_SKIP(member, count, type, members, field)                                        \
+    {MODCP_PARAM_ABSENT, 0u, (uint8_t)(field), 1u, 0u, 1u, (uint8_t)ABSENT_BYTES},
+enum { ABSENT_BYTES = MODCP_PARAM_ABSENT_BYTES }; /* (not expandable inside the rows) */
+_Static_assert(ABSENT_BYTES <= 0xFFu, "the absent run fits a row's width");
 #define ROW_M(...)
 
 const modcp_param_row_t modcp_param_rows[MODCP_PARAM_ROW_COUNT] = {
     MODCP_PARAM_ROWS(ROW_S, ROW_G, ROW_M)};
 
-/* Every event of a row is a parameter event of class 0EH; the ranges and defaults of the
- * rows up to 16 bits fit the table (a 32-bit row, the baud rate, is checked by its own
- * rule); the issue index of a row is the one run_checks derives (row_index). */
-#define CHECK_S(member, width, field, index, min, max, def, ev, flags, ...)                    \
-    _Static_assert(((unsigned)(ev) >> 8u) == 0x0Eu, #member ": event class 0EH");            \
-    _Static_assert((((unsigned)(width) > 2u) &&                                               \
-                    (((uint8_t)(flags) & MODCP_PF_CUSTOM) != 0u)) ||                          \
-                       (((unsigned)(max) <= 0xFFFFu) && ((unsigned)(min) <= 0xFFu)),          \
-                   #member ": range fits the row");                                           \
-    _Static_assert((MODCP_PARAM_DEF_CODE(def) <= 0xFFu) && ((uint8_t)(flags) < 8u),          \
-                   #member ": default");                                                      \
-    _Static_assert((size_t)MODCP_PARAM_OFF(member) <= MODCP_PARAM_ABSENT, #member ": offset"); \
-    _Static_assert((((unsigned)(field) != (unsigned)MODCP_PF_SCANNER) ||                     \
-                    ((unsigned)(index) == 0xFFu)) &&                                           \
-                       (((unsigned)(field) == (unsigned)MODCP_PF_SCANNER) ||                  \
-                        ((unsigned)(field) == (unsigned)MODCP_PF_ID_STRING) ||                \
-                        ((unsigned)(index) == 0u)),                                           \
-                   #member ": index");
-#define CHECK_G(...)
-#define CHECK_M(...)
-MODCP_PARAM_ROWS(CHECK_S, CHECK_G, CHECK_M)
-#if MODCP_WITH_EXTENDED
-#define CHECK_ID_S(member, width, field, index, ...)                                          \
-    _Static_assert(((field) != MODCP_PF_ID_STRING) ||                                          \
-                       ((size_t)(index) ==                                                      \
-                        (((size_t)MODCP_PARAM_OFF(member) - (size_t)offsetof(modcp_params_t, vendor)) / \
-                         ((size_t)MODCP_ID_STRING_MAX + 1u))),                                  \
-                   #member ": index of an ID string");
-MODCP_PARAM_ROWS(CHECK_ID_S, CHECK_G, CHECK_M)
-_Static_assert(((size_t)offsetof(modcp_params_t, scan) < MODCP_PARAM_ABSENT) &&
-                   ((size_t)offsetof(modcp_params_t, app_name) <
-                    (size_t)offsetof(modcp_params_t, scan)),
-               "the last row's member starts below MODCP_PARAM_ABSENT");
-#endif
+static const uint16_t big_values[] = {MODCP_PARAM_BIG};
 
-static const uint16_t big_defaults[] = {MODCP_PARAM_BIG_DEFAULTS};
-
-static uint32_t row_def(const modcp_param_row_t *r)
+/* A row's max or def column (MODCP_PARAM_CODE). */
+static uint32_t row_value(uint8_t code)
 {
-    return (r->def < 240u) ? (uint32_t)r->def : (uint32_t)big_defaults[r->def - 240u];
+    return (code < 240u) ? (uint32_t)code : (uint32_t)big_values[code - 240u];
 }
 
 /* A scalar row's value (width 1, 2 or 4) and its store; a scalar member has its row's
@@ -119,7 +92,7 @@ static void param_put(modcp_params_t *p, const modcp_param_row_t *r, uint32_t v)
 /* The row's default into p (modcp_params_defaults, and a corrected field in apply). */
 static void put_default(modcp_params_t *p, const modcp_param_row_t *r)
 {
-    param_put(p, r, row_def(r));
+    param_put(p, r, row_value(r->def));
 }
 
 /* ---- defaults ----------------------------------------------------------------- */
@@ -473,9 +446,11 @@ static CHECK_INLINE bool custom_ok(const modcp_params_t *p, const modcp_param_ro
         case (uint8_t)MODCP_PF_DATA_BITS:
             ok = (p->framing == (uint8_t)MODCP_FRAMING_ASCII) || (*v == 8u);
             break;
+#if MODCP_WITH_RS232_SIGNALS /* (without them the row's range is 0 .. 0: nothing to add) */
         case (uint8_t)MODCP_PF_RS232_AUTO:
             ok = (*v == 0u) || (p->iface == (uint8_t)MODCP_IFACE_RS232);
             break;
+#endif
         case (uint8_t)MODCP_PF_RTS_ON_DELAY: /* [VIPA-341] §1.6: steps of 10 ms */
         case (uint8_t)MODCP_PF_RTS_OFF_DELAY: ok = (*v % 10u) == 0u; break;
         case (uint8_t)MODCP_PF_RX_PRESET:
@@ -539,7 +514,7 @@ static CHECK_INLINE void check_row(issue_sink_t *s, const modcp_params_t *p,
     const uint8_t flags = MODCP_PARAM_FLAGS(r);
     uint32_t v = (w == MODCP_PW_STR) ? 0u : param_get(p, r);
     uint8_t rule = (uint8_t)MODCP_PR_NONE;
-    if ((w <= 2u) && ((v < r->min) || (v > r->max)) &&
+    if ((w <= 2u) && ((v < r->min) || (v > row_value(r->max))) &&
         (((flags & MODCP_PF_ZERO_OK) == 0u) || (v != 0u))) {
         rule = (uint8_t)MODCP_PR_RANGE;
     } else if (((flags & MODCP_PF_CUSTOM) != 0u) && !custom_ok(p, r, &v)) {

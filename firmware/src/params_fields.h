@@ -39,10 +39,10 @@
 #define MODCP_PF_WARN 0x02u    /* not fatal: the CP runs with the default */
 #define MODCP_PF_CUSTOM 0x04u  /* a further rule in params.c */
 
-/* The rows as the core keeps them (params.c), 8 bytes each:
+/* The rows as the core keeps them (params.c), 7 bytes each:
  *   S: wf = width | flags << 5 (width 1, 2, 4 or MODCP_PW_STR), field != 0, min .. max the
- *      legal range (min fits a byte; a 4-byte row, the baud rate, has its own rule), def the
- *      default as MODCP_PARAM_DEF_CODE (below), event its number in class 0EH.
+ *      legal range (min fits a byte; a 4-byte row, the baud rate, has its own rule), max and
+ *      def as MODCP_PARAM_CODE (below), event its number in class 0EH.
  *   G: wf = 0; max = count, min = size of one struct, event = number of members, def =
  *      width of the first member (1 or 2). The members follow one another in the record's
  *      order, 2 bytes wide except the first, which may be one byte: a packed struct is
@@ -53,24 +53,31 @@
  *      struct keeps the long arrays last), MODCP_PARAM_ABSENT for a member this build does
  *      not keep. */
 typedef struct {
-    uint16_t max;
     uint8_t off;
     uint8_t wf;
     uint8_t field;
     uint8_t event;
     uint8_t min;
+    uint8_t max;
     uint8_t def;
 } modcp_param_row_t;
 
-/* A default in one byte: values below 240 as they are, the larger ones (the baud rate and
- * a few times in ms) as 240 + their index in MODCP_PARAM_BIG_DEFAULTS. */
-#define MODCP_PARAM_BIG_DEFAULTS 9600u, 1000u, 5000u
-#define MODCP_PARAM_DEF_CODE(v)                                                                   \
-    (((unsigned)(v) < 240u)      ? (unsigned)(v)                                              \
-     : ((unsigned)(v) == 9600u) ? 240u                                                       \
-     : ((unsigned)(v) == 1000u) ? 241u                                                       \
-     : ((unsigned)(v) == 5000u) ? 242u                                                       \
-                                : 0x100u)
+/* A maximum or a default in one byte: values below 240 as they are, the larger ones as
+ * 240 + their index in MODCP_PARAM_BIG (a maximum above 65535, the baud rate's, is
+ * 65535: its own rule checks it). */
+#define MODCP_PARAM_BIG 9600u, 1000u, 5000u, 6500u, 65530u, 65535u, 1024u, 30000u, 255u
+#define MODCP_PARAM_CODE(v)                                                                       \
+    (((unsigned)(v) < 240u)       ? (unsigned)(v)                                                \
+     : ((unsigned)(v) == 9600u)  ? 240u                                                         \
+     : ((unsigned)(v) == 1000u)  ? 241u                                                         \
+     : ((unsigned)(v) == 5000u)  ? 242u                                                         \
+     : ((unsigned)(v) == 6500u)  ? 243u                                                         \
+     : ((unsigned)(v) == 65530u) ? 244u                                                         \
+     : ((unsigned)(v) >= 65535u) ? 245u                                                         \
+     : ((unsigned)(v) == 1024u)  ? 246u                                                         \
+     : ((unsigned)(v) == 30000u) ? 247u                                                         \
+     : ((unsigned)(v) == 255u)   ? 248u                                                         \
+                                 : 0x100u)
 
 /* A row whose member this build does not keep (modcp/params.h: the scanner entries and
  * the ID strings without MODCP_WITH_EXTENDED) has off == MODCP_PARAM_ABSENT: its bytes
@@ -342,8 +349,25 @@ typedef struct {
       "up to 16 word operands the consecutive registers point at, e.g. `MW10 DB5.DBW20 T3`",      \
       "`MWn`, `IWn`, `QWn`, `DBn.DBWm`, `Tn`, `Cn`", "none (off)", "[ALTIVAR] §11", "(0E)2EH")
 
-/* The number of rows (S and G; the M rows are the G rows' members), a constant. */
-#define MODCP_PARAM_ROW_COUNT (0u MODCP_PARAM_ROWS(MODCP_PX_ONE, MODCP_PX_ONE, MODCP_PX_NONE))
+/* The core's table has a row for every S and G row except an absent S row: the members a
+ * build does not keep (MODCP_PX_ABSENT_ above: the scanner's entries, then the four ID
+ * strings, one run in the record) are one row, the absent group's, as wide as the run
+ * (MODCP_PARAM_ABSENT_BYTES: a group of one field, params_record.c's walk skips it).
+ * MODCP_PARAM_IF_PRESENT(member, absent, present) is the name absent or present. */
+#define MODCP_PARAM_IF_PRESENT(member, absent, present)                                          \
+    MODCP_PX_CAT(MODCP_PX_IF_, MODCP_PX_IS(MODCP_PX_ABSENT_##member))(absent, present)
+#define MODCP_PX_ABS_S(member, width, ...)                                                        \
+    +MODCP_PARAM_IF_PRESENT(member, (unsigned)(width), 0u)
+#define MODCP_PX_ABS_G(member, count, type, members, field)                                       \
+    +MODCP_PARAM_IF_PRESENT(member,                                                              \
+                            (unsigned)(count) * ((unsigned)MODCP_PARAM_FIRST_WIDTH_##type +     \
+                                                 (2u * ((unsigned)(members) - 1u))),           \
+                            0u)
+#define MODCP_PARAM_ABSENT_BYTES (0u MODCP_PARAM_ROWS(MODCP_PX_ABS_S, MODCP_PX_ABS_G, MODCP_PX_NONE))
+
+/* The number of rows in the core's table (above), a constant. */
+#define MODCP_PARAM_ROW_COUNT (0u MODCP_PARAM_ROWS(MODCP_PX_ONE_S, MODCP_PX_ONE, MODCP_PX_NONE))
+#define MODCP_PX_ONE_S(member, ...) +MODCP_PARAM_IF_PRESENT(member, 0u, 1u)
 #define MODCP_PX_ONE(...) +1u
 #define MODCP_PX_NONE(...)
 extern const modcp_param_row_t modcp_param_rows[MODCP_PARAM_ROW_COUNT];

@@ -7,7 +7,8 @@
  * struct. ID strings occupy 16 bytes each (the characters up to the NUL, zero padded;
  * the decoder always terminates them). The payload length is the sum of the rows'
  * widths (308 bytes in version 2, record 318); decode accepts trailing bytes after the
- * record (it may sit in a padded block). */
+ * record (it may sit in a padded block). The rows' columns (params.c's table) are checked
+ * at compile time here too. */
 #include <stdbool.h>
 #include <string.h>
 
@@ -51,6 +52,42 @@ _Static_assert(OFF_IN(modcp_params_t, lim_q) ==
                    (OFF_IN(modcp_params_t, lim_db) + (2u * sizeof(modcp_limit_t))),
                "lim_db, lim_m, lim_q are one group of three");
 
+/* Every event of a row is a parameter event of class 0EH; the ranges and defaults of the
+ * rows up to 16 bits fit the table (a 32-bit row, the baud rate, is checked by its own
+ * rule); the issue index of a row is the one params.c's run_checks derives (row_index). */
+#define CHECK_S(member, width, field, index, min, max, def, ev, flags, ...)                    \
+    _Static_assert(((unsigned)(ev) >> 8u) == 0x0Eu, #member ": event class 0EH");            \
+    _Static_assert((((unsigned)(width) > 2u) &&                                               \
+                    (((uint8_t)(flags) & MODCP_PF_CUSTOM) != 0u)) ||                          \
+                       (((unsigned)(max) <= 0xFFFFu) && ((unsigned)(min) <= 0xFFu)),          \
+                   #member ": range fits the row");                                           \
+    _Static_assert((MODCP_PARAM_CODE(def) <= 0xFFu) && (MODCP_PARAM_CODE(max) <= 0xFFu) &&    \
+                       ((uint8_t)(flags) < 8u),                                               \
+                   #member ": default and maximum");                                                      \
+    _Static_assert((size_t)MODCP_PARAM_OFF(member) <= MODCP_PARAM_ABSENT, #member ": offset"); \
+    _Static_assert((((unsigned)(field) != (unsigned)MODCP_PF_SCANNER) ||                     \
+                    ((unsigned)(index) == 0xFFu)) &&                                           \
+                       (((unsigned)(field) == (unsigned)MODCP_PF_SCANNER) ||                  \
+                        ((unsigned)(field) == (unsigned)MODCP_PF_ID_STRING) ||                \
+                        ((unsigned)(index) == 0u)),                                           \
+                   #member ": index");
+#define CHECK_G(...)
+#define CHECK_M(...)
+MODCP_PARAM_ROWS(CHECK_S, CHECK_G, CHECK_M)
+#if MODCP_WITH_EXTENDED
+#define CHECK_ID_S(member, width, field, index, ...)                                          \
+    _Static_assert(((field) != MODCP_PF_ID_STRING) ||                                          \
+                       ((size_t)(index) ==                                                      \
+                        (((size_t)MODCP_PARAM_OFF(member) - (size_t)offsetof(modcp_params_t, vendor)) / \
+                         ((size_t)MODCP_ID_STRING_MAX + 1u))),                                  \
+                   #member ": index of an ID string");
+MODCP_PARAM_ROWS(CHECK_ID_S, CHECK_G, CHECK_M)
+_Static_assert(((size_t)offsetof(modcp_params_t, scan) < MODCP_PARAM_ABSENT) &&
+                   ((size_t)offsetof(modcp_params_t, app_name) <
+                    (size_t)offsetof(modcp_params_t, scan)),
+               "the last row's member starts below MODCP_PARAM_ABSENT");
+#endif
+
 /* "MCPR", read and written as one little-endian word (no memcmp: in the manual's core the
  * record was its only caller) */
 #define RECORD_MAGIC                                                                              \
@@ -62,37 +99,40 @@ typedef struct {
     const uint8_t *src;
 } codec_t;
 
-/* One field of width 1, 2, 4 (little-endian) or MODCP_PW_STR: at its place in the
- * payload (at) and in modcp_params_t (off). */
-typedef void field_fn(const codec_t *c, size_t at, size_t off, uint8_t width);
-
-/* On a little-endian machine (every target so far) a field's bytes are its record bytes. */
+/* On a little-endian machine (every target so far) a field's bytes are its record bytes;
+ * with packed structs (modcp/params.h) a group's structs are too, each row is one run of
+ * bytes in both (RECORD_AS_BYTES). */
 #if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__) &&                            \
     __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
 #define RECORD_LE 1
 #else
 #define RECORD_LE 0
 #endif
+#define RECORD_AS_BYTES (RECORD_LE && MODCP_PARAMS_PACKED_LAYOUT)
+
+/* One field of width bytes (1, 2, 4, little-endian in the record; an ID string, str; with
+ * RECORD_AS_BYTES a whole row): at its place in the payload (at) and in modcp_params_t (off). */
+typedef void field_fn(const codec_t *c, size_t at, size_t off, size_t width, bool str);
 
 /* The byte of a field in modcp_params_t that is its record byte i (of width). */
-static size_t field_byte(size_t i, uint8_t width)
+static size_t field_byte(size_t i, size_t width, bool str)
 {
-    return (RECORD_LE || (width == MODCP_PW_STR)) ? i : ((size_t)width - 1u - i);
+    return (RECORD_LE || str) ? i : (width - 1u - i);
 }
 
-static void enc_field(const codec_t *c, size_t at, size_t off, uint8_t width)
+static void enc_field(const codec_t *c, size_t at, size_t off, size_t width, bool str)
 {
     uint8_t *r = &c->dst[at];
     const uint8_t *f = &c->src[off];
     bool end = false; /* an ID string: up to the NUL, zero padded */
     for (size_t i = 0u; i < width; i++) {
-        const uint8_t b = f[field_byte(i, width)];
-        end = end || ((width == MODCP_PW_STR) && (b == 0u));
+        const uint8_t b = f[field_byte(i, width, str)];
+        end = end || (str && (b == 0u));
         r[i] = end ? 0u : b;
     }
 }
 
-static void dec_field(const codec_t *c, size_t at, size_t off, uint8_t width)
+static void dec_field(const codec_t *c, size_t at, size_t off, size_t width, bool str)
 {
     const uint8_t *r = &c->src[at];
     uint8_t *f = &c->dst[off];
@@ -100,10 +140,10 @@ static void dec_field(const codec_t *c, size_t at, size_t off, uint8_t width)
     (void)memcpy(f, r, width); /* the same bytes: one call, shared with the rest of the core */
 #else
     for (size_t i = 0u; i < width; i++) {
-        f[field_byte(i, width)] = r[i];
+        f[field_byte(i, width, str)] = r[i];
     }
 #endif
-    if (width == MODCP_PW_STR) {
+    if (str) {
         f[MODCP_PW_STR] = 0u; /* terminated whatever the record holds */
     }
 }
@@ -117,17 +157,25 @@ static void walk(const codec_t *c, field_fn *fn)
     size_t at = 0u;
     for (uint8_t i = 0u; i < MODCP_PARAM_ROW_COUNT; i++) {
         const modcp_param_row_t *r = &modcp_param_rows[i];
+        const bool str = MODCP_PARAM_WIDTH(r) == MODCP_PW_STR;
         uint8_t first = MODCP_PARAM_WIDTH(r);
         uint8_t members = 1u;
-        size_t fields = 1u;
-        size_t off = r->off;
+        size_t count = 1u;
         if (first == 0u) { /* a group: count structs */
             first = r->def;
             members = r->event;
-            fields = (size_t)r->max * members;
+            count = r->max;
         }
+#if RECORD_AS_BYTES
+        const size_t n = count * ((size_t)first + (2u * ((size_t)members - 1u)));
+        if (r->off != MODCP_PARAM_ABSENT) {
+            fn(c, at, r->off, n, str);
+        }
+        at += n;
+#else
+        size_t off = r->off;
         uint8_t j = 0u; /* the member of the struct */
-        for (size_t k = 0u; k < fields; k++) {
+        for (size_t k = 0u; k < (count * members); k++) {
             const uint8_t w = (j == 0u) ? first : 2u;
             j++;
             if (j == members) {
@@ -135,11 +183,12 @@ static void walk(const codec_t *c, field_fn *fn)
             }
             if (r->off != MODCP_PARAM_ABSENT) {
                 /* unpacked: every member of a group in a 2-byte slot */
-                fn(c, at, MODCP_PARAMS_PACKED_LAYOUT ? off : ((size_t)r->off + (2u * k)), w);
+                fn(c, at, MODCP_PARAMS_PACKED_LAYOUT ? off : ((size_t)r->off + (2u * k)), w, str);
             }
             at += w;
             off += w;
         }
+#endif
     }
 }
 
