@@ -7,8 +7,8 @@
  * The function-code table (pdu.c) has already checked the length against its minimum
  * and maximum and, for FC01/02/03/04/15/16, the quantity against the limits of the
  * framing and register width (s->addr, s->qty (1 for FC05 / 06), s->r32_kind,
- * s->fcflags set). What is left here:
- * byte counts, values ((08)33H / (08)34H / (08)35H, exception 03), then the address
+ * s->fcflags set) and the form (FC06's value width, FC15 / FC16's byte count: (08)33H).
+ * What is left here: FC05's value ((08)34H, exception 03), then the address
  * mapping ((0E)5xH, exception 02; map.c). Every field of the request is read before
  * the first reply byte is written. */
 #include <stddef.h>
@@ -85,18 +85,12 @@ modcp_pdu_action_t modcp_pdu_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
                                   uint16_t len, uint16_t cap, uint16_t *out_len)
 {
     (void)out_len;
+    (void)len;
     if (s->fc == 0x05u) {
         const uint16_t value = modcp_get16(pdu + 3);
         if (value != 0xFF00u && value != 0x0000u) {
             return modcp_pdu_err(s, MODCP_EV_COIL_VALUE, MODCP_EXC_ILLEGAL_VALUE);
         }
-    } else if (s->fc == 0x0Fu) {
-        const uint8_t bc = pdu[5];
-        if (bc != (s->qty + 7u) / 8u || len != 6u + bc) {
-            return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
-        }
-    } else {
-        /* FC01 / FC02 / FC05: no byte count */
     }
     if (!map_bits(s, env, s->qty)) {
         return MODCP_PDU_FAIL;
@@ -131,31 +125,21 @@ modcp_pdu_action_t modcp_pdu_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
                                   uint16_t len, uint16_t cap, uint16_t *out_len)
 {
     (void)out_len;
-    if (s->fc == 0x06u) {
-        if (len != 3u + modcp_reg_bytes(s->r32_kind)) {
-            return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
-        }
-    } else if (s->fc == 0x10u) {
-        const uint8_t bc = pdu[5];
-        if (bc != modcp_reg_bytes(s->r32_kind) * s->qty || len != 6u + bc) {
-            return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
-        }
-    } else {
-        /* FC03 / FC04 / FC06: no byte count */
-    }
     /* the mapping's byte count is the request's: the width comes from the same range */
     if (!map_regs(s, env, s->qty)) {
         return MODCP_PDU_FAIL;
     }
     const uint16_t n = s->job.opnd.count;
     if ((s->fcflags & F_WRITE) != 0u) {
+        /* the n data bytes end the request (FC06: pdu + 3, FC16: pdu + 6, the table's
+         * check of the form) */
         if (s->fc == 0x06u) {
-            s->x.echo = (uint16_t)(3u + n);
+            s->x.echo = len;
             s->same = true;
-            return job(s, MODCP_JOB_WRITE, n, pdu + 3, NULL, 0);
+        } else {
+            s->x.echo = 5; /* FC16: fc, start, quantity */
         }
-        s->x.echo = 5; /* FC16: fc, start, quantity */
-        return job(s, MODCP_JOB_WRITE, n, pdu + 6, NULL, 0);
+        return job(s, MODCP_JOB_WRITE, n, pdu + (len - n), NULL, 0);
     }
     s->x.rbytes = n;
     return read_job(s, n, pdu, cap);
