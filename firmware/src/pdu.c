@@ -35,7 +35,7 @@
 
 /* The handlers, by the index a row of the table holds (fc_table_internal.h: H_*). */
 static const modcp_pdu_handler_t handlers[] = {
-    [H_BITS] = modcp_pdu_bits, [H_REGS] = modcp_pdu_regs, [H_DIAG0] = modcp_pdu_diag0,
+    [H_RW] = modcp_pdu_rw, [H_DIAG0] = modcp_pdu_diag0,
 #if MODCP_WITH_EXTENDED
     [H_FC08] = modcp_pdu_fc08, [H_FC11] = modcp_pdu_fc11, [H_FC12] = modcp_pdu_fc12,
     [H_FC17] = modcp_pdu_fc17, [H_FC43] = modcp_pdu_fc43, [H_FC22] = modcp_pdu_fc22,
