@@ -64,7 +64,7 @@ void modcp_pdu_align_bits(uint8_t *d, uint8_t shift, uint16_t qty)
 
 /* The function codes on bits (FC01, 02, 05, 15; the others of the handler: FC03, 04,
  * 06, 16), as bits of a mask by function code. */
-#define BIT_FCS ((1u << 1) | (1u << 2) | (1u << 5) | (1u << 15))
+#define BIT_FCS 0x8026u /* 1 << 1 | 1 << 2 | 1 << 5 | 1 << 15 */
 
 /* FC01 / FC02 / FC03 / FC04 (read), FC05 / FC06 / FC15 / FC16 (write): map the bits or
  * registers s->addr .. + s->qty onto their operand (s->job.opnd; refused: s->err), then
@@ -75,7 +75,7 @@ modcp_pdu_action_t modcp_pdu_rw(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint
 {
     (void)out_len;
     const uint8_t fc = s->fc;
-    /* fc: a row of the table (<= 16; FC16: bit 0, clear) */
+    /* FC01 / 02 / 05 / 15 (fc: a row of the table, <= 16; FC16: bit 0, clear) */
     const bool bits = ((BIT_FCS >> (fc & 0x0Fu)) & 1u) != 0u;
     modcp_operand_t *o = &s->job.opnd;
     modcp_event_t ev;
