@@ -53,8 +53,15 @@ static const modcp_fc_row_t *row_of(const modcp_params_t *p, uint8_t fc)
     (void)p;
     const uint8_t set = F_CP341;
 #endif
-    const modcp_fc_row_t *r = modcp_fc_row(fc);
-    if (r != NULL && (r->flags & set) != 0u) {
+    size_t i = fc; /* the rows by function code up to 17H, then FC43 (fc_table_internal.h) */
+    if (fc >= MODCP_FC_ROW_FC43) {
+        if (fc != 0x2Bu) {
+            return NULL;
+        }
+        i = MODCP_FC_ROW_FC43;
+    }
+    const modcp_fc_row_t *r = &modcp_fc_table[i];
+    if ((r->flags & set) != 0u) { /* no flags: no function code */
         return r;
     }
 #if MODCP_WITH_EXTENDED
