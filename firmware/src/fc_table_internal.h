@@ -40,18 +40,17 @@
 _Static_assert(MODCP_QLIM_COUNT <= FC_LIM + 1u, "the limit classes fit FC_LIM");
 
 /* The handlers (pdu.c handlers[]) by index; a row of a function code the build does not
- * serve names H_BITS and is in no function set of it. */
-#define H_BITS 0u  /* pdu_rw.c: FC01 / 02 / 05 / 15 */
-#define H_REGS 1u  /* pdu_rw.c: FC03 / 04 / 06 / 16 */
-#define H_DIAG0 2u /* pdu_rw.c: FC08 sub 0000 (cp341 set) */
+ * serve names H_RW and is in no function set of it. */
+#define H_RW 0u    /* pdu_rw.c: FC01 / 02 / 05 / 15, FC03 / 04 / 06 / 16 */
+#define H_DIAG0 1u /* pdu_rw.c: FC08 sub 0000 (cp341 set) */
 #if MODCP_WITH_EXTENDED
-#define H_FC08 3u /* serial_diag.c */
-#define H_FC11 4u
-#define H_FC12 5u
-#define H_FC17 6u /* devid.c */
-#define H_FC43 7u
-#define H_FC22 8u /* pdu_ext.c */
-#define H_FC23 9u
+#define H_FC08 2u /* serial_diag.c */
+#define H_FC11 3u
+#define H_FC12 4u
+#define H_FC17 5u /* devid.c */
+#define H_FC43 6u
+#define H_FC22 7u /* pdu_ext.c */
+#define H_FC23 8u
 #endif
 
 typedef struct { /* 4 bytes */

@@ -12,7 +12,8 @@
  *   3. function code of the set      -> (08)31H, exception 01
  *   4. length (table min / max)      -> (08)33H, exception 03
  *   5. quantity (table limit class)  -> (08)32H, exception 03
- *   6. handler: byte count, values ((08)33H..35H, 03), then addresses, windows,
+ *      form: FC06's value width, FC15 / FC16's byte count -> (08)33H, exception 03
+ *   6. handler: values ((08)34H..35H, 03), then addresses, windows,
  *      write limits ((0E)5xH, 02); every check before the first job
  *   7. CPU job                       -> exception 04 on any error it reports
  * Replies are built in place in the request buffer. */
@@ -34,7 +35,7 @@
 
 /* The handlers, by the index a row of the table holds (fc_table_internal.h: H_*). */
 static const modcp_pdu_handler_t handlers[] = {
-    [H_BITS] = modcp_pdu_bits, [H_REGS] = modcp_pdu_regs, [H_DIAG0] = modcp_pdu_diag0,
+    [H_RW] = modcp_pdu_rw, [H_DIAG0] = modcp_pdu_diag0,
 #if MODCP_WITH_EXTENDED
     [H_FC08] = modcp_pdu_fc08, [H_FC11] = modcp_pdu_fc11, [H_FC12] = modcp_pdu_fc12,
     [H_FC17] = modcp_pdu_fc17, [H_FC43] = modcp_pdu_fc43, [H_FC22] = modcp_pdu_fc22,
@@ -52,8 +53,15 @@ static const modcp_fc_row_t *row_of(const modcp_params_t *p, uint8_t fc)
     (void)p;
     const uint8_t set = F_CP341;
 #endif
-    const modcp_fc_row_t *r = modcp_fc_row(fc);
-    if (r != NULL && (r->flags & set) != 0u) {
+    size_t i = fc; /* the rows by function code up to 17H, then FC43 (fc_table_internal.h) */
+    if (fc >= MODCP_FC_ROW_FC43) {
+        if (fc != 0x2Bu) {
+            return NULL;
+        }
+        i = MODCP_FC_ROW_FC43;
+    }
+    const modcp_fc_row_t *r = &modcp_fc_table[i];
+    if ((r->flags & set) != 0u) { /* no flags: no function code */
         return r;
     }
 #if MODCP_WITH_EXTENDED
@@ -198,6 +206,28 @@ static bool listen_only(modcp_pdu_t *s, const modcp_pdu_env_t *env, const uint8_
 }
 #endif
 
+/* The form of a request with an address (the row's F_ADDR), after its quantity: FC06's
+ * value has the width of its register (2 bytes, 4 for an int32 / float register of the
+ * 32-bit scheme, [ASCII-32] §4.5); FC15 / FC16's byte count is that of the quantity and
+ * the data follow it to the end. Scanner addresses are 16-bit (s->r32_kind 0). */
+static bool form_ok(const modcp_fc_row_t *r, const modcp_pdu_t *s, const uint8_t *pdu,
+                    uint16_t len)
+{
+    const uint8_t form = r->form;
+    if ((form & (FC_COUNT | FC_PLUS2)) == 0u) {
+        return true; /* FC01 .. 05: the length is the table's */
+    }
+    const uint32_t width = modcp_reg_bytes(s->r32_kind);
+    if ((form & FC_COUNT) == 0u) {
+        return len == 3u + width; /* FC06 */
+    }
+    const uint32_t bc = pdu[5]; /* FC15, FC16 */
+    const uint32_t want = (form & FC_LIM) == (uint8_t)MODCP_QLIM_WRITE_BITS
+                              ? ((uint32_t)s->qty + 7u) / 8u
+                              : width * s->qty;
+    return bc == want && len == 6u + bc;
+}
+
 static modcp_pdu_action_t dispatch(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
                                    uint16_t len, uint16_t cap, uint16_t *out_len)
 {
@@ -235,6 +265,9 @@ static modcp_pdu_action_t dispatch(modcp_pdu_t *s, const modcp_pdu_env_t *env, u
             if ((uint16_t)(qty - 1u) >= modcp_qty_limit(env->p, lim, s->r32_kind)) { /* 1..max */
                 return modcp_pdu_err(s, MODCP_EV_QUANTITY, MODCP_EXC_ILLEGAL_VALUE);
             }
+        }
+        if (!form_ok(r, s, pdu, len)) {
+            return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
         }
     }
     return h(s, env, pdu, len, cap, out_len);

@@ -292,21 +292,8 @@ modcp_pdu_action_t modcp_pdu_scan(modcp_pdu_t *s, const modcp_pdu_env_t *env, ui
     seq_clear(s);
     modcp_pdu_x_t *x = &s->x;
     const bool write = s->fc != 0x03u; /* FC06 / FC16 */
-    if (s->fc == 0x06u) {
-        if (len != 5u) {
-            return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
-        }
-        x->woff = 3;
-    } else if (s->fc == 0x10u) {
-        const uint8_t bc = pdu[5];
-        if (bc != 2u * s->qty || len != 6u + bc) {
-            return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
-        }
-        x->woff = 6;
-    } else {
-        /* a read: no write part */
-    }
-    if (write) {
+    if (write) { /* the form is checked (pdu.c): the data end the request */
+        x->woff = (uint16_t)(len - 2u * s->qty); /* FC06: 3, FC16: 6 */
         x->wop = MODCP_JOB_WRITE;
         x->wscan = true;
         x->wstart = s->addr;

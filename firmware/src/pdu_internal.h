@@ -89,12 +89,10 @@ static inline modcp_pdu_action_t modcp_pdu_job(modcp_pdu_t *s, uint8_t op,
     return MODCP_PDU_JOB;
 }
 
-/* pdu_rw.c: the manual's function set ([RTU-2003] §6): FC01 / 02 / 05 / 15, FC03 / 04 / 06 /
- * 16 (one handler per class, told apart by s->fc and s->fcflags), FC08 sub 0000. */
-modcp_pdu_action_t modcp_pdu_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                  uint16_t len, uint16_t cap, uint16_t *out_len);
-modcp_pdu_action_t modcp_pdu_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                  uint16_t len, uint16_t cap, uint16_t *out_len);
+/* pdu_rw.c: the manual's function set ([RTU-2003] §6): FC01 / 02 / 05 / 15 and FC03 / 04 /
+ * 06 / 16 (one handler, told apart by s->fc and s->fcflags), FC08 sub 0000. */
+modcp_pdu_action_t modcp_pdu_rw(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                uint16_t len, uint16_t cap, uint16_t *out_len);
 /* The FC01 / FC02 reply data read from byte boundaries: drop `shift` low bits of the
  * first byte, keep qty bits, clear the unused high bits of the last byte. */
 void modcp_pdu_align_bits(uint8_t *d, uint8_t shift, uint16_t qty);

@@ -7,8 +7,8 @@
  * The function-code table (pdu.c) has already checked the length against its minimum
  * and maximum and, for FC01/02/03/04/15/16, the quantity against the limits of the
  * framing and register width (s->addr, s->qty (1 for FC05 / 06), s->r32_kind,
- * s->fcflags set). What is left here:
- * byte counts, values ((08)33H / (08)34H / (08)35H, exception 03), then the address
+ * s->fcflags set) and the form (FC06's value width, FC15 / FC16's byte count: (08)33H).
+ * What is left here: FC05's value ((08)34H, exception 03), then the address
  * mapping ((0E)5xH, exception 02; map.c). Every field of the request is read before
  * the first reply byte is written. */
 #include <stddef.h>
@@ -38,35 +38,6 @@ static modcp_pdu_action_t read_job(modcp_pdu_t *s, uint16_t len, uint8_t *pdu, u
     return job(s, MODCP_JOB_READ, len, NULL, pdu + 2, (uint16_t)(cap - 2u));
 }
 
-/* The registers s->addr .. + qty mapped to their DB bytes (s->job.opnd) in the width
- * s->r32_kind (the table's check); false with the request refused (s->err) when they
- * do not map. */
-static bool map_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty)
-{
-    modcp_operand_t *o = &s->job.opnd;
-    o->bit = s->r32_kind;
-    modcp_event_t ev = modcp_map_regs_kind(env->p, env->areas, s->fc, s->addr, qty, o);
-    if (ev != MODCP_EV_NONE) {
-        (void)modcp_pdu_map_err(s, ev);
-        return false;
-    }
-    o->bit = 0; /* = s->r32_kind */
-    return true;
-}
-
-/* The bits s->addr .. + qty mapped to their operand (s->job.opnd); false with the
- * request refused (s->err) when they do not map. */
-static bool map_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint16_t qty)
-{
-    modcp_event_t ev =
-        modcp_map_bits_valid(env->p, env->areas, s->fc, s->addr, qty, &s->job.opnd);
-    if (ev != MODCP_EV_NONE) {
-        (void)modcp_pdu_map_err(s, ev);
-        return false;
-    }
-    return true;
-}
-
 void modcp_pdu_align_bits(uint8_t *d, uint8_t shift, uint16_t qty)
 {
     uint16_t n = (uint16_t)((qty + 7u) / 8u);
@@ -80,84 +51,84 @@ void modcp_pdu_align_bits(uint8_t *d, uint8_t shift, uint16_t qty)
     }
 }
 
-/* FC01 / FC02 (read), FC05 / FC15 (write): the bit functions. */
-modcp_pdu_action_t modcp_pdu_bits(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                  uint16_t len, uint16_t cap, uint16_t *out_len)
-{
-    (void)out_len;
-    if (s->fc == 0x05u) {
-        const uint16_t value = modcp_get16(pdu + 3);
-        if (value != 0xFF00u && value != 0x0000u) {
-            return modcp_pdu_err(s, MODCP_EV_COIL_VALUE, MODCP_EXC_ILLEGAL_VALUE);
-        }
-    } else if (s->fc == 0x0Fu) {
-        const uint8_t bc = pdu[5];
-        if (bc != (s->qty + 7u) / 8u || len != 6u + bc) {
-            return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
-        }
-    } else {
-        /* FC01 / FC02 / FC05: no byte count */
-    }
-    if (!map_bits(s, env, s->qty)) {
-        return MODCP_PDU_FAIL;
-    }
-    if ((s->fcflags & F_WRITE) != 0u) {
-        s->x.echo = 5; /* FC05: the request (length 5, the table); FC15: fc, start, quantity */
-        if (s->fc == 0x05u) {
-            /* the 1-bit job's data: the value's high byte, FF or 00 (its bit 0) */
-            s->same = true;
-            return job(s, MODCP_JOB_BITWRITE, 1, pdu + 3, NULL, 0);
-        }
-        return job(s, MODCP_JOB_BITWRITE, pdu[5], pdu + 6, NULL, 0);
-    }
-    modcp_operand_t *o = &s->job.opnd;
-    uint16_t bytes;
-    if (o->area == (uint8_t)MODCP_AREA_T || o->area == (uint8_t)MODCP_AREA_C) {
-        bytes = (uint16_t)(o->count * 2u); /* whole words, high byte first */
-        s->x.rbytes = bytes;
-    } else {
-        bytes = (uint16_t)((o->bit + s->qty + 7u) / 8u);
-        s->bits = (uint8_t)(1u + o->bit); /* pdu.c aligns the bit string */
-        s->x.rbytes = (uint16_t)((s->qty + 7u) / 8u);
-        o->count = bytes; /* the job reads whole bytes */
-        o->bit = 0;
-    }
-    return read_job(s, bytes, pdu, cap);
-}
+/* The mapping: inline in the builds for speed (-O2: the host; no call per request), the
+ * one copy in map.c in the builds for size (-Os: the MCU images; with the extended set
+ * the scanner, FC22 and FC23 call it too). */
+#if defined(__GNUC__) && defined(__OPTIMIZE__) && !defined(__OPTIMIZE_SIZE__)
+#define MAP_BITS modcp_map_bits_in
+#define MAP_REGS modcp_map_regs_in
+#else
+#define MAP_BITS modcp_map_bits_valid
+#define MAP_REGS modcp_map_regs_kind
+#endif
 
-/* FC03 / FC04 (read), FC06 / FC16 (write): the register functions. FC06's reply is
- * the echo: 5 bytes, 7 for an int32 / float register of the 32-bit scheme ([ASCII-32] §4.5). */
-modcp_pdu_action_t modcp_pdu_regs(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
-                                  uint16_t len, uint16_t cap, uint16_t *out_len)
+/* The function codes on bits (FC01, 02, 05, 15; the others of the handler: FC03, 04,
+ * 06, 16), as bits of a mask by function code. */
+#define BIT_FCS 0x8026u /* 1 << 1 | 1 << 2 | 1 << 5 | 1 << 15 */
+
+/* FC01 / FC02 / FC03 / FC04 (read), FC05 / FC06 / FC15 / FC16 (write): map the bits or
+ * registers s->addr .. + s->qty onto their operand (s->job.opnd; refused: s->err), then
+ * one job. FC06's reply is the echo: 5 bytes, 7 for an int32 / float register of the
+ * 32-bit scheme ([ASCII-32] §4.5). */
+modcp_pdu_action_t modcp_pdu_rw(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint8_t *pdu,
+                                uint16_t len, uint16_t cap, uint16_t *out_len)
 {
     (void)out_len;
-    if (s->fc == 0x06u) {
-        if (len != 3u + modcp_reg_bytes(s->r32_kind)) {
-            return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
+    const uint8_t fc = s->fc;
+    /* FC01 / 02 / 05 / 15 (fc: a row of the table, <= 16; FC16: bit 0, clear) */
+    const bool bits = ((BIT_FCS >> (fc & 0x0Fu)) & 1u) != 0u;
+    modcp_operand_t *o = &s->job.opnd;
+    modcp_event_t ev;
+    uint8_t op = MODCP_JOB_WRITE;
+    if (bits) {
+        if (fc == 0x05u) {
+            const uint16_t value = modcp_get16(pdu + 3);
+            if (value != 0xFF00u && value != 0x0000u) {
+                return modcp_pdu_err(s, MODCP_EV_COIL_VALUE, MODCP_EXC_ILLEGAL_VALUE);
+            }
         }
-    } else if (s->fc == 0x10u) {
-        const uint8_t bc = pdu[5];
-        if (bc != modcp_reg_bytes(s->r32_kind) * s->qty || len != 6u + bc) {
-            return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
-        }
+        ev = MAP_BITS(env->p, env->areas, fc, s->addr, s->qty, o);
+        op = MODCP_JOB_BITWRITE;
     } else {
-        /* FC03 / FC04 / FC06: no byte count */
+        /* the mapping's byte count is the request's: the width comes from the same range */
+        o->bit = s->r32_kind;
+        ev = MAP_REGS(env->p, env->areas, fc, s->addr, s->qty, o);
     }
-    /* the mapping's byte count is the request's: the width comes from the same range */
-    if (!map_regs(s, env, s->qty)) {
-        return MODCP_PDU_FAIL;
+    if (ev != MODCP_EV_NONE) {
+        return modcp_pdu_map_err(s, ev);
     }
-    const uint16_t n = s->job.opnd.count;
+    if (!bits) {
+        o->bit = 0; /* = s->r32_kind */
+    }
+    uint16_t n = o->count; /* registers: bytes */
     if ((s->fcflags & F_WRITE) != 0u) {
-        if (s->fc == 0x06u) {
-            s->x.echo = (uint16_t)(3u + n);
+        uint16_t off = 6u; /* FC15 / FC16: the data after the byte count */
+        s->x.echo = 5;     /* FC15 / FC16: fc, start, quantity */
+        if (fc <= 0x06u) { /* FC05 / FC06: the request is the reply */
+            off = 3u;
+            s->x.echo = len;
             s->same = true;
-            return job(s, MODCP_JOB_WRITE, n, pdu + 3, NULL, 0);
         }
-        s->x.echo = 5; /* FC16: fc, start, quantity */
-        return job(s, MODCP_JOB_WRITE, n, pdu + 6, NULL, 0);
+        if (bits) {
+            /* FC05: the 1-bit job's data, the value's high byte, FF or 00 (its bit 0);
+             * FC15: the byte count's bytes (the table's check) */
+            n = fc == 0x05u ? 1u : pdu[5];
+        }
+        return job(s, op, n, pdu + off, NULL, 0);
     }
-    s->x.rbytes = n;
+    s->x.rbytes = n; /* registers: the bytes read */
+    if (bits) {
+        if (o->area == (uint8_t)MODCP_AREA_T || o->area == (uint8_t)MODCP_AREA_C) {
+            n = (uint16_t)(n * 2u); /* whole words, high byte first */
+            s->x.rbytes = n;
+        } else {
+            n = (uint16_t)((o->bit + s->qty + 7u) / 8u);
+            s->bits = (uint8_t)(1u + o->bit); /* pdu.c aligns the bit string */
+            s->x.rbytes = (uint16_t)((s->qty + 7u) / 8u);
+            o->count = n; /* the job reads whole bytes */
+            o->bit = 0;
+        }
+    }
     return read_job(s, n, pdu, cap);
 }
 

@@ -39,11 +39,6 @@ bool modcp_scan_touches(const modcp_params_t *p, uint16_t reg, uint16_t qty)
     return first <= s_last && last >= s_first;
 }
 
-static bool limit_ok(const modcp_limit_t *l, uint32_t first, uint32_t last)
-{
-    return l->max != 0u && first >= l->min && last <= l->max;
-}
-
 modcp_event_t modcp_scan_map(const modcp_params_t *p, const modcp_areas_t *a, uint16_t reg,
                              bool write, modcp_operand_t *out)
 {
@@ -81,7 +76,7 @@ modcp_event_t modcp_scan_map(const modcp_params_t *p, const modcp_areas_t *a, ui
                 return MODCP_EV_AREA_READONLY;
             }
             const modcp_limit_t *l = e->area == (uint8_t)MODCP_AREA_M ? &p->lim_m : &p->lim_q;
-            if (!limit_ok(l, first, first + 1u)) {
+            if (!modcp_map_limit_ok(l, first, first + 1u)) {
                 return MODCP_EV_WRITE_DENIED;
             }
         }

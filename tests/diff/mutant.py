@@ -29,7 +29,7 @@ MUTATIONS = (
     ("the RS485 turnaround 1 us shorter (only timer arms change)",
      "link.c", r"link_arm\(l, l->turnaround_us\)", r"link_arm(l, l->turnaround_us - 1u)"),
     ("the write limit's last byte not writable (one operator: <= -> <)",
-     "map*.c", r"(\w+) <= (\w+)->max\b", r"\1 < \2->max"),
+     "map*", r"(\w+) <= (\w+)->max\b", r"\1 < \2->max"),
 )
 TREE = ("CMakeLists.txt", "cmake", "firmware", "hal")
 

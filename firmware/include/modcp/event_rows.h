@@ -140,10 +140,10 @@
       "amount of bits/registers and byte_count do not match (FC 15/16)",                          \
       "correct the amount or the byte count in the master",                                       \
       "FC15/16 byte count wrong; PDU length outside the table's minimum / maximum",               \
-      "`pdu.c dispatch`, `pdu_rw.c`", "`test_cp_examples.c: test_exception_03`")                  \
+      "`pdu.c dispatch`, `form_ok`", "`test_cp_examples.c: test_exception_03`")                   \
     E(COIL_VALUE, 0x08, 0x34, 3, "",                                                              \
       "illegal coding for set/reset bit (FC 05)", "use only 0000H or FF00H",                      \
-      "FC05 value not FF00/0000", "`pdu_rw.c modcp_pdu_bits`",                                    \
+      "FC05 value not FF00/0000", "`pdu_rw.c modcp_pdu_rw`",                                      \
       "`test_cp_examples.c: test_exception_03`")                                                  \
     E(DIAG_SUBFC, 0x08, 0x35, 3, " / 01",                                                         \
       "illegal diagnostic sub-function or data field (FC 08)",                                    \
