@@ -119,24 +119,20 @@ static void pump_reply(modcp_fb_t *fb)
             flags = MODCP_BLK_FIRST | MODCP_BLK_LAST;
             fb->reply_pending = false;
         }
-        b->len = (uint8_t)n;
-        b->kind = MODCP_BP_REPLY;
-        b->flags = flags;
-        b->tag = fb->job_tag;
+        modcp_block_stamp(b, modcp_block_word(n, MODCP_BP_REPLY, flags, fb->job_tag));
         modcp_ring_publish(r, b, &fb->tx_seq);
     }
     while (fb->reply_pending && (b = modcp_ring_slot(r)) != NULL) {
         uint32_t rest = (uint32_t)fb->reply.len - fb->reply_pos;
-        uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
+        uint32_t n = rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest;
+        uint32_t flags = 0;
         read_data(fb, b->data, fb->reply_pos, n);
-        b->len = n;
-        b->kind = MODCP_BP_REPLY;
-        b->flags = n == rest ? MODCP_BLK_LAST : 0u;
-        b->tag = fb->job_tag;
         fb->reply_pos = (uint16_t)(fb->reply_pos + n);
         if (n == rest) {
+            flags = MODCP_BLK_LAST;
             fb->reply_pending = false;
         }
+        modcp_block_stamp(b, modcp_block_word(n, MODCP_BP_REPLY, flags, fb->job_tag));
         modcp_ring_publish(r, b, &fb->tx_seq);
     }
 }
