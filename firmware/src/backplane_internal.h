@@ -92,6 +92,18 @@ static inline void modcp_block_stamp(modcp_block_t *b, uint32_t word)
     b->tag = (uint8_t)(word >> 24);
 #endif
 }
+/* The word modcp_block_stamp wrote: a block's len, kind, flags and tag compared in one go
+ * (with modcp_block_word). */
+static inline uint32_t modcp_block_peek_word(const modcp_block_t *b)
+{
+#if MODCP_BP_LE
+    uint32_t word;
+    memcpy(&word, (const uint8_t *)b + offsetof(modcp_block_t, len), 4);
+    return word;
+#else
+    return modcp_block_word(b->len, b->kind, b->flags, b->tag);
+#endif
+}
 /* Copying forms (tests, and messages built elsewhere). Producer side: publish one
  * block (seq is filled in from *seq, which is then incremented). Returns false (nothing
  * written) when the ring is full. */

@@ -283,8 +283,34 @@ static modcp_jobp_t rx_params(modcp_job_t *j, const modcp_block_t *b)
     return MODCP_JOBP_PARAMS;
 }
 
+#if !defined(__OPTIMIZE_SIZE__)
+/* The common block of a long read: a whole data block of the reply being received, in
+ * sequence, with room for it. Taken in one word compare and three more; rx_block and
+ * rx_reply would do exactly the same with it (in RECEIVING the sequence is synced: the
+ * reply's header went through rx_block). Built for speed only (-O2; FC01 / FC03 with
+ * 125 registers: 190 instructions less per request, callgrind); built for size (-Os,
+ * the MCU builds) the general path takes it (68 B less, Cortex-M3). */
+static MODCP_ALWAYS_INLINE bool rx_reply_data(modcp_job_t *j, const modcp_block_t *b)
+{
+    if (j->state != (uint8_t)MODCP_JOBST_RECEIVING ||
+        modcp_block_peek_word(b) != modcp_block_word(MODCP_BLOCK_SIZE, MODCP_BP_REPLY, 0, j->tag) ||
+        b->seq != j->rx_seq || (uint32_t)j->rlen + MODCP_BLOCK_SIZE > j->rcap) {
+        return false;
+    }
+    (void)memcpy(j->rbuf + j->rlen, b->data, MODCP_BLOCK_SIZE);
+    j->rlen = (uint16_t)(j->rlen + MODCP_BLOCK_SIZE);
+    j->rx_seq = (uint8_t)(j->rx_seq + 1u);
+    return true;
+}
+#endif
+
 static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b, modcp_bp_init_t *init)
 {
+#if !defined(__OPTIMIZE_SIZE__)
+    if (rx_reply_data(j, b)) {
+        return MODCP_JOBP_NOTHING;
+    }
+#endif
     if (b->seq != j->rx_seq && j->rx_synced) { /* (the first block seen syncs) */
         proto_error(j, MODCP_JOB_ERR_PROTO);
         if (j->msgkind != 0u) {
