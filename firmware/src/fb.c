@@ -14,8 +14,8 @@
  *      written straight from the slots into controller memory as it arrives (a
  *      one-block job's, after its header, at once), and the job is answered after its
  *      LAST block (no new blocks are read while a reply is still going out);
- *   4. initialisation: START_TIME check, retry every MODCP_FB_RETRY_MS while the CP
- *      answers "not ready" or is silent, push PARAMS then INIT.
+ *   4. initialisation (fb_init.c): START_TIME check, retry every MODCP_FB_RETRY_MS
+ *      while the CP answers "not ready" or is silent, push PARAMS then INIT.
  *
  * Data crosses the backplane once per 32-byte block each way: no job buffer, one copy
  * between a slot and controller memory. Consistency guarantee (docs/cpu-cp-interface.md):
@@ -45,8 +45,8 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "modcp/crc.h"
 #include "backplane_internal.h"
+#include "fb_internal.h"
 #include "inline_internal.h"
 #include "plcmem_internal.h"
 
@@ -64,12 +64,6 @@ void modcp_fb_init(modcp_fb_t *fb, modcp_backplane_t *bp, modcp_plcmem_t *mem,
     fb->state = MODCP_FBST_STOPPED;
     fb->params_pending = fb->record_len > 0u; /* the CPU sends the CP parameters at start */
     fb->err_changed = true; /* the first call writes ERROR_NR / ERROR_INFO (0) */
-}
-
-static bool put_block(modcp_fb_t *fb, uint8_t kind, uint8_t flags, uint8_t tag,
-                      const uint8_t *data, uint8_t len)
-{
-    return modcp_ring_put_data(&fb->bp->to_cp, &fb->tx_seq, kind, flags, tag, data, len);
 }
 
 /* The part of a job's operand that starts `pos` data bytes into the job: byte areas
@@ -482,83 +476,6 @@ static void rx_blocks(modcp_fb_t *fb)
     }
 }
 
-/* ---- initialisation --------------------------------------------------------------- */
-
-/* An attempt: PARAMS (with_params) then INIT. */
-static void start_attempt(modcp_fb_t *fb, uint32_t now_ms, bool with_params)
-{
-    fb->state = MODCP_FBST_INIT_SEND;
-    fb->params_pending = with_params && fb->record_len > 0u;
-    fb->params_pos = 0;
-    fb->init_sent = false;
-    fb->retry_t0_ms = now_ms;
-}
-
-/* Push PARAMS blocks; true when the whole record is out. */
-static bool push_params(modcp_fb_t *fb)
-{
-    while (fb->params_pending) {
-        uint32_t rest = (uint32_t)fb->record_len - fb->params_pos;
-        uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
-        bool last = n == rest;
-        uint8_t flags = (uint8_t)((fb->params_pos == 0u ? MODCP_BLK_FIRST : 0u) |
-                                  (last ? MODCP_BLK_LAST : 0u));
-        if (!put_block(fb, MODCP_BP_PARAMS, flags, 0, fb->record + fb->params_pos, n)) {
-            return false;
-        }
-        fb->params_pos = (uint16_t)(fb->params_pos + n);
-        if (last) {
-            fb->params_pending = false;
-        }
-    }
-    return true;
-}
-
-static void send_init(modcp_fb_t *fb)
-{
-    modcp_bp_init_t init;
-    modcp_plcmem_areas(fb->mem, &init.areas); /* the real area sizes */
-    init.areas.work_db = fb->work_db;
-    init.record_crc = fb->record_len > 0u ? modcp_bp_record_id(fb->record, fb->record_len) : 0u;
-    uint8_t d[MODCP_BLOCK_SIZE];
-    uint8_t n = modcp_bp_init_encode(&init, d);
-    if (put_block(fb, MODCP_BP_INIT, MODCP_BLK_FIRST | MODCP_BLK_LAST, 0, d, n)) {
-        fb->init_sent = true;
-        fb->state = MODCP_FBST_INIT_WAIT;
-    }
-}
-
-/* Initialisation step; false when it failed in this call (START_TIME over). */
-static bool run_init(modcp_fb_t *fb, uint32_t now_ms)
-{
-    if ((fb->state != (uint8_t)MODCP_FBST_INIT_SEND) &&
-        (fb->state != (uint8_t)MODCP_FBST_INIT_WAIT)) {
-        if (fb->params_pending) {
-            (void)push_params(fb); /* PARAMS of the first call */
-        }
-        return true;
-    }
-    if ((uint32_t)(now_ms - fb->init_t0_ms) >= fb->start_time_ms) {
-        fb->state = MODCP_FBST_FAILED;
-        fb->params_pending = false;
-        fb->out.cp_start_ok = false;
-        fb->out.cp_start_error = true;
-        fb->out.error_nr = MODCP_FB_ERR_INIT;
-        fb->out.error_info = fb->init_event;
-        fb->err_changed = true;
-        return false;
-    }
-    if (fb->state == (uint8_t)MODCP_FBST_INIT_WAIT &&
-        (uint32_t)(now_ms - fb->retry_t0_ms) >= MODCP_FB_RETRY_MS) {
-        fb->cp_has_params = false; /* not ready or silent: the record goes again */
-        start_attempt(fb, now_ms, true);
-    }
-    if (fb->state == (uint8_t)MODCP_FBST_INIT_SEND && push_params(fb) && !fb->init_sent) {
-        send_init(fb);
-    }
-    return true;
-}
-
 void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint32_t now_ms)
 {
     bool start = in != NULL && in->cp_start;
@@ -569,7 +486,7 @@ void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint3
         fb->init_event = MODCP_EV_NONE;
         fb->init_t0_ms = now_ms;
         /* the PARAMS of the first call may still be going out (params_pending) */
-        start_attempt(fb, now_ms, !fb->cp_has_params);
+        modcp_fb_start_attempt(fb, now_ms, !fb->cp_has_params);
     }
     fb->last_start = start;
 
@@ -577,7 +494,7 @@ void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint3
         pump_reply(fb); /* the rest of a reply the ring had no room for */
     }
     rx_blocks(fb);
-    if (!run_init(fb, now_ms) && in != NULL) {
+    if (!modcp_fb_init_step(fb, now_ms) && in != NULL) {
         in->cp_start = false; /* [RTU-2003] §5.5: CP_START is reset, CP_START_ERROR = 1 */
     }
 
