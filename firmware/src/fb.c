@@ -431,11 +431,43 @@ static MODCP_ALWAYS_INLINE bool reply_header(modcp_fb_t *fb)
     return true;
 }
 
+/* The common block of a long write: a whole data block of the active job, in sequence,
+ * not its last, straight into memory (a WRITE's bytes, or a BITWRITE's from bit 0 with
+ * at least 256 bits to go: whole bytes of the area). Taken in one word compare (len,
+ * kind, flags, tag) and a few more; rx_blocks, rx_data and exec_data would do exactly
+ * the same with it (an active job's header went through rx_blocks: the sequence is
+ * synced). False: the general path decides. */
+static MODCP_ALWAYS_INLINE bool rx_write_data(modcp_fb_t *fb, const modcp_block_t *b)
+{
+    const modcp_bp_job_t *jb = &fb->job;
+    if (!fb->job_active ||
+        modcp_block_peek_word(b) != modcp_block_word(MODCP_BLOCK_SIZE, MODCP_BP_JOB, 0, fb->job_tag) ||
+        b->seq != fb->rx_seq || (uint32_t)jb->len - fb->job_pos <= MODCP_BLOCK_SIZE) {
+        return false;
+    }
+    if (jb->op != MODCP_JOB_WRITE &&
+        (jb->op != MODCP_JOB_BITWRITE || jb->opnd.bit != 0u ||
+         (uint32_t)jb->opnd.count < (uint32_t)fb->job_pos * 8u + MODCP_BLOCK_SIZE * 8u)) {
+        return false;
+    }
+    if (atomic_load_explicit(&fb->bp->abort_tag, memory_order_acquire) == (uint32_t)fb->job_tag) {
+        return false; /* given up by the CP: rx_data drops it */
+    }
+    (void)memcpy(fb->job_mem + fb->job_pos, b->data, MODCP_BLOCK_SIZE);
+    fb->job_pos = (uint16_t)(fb->job_pos + MODCP_BLOCK_SIZE);
+    fb->rx_seq = (uint8_t)(fb->rx_seq + 1u);
+    return true;
+}
+
 static void rx_blocks(modcp_fb_t *fb)
 {
     modcp_ring_t *r = &fb->bp->to_cpu;
     const modcp_block_t *b;
     while (!fb->reply_pending && (b = modcp_ring_peek(r)) != NULL) {
+        if (rx_write_data(fb, b)) {
+            modcp_ring_release(r);
+            continue;
+        }
         uint8_t kind = b->kind;
         uint8_t flags = b->flags;
         uint8_t len = b->len;
