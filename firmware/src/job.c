@@ -209,6 +209,14 @@ static modcp_jobp_t finish_reply(modcp_job_t *j)
     return finish(j, ok ? MODCP_EV_NONE : MODCP_EV_XFER_STATE, 0);
 }
 
+/* A REPLY block out of order (a second header, a short one, data before the header):
+ * a protocol error, and the job ends with (0E)33H. */
+static MODCP_NOINLINE modcp_jobp_t reply_out_of_order(modcp_job_t *j)
+{
+    proto_error(j, MODCP_JOB_ERR_PROTO);
+    return finish(j, MODCP_EV_XFER_STATE, 0);
+}
+
 static modcp_jobp_t rx_reply(modcp_job_t *j, const modcp_block_t *b)
 {
     if (!modcp_job_busy(j) || b->tag != j->tag) {
@@ -218,8 +226,7 @@ static modcp_jobp_t rx_reply(modcp_job_t *j, const modcp_block_t *b)
     uint32_t n = b->len;
     if ((b->flags & MODCP_BLK_FIRST) != 0u) {
         if (j->state == (uint8_t)MODCP_JOBST_RECEIVING || n < MODCP_BP_REPLY_HDR_LEN) {
-            proto_error(j, MODCP_JOB_ERR_PROTO);
-            return finish(j, MODCP_EV_XFER_STATE, 0);
+            return reply_out_of_order(j);
         }
         /* the header's fields read where they are: modcp_bp_reply_decode into a local
          * costs 44 B flash (Cortex-M3 -Os, LTO) and 2 instructions per job */
@@ -236,8 +243,7 @@ static modcp_jobp_t rx_reply(modcp_job_t *j, const modcp_block_t *b)
         d += MODCP_BP_REPLY_HDR_LEN; /* the whole reply in one block: data after the header */
         n -= MODCP_BP_REPLY_HDR_LEN;
     } else if (j->state != (uint8_t)MODCP_JOBST_RECEIVING) {
-        proto_error(j, MODCP_JOB_ERR_PROTO); /* data before the header */
-        return finish(j, MODCP_EV_XFER_STATE, 0);
+        return reply_out_of_order(j); /* data before the header */
     } else {
         /* a data block of the reply being received */
     }
