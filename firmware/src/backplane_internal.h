@@ -63,8 +63,8 @@ static inline void modcp_ring_release(modcp_ring_t *r)
 }
 /* Copy the n (<= 32) data bytes of a block (dst and src apart): a whole block as one
  * fixed-size copy (a few word moves instead of a byte-count loop); built for speed
- * (-O2), a shorter one of 8 bytes or more as two fixed-size copies that overlap (the
- * first and the last 16 / 8 bytes: no call), else as it is. */
+ * (-O2), a shorter one as two fixed-size copies that overlap (the first and the last
+ * 16 / 8 / 4 / 2 bytes: no call), else (-Os) as it is. */
 static inline void modcp_block_copy(uint8_t *dst, const uint8_t *src, uint32_t n)
 {
     if (n == MODCP_BLOCK_SIZE) {
@@ -76,9 +76,19 @@ static inline void modcp_block_copy(uint8_t *dst, const uint8_t *src, uint32_t n
     } else if (n >= 8u) {
         (void)memcpy(dst, src, 8);
         (void)memcpy(dst + n - 8u, src + n - 8u, 8);
+    } else if (n >= 4u) {
+        (void)memcpy(dst, src, 4);
+        (void)memcpy(dst + n - 4u, src + n - 4u, 4);
+    } else if (n >= 2u) {
+        (void)memcpy(dst, src, 2);
+        (void)memcpy(dst + n - 2u, src + n - 2u, 2);
+    } else if (n == 1u) {
+        dst[0] = src[0];
 #endif
-    } else {
+    } else if (n != 0u) {
         (void)memcpy(dst, src, n);
+    } else {
+        /* nothing to copy (src may be NULL then) */
     }
 }
 /* A block's len, kind, flags and tag as one word (modcp_block_word), written by
