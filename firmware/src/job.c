@@ -315,11 +315,35 @@ static MODCP_ALWAYS_INLINE bool rx_reply_data(modcp_job_t *j, const modcp_block_
 }
 #endif
 
+#if !defined(__OPTIMIZE_SIZE__)
+/* The reply of a write (or of a refused job): its header alone, FIRST and LAST, in
+ * sequence, while the job waits for it. Taken in one word compare and two more;
+ * rx_block, rx_reply and finish_reply would do exactly the same with it. Built for speed
+ * only, as rx_reply_data (FC05 / FC06: 20 instructions less per request). */
+static MODCP_ALWAYS_INLINE bool rx_reply_alone(const modcp_job_t *j, const modcp_block_t *b)
+{
+    return j->state == (uint8_t)MODCP_JOBST_WAITING &&
+           modcp_block_peek_word(b) == modcp_block_word(MODCP_BP_REPLY_HDR_LEN, MODCP_BP_REPLY,
+                                                        MODCP_BLK_FIRST | MODCP_BLK_LAST, j->tag) &&
+           b->seq == j->rx_seq && j->rx_synced;
+}
+#endif
+
 static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b, modcp_bp_init_t *init)
 {
 #if !defined(__OPTIMIZE_SIZE__)
     if (rx_reply_data(j, b)) {
         return MODCP_JOBP_NOTHING;
+    }
+    if (rx_reply_alone(j, b)) {
+        j->rx_seq = (uint8_t)(j->rx_seq + 1u);
+        modcp_event_t ev = modcp_bp_get16(b->data);
+        if (ev != MODCP_EV_NONE) {
+            return finish(j, ev, modcp_bp_get16(b->data + 2));
+        }
+        j->rexpect = modcp_bp_get16(b->data + 4);
+        j->rlen = 0;
+        return finish_reply(j);
     }
 #endif
     if (b->seq != j->rx_seq && j->rx_synced) { /* (the first block seen syncs) */
