@@ -118,6 +118,13 @@ static void pump_reply(modcp_fb_t *fb)
     }
     while (fb->reply_pending && (b = modcp_ring_slot(r)) != NULL) {
         uint32_t rest = (uint32_t)fb->reply.len - fb->reply_pos;
+        if (rest > MODCP_BLOCK_SIZE && fb->job_mem != NULL) { /* a whole block of bytes */
+            (void)memcpy(b->data, fb->job_mem + fb->reply_pos, MODCP_BLOCK_SIZE);
+            fb->reply_pos = (uint16_t)(fb->reply_pos + MODCP_BLOCK_SIZE);
+            modcp_block_stamp(b, modcp_block_word(MODCP_BLOCK_SIZE, MODCP_BP_REPLY, 0, fb->job_tag));
+            modcp_ring_publish(r, b, &fb->tx_seq);
+            continue;
+        }
         uint32_t n = rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest;
         uint32_t flags = 0;
         read_data(fb, b->data, fb->reply_pos, n);
