@@ -148,6 +148,15 @@ static void push_data(modcp_job_t *j)
     modcp_block_t *b;
     while (j->state == (uint8_t)MODCP_JOBST_SENDING && (b = modcp_ring_slot(r)) != NULL) {
         uint32_t rest = (uint32_t)j->hdr->len - j->wpos;
+#if !defined(__OPTIMIZE_SIZE__) /* -O2: a whole block that is not the last, without the
+                                   arithmetic of the last one (-Os: the general form) */
+        if (rest > MODCP_BLOCK_SIZE) {
+            (void)memcpy(b->data, j->wdata + j->wpos, MODCP_BLOCK_SIZE);
+            j->wpos = (uint16_t)(j->wpos + MODCP_BLOCK_SIZE);
+            hand_over(j, b, modcp_block_word(MODCP_BLOCK_SIZE, MODCP_BP_JOB, 0, j->tag));
+            continue;
+        }
+#endif
         uint32_t n = rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest;
         uint8_t flags = 0;
         modcp_block_copy(b->data, j->wdata + j->wpos, n);
