@@ -77,6 +77,8 @@ static void line_poll(modcp_cp_t *cp, uint32_t now_us)
     }
     if (cp->cpdiag.wire_break && cp->link.last_us != cp->err_mark_us) {
         modcp_cpdiag_good_char(&cp->cpdiag); /* a character arrived after the BREAK */
+        cp->published = false; /* (the character may have been a stored one: see
+                                  modcp_cp_on_rx) */
     }
     modcp_leds_poll(&cp->leds, sf_on(cp), &cp->link, now_us);
 }
@@ -196,14 +198,14 @@ static MODCP_NOINLINE void rx_other(modcp_cp_t *cp, uint8_t byte, uint32_t now_u
 }
 
 /* The receive interrupt's entry. A character inside a frame the link stores as it is
- * (RTU) costs a store, its time and a mark that the status area may change
- * (link_rx_store); the rest is rx_other. The LEDs and the end of a wire break read the
- * link's record of the last received character (link.last_us) at poll time: nothing
- * else runs per byte. */
+ * (RTU) costs a store and its time (link_rx_store); the rest is rx_other. Such a
+ * character changes nothing the status area shows but what the poll reads from the
+ * link's record of the last received character (link.last_us): the LEDs, which
+ * publish() compares, and the end of a wire break, which line_poll marks. So nothing
+ * else runs per byte, not even the mark that the status area may change. */
 void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
 {
     if (!sig_enabled(cp) && link_rx_store(&cp->link, byte, now_us)) {
-        cp->published = false; /* see publish() */
         return;
     }
     rx_other(cp, byte, now_us);
@@ -441,9 +443,9 @@ static void take_init(modcp_cp_t *cp, const modcp_bp_init_t *init)
 
 /* The status area is published only when something in it changed, never rebuilt and
  * compared on every poll. cp->published is true while the status area shows the CP's
- * state: every entry point that can change it (a character, a line error, a timer, a
- * transmission complete, RS232 inputs) and every job result, PARAMS or INIT taken by a
- * poll clear it. What changes without any of them — with time or from the CPU side —
+ * state: every entry point that can change it (a character the link does not store
+ * as it is, a line error, a timer, a transmission complete, RS232 inputs), the end of a
+ * wire break and every job result, PARAMS or INIT taken by a poll clear it. What changes without any of them — with time or from the CPU side —
  * is compared with the published values, a few words: LEDs (time), comm-loss /
  * listen-only flags (time), the event count (an event logged by a poll: comm loss,
  * backplane errors) and the SYSTAT answer / diagnostic interrupt count.

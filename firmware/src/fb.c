@@ -14,8 +14,8 @@
  *      written straight from the slots into controller memory as it arrives (a
  *      one-block job's, after its header, at once), and the job is answered after its
  *      LAST block (no new blocks are read while a reply is still going out);
- *   4. initialisation: START_TIME check, retry every MODCP_FB_RETRY_MS while the CP
- *      answers "not ready" or is silent, push PARAMS then INIT.
+ *   4. initialisation (fb_init.c): START_TIME check, retry every MODCP_FB_RETRY_MS
+ *      while the CP answers "not ready" or is silent, push PARAMS then INIT.
  *
  * Data crosses the backplane once per 32-byte block each way: no job buffer, one copy
  * between a slot and controller memory. Consistency guarantee (docs/cpu-cp-interface.md):
@@ -45,8 +45,8 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "modcp/crc.h"
 #include "backplane_internal.h"
+#include "fb_internal.h"
 #include "inline_internal.h"
 #include "plcmem_internal.h"
 
@@ -64,12 +64,6 @@ void modcp_fb_init(modcp_fb_t *fb, modcp_backplane_t *bp, modcp_plcmem_t *mem,
     fb->state = MODCP_FBST_STOPPED;
     fb->params_pending = fb->record_len > 0u; /* the CPU sends the CP parameters at start */
     fb->err_changed = true; /* the first call writes ERROR_NR / ERROR_INFO (0) */
-}
-
-static bool put_block(modcp_fb_t *fb, uint8_t kind, uint8_t flags, uint8_t tag,
-                      const uint8_t *data, uint8_t len)
-{
-    return modcp_ring_put_data(&fb->bp->to_cp, &fb->tx_seq, kind, flags, tag, data, len);
 }
 
 /* The part of a job's operand that starts `pos` data bytes into the job: byte areas
@@ -119,24 +113,30 @@ static void pump_reply(modcp_fb_t *fb)
             flags = MODCP_BLK_FIRST | MODCP_BLK_LAST;
             fb->reply_pending = false;
         }
-        b->len = (uint8_t)n;
-        b->kind = MODCP_BP_REPLY;
-        b->flags = flags;
-        b->tag = fb->job_tag;
+        modcp_block_stamp(b, modcp_block_word(n, MODCP_BP_REPLY, flags, fb->job_tag));
         modcp_ring_publish(r, b, &fb->tx_seq);
     }
     while (fb->reply_pending && (b = modcp_ring_slot(r)) != NULL) {
         uint32_t rest = (uint32_t)fb->reply.len - fb->reply_pos;
-        uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
+#if !defined(__OPTIMIZE_SIZE__) /* -O2: a whole block of bytes at once (-Os: the general
+                                   form; as job.c) */
+        if (rest > MODCP_BLOCK_SIZE && fb->job_mem != NULL) {
+            (void)memcpy(b->data, fb->job_mem + fb->reply_pos, MODCP_BLOCK_SIZE);
+            fb->reply_pos = (uint16_t)(fb->reply_pos + MODCP_BLOCK_SIZE);
+            modcp_block_stamp(b, modcp_block_word(MODCP_BLOCK_SIZE, MODCP_BP_REPLY, 0, fb->job_tag));
+            modcp_ring_publish(r, b, &fb->tx_seq);
+            continue;
+        }
+#endif
+        uint32_t n = rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest;
+        uint32_t flags = 0;
         read_data(fb, b->data, fb->reply_pos, n);
-        b->len = n;
-        b->kind = MODCP_BP_REPLY;
-        b->flags = n == rest ? MODCP_BLK_LAST : 0u;
-        b->tag = fb->job_tag;
         fb->reply_pos = (uint16_t)(fb->reply_pos + n);
         if (n == rest) {
+            flags = MODCP_BLK_LAST;
             fb->reply_pending = false;
         }
+        modcp_block_stamp(b, modcp_block_word(n, MODCP_BP_REPLY, flags, fb->job_tag));
         modcp_ring_publish(r, b, &fb->tx_seq);
     }
 }
@@ -441,11 +441,48 @@ static MODCP_ALWAYS_INLINE bool reply_header(modcp_fb_t *fb)
     return true;
 }
 
+#if !defined(__OPTIMIZE_SIZE__)
+/* The common block of a long write: a whole data block of the active job, in sequence,
+ * not its last, straight into memory (a WRITE's bytes, or a BITWRITE's from bit 0 with
+ * at least 256 bits to go: whole bytes of the area). Taken in one word compare (len,
+ * kind, flags, tag) and a few more; rx_blocks, rx_data and exec_data would do exactly
+ * the same with it (an active job's header went through rx_blocks: the sequence is
+ * synced). False: the general path decides. Built for speed only, as job.c's fast paths
+ * (-Os: the general path, 188 B less with pump_reply's whole blocks, Cortex-M3). */
+static MODCP_ALWAYS_INLINE bool rx_write_data(modcp_fb_t *fb, const modcp_block_t *b)
+{
+    const modcp_bp_job_t *jb = &fb->job;
+    if (!fb->job_active ||
+        modcp_block_peek_word(b) != modcp_block_word(MODCP_BLOCK_SIZE, MODCP_BP_JOB, 0, fb->job_tag) ||
+        b->seq != fb->rx_seq || (uint32_t)jb->len - fb->job_pos <= MODCP_BLOCK_SIZE) {
+        return false;
+    }
+    if (jb->op != MODCP_JOB_WRITE &&
+        (jb->op != MODCP_JOB_BITWRITE || jb->opnd.bit != 0u ||
+         (uint32_t)jb->opnd.count < (uint32_t)fb->job_pos * 8u + MODCP_BLOCK_SIZE * 8u)) {
+        return false;
+    }
+    if (atomic_load_explicit(&fb->bp->abort_tag, memory_order_acquire) == (uint32_t)fb->job_tag) {
+        return false; /* given up by the CP: rx_data drops it */
+    }
+    (void)memcpy(fb->job_mem + fb->job_pos, b->data, MODCP_BLOCK_SIZE);
+    fb->job_pos = (uint16_t)(fb->job_pos + MODCP_BLOCK_SIZE);
+    fb->rx_seq = (uint8_t)(fb->rx_seq + 1u);
+    return true;
+}
+#endif
+
 static void rx_blocks(modcp_fb_t *fb)
 {
     modcp_ring_t *r = &fb->bp->to_cpu;
     const modcp_block_t *b;
     while (!fb->reply_pending && (b = modcp_ring_peek(r)) != NULL) {
+#if !defined(__OPTIMIZE_SIZE__) /* built for speed only (-Os: the general path) */
+        if (rx_write_data(fb, b)) {
+            modcp_ring_release(r);
+            continue;
+        }
+#endif
         uint8_t kind = b->kind;
         uint8_t flags = b->flags;
         uint8_t len = b->len;
@@ -486,83 +523,6 @@ static void rx_blocks(modcp_fb_t *fb)
     }
 }
 
-/* ---- initialisation --------------------------------------------------------------- */
-
-/* An attempt: PARAMS (with_params) then INIT. */
-static void start_attempt(modcp_fb_t *fb, uint32_t now_ms, bool with_params)
-{
-    fb->state = MODCP_FBST_INIT_SEND;
-    fb->params_pending = with_params && fb->record_len > 0u;
-    fb->params_pos = 0;
-    fb->init_sent = false;
-    fb->retry_t0_ms = now_ms;
-}
-
-/* Push PARAMS blocks; true when the whole record is out. */
-static bool push_params(modcp_fb_t *fb)
-{
-    while (fb->params_pending) {
-        uint32_t rest = (uint32_t)fb->record_len - fb->params_pos;
-        uint8_t n = (uint8_t)(rest > MODCP_BLOCK_SIZE ? MODCP_BLOCK_SIZE : rest);
-        bool last = n == rest;
-        uint8_t flags = (uint8_t)((fb->params_pos == 0u ? MODCP_BLK_FIRST : 0u) |
-                                  (last ? MODCP_BLK_LAST : 0u));
-        if (!put_block(fb, MODCP_BP_PARAMS, flags, 0, fb->record + fb->params_pos, n)) {
-            return false;
-        }
-        fb->params_pos = (uint16_t)(fb->params_pos + n);
-        if (last) {
-            fb->params_pending = false;
-        }
-    }
-    return true;
-}
-
-static void send_init(modcp_fb_t *fb)
-{
-    modcp_bp_init_t init;
-    modcp_plcmem_areas(fb->mem, &init.areas); /* the real area sizes */
-    init.areas.work_db = fb->work_db;
-    init.record_crc = fb->record_len > 0u ? modcp_bp_record_id(fb->record, fb->record_len) : 0u;
-    uint8_t d[MODCP_BLOCK_SIZE];
-    uint8_t n = modcp_bp_init_encode(&init, d);
-    if (put_block(fb, MODCP_BP_INIT, MODCP_BLK_FIRST | MODCP_BLK_LAST, 0, d, n)) {
-        fb->init_sent = true;
-        fb->state = MODCP_FBST_INIT_WAIT;
-    }
-}
-
-/* Initialisation step; false when it failed in this call (START_TIME over). */
-static bool run_init(modcp_fb_t *fb, uint32_t now_ms)
-{
-    if ((fb->state != (uint8_t)MODCP_FBST_INIT_SEND) &&
-        (fb->state != (uint8_t)MODCP_FBST_INIT_WAIT)) {
-        if (fb->params_pending) {
-            (void)push_params(fb); /* PARAMS of the first call */
-        }
-        return true;
-    }
-    if ((uint32_t)(now_ms - fb->init_t0_ms) >= fb->start_time_ms) {
-        fb->state = MODCP_FBST_FAILED;
-        fb->params_pending = false;
-        fb->out.cp_start_ok = false;
-        fb->out.cp_start_error = true;
-        fb->out.error_nr = MODCP_FB_ERR_INIT;
-        fb->out.error_info = fb->init_event;
-        fb->err_changed = true;
-        return false;
-    }
-    if (fb->state == (uint8_t)MODCP_FBST_INIT_WAIT &&
-        (uint32_t)(now_ms - fb->retry_t0_ms) >= MODCP_FB_RETRY_MS) {
-        fb->cp_has_params = false; /* not ready or silent: the record goes again */
-        start_attempt(fb, now_ms, true);
-    }
-    if (fb->state == (uint8_t)MODCP_FBST_INIT_SEND && push_params(fb) && !fb->init_sent) {
-        send_init(fb);
-    }
-    return true;
-}
-
 void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint32_t now_ms)
 {
     bool start = in != NULL && in->cp_start;
@@ -573,7 +533,7 @@ void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint3
         fb->init_event = MODCP_EV_NONE;
         fb->init_t0_ms = now_ms;
         /* the PARAMS of the first call may still be going out (params_pending) */
-        start_attempt(fb, now_ms, !fb->cp_has_params);
+        modcp_fb_start_attempt(fb, now_ms, !fb->cp_has_params);
     }
     fb->last_start = start;
 
@@ -581,7 +541,7 @@ void modcp_fb_call(modcp_fb_t *fb, modcp_fb_in_t *in, modcp_fb_out_t *out, uint3
         pump_reply(fb); /* the rest of a reply the ring had no room for */
     }
     rx_blocks(fb);
-    if (!run_init(fb, now_ms) && in != NULL) {
+    if (!modcp_fb_init_step(fb, now_ms) && in != NULL) {
         in->cp_start = false; /* [RTU-2003] §5.5: CP_START is reset, CP_START_ERROR = 1 */
     }
 
