@@ -10,12 +10,12 @@
 
 /* A framing backend. The link calls it and never asks which one it runs; the backend
  * keeps its own state in l->fr and uses the link's shared fields (state, buffer, len,
- * rx_stop, run_stop, rx_bad, rx_overflow, last_us, busy_rx) and configuration.
+ * rx_at, rx_end, run_stop, rx_bad, rx_overflow, last_us, busy_rx) and configuration.
  *
- * Receive hot path: a framing that stores characters as they are (RTU) sets l->rx_stop
- * (and l->run_stop) to the buffer index up to which the link stores them itself
- * (link_rx_store: the character and its time, nothing else); every other character goes
- * to on_byte. Both are 0 while no frame is stored.
+ * Receive hot path: a framing that stores characters as they are (RTU) sets where the
+ * link stores them itself (link_set_stop: l->rx_end, l->run_stop; link_rx_store: the
+ * character and its time, nothing else); every other character goes to on_byte. No
+ * frame is stored while they are buf / 0.
  *
  * Timer contract: the backend arms the one-shot timer (link_arm) once when a frame
  * starts (RX / SKIP entered from IDLE), never per character; it keeps l->last_us at the
@@ -48,26 +48,55 @@ const modcp_framing_ops_t *rtu_modem_configure(modcp_link_t *l, const modcp_para
 const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p); /* ascii.c:
                                                                   built with ASCII only */
 
-/* The receive hot path (the port's receive interrupt, modcp_cp_on_rx): a character of a
- * frame the framing stores as it is, below stop (l->rx_stop; a framing's own entry, e.g.
- * with the t1.5 check, l->run_stop), is stored with its time; nothing else. False: the
- * framing's on_byte decides. */
-static inline bool link_store_below(modcp_link_t *l, uint16_t stop, uint8_t b,
-                                    uint32_t now_us)
+/* The bytes stored (the reply's length once it is framed) and setting it. */
+static inline uint16_t link_len(const modcp_link_t *l)
 {
-    const uint16_t n = l->len;
-    if (n >= stop) {
+    return (uint16_t)(l->rx_at - l->buf);
+}
+
+static inline void link_set_len(modcp_link_t *l, uint16_t n)
+{
+    l->rx_at = l->buf + n;
+}
+
+/* Where the link stops storing a frame's characters itself: stop (a buffer index) for
+ * the port's per-character entry (0: every character goes to the framing's on_byte),
+ * run for the characters of a block after its first (modcp_link_on_block). */
+static inline void link_set_stop(modcp_link_t *l, uint16_t stop, uint16_t run)
+{
+    l->rx_end = l->buf + stop;
+    l->run_stop = run;
+}
+
+/* The receive hot path (the port's receive interrupt, modcp_cp_on_rx): a character of a
+ * frame the framing stores as it is, below l->rx_end, is stored with its time; nothing
+ * else (a write pointer: no index, no length to update). False: the framing's on_byte
+ * decides. */
+static inline bool link_rx_store(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    uint8_t *at = l->rx_at;
+    if (at >= l->rx_end) {
         return false;
     }
-    l->buf[n] = b;
-    l->len = (uint16_t)(n + 1u);
+    *at = b;
+    l->rx_at = at + 1;
     l->last_us = now_us;
     return true;
 }
 
-static inline bool link_rx_store(modcp_link_t *l, uint8_t b, uint32_t now_us)
+/* The same below the buffer index stop (a framing's own entry, e.g. RTU with the t1.5
+ * check: l->run_stop). */
+static inline bool link_store_below(modcp_link_t *l, uint16_t stop, uint8_t b,
+                                    uint32_t now_us)
 {
-    return link_store_below(l, l->rx_stop, b, now_us);
+    const uint16_t n = link_len(l);
+    if (n >= stop) {
+        return false;
+    }
+    l->buf[n] = b;
+    link_set_len(l, (uint16_t)(n + 1u));
+    l->last_us = now_us;
+    return true;
 }
 
 /* The silence that ends a frame (RTU t3.5, ASCII the character delay time). */

@@ -8,7 +8,7 @@
  * The backend behind rtu_ops (modcp_framing_ops_t, link_internal.h; chosen by
  * rtu_configure), its state in l->fr (modcp_rtu_t, rtu_internal.h). A character of our
  * frame is stored by the link itself (link_rx_store: the character and its time, below
- * l->rx_stop; with the t1.5 check on, every character reaches rtu_on_byte, which looks
+ * l->rx_end; with the t1.5 check on, every character reaches rtu_on_byte, which looks
  * at the time first); its CRC is computed over the buffer once the frame has ended, as FreeMODBUS
  * does. The end-of-frame timer is armed once, by the frame's first character (or line
  * error in place of one), and link.c re-arms it for the rest of t3.5 after the last
@@ -59,7 +59,7 @@ static void count_char(modcp_rtu_t *r)
 
 bool rtu_crc_ok(const modcp_link_t *l)
 {
-    return l->len >= RTU_MIN_FRAME && modcp_crc16_update(MODCP_CRC_INIT, l->buf, l->len) == 0u;
+    return link_len(l) >= RTU_MIN_FRAME && modcp_crc16_update(MODCP_CRC_INIT, l->buf, link_len(l)) == 0u;
 }
 
 /* A character of the stretch that is not (or no longer) part of our frame (modem
@@ -79,7 +79,7 @@ void rtu_cand_start(modcp_link_t *l, uint8_t b)
     l->rx_bad = false;
     l->rx_overflow = false;
     l->buf[0] = b; /* configured: cap >= RTU_MIN_FRAME */
-    l->len = 1;
+    link_set_len(l, 1);
     r->total = 0; /* normal operation: always (the length by t3.5) */
     l->state = MODCP_LINK_RX;
     rtu_stop(l, r->modem ? 1u : l->cap);
@@ -96,7 +96,7 @@ void rtu_unclaim(modcp_link_t *l, uint16_t n)
     }
     l->rx_bad = l->rx_bad || (r->flags & RTU_M_SBAD) != 0u;
     r->flags = (uint8_t)(r->flags & ~(RTU_M_FIRST | RTU_M_OPEN));
-    l->len = 0;
+    link_set_len(l, 0);
     l->state = MODCP_LINK_SKIP;
     rtu_stop(l, 0);
 }
@@ -111,20 +111,22 @@ static void frame_start(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
     modcp_rtu_t *r = rtu_of(l);
     r->skip_crc = MODCP_CRC_INIT;
     r->count = 0;
-    r->flags = 0;
     l->rx_bad = false;
     l->rx_overflow = false;
-    l->len = 0;
     l->last_us = now_us;
-    l->state = MODCP_LINK_SKIP;
-    if (err) {
-        link_mark_bad(l);
-        count_char(r);
-    } else if (b == l->own_addr || b == 0u) {
+    if (!err && (b == l->own_addr || b == 0u)) {
         rtu_cand_start(l, b);
         r->flags = RTU_M_LEAD | RTU_M_FIRST;
     } else {
-        rtu_fold(l, b);
+        r->flags = 0;
+        link_set_len(l, 0);
+        l->state = MODCP_LINK_SKIP;
+        if (err) {
+            link_mark_bad(l);
+            count_char(r);
+        } else {
+            rtu_fold(l, b);
+        }
     }
     link_arm(l, l->t35_us);
 }
@@ -204,7 +206,7 @@ bool rtu_other_common(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
         link_event(l, MODCP_EV_INTERNAL_RECEIVE);
         l->state = MODCP_LINK_IDLE;
         l->busy_rx = false;
-        l->len = 0;
+        link_set_len(l, 0);
         rtu_stop(l, 0);
         if (err) {
             return true;
@@ -254,11 +256,15 @@ bool rtu_t15_violated(modcp_link_t *l, uint32_t now_us)
 }
 
 /* A character the link did not store itself: with the t1.5 check on every one
- * (rx_stop 0: the silence before a character of our frame, the distance of the two
+ * (rx_end at buf: the silence before a character of our frame, the distance of the two
  * character ends minus one character time, must not exceed t1.5), else those at or
  * past the stop or in another state. */
 static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
+    if (l->state == (uint8_t)MODCP_LINK_IDLE) { /* (nothing stored: no stop, no t1.5) */
+        frame_start(l, b, now_us, false);       /* a frame's first character */
+        return;
+    }
     if (rtu_t15_violated(l, now_us)) {
         link_mark_bad(l); /* the frame goes on, damaged */
     }
@@ -288,7 +294,7 @@ static bool deliver(modcp_link_t *l, modcp_frame_t *f)
     link_count(l, MODCP_CNT_SLAVE_MSG);
     f->addr = l->buf[0];
     f->pdu = &l->buf[1];
-    f->pdu_len = (uint16_t)(l->len - 3u);
+    f->pdu_len = (uint16_t)(link_len(l) - 3u);
     f->pdu_cap = (uint16_t)(l->cap - 3u);
     l->state = MODCP_LINK_BUSY;
     l->busy_rx = false;
@@ -317,7 +323,7 @@ bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
             }
             l->rx_bad = true; /* the stretch is not complete in the buffer */
         }
-        rtu_unclaim(l, l->len);
+        rtu_unclaim(l, link_len(l));
     }
     if (l->state == (uint8_t)MODCP_LINK_SKIP) {
         stretch_end(l);
@@ -328,8 +334,8 @@ bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
 {
     uint32_t n = 1u + (uint32_t)pdu_len; /* address + PDU */
-    if (l->reply_same && n + 2u == (uint32_t)l->len) {
-        return l->len; /* the request's frame, unchanged: its CRC is in place (len <= cap) */
+    if (l->reply_same && n + 2u == (uint32_t)link_len(l)) {
+        return link_len(l); /* the request's frame, unchanged: its CRC is in place (len <= cap) */
     }
     if (n + 2u > (uint32_t)l->cap) { /* no buffer: cap 0 */
         return 0;

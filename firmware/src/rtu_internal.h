@@ -53,8 +53,7 @@ static inline const modcp_rtu_t *rtu_of_c(const modcp_link_t *l)
  * t1.5 check on, the port's per-character entry always reaches the framing. */
 static inline void rtu_stop(modcp_link_t *l, uint16_t stop)
 {
-    l->run_stop = stop;
-    l->rx_stop = l->t15_us == 0u ? stop : 0u;
+    link_set_stop(l, l->t15_us == 0u ? stop : 0u, stop);
 }
 
 /* The frame in buf[0 .. len) is at least 4 characters and ends in its valid CRC. */

@@ -145,7 +145,7 @@ static void assert_tx(const ctx_t *c, const char *hex)
     uint8_t b[300];
     size_t n = hex_frame(hex, b, sizeof b);
     assert_int_equal(c->f.tx_len, n);
-    assert_int_equal(c->l.len, n); /* the reply's length on the line */
+    assert_int_equal(link_len(&c->l), n); /* the reply's length on the line */
     assert_memory_equal(c->f.tx, b, n);
 }
 
