@@ -17,13 +17,6 @@
 #include "diag_internal.h"
 #include "params_internal.h"
 
-/* A reply waits for the RS232 automatic signals (signals.c); never without them. */
-#if MODCP_WITH_RS232_SIGNALS
-#define TX_HOLD(l) ((l)->tx_hold)
-#else
-#define TX_HOLD(l) false
-#endif
-
 static void set_de(const modcp_link_t *l, bool on)
 {
     if (l->hal->set_de != NULL) {

@@ -48,6 +48,15 @@ const modcp_framing_ops_t *rtu_modem_configure(modcp_link_t *l, const modcp_para
 const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p); /* ascii.c:
                                                                   built with ASCII only */
 
+/* RS232 automatic signals (signals.c): a reply waits for them, and every received
+ * character goes through the CP's entry for them (modcp_cp_on_rx): the link never stores
+ * one by itself (link_set_stop); never without them. */
+#if MODCP_WITH_RS232_SIGNALS
+#define TX_HOLD(l) ((l)->tx_hold)
+#else
+#define TX_HOLD(l) false
+#endif
+
 /* The bytes stored (the reply's length once it is framed) and setting it. */
 static inline uint16_t link_len(const modcp_link_t *l)
 {
@@ -60,11 +69,12 @@ static inline void link_set_len(modcp_link_t *l, uint16_t n)
 }
 
 /* Where the link stops storing a frame's characters itself: stop (a buffer index) for
- * the port's per-character entry (0: every character goes to the framing's on_byte),
- * run for the characters of a block after its first (modcp_link_on_block). */
+ * the port's per-character entry (0: every character goes to the framing's on_byte;
+ * always so with the RS232 automatic signals), run for the characters of a block after
+ * its first (modcp_link_on_block). */
 static inline void link_set_stop(modcp_link_t *l, uint16_t stop, uint16_t run)
 {
-    l->rx_end = l->buf + stop;
+    l->rx_end = TX_HOLD(l) ? l->buf : l->buf + stop;
     l->run_stop = run;
 }
 
