@@ -99,12 +99,12 @@ static inline bool link_rx_store(modcp_link_t *l, uint8_t b, uint32_t now_us)
 static inline bool link_store_below(modcp_link_t *l, uint16_t stop, uint8_t b,
                                     uint32_t now_us)
 {
-    const uint16_t n = link_len(l);
-    if (n >= stop) {
+    uint8_t *at = l->rx_at;
+    if (at >= l->buf + stop) {
         return false;
     }
-    l->buf[n] = b;
-    link_set_len(l, (uint16_t)(n + 1u));
+    *at = b;
+    l->rx_at = at + 1;
     l->last_us = now_us;
     return true;
 }

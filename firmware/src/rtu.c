@@ -59,7 +59,8 @@ static void count_char(modcp_rtu_t *r)
 
 bool rtu_crc_ok(const modcp_link_t *l)
 {
-    return link_len(l) >= RTU_MIN_FRAME && modcp_crc16_update(MODCP_CRC_INIT, l->buf, link_len(l)) == 0u;
+    const size_t n = (size_t)(l->rx_at - l->buf);
+    return n >= RTU_MIN_FRAME && modcp_crc16_update(MODCP_CRC_INIT, l->buf, n) == 0u;
 }
 
 /* A character of the stretch that is not (or no longer) part of our frame (modem
@@ -111,22 +112,20 @@ static void frame_start(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
     modcp_rtu_t *r = rtu_of(l);
     r->skip_crc = MODCP_CRC_INIT;
     r->count = 0;
+    r->flags = 0;
     l->rx_bad = false;
     l->rx_overflow = false;
+    link_set_len(l, 0);
     l->last_us = now_us;
-    if (!err && (b == l->own_addr || b == 0u)) {
+    l->state = MODCP_LINK_SKIP;
+    if (err) {
+        link_mark_bad(l);
+        count_char(r);
+    } else if (b == l->own_addr || b == 0u) {
         rtu_cand_start(l, b);
         r->flags = RTU_M_LEAD | RTU_M_FIRST;
     } else {
-        r->flags = 0;
-        link_set_len(l, 0);
-        l->state = MODCP_LINK_SKIP;
-        if (err) {
-            link_mark_bad(l);
-            count_char(r);
-        } else {
-            rtu_fold(l, b);
-        }
+        rtu_fold(l, b);
     }
     link_arm(l, l->t35_us);
 }
@@ -261,10 +260,12 @@ bool rtu_t15_violated(modcp_link_t *l, uint32_t now_us)
  * past the stop or in another state. */
 static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
+#if !defined(__OPTIMIZE_SIZE__) /* built for speed: the shortcut (-Os: one call of it) */
     if (l->state == (uint8_t)MODCP_LINK_IDLE) { /* (nothing stored: no stop, no t1.5) */
         frame_start(l, b, now_us, false);       /* a frame's first character */
         return;
     }
+#endif
     if (rtu_t15_violated(l, now_us)) {
         link_mark_bad(l); /* the frame goes on, damaged */
     }
@@ -334,8 +335,9 @@ bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
 {
     uint32_t n = 1u + (uint32_t)pdu_len; /* address + PDU */
-    if (l->reply_same && n + 2u == (uint32_t)link_len(l)) {
-        return link_len(l); /* the request's frame, unchanged: its CRC is in place (len <= cap) */
+    if (l->reply_same && l->rx_at == l->buf + n + 2u) {
+        return (uint16_t)(n + 2u); /* the request's frame, unchanged: its CRC is in place
+                                      (len <= cap) */
     }
     if (n + 2u > (uint32_t)l->cap) { /* no buffer: cap 0 */
         return 0;

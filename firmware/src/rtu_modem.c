@@ -129,13 +129,14 @@ static int m_feed(modcp_link_t *l, uint8_t b)
         }
         return M_CONT;
     }
-    if (link_len(l) >= l->cap) {
+    const uint16_t n = link_len(l);
+    if (n >= l->cap) {
         l->rx_overflow = true;
         return M_CONT;
     }
-    l->buf[link_len(l)] = b;
-    link_set_len(l, (uint16_t)(link_len(l) + 1u));
-    return link_len(l) - 1u == l->run_stop ? m_check(l) : M_CONT;
+    l->buf[n] = b;
+    link_set_len(l, (uint16_t)(n + 1u));
+    return n == l->run_stop ? m_check(l) : M_CONT;
 }
 
 /* The candidate in buf[0 .. len) failed its length and CRC: drop its first character
