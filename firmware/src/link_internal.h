@@ -4,6 +4,8 @@
 #ifndef MODCP_LINK_INTERNAL_H
 #define MODCP_LINK_INTERNAL_H
 
+#include <stddef.h>
+
 #include "modcp/link.h"
 #include "diag_internal.h"
 #include "inline_internal.h"
@@ -60,7 +62,8 @@ const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t
 /* The bytes stored (the reply's length once it is framed) and setting it. */
 static inline uint16_t link_len(const modcp_link_t *l)
 {
-    return (uint16_t)(l->rx_at - l->buf);
+    const ptrdiff_t n = l->rx_at - l->buf; /* 0 .. size */
+    return (uint16_t)n;
 }
 
 static inline void link_set_len(modcp_link_t *l, uint16_t n)

@@ -59,8 +59,8 @@ static void count_char(modcp_rtu_t *r)
 
 bool rtu_crc_ok(const modcp_link_t *l)
 {
-    const size_t n = (size_t)(l->rx_at - l->buf);
-    return n >= RTU_MIN_FRAME && modcp_crc16_update(MODCP_CRC_INIT, l->buf, n) == 0u;
+    const ptrdiff_t n = l->rx_at - l->buf; /* 0 .. cap */
+    return n >= (ptrdiff_t)RTU_MIN_FRAME && modcp_crc16_update(MODCP_CRC_INIT, l->buf, (size_t)n) == 0u;
 }
 
 /* A character of the stretch that is not (or no longer) part of our frame (modem
