@@ -107,7 +107,8 @@ void rtu_unclaim(modcp_link_t *l, uint16_t n)
  * frame. Our address (or 0) starts our frame (modem mode: a candidate); any other
  * character starts one followed in SKIP (not ours: not checked, not answered), a line
  * error an erroneous one, skipped to its t3.5. */
-static void frame_start(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
+static MODCP_SPEED_NOINLINE void frame_start(modcp_link_t *l, uint8_t b, uint32_t now_us,
+                                             bool err)
 {
     modcp_rtu_t *r = rtu_of(l);
     r->skip_crc = MODCP_CRC_INIT;
@@ -241,8 +242,7 @@ static void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
 
 bool rtu_t15_violated(modcp_link_t *l, uint32_t now_us)
 {
-    if (l->t15_us == 0u || l->state != (uint8_t)MODCP_LINK_RX ||
-        now_us - l->last_us <= l->t15_us + l->char_us) {
+    if (!rtu_t15_late(l, now_us)) {
         return false;
     }
     if (!l->rx_bad) {
@@ -258,14 +258,35 @@ bool rtu_t15_violated(modcp_link_t *l, uint32_t now_us)
  * (rx_end at buf: the silence before a character of our frame, the distance of the two
  * character ends minus one character time, must not exceed t1.5), else those at or
  * past the stop or in another state. */
+#if !defined(__OPTIMIZE_SIZE__)
+/* Built for speed: a character of our frame that came too late (t1.5) is counted and
+ * the frame goes on, damaged, out of line, so that rtu_on_byte stays a leaf (tail calls
+ * only: no registers saved for the common case). */
+static MODCP_NOINLINE void late_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    (void)rtu_t15_violated(l, now_us); /* (true) */
+    link_mark_bad(l);
+    if (!link_store_below(l, l->run_stop, b, now_us)) {
+        byte_other(l, b, now_us, false);
+    }
+}
+
 static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
-#if !defined(__OPTIMIZE_SIZE__) /* built for speed: the shortcut (-Os: one call of it) */
     if (l->state == (uint8_t)MODCP_LINK_IDLE) { /* (nothing stored: no stop, no t1.5) */
         frame_start(l, b, now_us, false);       /* a frame's first character */
-        return;
+    } else if (rtu_t15_late(l, now_us)) {
+        late_byte(l, b, now_us);
+    } else if (!link_store_below(l, l->run_stop, b, now_us)) {
+        byte_other(l, b, now_us, false);
+    } else {
+        /* stored */
     }
-#endif
+}
+#else
+/* Built for size (the same effect): one path. */
+static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
     if (rtu_t15_violated(l, now_us)) {
         link_mark_bad(l); /* the frame goes on, damaged */
     }
@@ -273,6 +294,7 @@ static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
         byte_other(l, b, now_us, false);
     }
 }
+#endif
 
 static void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
