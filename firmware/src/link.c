@@ -245,6 +245,9 @@ bool modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 
 bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
+    if (link_timer_rearm(l, now_us)) {
+        return false; /* characters kept coming: the rest of the silence is armed */
+    }
     if (l->state == (uint8_t)MODCP_LINK_TURNAROUND) {
         uint32_t waited = now_us - l->tx_at_us;
         if (TX_HOLD(l)) {
@@ -256,9 +259,6 @@ bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         }
         start_tx(l);
         return false;
-    }
-    if (link_timer_rearm(l, now_us)) {
-        return false; /* characters kept coming: the rest of the silence is armed */
     }
     return l->ops->on_timer(l, now_us, f);
 }
