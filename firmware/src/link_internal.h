@@ -133,7 +133,7 @@ static inline void link_arm(const modcp_link_t *l, uint32_t us)
  * or SKIP is enabled: stopping it resets the state to IDLE.) */
 static inline bool link_timer_rearm(const modcp_link_t *l, uint32_t now_us)
 {
-    if (l->state != (uint8_t)MODCP_LINK_RX && l->state != (uint8_t)MODCP_LINK_SKIP) {
+    if ((l->state & MODCP_LINK_FRAME) == 0u) { /* neither RX nor SKIP */
         return false;
     }
     uint32_t gap = now_us - l->last_us;

@@ -51,15 +51,16 @@
 
 typedef enum {
     MODCP_LINK_IDLE = 0,  /* waiting for the first byte of a frame */
-    MODCP_LINK_RX,        /* receiving, storing */
-    MODCP_LINK_SKIP,      /* receiving, not storing (other address, error, overflow) */
-    MODCP_LINK_BUSY,      /* a request is being processed; buffer owned by the PDU */
-    MODCP_LINK_TURNAROUND,/* reply ready, waiting for the turnaround delay */
-    MODCP_LINK_TX,        /* transmitting */
-    MODCP_LINK_EOF,       /* ASCII: CR LF of a good frame received; RTU modem mode: a
+    MODCP_LINK_BUSY = 1,  /* a request is being processed; buffer owned by the PDU */
+    MODCP_LINK_TURNAROUND = 2, /* reply ready, waiting for the turnaround delay */
+    MODCP_LINK_TX = 3,    /* transmitting */
+    MODCP_LINK_RX = 4,    /* receiving, storing (RX and SKIP alone have MODCP_LINK_FRAME) */
+    MODCP_LINK_SKIP = 5,  /* receiving, not storing (other address, error, overflow) */
+    MODCP_LINK_EOF = 8,   /* ASCII: CR LF of a good frame received; RTU modem mode: a
                              formally correct frame with a valid CRC; handed over on
                              the next timer expiry (armed with 1 us) */
 } modcp_link_state_t;
+#define MODCP_LINK_FRAME 4u /* the state bit of RX and SKIP: a frame is being received */
 
 typedef struct {
     uint8_t addr;        /* 0 = broadcast */
