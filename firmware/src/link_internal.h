@@ -11,8 +11,9 @@
 #include "inline_internal.h"
 
 /* A framing backend. The link calls it and never asks which one it runs; the backend
- * keeps its own state in l->fr and uses the link's shared fields (state, buffer, len,
- * rx_at, rx_end, run_stop, rx_bad, rx_overflow, last_us, busy_rx) and configuration.
+ * keeps its own state in l->fr and uses the link's shared fields (state, buffer and the
+ * length stored (link_len: rx_at), rx_end, run_stop, rx_bad, rx_overflow, last_us,
+ * busy_rx) and configuration.
  *
  * Receive hot path: a framing that stores characters as they are (RTU) sets where the
  * link stores them itself (link_set_stop: l->rx_end, l->run_stop; link_rx_store: the
