@@ -1,16 +1,9 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* modcp — CRC-16 (Modbus) by table (crc_internal.h: a byte per step built for speed, a
- * nibble per step built for size), and the ASCII LRC. */
+/* modcp — CRC-16 (Modbus) by a 256-entry table, and the ASCII LRC. */
 #include "modcp/crc.h"
 #include "crc_internal.h"
 
-/* Reflected polynomial 0xA001 (x^16 + x^15 + x^2 + 1): the CRC of a nibble (its value
- * as the index) and of a byte. */
-const uint16_t modcp_crc16_nibble[16] = {
-    0x0000, 0xCC01, 0xD801, 0x1400, 0xF001, 0x3C00, 0x2800, 0xE401,
-    0xA001, 0x6C00, 0x7800, 0xB401, 0x5000, 0x9C01, 0x8801, 0x4400,
-};
-
+/* Reflected polynomial 0xA001 (x^16 + x^15 + x^2 + 1). */
 const uint16_t modcp_crc16_table[256] = {
     0x0000, 0xC0C1, 0xC181, 0x0140, 0xC301, 0x03C0, 0x0280, 0xC241,
     0xC601, 0x06C0, 0x0780, 0xC741, 0x0500, 0xC5C1, 0xC481, 0x0440,
@@ -162,7 +155,7 @@ static const uint16_t modcp_crc16_slice[3][256] = {
  * per step. */
 uint16_t modcp_crc16_update(uint16_t crc, const uint8_t *p, size_t n)
 {
-#if defined(__OPTIMIZE_SIZE__) /* -Os (the MCU builds): a byte at a time, by nibbles */
+#if defined(__OPTIMIZE_SIZE__) /* -Os (the MCU builds): the plain loop */
     while (n-- > 0u) {
         crc = modcp_crc16_byte(crc, *p++);
     }

@@ -6,21 +6,13 @@
 
 #include "modcp/crc.h"
 
-/* The tables (crc.c): 256 entries, a byte per step, in the builds for speed (-O2);
- * 16 entries, a nibble per step, in the builds for size (-Os, __OPTIMIZE_SIZE__: the MCU
- * images, 480 B less flash; the linker keeps only the one a build uses). */
+/* The 256-entry table (crc.c), for the one-step update below. */
 extern const uint16_t modcp_crc16_table[256];
-extern const uint16_t modcp_crc16_nibble[16];
 
-/* One byte into a running CRC (rtu.c: the characters of a frame that is not ours). */
+/* One byte into a running CRC: what the receive path does per byte (rtu.c). */
 static inline uint16_t modcp_crc16_byte(uint16_t crc, uint8_t b)
 {
-#if defined(__OPTIMIZE_SIZE__)
-    crc = (uint16_t)((crc >> 4) ^ modcp_crc16_nibble[(crc ^ b) & 0xFu]);
-    return (uint16_t)((crc >> 4) ^ modcp_crc16_nibble[(crc ^ ((unsigned)b >> 4)) & 0xFu]);
-#else
     return (uint16_t)((crc >> 8) ^ modcp_crc16_table[(crc ^ b) & 0xFFu]);
-#endif
 }
 uint16_t modcp_crc16_update(uint16_t crc, const uint8_t *p, size_t n);
 /* The CRC of p[0 .. n) appended at p[n] (low byte first): returns n + 2 (an RTU frame's
