@@ -134,7 +134,7 @@ static MODCP_NOINLINE void frame_start(modcp_link_t *l, uint32_t now_us)
     modcp_ascii_t *a = ascii_of(l);
     l->state = MODCP_LINK_RX;
     a->in_frame = true;
-    l->len = 0;
+    link_set_len(l, 0);
     a->count = 0;
     a->lrc = 0; /* running byte sum for the LRC */
     a->hex_half = false;
@@ -200,9 +200,9 @@ static void frame_byte(modcp_link_t *l, uint8_t b)
         l->state = MODCP_LINK_SKIP; /* another slave's frame: not checked, not answered */
         return;
     }
-    if (l->len < l->cap && l->len < ASCII_MAX_FRAME) { /* no buffer: cap 0 */
-        l->buf[l->len] = b;
-        l->len++;
+    if (link_len(l) < l->cap && link_len(l) < ASCII_MAX_FRAME) { /* no buffer: cap 0 */
+        l->buf[link_len(l)] = b;
+        link_set_len(l, (uint16_t)(link_len(l) + 1u));
     } else {
         l->rx_overflow = true;
     }
@@ -315,7 +315,7 @@ static void ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 static void ascii_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
     (void)line_errors; /* every kind of error has the same effect on framing */
-    if (l->state != (uint8_t)MODCP_LINK_RX && l->state != (uint8_t)MODCP_LINK_SKIP) {
+    if ((l->state & MODCP_LINK_FRAME) == 0u) { /* neither RX nor SKIP */
         return; /* between frames, after CR LF, or while busy: the frame is not touched */
     }
     if (!ascii_of(l)->in_frame) {
@@ -344,13 +344,13 @@ static bool ascii_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         }
         f->addr = l->buf[0];
         f->pdu = &l->buf[1];
-        f->pdu_len = (uint16_t)(l->len - 2u); /* without address and LRC */
+        f->pdu_len = (uint16_t)(link_len(l) - 2u); /* without address and LRC */
         f->pdu_cap = (uint16_t)(room - 2u);
         l->state = MODCP_LINK_BUSY;
         l->busy_rx = false;
         return true;
     }
-    if (l->state != (uint8_t)MODCP_LINK_RX && l->state != (uint8_t)MODCP_LINK_SKIP) {
+    if ((l->state & MODCP_LINK_FRAME) == 0u) { /* neither RX nor SKIP */
         return false; /* stale or spurious expiry */
     }
     if (ascii_of(l)->in_frame) {

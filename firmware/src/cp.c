@@ -205,7 +205,8 @@ static MODCP_NOINLINE void rx_other(modcp_cp_t *cp, uint8_t byte, uint32_t now_u
  * else runs per byte, not even the mark that the status area may change. */
 void modcp_cp_on_rx(modcp_cp_t *cp, uint8_t byte, uint32_t now_us)
 {
-    if (!sig_enabled(cp) && link_rx_store(&cp->link, byte, now_us)) {
+    if (link_rx_store(&cp->link, byte, now_us)) { /* (never with the RS232 automatic
+                                                      signals: link_set_stop) */
         return;
     }
     rx_other(cp, byte, now_us);
@@ -265,9 +266,9 @@ void modcp_cp_on_timer(modcp_cp_t *cp, uint32_t now_us)
 {
     /* the common expiry while a frame arrives (armed at its first character, bytes
      * kept coming): only the rest of the silence is armed again, nothing published;
-     * the RS232 signals never run a timer of their own while the link receives
-     * (guarded all the same) */
-    if (!sig_enabled(cp) && link_timer_rearm(&cp->link, now_us)) {
+     * the RS232 signals never run a timer of their own while the link receives (RX /
+     * SKIP): theirs run in TURNAROUND and TX */
+    if (link_timer_rearm(&cp->link, now_us)) {
         return;
     }
     timer_expired(cp, now_us);

@@ -17,13 +17,6 @@
 #include "diag_internal.h"
 #include "params_internal.h"
 
-/* A reply waits for the RS232 automatic signals (signals.c); never without them. */
-#if MODCP_WITH_RS232_SIGNALS
-#define TX_HOLD(l) ((l)->tx_hold)
-#else
-#define TX_HOLD(l) false
-#endif
-
 static void set_de(const modcp_link_t *l, bool on)
 {
     if (l->hal->set_de != NULL) {
@@ -36,18 +29,17 @@ static void start_tx(modcp_link_t *l)
     l->state = MODCP_LINK_TX;
     l->tx_starts++;
     l->tx_on = true;
-    l->hal->uart_tx(l->hal->ctx, l->buf, l->len); /* never NULL (modcp/hal.h) */
+    l->hal->uart_tx(l->hal->ctx, l->buf, link_len(l)); /* never NULL (modcp/hal.h) */
 }
 
 static void reset_rx(modcp_link_t *l)
 {
     l->state = MODCP_LINK_IDLE;
-    l->len = 0;
+    link_set_len(l, 0);
     l->rx_bad = false;
     l->rx_overflow = false;
     l->busy_rx = false;
-    l->rx_stop = 0;
-    l->run_stop = 0;
+    link_set_stop(l, 0, 0);
     (void)memset(&l->fr, 0, sizeof l->fr);
 }
 
@@ -99,7 +91,7 @@ static void resume_rx(modcp_link_t *l, uint32_t now_us, bool have_now)
             l->state = MODCP_LINK_SKIP;
             l->rx_bad = true; /* only its tail was seen: not counted */
             l->rx_overflow = false;
-            l->len = 0;
+            link_set_len(l, 0);
             link_arm(l, LINK_SILENCE(l) - gap);
             return;
         }
@@ -117,6 +109,8 @@ void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag
     l->buf = buf;
     l->size = buf != NULL ? cap : 0u;
     l->cap = l->size < MODCP_ADU_MAX ? l->size : (uint16_t)MODCP_ADU_MAX;
+    l->rx_at = buf; /* nothing stored, nothing to store */
+    l->rx_end = buf;
     l->ops = &off_ops; /* disabled: enabled false, state IDLE (zero) */
 }
 
@@ -193,14 +187,14 @@ void modcp_link_on_block(modcp_link_t *l, const uint8_t *b, uint16_t n, uint32_t
     uint16_t k = 1;
     while (k < n) {
         t += c; /* end of the character at b[k] */
-        const uint16_t len = l->len;
+        const uint16_t len = link_len(l);
         if (len < l->run_stop) {
             uint16_t m = (uint16_t)(n - k); /* a run of our frame: as many as fit */
             if (m > (uint16_t)(l->run_stop - len)) {
                 m = (uint16_t)(l->run_stop - len);
             }
             (void)memcpy(&l->buf[len], &b[k], m);
-            l->len = (uint16_t)(len + m);
+            link_set_len(l, (uint16_t)(len + m));
             k = (uint16_t)(k + m);
             t += ((uint32_t)m - 1u) * c;
             l->last_us = t;
@@ -226,7 +220,7 @@ static bool error_reported(const modcp_link_t *l, uint32_t now_us)
     if (!l->rs485) {
         return true;
     }
-    return (l->state == (uint8_t)MODCP_LINK_RX || l->state == (uint8_t)MODCP_LINK_SKIP) &&
+    return (l->state & MODCP_LINK_FRAME) != 0u && /* RX or SKIP */
            now_us - l->last_us < LINK_SILENCE(l) && l->ops->in_frame(l);
 }
 
@@ -251,6 +245,9 @@ bool modcp_link_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 
 bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 {
+    if (link_timer_rearm(l, now_us)) {
+        return false; /* characters kept coming: the rest of the silence is armed */
+    }
     if (l->state == (uint8_t)MODCP_LINK_TURNAROUND) {
         uint32_t waited = now_us - l->tx_at_us;
         if (TX_HOLD(l)) {
@@ -263,9 +260,6 @@ bool modcp_link_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         start_tx(l);
         return false;
     }
-    if (link_timer_rearm(l, now_us)) {
-        return false; /* characters kept coming: the rest of the silence is armed */
-    }
     return l->ops->on_timer(l, now_us, f);
 }
 
@@ -276,8 +270,8 @@ void modcp_link_reply(modcp_link_t *l, uint16_t pdu_len, bool same, uint32_t now
     }
     l->reply_same = same;
     l->tx_at_us = now_us;
-    l->len = l->ops->encode(l, pdu_len); /* now the reply's length on the line */
-    if (l->len == 0u) {
+    link_set_len(l, l->ops->encode(l, pdu_len)); /* now the reply's length on the line */
+    if (link_len(l) == 0u) {
         link_event(l, MODCP_EV_INTERNAL_SEND); /* reply does not fit */
         modcp_link_done(l);
         return;

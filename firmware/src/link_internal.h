@@ -4,18 +4,21 @@
 #ifndef MODCP_LINK_INTERNAL_H
 #define MODCP_LINK_INTERNAL_H
 
+#include <stddef.h>
+
 #include "modcp/link.h"
 #include "diag_internal.h"
 #include "inline_internal.h"
 
 /* A framing backend. The link calls it and never asks which one it runs; the backend
- * keeps its own state in l->fr and uses the link's shared fields (state, buffer, len,
- * rx_stop, run_stop, rx_bad, rx_overflow, last_us, busy_rx) and configuration.
+ * keeps its own state in l->fr and uses the link's shared fields (state, buffer and the
+ * length stored (link_len: rx_at), rx_end, run_stop, rx_bad, rx_overflow, last_us,
+ * busy_rx) and configuration.
  *
- * Receive hot path: a framing that stores characters as they are (RTU) sets l->rx_stop
- * (and l->run_stop) to the buffer index up to which the link stores them itself
- * (link_rx_store: the character and its time, nothing else); every other character goes
- * to on_byte. Both are 0 while no frame is stored.
+ * Receive hot path: a framing that stores characters as they are (RTU) sets where the
+ * link stores them itself (link_set_stop: l->rx_end, l->run_stop; link_rx_store: the
+ * character and its time, nothing else); every other character goes to on_byte. No
+ * frame is stored while they are buf / 0.
  *
  * Timer contract: the backend arms the one-shot timer (link_arm) once when a frame
  * starts (RX / SKIP entered from IDLE), never per character; it keeps l->last_us at the
@@ -48,26 +51,66 @@ const modcp_framing_ops_t *rtu_modem_configure(modcp_link_t *l, const modcp_para
 const modcp_framing_ops_t *ascii_configure(modcp_link_t *l, const modcp_params_t *p); /* ascii.c:
                                                                   built with ASCII only */
 
-/* The receive hot path (the port's receive interrupt, modcp_cp_on_rx): a character of a
- * frame the framing stores as it is, below stop (l->rx_stop; a framing's own entry, e.g.
- * with the t1.5 check, l->run_stop), is stored with its time; nothing else. False: the
- * framing's on_byte decides. */
-static inline bool link_store_below(modcp_link_t *l, uint16_t stop, uint8_t b,
-                                    uint32_t now_us)
+/* RS232 automatic signals (signals.c): a reply waits for them, and every received
+ * character goes through the CP's entry for them (modcp_cp_on_rx): the link never stores
+ * one by itself (link_set_stop); never without them. */
+#if MODCP_WITH_RS232_SIGNALS
+#define TX_HOLD(l) ((l)->tx_hold)
+#else
+#define TX_HOLD(l) false
+#endif
+
+/* The bytes stored (the reply's length once it is framed) and setting it. */
+static inline uint16_t link_len(const modcp_link_t *l)
 {
-    const uint16_t n = l->len;
-    if (n >= stop) {
+    const ptrdiff_t n = l->rx_at - l->buf; /* 0 .. size */
+    return (uint16_t)n;
+}
+
+static inline void link_set_len(modcp_link_t *l, uint16_t n)
+{
+    l->rx_at = l->buf + n;
+}
+
+/* Where the link stops storing a frame's characters itself: stop (a buffer index) for
+ * the port's per-character entry (0: every character goes to the framing's on_byte;
+ * always so with the RS232 automatic signals), run for the characters of a block after
+ * its first (modcp_link_on_block). */
+static inline void link_set_stop(modcp_link_t *l, uint16_t stop, uint16_t run)
+{
+    l->rx_end = TX_HOLD(l) ? l->buf : l->buf + stop;
+    l->run_stop = run;
+}
+
+/* The receive hot path (the port's receive interrupt, modcp_cp_on_rx): a character of a
+ * frame the framing stores as it is, below l->rx_end, is stored with its time; nothing
+ * else (a write pointer: no index, no length to update). False: the framing's on_byte
+ * decides. */
+static inline bool link_rx_store(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    uint8_t *at = l->rx_at;
+    if (at >= l->rx_end) {
         return false;
     }
-    l->buf[n] = b;
-    l->len = (uint16_t)(n + 1u);
+    *at = b;
+    l->rx_at = at + 1;
     l->last_us = now_us;
     return true;
 }
 
-static inline bool link_rx_store(modcp_link_t *l, uint8_t b, uint32_t now_us)
+/* The same below the buffer index stop (a framing's own entry, e.g. RTU with the t1.5
+ * check: l->run_stop). */
+static inline bool link_store_below(modcp_link_t *l, uint16_t stop, uint8_t b,
+                                    uint32_t now_us)
 {
-    return link_store_below(l, l->rx_stop, b, now_us);
+    uint8_t *at = l->rx_at;
+    if (at >= l->buf + stop) {
+        return false;
+    }
+    *at = b;
+    l->rx_at = at + 1;
+    l->last_us = now_us;
+    return true;
 }
 
 /* The silence that ends a frame (RTU t3.5, ASCII the character delay time). */
@@ -91,7 +134,7 @@ static inline void link_arm(const modcp_link_t *l, uint32_t us)
  * or SKIP is enabled: stopping it resets the state to IDLE.) */
 static inline bool link_timer_rearm(const modcp_link_t *l, uint32_t now_us)
 {
-    if (l->state != (uint8_t)MODCP_LINK_RX && l->state != (uint8_t)MODCP_LINK_SKIP) {
+    if ((l->state & MODCP_LINK_FRAME) == 0u) { /* neither RX nor SKIP */
         return false;
     }
     uint32_t gap = now_us - l->last_us;

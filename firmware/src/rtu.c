@@ -8,7 +8,7 @@
  * The backend behind rtu_ops (modcp_framing_ops_t, link_internal.h; chosen by
  * rtu_configure), its state in l->fr (modcp_rtu_t, rtu_internal.h). A character of our
  * frame is stored by the link itself (link_rx_store: the character and its time, below
- * l->rx_stop; with the t1.5 check on, every character reaches rtu_on_byte, which looks
+ * l->rx_end; with the t1.5 check on, every character reaches rtu_on_byte, which looks
  * at the time first); its CRC is computed over the buffer once the frame has ended, as FreeMODBUS
  * does. The end-of-frame timer is armed once, by the frame's first character (or line
  * error in place of one), and link.c re-arms it for the rest of t3.5 after the last
@@ -59,7 +59,8 @@ static void count_char(modcp_rtu_t *r)
 
 bool rtu_crc_ok(const modcp_link_t *l)
 {
-    return l->len >= RTU_MIN_FRAME && modcp_crc16_update(MODCP_CRC_INIT, l->buf, l->len) == 0u;
+    const ptrdiff_t n = l->rx_at - l->buf; /* 0 .. cap */
+    return n >= (ptrdiff_t)RTU_MIN_FRAME && modcp_crc16_update(MODCP_CRC_INIT, l->buf, (size_t)n) == 0u;
 }
 
 /* A character of the stretch that is not (or no longer) part of our frame (modem
@@ -79,7 +80,7 @@ void rtu_cand_start(modcp_link_t *l, uint8_t b)
     l->rx_bad = false;
     l->rx_overflow = false;
     l->buf[0] = b; /* configured: cap >= RTU_MIN_FRAME */
-    l->len = 1;
+    link_set_len(l, 1);
     r->total = 0; /* normal operation: always (the length by t3.5) */
     l->state = MODCP_LINK_RX;
     rtu_stop(l, r->modem ? 1u : l->cap);
@@ -96,7 +97,7 @@ void rtu_unclaim(modcp_link_t *l, uint16_t n)
     }
     l->rx_bad = l->rx_bad || (r->flags & RTU_M_SBAD) != 0u;
     r->flags = (uint8_t)(r->flags & ~(RTU_M_FIRST | RTU_M_OPEN));
-    l->len = 0;
+    link_set_len(l, 0);
     l->state = MODCP_LINK_SKIP;
     rtu_stop(l, 0);
 }
@@ -106,7 +107,8 @@ void rtu_unclaim(modcp_link_t *l, uint16_t n)
  * frame. Our address (or 0) starts our frame (modem mode: a candidate); any other
  * character starts one followed in SKIP (not ours: not checked, not answered), a line
  * error an erroneous one, skipped to its t3.5. */
-static void frame_start(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
+static MODCP_SPEED_NOINLINE void frame_start(modcp_link_t *l, uint8_t b, uint32_t now_us,
+                                             bool err)
 {
     modcp_rtu_t *r = rtu_of(l);
     r->skip_crc = MODCP_CRC_INIT;
@@ -114,7 +116,7 @@ static void frame_start(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
     r->flags = 0;
     l->rx_bad = false;
     l->rx_overflow = false;
-    l->len = 0;
+    link_set_len(l, 0);
     l->last_us = now_us;
     l->state = MODCP_LINK_SKIP;
     if (err) {
@@ -204,7 +206,7 @@ bool rtu_other_common(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
         link_event(l, MODCP_EV_INTERNAL_RECEIVE);
         l->state = MODCP_LINK_IDLE;
         l->busy_rx = false;
-        l->len = 0;
+        link_set_len(l, 0);
         rtu_stop(l, 0);
         if (err) {
             return true;
@@ -240,8 +242,7 @@ static void byte_other(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err)
 
 bool rtu_t15_violated(modcp_link_t *l, uint32_t now_us)
 {
-    if (l->t15_us == 0u || l->state != (uint8_t)MODCP_LINK_RX ||
-        now_us - l->last_us <= l->t15_us + l->char_us) {
+    if (!rtu_t15_late(l, now_us)) {
         return false;
     }
     if (!l->rx_bad) {
@@ -254,9 +255,36 @@ bool rtu_t15_violated(modcp_link_t *l, uint32_t now_us)
 }
 
 /* A character the link did not store itself: with the t1.5 check on every one
- * (rx_stop 0: the silence before a character of our frame, the distance of the two
+ * (rx_end at buf: the silence before a character of our frame, the distance of the two
  * character ends minus one character time, must not exceed t1.5), else those at or
  * past the stop or in another state. */
+#if !defined(__OPTIMIZE_SIZE__)
+/* Built for speed: a character of our frame that came too late (t1.5) is counted and
+ * the frame goes on, damaged, out of line, so that rtu_on_byte stays a leaf (tail calls
+ * only: no registers saved for the common case). */
+static MODCP_NOINLINE void late_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    (void)rtu_t15_violated(l, now_us); /* (true) */
+    link_mark_bad(l);
+    if (!link_store_below(l, l->run_stop, b, now_us)) {
+        byte_other(l, b, now_us, false);
+    }
+}
+
+static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
+{
+    if (l->state == (uint8_t)MODCP_LINK_IDLE) { /* (nothing stored: no stop, no t1.5) */
+        frame_start(l, b, now_us, false);       /* a frame's first character */
+    } else if (rtu_t15_late(l, now_us)) {
+        late_byte(l, b, now_us);
+    } else if (!link_store_below(l, l->run_stop, b, now_us)) {
+        byte_other(l, b, now_us, false);
+    } else {
+        /* stored */
+    }
+}
+#else
+/* Built for size (the same effect): one path. */
 static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 {
     if (rtu_t15_violated(l, now_us)) {
@@ -266,6 +294,7 @@ static void rtu_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
         byte_other(l, b, now_us, false);
     }
 }
+#endif
 
 static void rtu_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
@@ -288,7 +317,7 @@ static bool deliver(modcp_link_t *l, modcp_frame_t *f)
     link_count(l, MODCP_CNT_SLAVE_MSG);
     f->addr = l->buf[0];
     f->pdu = &l->buf[1];
-    f->pdu_len = (uint16_t)(l->len - 3u);
+    f->pdu_len = (uint16_t)(link_len(l) - 3u);
     f->pdu_cap = (uint16_t)(l->cap - 3u);
     l->state = MODCP_LINK_BUSY;
     l->busy_rx = false;
@@ -317,7 +346,7 @@ bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
             }
             l->rx_bad = true; /* the stretch is not complete in the buffer */
         }
-        rtu_unclaim(l, l->len);
+        rtu_unclaim(l, link_len(l));
     }
     if (l->state == (uint8_t)MODCP_LINK_SKIP) {
         stretch_end(l);
@@ -328,8 +357,9 @@ bool rtu_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
 uint16_t rtu_encode(modcp_link_t *l, uint16_t pdu_len)
 {
     uint32_t n = 1u + (uint32_t)pdu_len; /* address + PDU */
-    if (l->reply_same && n + 2u == (uint32_t)l->len) {
-        return l->len; /* the request's frame, unchanged: its CRC is in place (len <= cap) */
+    if (l->reply_same && l->rx_at == l->buf + n + 2u) {
+        return (uint16_t)(n + 2u); /* the request's frame, unchanged: its CRC is in place
+                                      (len <= cap) */
     }
     if (n + 2u > (uint32_t)l->cap) { /* no buffer: cap 0 */
         return 0;

@@ -53,8 +53,7 @@ static inline const modcp_rtu_t *rtu_of_c(const modcp_link_t *l)
  * t1.5 check on, the port's per-character entry always reaches the framing. */
 static inline void rtu_stop(modcp_link_t *l, uint16_t stop)
 {
-    l->run_stop = stop;
-    l->rx_stop = l->t15_us == 0u ? stop : 0u;
+    link_set_stop(l, l->t15_us == 0u ? stop : 0u, stop);
 }
 
 /* The frame in buf[0 .. len) is at least 4 characters and ends in its valid CRC. */
@@ -71,8 +70,14 @@ void rtu_unclaim(modcp_link_t *l, uint16_t n);
  * SKIP within t3.5, the variant's own (nothing done). */
 bool rtu_other_common(modcp_link_t *l, uint8_t b, uint32_t now_us, bool err);
 /* With the t1.5 check on: does a character at now_us come too late for our frame (RX)?
- * Counted once per frame (the caller damages or drops it next), (08)0EH in normal
- * mode. */
+ * (Inline: every character with the check on comes here.) */
+static inline bool rtu_t15_late(const modcp_link_t *l, uint32_t now_us)
+{
+    return l->t15_us != 0u && l->state == (uint8_t)MODCP_LINK_RX &&
+           now_us - l->last_us > l->t15_us + l->char_us;
+}
+/* The same, counted once per frame when it is so (the caller damages or drops the frame
+ * next), (08)0EH in normal mode. */
 bool rtu_t15_violated(modcp_link_t *l, uint32_t now_us);
 /* The rest of the ops, the same for both variants. */
 bool rtu_in_frame(const modcp_link_t *l);

@@ -53,7 +53,7 @@ static bool m_addr(const modcp_link_t *l, uint8_t b)
 static int m_check(modcp_link_t *l)
 {
     modcp_rtu_t *r = rtu_of(l);
-    const uint16_t n = l->len;
+    const uint16_t n = link_len(l);
     if (n == 2u) {
         /* the request's length by its function code (fc_table.c): fixed, or by its byte
          * count; unknown (no row): t3.5 and no broadcast */
@@ -97,7 +97,7 @@ static int m_check(modcp_link_t *l)
     /* dropped by the link (DSR OFF, modcp_link_rx_discard: only with the RS232 signals;
      * every other damage drops a candidate at once) */
     if (MODCP_WITH_RS232_SIGNALS && l->rx_bad) {
-        rtu_unclaim(l, l->len);
+        rtu_unclaim(l, link_len(l));
         return M_CONT;
     }
     if (rtu_crc_ok(l)) {
@@ -129,13 +129,14 @@ static int m_feed(modcp_link_t *l, uint8_t b)
         }
         return M_CONT;
     }
-    if (l->len >= l->cap) {
+    const uint16_t n = link_len(l);
+    if (n >= l->cap) {
         l->rx_overflow = true;
         return M_CONT;
     }
-    l->buf[l->len] = b;
-    l->len++;
-    return l->len - 1u == l->run_stop ? m_check(l) : M_CONT;
+    l->buf[n] = b;
+    link_set_len(l, (uint16_t)(n + 1u));
+    return n == l->run_stop ? m_check(l) : M_CONT;
 }
 
 /* The candidate in buf[0 .. len) failed its length and CRC: drop its first character
@@ -144,7 +145,7 @@ static int m_feed(modcp_link_t *l, uint8_t b)
  * (in place). */
 static void m_resync(modcp_link_t *l)
 {
-    uint16_t n = l->len;
+    uint16_t n = link_len(l);
     for (;;) {
         rtu_unclaim(l, 1u);
         int res = M_CONT;
@@ -156,9 +157,9 @@ static void m_resync(modcp_link_t *l)
         if (res != M_FAIL) {
             return; /* following, in a candidate, or a frame (what followed it: after the CRC) */
         }
-        (void)memmove(&l->buf[l->len], &l->buf[k], (size_t)n - (size_t)k);
-        n = (uint16_t)(l->len + (n - k));
-        l->len = n;
+        (void)memmove(&l->buf[link_len(l)], &l->buf[k], (size_t)n - (size_t)k);
+        n = (uint16_t)(link_len(l) + (n - k));
+        link_set_len(l, n);
     }
 }
 
@@ -172,12 +173,12 @@ static void m_push(modcp_link_t *l, uint8_t b)
 /* A damaged candidate: counted once when it has its function code, dropped. */
 static void m_cand_bad(modcp_link_t *l)
 {
-    if (l->len >= 2u) {
+    if (link_len(l) >= 2u) {
         link_mark_bad(l);
     } else {
         l->rx_bad = true; /* a lone address character: before the frame, not counted */
     }
-    rtu_unclaim(l, l->len);
+    rtu_unclaim(l, link_len(l));
 }
 
 /* Every character the link did not store (a stretch, or a candidate's character that

@@ -45,6 +45,28 @@ static void test_incremental_equals_whole(void **state)
     assert_int_equal(c, 0x4B37);
 }
 
+/* Every length and start offset (the four-byte steps of the speed build and the byte
+ * steps of its tail, on aligned and unaligned data) gives the byte-by-byte CRC. */
+static void test_blocks_equal_bytes(void **state)
+{
+    (void)state;
+    uint8_t d[300];
+    uint32_t x = 12345u;
+    for (size_t i = 0; i < sizeof d; i++) {
+        x = x * 1103515245u + 12345u;
+        d[i] = (uint8_t)(x >> 16);
+    }
+    for (size_t off = 0; off < 4; off++) {
+        uint16_t c = MODCP_CRC_INIT;
+        for (size_t n = 0; off + n <= sizeof d; n++) {
+            assert_int_equal(modcp_crc16_update(MODCP_CRC_INIT, &d[off], n), c);
+            if (off + n < sizeof d) {
+                c = modcp_crc16_byte(c, d[off + n]);
+            }
+        }
+    }
+}
+
 static void test_manual_frames(void **state)
 {
     (void)state;
@@ -95,6 +117,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_standard_vectors),
         cmocka_unit_test(test_incremental_equals_whole),
+        cmocka_unit_test(test_blocks_equal_bytes),
         cmocka_unit_test(test_manual_frames),
         cmocka_unit_test(test_append),
         cmocka_unit_test(test_lrc),

@@ -145,7 +145,7 @@ static void assert_tx(const ctx_t *c, const char *hex)
     uint8_t b[300];
     size_t n = hex_frame(hex, b, sizeof b);
     assert_int_equal(c->f.tx_len, n);
-    assert_int_equal(c->l.len, n); /* the reply's length on the line */
+    assert_int_equal(link_len(&c->l), n); /* the reply's length on the line */
     assert_memory_equal(c->f.tx, b, n);
 }
 
@@ -576,6 +576,41 @@ static void test_tail_after_tx_done_skipped(void **state)
     c->f.now = end + 100 + 7 * 1146 + 4000;
     modcp_link_on_tx_done(&c->l, c->f.now);
     assert_int_equal(c->l.state, MODCP_LINK_IDLE);
+}
+
+/* The receive hot path (link_rx_store, what modcp_cp_on_rx runs first): inside our RTU
+ * frame it stores the character with its time; with the t1.5 check or the RS232
+ * automatic signals it stores nothing, and the character is the framing's (stored
+ * by it all the same). */
+static void hot_store_case(ctx_t *c, bool stored)
+{
+    configure(c);
+    byte_at(c, 0x05, 1000); /* our address: the frame starts */
+    assert_int_equal(c->l.state, MODCP_LINK_RX);
+    assert_int_equal(link_rx_store(&c->l, 0x03, 2146), stored);
+    assert_int_equal(link_len(&c->l), stored ? 2 : 1);
+    assert_int_equal(c->l.last_us, stored ? 2146u : 1000u);
+    if (stored) {
+        assert_int_equal(c->buf[1], 0x03);
+    } else {
+        byte_at(c, 0x03, 2146); /* the framing's way */
+        assert_int_equal(link_len(&c->l), 2);
+        assert_int_equal(c->buf[1], 0x03);
+        assert_int_equal(c->l.last_us, 2146u);
+    }
+}
+
+static void test_hot_path_store(void **state)
+{
+    ctx_t *c = *state;
+    hot_store_case(c, true);
+    c->p.t15_check = 1;
+    hot_store_case(c, false);
+#if MODCP_WITH_RS232_SIGNALS
+    c->p.t15_check = 0;
+    c->p.rs232_auto = 1;
+    hot_store_case(c, false);
+#endif
 }
 
 static void test_t15_check(void **state)
@@ -1036,6 +1071,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_sequence_error_while_busy, setup, teardown),
         cmocka_unit_test_setup_teardown(test_done_then_next_frame_without_timer, setup, teardown),
         cmocka_unit_test_setup_teardown(test_tail_after_tx_done_skipped, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_hot_path_store, setup, teardown),
         cmocka_unit_test_setup_teardown(test_t15_check, setup, teardown),
         cmocka_unit_test_setup_teardown(test_parity_error_normal_mode, setup, teardown),
         cmocka_unit_test_setup_teardown(test_parity_error_suppression_mode, setup, teardown),

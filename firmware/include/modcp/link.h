@@ -51,15 +51,16 @@
 
 typedef enum {
     MODCP_LINK_IDLE = 0,  /* waiting for the first byte of a frame */
-    MODCP_LINK_RX,        /* receiving, storing */
-    MODCP_LINK_SKIP,      /* receiving, not storing (other address, error, overflow) */
-    MODCP_LINK_BUSY,      /* a request is being processed; buffer owned by the PDU */
-    MODCP_LINK_TURNAROUND,/* reply ready, waiting for the turnaround delay */
-    MODCP_LINK_TX,        /* transmitting */
-    MODCP_LINK_EOF,       /* ASCII: CR LF of a good frame received; RTU modem mode: a
+    MODCP_LINK_BUSY = 1,  /* a request is being processed; buffer owned by the PDU */
+    MODCP_LINK_TURNAROUND = 2, /* reply ready, waiting for the turnaround delay */
+    MODCP_LINK_TX = 3,    /* transmitting */
+    MODCP_LINK_RX = 4,    /* receiving, storing (RX and SKIP alone have MODCP_LINK_FRAME) */
+    MODCP_LINK_SKIP = 5,  /* receiving, not storing (other address, error, overflow) */
+    MODCP_LINK_EOF = 8,   /* ASCII: CR LF of a good frame received; RTU modem mode: a
                              formally correct frame with a valid CRC; handed over on
                              the next timer expiry (armed with 1 us) */
 } modcp_link_state_t;
+#define MODCP_LINK_FRAME 4u /* the state bit of RX and SKIP: a frame is being received */
 
 typedef struct {
     uint8_t addr;        /* 0 = broadcast */
@@ -99,20 +100,22 @@ typedef struct { /* members by size, the small ones first: every byte within rea
 #endif
     uint8_t ascii_delim; /* ASCII: end of frame is CR + this (LF; FC08 sub-function 03) */
     modcp_link_fr_t fr; /* the framing's own receive state */
-    uint16_t len;     /* bytes stored; from modcp_link_reply() on (TURNAROUND, TX) the
-                         reply's length on the line */
-    uint16_t rx_stop; /* the receive hot path (link_rx_store, link_internal.h): a
-                         character is stored at buf[len] by the link itself while len is
-                         below it; 0 while no frame is stored (set by the framing) */
-    uint16_t run_stop; /* the same for the characters of a block after its first
-                          (rx_stop, or more where a per-character check is on: RTU's
-                          t1.5) */
+    uint16_t run_stop; /* the characters of a block after its first are stored by the
+                          link itself (modcp_link_on_block) while the buffer holds fewer:
+                          rx_end's index, or more where a per-character check is on (RTU's
+                          t1.5); 0 while no frame is stored (set by the framing) */
     uint16_t cap;     /* receive / RTU capacity: the buffer, at most MODCP_ADU_MAX */
     uint16_t size;    /* the whole buffer (ASCII replies are hex-encoded in place) */
     uint16_t tx_starts; /* transmissions started (the TXD LED reads it, leds.h) */
     const modcp_hal_t *hal;
     modcp_diag_t *diag;
     uint8_t *buf;
+    uint8_t *rx_at;   /* buf + the bytes stored (link_len, link_internal.h); from
+                         modcp_link_reply() on (TURNAROUND, TX) + the reply's length on
+                         the line */
+    const uint8_t *rx_end; /* the receive hot path (link_rx_store, link_internal.h): a
+                         character is stored at rx_at by the link itself while rx_at is
+                         below it; buf while no frame is stored (set by the framing) */
     const struct modcp_framing_ops *ops; /* the framing (never NULL: "off" when disabled) */
     /* configuration */
 #if MODCP_WITH_ASCII
