@@ -315,7 +315,7 @@ static void ascii_on_byte(modcp_link_t *l, uint8_t b, uint32_t now_us)
 static void ascii_on_error(modcp_link_t *l, uint8_t line_errors, uint32_t now_us)
 {
     (void)line_errors; /* every kind of error has the same effect on framing */
-    if ((l->state & MODCP_LINK_FRAME) == 0u) { /* neither RX nor SKIP */
+    if (!link_receiving(l->state)) {
         return; /* between frames, after CR LF, or while busy: the frame is not touched */
     }
     if (!ascii_of(l)->in_frame) {
@@ -350,7 +350,7 @@ static bool ascii_on_timer(modcp_link_t *l, uint32_t now_us, modcp_frame_t *f)
         l->busy_rx = false;
         return true;
     }
-    if ((l->state & MODCP_LINK_FRAME) == 0u) { /* neither RX nor SKIP */
+    if (!link_receiving(l->state)) {
         return false; /* stale or spurious expiry */
     }
     if (ascii_of(l)->in_frame) {

@@ -446,8 +446,8 @@ static void take_init(modcp_cp_t *cp, const modcp_bp_init_t *init)
  * compared on every poll. cp->published is true while the status area shows the CP's
  * state: every entry point that can change it (a character the link does not store
  * as it is, a line error, a timer, a transmission complete, RS232 inputs), the end of a
- * wire break and every job result, PARAMS or INIT taken by a poll clear it. What changes without any of them — with time or from the CPU side —
- * is compared with the published values, a few words: LEDs (time), comm-loss /
+ * wire break and every job result, PARAMS or INIT taken by a poll clear it. What
+ * changes without any of them — with time or from the CPU side — is compared with the published values, a few words: LEDs (time), comm-loss /
  * listen-only flags (time), the event count (an event logged by a poll: comm loss,
  * backplane errors) and the SYSTAT answer / diagnostic interrupt count.
  * A publication is a few copies: the flags and LEDs, the diagnostics' run (event count,

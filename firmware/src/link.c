@@ -220,7 +220,7 @@ static bool error_reported(const modcp_link_t *l, uint32_t now_us)
     if (!l->rs485) {
         return true;
     }
-    return (l->state & MODCP_LINK_FRAME) != 0u && /* RX or SKIP */
+    return link_receiving(l->state) &&
            now_us - l->last_us < LINK_SILENCE(l) && l->ops->in_frame(l);
 }
 

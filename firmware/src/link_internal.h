@@ -127,6 +127,17 @@ static inline void link_arm(const modcp_link_t *l, uint32_t us)
     l->hal->timer_arm(l->hal->ctx, us);
 }
 
+/* RX or SKIP (a frame is being received): the two states differ in bit 0 alone, so one
+ * OR and one compare; no other value of the state byte passes (a corrupted state is
+ * neither, as with two compares). */
+_Static_assert(((unsigned)MODCP_LINK_RX | 1u) == (unsigned)MODCP_LINK_SKIP &&
+                   ((unsigned)MODCP_LINK_RX & 1u) == 0u,
+               "MODCP_LINK_RX and MODCP_LINK_SKIP differ in bit 0 alone");
+static inline bool link_receiving(uint8_t state)
+{
+    return ((uint32_t)state | 1u) == (uint32_t)MODCP_LINK_SKIP;
+}
+
 /* The common timer expiry while a frame arrives: armed once at its first character,
  * it expires before the silence has passed since the last one (characters kept
  * coming) and only the rest is armed again. True if that was the case (nothing else
@@ -134,7 +145,7 @@ static inline void link_arm(const modcp_link_t *l, uint32_t us)
  * or SKIP is enabled: stopping it resets the state to IDLE.) */
 static inline bool link_timer_rearm(const modcp_link_t *l, uint32_t now_us)
 {
-    if ((l->state & MODCP_LINK_FRAME) == 0u) { /* neither RX nor SKIP */
+    if (!link_receiving(l->state)) {
         return false;
     }
     uint32_t gap = now_us - l->last_us;

@@ -71,7 +71,8 @@ _Static_assert(OFF_IN(modcp_params_t, lim_q) ==
                         ((unsigned)(field) == (unsigned)MODCP_PF_ID_STRING) ||                \
                         ((unsigned)(index) == 0u)),                                           \
                    #member ": index");
-#define CHECK_G(...)
+#define CHECK_G(member, count, type, members, field)                                          \
+    _Static_assert((unsigned)(count) <= 0xFFu, #member ": the count fits a row's byte");
 #define CHECK_M(...)
 MODCP_PARAM_ROWS(CHECK_S, CHECK_G, CHECK_M)
 #if MODCP_WITH_EXTENDED

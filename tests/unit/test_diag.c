@@ -572,6 +572,15 @@ static void test_internal_receive_error(void **state)
     assert_int_equal(x->w->cp.link.state, MODCP_LINK_IDLE);
     assert_int_equal(x->w->cp.diag.buffer_len, 3); /* 0E11, 080C, 0E11 */
     assert_int_equal(x->w->cp.diag.buffer[0], MODCP_EV_INTERNAL_RECEIVE);
+    /* a corrupted state that shares a bit with RX and SKIP (0x0C: bit 2, as RX = 4) is
+     * no frame arriving: an expiry less than t3.5 after the last character arms
+     * nothing more (only RX and SKIP re-arm the rest of t3.5) */
+    lw_advance(x, lw_now(x) + 20000);
+    x->w->cp.link.last_us = lw_now(x);
+    x->w->cp.link.state = 0x0C;
+    size_t arms = lw_count(x, LW_ARM);
+    lw_fire_now(x);
+    assert_int_equal(lw_count(x, LW_ARM), arms);
     lw_free(x);
 }
 

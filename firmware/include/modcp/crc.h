@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* modcp — Modbus CRC-16 (poly 0xA001 reflected, init 0xFFFF, low byte first on the
- * wire; by table: 256 entries built for speed, 16 built for size, crc.c) and the ASCII
+ * wire; by the 256-entry table, with the slice-by-4 tables too when built for speed, crc.c) and the ASCII
  * LRC (two's complement of the byte sum). */
 #ifndef MODCP_CRC_H
 #define MODCP_CRC_H

@@ -54,13 +54,13 @@ typedef enum {
     MODCP_LINK_BUSY = 1,  /* a request is being processed; buffer owned by the PDU */
     MODCP_LINK_TURNAROUND = 2, /* reply ready, waiting for the turnaround delay */
     MODCP_LINK_TX = 3,    /* transmitting */
-    MODCP_LINK_RX = 4,    /* receiving, storing (RX and SKIP alone have MODCP_LINK_FRAME) */
+    MODCP_LINK_RX = 4,    /* receiving, storing (RX and SKIP differ in bit 0 alone:
+                             link_receiving(), link_internal.h) */
     MODCP_LINK_SKIP = 5,  /* receiving, not storing (other address, error, overflow) */
     MODCP_LINK_EOF = 8,   /* ASCII: CR LF of a good frame received; RTU modem mode: a
                              formally correct frame with a valid CRC; handed over on
                              the next timer expiry (armed with 1 us) */
 } modcp_link_state_t;
-#define MODCP_LINK_FRAME 4u /* the state bit of RX and SKIP: a frame is being received */
 
 typedef struct {
     uint8_t addr;        /* 0 = broadcast */
@@ -102,8 +102,9 @@ typedef struct { /* members by size, the small ones first: every byte within rea
     modcp_link_fr_t fr; /* the framing's own receive state */
     uint16_t run_stop; /* the characters of a block after its first are stored by the
                           link itself (modcp_link_on_block) while the buffer holds fewer:
-                          rx_end's index, or more where a per-character check is on (RTU's
-                          t1.5); 0 while no frame is stored (set by the framing) */
+                          rx_end's index, or more where every character must reach the
+                          framing (RTU's t1.5 check; the RS232 automatic signals, rx_end
+                          at buf); 0 while no frame is stored (set by the framing) */
     uint16_t cap;     /* receive / RTU capacity: the buffer, at most MODCP_ADU_MAX */
     uint16_t size;    /* the whole buffer (ASCII replies are hex-encoded in place) */
     uint16_t tx_starts; /* transmissions started (the TXD LED reads it, leds.h) */
