@@ -146,8 +146,13 @@ static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, modcp_frame
     if (f != NULL) {
         uint8_t *const req = f->pdu; /* in cp->buf, after the address */
         a = modcp_pdu_request(&cp->pdu, env, f->addr, req, f->pdu_len, f->pdu_cap, &out_len);
+#if MODCP_WITH_EXTENDED
+        if (a != MODCP_PDU_JOB) { /* (modcp_pdu_complete accounts for the others) */
+            modcp_pdu_finished(&cp->pdu, env, a, now_us); /* FC11/12 accounting, comm loss */
+        }
+#endif
     } else {
-        a = modcp_pdu_complete(&cp->pdu, env, cp->job.event, pdu, &out_len);
+        a = modcp_pdu_complete(&cp->pdu, env, cp->job.event, pdu, &out_len, now_us);
     }
     while (a == MODCP_PDU_JOB) { /* a job's first blocks go out at once */
         modcp_event_t ev = modcp_job_start(&cp->job, &cp->pdu.job, cp->pdu.wdata, cp->pdu.rdata,
@@ -156,10 +161,9 @@ static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, modcp_frame
             cp->request_pending = true;
             return;
         }
-        a = modcp_pdu_complete(&cp->pdu, env, ev, pdu, &out_len);
+        a = modcp_pdu_complete(&cp->pdu, env, ev, pdu, &out_len, now_us);
     }
 #if MODCP_WITH_EXTENDED
-    modcp_pdu_finished(&cp->pdu, env, a, now_us); /* FC11/12 accounting, comm loss */
     uint8_t delim;
     if (modcp_ext_take_delimiter(&cp->ext, &delim)) { /* FC08 sub 03 / 01 */
         modcp_link_set_delimiter(&cp->link, delim); /* the ASCII input delimiter */

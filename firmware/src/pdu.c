@@ -30,6 +30,7 @@
 #include "fc_table_internal.h"
 #include "ext_internal.h"
 #include "quantity_internal.h"
+#include "inline_internal.h"
 
 /* ---- the function-code table (fc_table.c) ------------------------------------------ */
 
@@ -294,33 +295,6 @@ modcp_pdu_action_t modcp_pdu_request(modcp_pdu_t *s, const modcp_pdu_env_t *env,
     return a == MODCP_PDU_JOB ? a : settle(s, env, a, pdu, out_len);
 }
 
-modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                      modcp_event_t ev, uint8_t *pdu, uint16_t *out_len)
-{
-    *out_len = 0;
-#if MODCP_WITH_EXTENDED
-    const bool sequence = s->x.seq != 0u;
-#else
-    const bool sequence = false;
-#endif
-    if (ev == MODCP_EV_NONE && !sequence && s->job.op != 0u) {
-        return encode(s, env, pdu, out_len); /* the single job of the manual set */
-    }
-    modcp_pdu_action_t a;
-    if (ev != MODCP_EV_NONE) {
-        a = modcp_pdu_err(s, ev, MODCP_EXC_DEVICE_FAILURE); /* whatever the CPU side said */
-    } else if (s->job.op == 0u) {
-        a = modcp_pdu_err(s, MODCP_EV_INTERNAL_SEND, MODCP_EXC_DEVICE_FAILURE); /* no job ran */
-#if MODCP_WITH_EXTENDED
-    } else if (sequence) {
-        a = modcp_pdu_seq_next(s, env, pdu); /* FC22, FC23, scanner: next job */
-#endif
-    } else {
-        a = MODCP_PDU_DONE;
-    }
-    return settle(s, env, a, pdu, out_len);
-}
-
 /* ---- end of a request (extended set) ------------------------------------------------ */
 
 #if MODCP_WITH_EXTENDED
@@ -349,10 +323,10 @@ static uint8_t send_event(const modcp_pdu_t *s, const modcp_comm_t *c)
     return ev;
 }
 
-void modcp_pdu_finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_pdu_action_t a,
-                        uint32_t now_us)
+/* modcp_pdu_finished; built for speed inline in modcp_pdu_complete, where nearly every
+ * request ends (no call of its own). */
+static MODCP_SPEED_INLINE void finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint32_t now_us)
 {
-    (void)a;
     modcp_diag_t *d = env->diag;
     modcp_ext_t *x = env->ext;
     if (x != NULL && !s->broadcast) {
@@ -383,4 +357,49 @@ void modcp_pdu_finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_pdu_ac
         break;
     }
 }
+
+void modcp_pdu_finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_pdu_action_t a,
+                        uint32_t now_us)
+{
+    (void)a;
+    finished(s, env, now_us);
+}
 #endif
+
+/* The job's result; a request that ends here (reply or not) is accounted at once
+ * (modcp_pdu_finished, in this file: no call of its own from the CP per request). */
+modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env,
+                                      modcp_event_t ev, uint8_t *pdu, uint16_t *out_len,
+                                      uint32_t now_us)
+{
+    *out_len = 0;
+#if MODCP_WITH_EXTENDED
+    const bool sequence = s->x.seq != 0u;
+#else
+    const bool sequence = false;
+    (void)now_us; /* no end-of-request accounting in this build */
+#endif
+    modcp_pdu_action_t a;
+    if (ev == MODCP_EV_NONE && !sequence && s->job.op != 0u) {
+        a = encode(s, env, pdu, out_len); /* the single job of the manual set */
+    } else {
+        if (ev != MODCP_EV_NONE) {
+            a = modcp_pdu_err(s, ev, MODCP_EXC_DEVICE_FAILURE); /* whatever the CPU side said */
+        } else if (s->job.op == 0u) {
+            a = modcp_pdu_err(s, MODCP_EV_INTERNAL_SEND, MODCP_EXC_DEVICE_FAILURE); /* no job ran */
+#if MODCP_WITH_EXTENDED
+        } else if (sequence) {
+            a = modcp_pdu_seq_next(s, env, pdu); /* FC22, FC23, scanner: next job */
+#endif
+        } else {
+            a = MODCP_PDU_DONE;
+        }
+        a = settle(s, env, a, pdu, out_len);
+    }
+#if MODCP_WITH_EXTENDED
+    if (a != MODCP_PDU_JOB) {
+        finished(s, env, now_us);
+    }
+#endif
+    return a;
+}
