@@ -146,7 +146,7 @@ static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, modcp_frame
     if (f != NULL) {
         uint8_t *const req = f->pdu; /* in cp->buf, after the address */
         a = modcp_pdu_request(&cp->pdu, env, f->addr, req, f->pdu_len, f->pdu_cap, &out_len);
-#if MODCP_WITH_EXTENDED
+#if MODCP_PDU_COMPLETE_FINISHES
         if (a != MODCP_PDU_JOB) { /* (modcp_pdu_complete accounts for the others) */
             modcp_pdu_finished(&cp->pdu, env, a, now_us); /* FC11/12 accounting, comm loss */
         }
@@ -164,6 +164,9 @@ static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, modcp_frame
         a = modcp_pdu_complete(&cp->pdu, env, ev, pdu, &out_len, now_us);
     }
 #if MODCP_WITH_EXTENDED
+#if !MODCP_PDU_COMPLETE_FINISHES
+    modcp_pdu_finished(&cp->pdu, env, a, now_us); /* FC11/12 accounting, comm loss */
+#endif
     uint8_t delim;
     if (modcp_ext_take_delimiter(&cp->ext, &delim)) { /* FC08 sub 03 / 01 */
         modcp_link_set_delimiter(&cp->link, delim); /* the ASCII input delimiter */

@@ -295,6 +295,28 @@ modcp_pdu_action_t modcp_pdu_request(modcp_pdu_t *s, const modcp_pdu_env_t *env,
     return a == MODCP_PDU_JOB ? a : settle(s, env, a, pdu, out_len);
 }
 
+/* What a job's result other than plain success means: exception 04 for an error,
+ * the next job of a sequence (FC22, FC23, scanner), or done. */
+static modcp_pdu_action_t job_result(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_event_t ev,
+                                     bool sequence, uint8_t *pdu)
+{
+    (void)env; /* (the manual set has no sequence) */
+    (void)pdu;
+    (void)sequence;
+    if (ev != MODCP_EV_NONE) {
+        return modcp_pdu_err(s, ev, MODCP_EXC_DEVICE_FAILURE); /* whatever the CPU side said */
+    }
+    if (s->job.op == 0u) {
+        return modcp_pdu_err(s, MODCP_EV_INTERNAL_SEND, MODCP_EXC_DEVICE_FAILURE); /* no job ran */
+    }
+#if MODCP_WITH_EXTENDED
+    if (sequence) {
+        return modcp_pdu_seq_next(s, env, pdu); /* FC22, FC23, scanner: next job */
+    }
+#endif
+    return MODCP_PDU_DONE;
+}
+
 /* ---- end of a request (extended set) ------------------------------------------------ */
 
 #if MODCP_WITH_EXTENDED
@@ -366,8 +388,7 @@ void modcp_pdu_finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_pdu_ac
 }
 #endif
 
-/* The job's result; a request that ends here (reply or not) is accounted at once
- * (modcp_pdu_finished, in this file: no call of its own from the CP per request). */
+/* The job's result (MODCP_PDU_COMPLETE_FINISHES: and the request's accounting). */
 modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env,
                                       modcp_event_t ev, uint8_t *pdu, uint16_t *out_len,
                                       uint32_t now_us)
@@ -377,29 +398,23 @@ modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env
     const bool sequence = s->x.seq != 0u;
 #else
     const bool sequence = false;
-    (void)now_us; /* no end-of-request accounting in this build */
 #endif
+#if MODCP_PDU_COMPLETE_FINISHES
     modcp_pdu_action_t a;
     if (ev == MODCP_EV_NONE && !sequence && s->job.op != 0u) {
         a = encode(s, env, pdu, out_len); /* the single job of the manual set */
     } else {
-        if (ev != MODCP_EV_NONE) {
-            a = modcp_pdu_err(s, ev, MODCP_EXC_DEVICE_FAILURE); /* whatever the CPU side said */
-        } else if (s->job.op == 0u) {
-            a = modcp_pdu_err(s, MODCP_EV_INTERNAL_SEND, MODCP_EXC_DEVICE_FAILURE); /* no job ran */
-#if MODCP_WITH_EXTENDED
-        } else if (sequence) {
-            a = modcp_pdu_seq_next(s, env, pdu); /* FC22, FC23, scanner: next job */
-#endif
-        } else {
-            a = MODCP_PDU_DONE;
-        }
-        a = settle(s, env, a, pdu, out_len);
+        a = settle(s, env, job_result(s, env, ev, sequence, pdu), pdu, out_len);
     }
-#if MODCP_WITH_EXTENDED
     if (a != MODCP_PDU_JOB) {
         finished(s, env, now_us);
     }
-#endif
     return a;
+#else
+    (void)now_us; /* the CP accounts for the request (modcp_pdu_finished) */
+    if (ev == MODCP_EV_NONE && !sequence && s->job.op != 0u) {
+        return encode(s, env, pdu, out_len); /* the single job of the manual set */
+    }
+    return settle(s, env, job_result(s, env, ev, sequence, pdu), pdu, out_len);
+#endif
 }
