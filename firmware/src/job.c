@@ -47,7 +47,7 @@ bool modcp_job_busy(const modcp_job_t *j)
     return j->state != (uint8_t)MODCP_JOBST_IDLE;
 }
 
-static void push_blocks(modcp_job_t *j);
+static MODCP_SPEED_INLINE void push_blocks(modcp_job_t *j);
 
 /* An unexpected block (kind: MODCP_JOB_ERR_*): counted, and its kind kept for the owner. */
 static MODCP_NOINLINE void proto_error(modcp_job_t *j, unsigned kind)
@@ -170,7 +170,7 @@ static void push_data(modcp_job_t *j)
 }
 
 /* The header block, once the ring is empty (see the top of this file), then the data. */
-static void push_blocks(modcp_job_t *j)
+static MODCP_SPEED_INLINE void push_blocks(modcp_job_t *j)
 {
     modcp_ring_t *r = &j->bp->to_cpu;
     if (!j->hdr_sent) {
@@ -203,7 +203,10 @@ static void push_blocks(modcp_job_t *j)
         }
         hand_over(j, b, modcp_block_word(n, MODCP_BP_JOB, flags, j->tag));
     }
-    push_data(j);
+    if (j->state == (uint8_t)MODCP_JOBST_SENDING) { /* (a whole job in its header block:
+                                                          nothing more, no call) */
+        push_data(j);
+    }
 }
 
 static modcp_jobp_t finish(modcp_job_t *j, modcp_event_t ev, uint16_t error_nr)
