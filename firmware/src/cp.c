@@ -60,8 +60,9 @@ static void line_params(modcp_cp_t *cp, bool ok, int irq)
 }
 
 /* CP task: SYSTAT requests of the CPU side, LEDs (from the link's receive / transmit
- * record: no hook per byte or per transmission). */
-static void line_poll(modcp_cp_t *cp, uint32_t now_us)
+ * record: no hook per byte or per transmission). Returns SF as shown (publish() shows
+ * the same: nothing after this in the poll changes it). */
+static bool line_poll(modcp_cp_t *cp, uint32_t now_us)
 {
     /* (the poll always has its backplane: modcp_job_poll and publish() use it too) */
     uint32_t req = atomic_load_explicit(&cp->job.bp->systat_req, memory_order_acquire);
@@ -80,7 +81,9 @@ static void line_poll(modcp_cp_t *cp, uint32_t now_us)
         cp->published = false; /* (the character may have been a stored one: see
                                   modcp_cp_on_rx) */
     }
-    modcp_leds_poll(&cp->leds, sf_on(cp), &cp->link, now_us);
+    const bool sf = sf_on(cp);
+    modcp_leds_poll(&cp->leds, sf, &cp->link, now_us);
+    return sf;
 }
 
 void modcp_cp_on_signals(modcp_cp_t *cp, bool cts, bool dsr, uint32_t now_us)
@@ -497,7 +500,7 @@ _Static_assert(ST_CPDIAG(diag_irq_count, irq_count) && ST_CPDIAG(systat_ack, sys
                "status area: diag_irq ... systat_ack as in modcp_cpdiag_t");
 
 /* Publish the status area, written in place under the seqlock (no copy of it). */
-static MODCP_SIZE_NOINLINE void publish(modcp_cp_t *cp)
+static MODCP_SIZE_NOINLINE void publish(modcp_cp_t *cp, bool sf)
 {
     modcp_cp_status_t *st = &cp->job.bp->status; /* only the CP writes it */
     uint32_t ext = ext_flags(cp);
@@ -509,8 +512,8 @@ static MODCP_SIZE_NOINLINE void publish(modcp_cp_t *cp)
     }
     (void)modcp_bp_status_begin(cp->job.bp);
     st->flags = (cp->configured ? MODCP_CPST_CONFIGURED : 0u) |
-                (modcp_cp_ready(cp) ? MODCP_CPST_READY : 0u) |
-                (sf_on(cp) ? MODCP_CPST_SF : 0u) | ext |
+                (cp->configured && cp->env.fb_ready ? MODCP_CPST_READY : 0u) | /* modcp_cp_ready */
+                (sf ? MODCP_CPST_SF : 0u) | ext |
                 (cp->cpdiag.wire_break ? MODCP_CPST_WIRE_BREAK : 0u) |
                 (cp->cpdiag.param_error ? MODCP_CPST_PARAM_ERROR : 0u);
     st->leds = leds;
@@ -563,7 +566,7 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
 #endif
         }
     }
-    line_poll(cp, now_us);
+    const bool sf = line_poll(cp, now_us);
 #if MODCP_WITH_EXTENDED
     /* comm-loss time; the flags are published from ext / diag (ext_flags) */
     uint32_t reset = atomic_load_explicit(&cp->job.bp->commloss_reset, memory_order_acquire);
@@ -572,5 +575,5 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
         modcp_commloss_poll(&cp->ext, &cp->params, &cp->diag, reset, now_us);
     }
 #endif
-    publish(cp);
+    publish(cp, sf);
 }
