@@ -31,6 +31,7 @@
 #include "ext_internal.h"
 #include "quantity_internal.h"
 #include "inline_internal.h"
+#include "pdu_rw_internal.h"
 
 /* ---- the function-code table (fc_table.c) ------------------------------------------ */
 
@@ -271,6 +272,11 @@ static modcp_pdu_action_t dispatch(modcp_pdu_t *s, const modcp_pdu_env_t *env, u
             return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
         }
     }
+#if defined(__GNUC__) && defined(__OPTIMIZE__) && !defined(__OPTIMIZE_SIZE__)
+    if (h == modcp_pdu_rw) { /* built for speed: the reads and writes without a call */
+        return modcp_pdu_rw_inline(s, env, pdu, len, cap);
+    }
+#endif
     return h(s, env, pdu, len, cap, out_len);
 }
 
