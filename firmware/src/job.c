@@ -203,10 +203,13 @@ static MODCP_SPEED_INLINE void push_blocks(modcp_job_t *j)
         }
         hand_over(j, b, modcp_block_word(n, MODCP_BP_JOB, flags, j->tag));
     }
-    if (j->state == (uint8_t)MODCP_JOBST_SENDING) { /* (a whole job in its header block:
-                                                          nothing more, no call) */
-        push_data(j);
+#if !defined(__OPTIMIZE_SIZE__) /* -O2: no call when the header block held the whole job
+                                   (-Os: push_data is inline here, its loop tests it) */
+    if (j->state != (uint8_t)MODCP_JOBST_SENDING) {
+        return;
     }
+#endif
+    push_data(j);
 }
 
 static modcp_jobp_t finish(modcp_job_t *j, modcp_event_t ev, uint16_t error_nr)
