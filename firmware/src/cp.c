@@ -499,6 +499,26 @@ _Static_assert(ST_CPDIAG(diag_irq_count, irq_count) && ST_CPDIAG(systat_ack, sys
                    ST_SIZE(modcp_cp_status_t, systat) == 16u,
                "status area: diag_irq ... systat_ack as in modcp_cpdiag_t");
 
+/* A run of the status area from its owner's struct (the static asserts above), 16
+ * bytes at a time, then the rest: built for size a memcpy of the whole run is a byte
+ * loop (newlib-nano's memcpy; x86's rep movsb), 16 bytes a couple of loads and stores.
+ * Both runs start with a uint32_t on both sides: 4-aligned. */
+#if defined(__GNUC__)
+#define ALIGNED4(p) __builtin_assume_aligned((p), 4)
+#else
+#define ALIGNED4(p) (p)
+#endif
+static MODCP_ALWAYS_INLINE void copy_run(uint8_t *dst, const uint8_t *src, size_t n)
+{
+    size_t k = 0;
+    for (; k + 16u <= n; k += 16u) {
+        (void)memcpy(ALIGNED4(dst + k), ALIGNED4(src + k), 16);
+    }
+    for (; k < n; k++) {
+        dst[k] = src[k];
+    }
+}
+
 /* Publish the status area, written in place under the seqlock (no copy of it). */
 static MODCP_SIZE_NOINLINE void publish(modcp_cp_t *cp, bool sf)
 {
@@ -512,13 +532,13 @@ static MODCP_SIZE_NOINLINE void publish(modcp_cp_t *cp, bool sf)
     }
     (void)modcp_bp_status_begin(cp->job.bp);
     st->flags = (cp->configured ? MODCP_CPST_CONFIGURED : 0u) |
-                (cp->configured && cp->env.fb_ready ? MODCP_CPST_READY : 0u) | /* modcp_cp_ready */
+                (modcp_cp_ready(cp) ? MODCP_CPST_READY : 0u) |
                 (sf ? MODCP_CPST_SF : 0u) | ext |
                 (cp->cpdiag.wire_break ? MODCP_CPST_WIRE_BREAK : 0u) |
                 (cp->cpdiag.param_error ? MODCP_CPST_PARAM_ERROR : 0u);
     st->leds = leds;
-    (void)memcpy((uint8_t *)&st->events_total, (const uint8_t *)&cp->diag.events_total,
-                 ST_DIAG_RUN);
+    copy_run((uint8_t *)st + ST_AT(events_total),
+             (const uint8_t *)&cp->diag + offsetof(modcp_diag_t, events_total), ST_DIAG_RUN);
     (void)memcpy(st->diag_irq, cp->cpdiag.irq, ST_CPDIAG_RUN);
     st->param_event = cp->param_event;
 #if MODCP_WITH_RS232_SIGNALS
