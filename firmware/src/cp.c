@@ -60,8 +60,9 @@ static void line_params(modcp_cp_t *cp, bool ok, int irq)
 }
 
 /* CP task: SYSTAT requests of the CPU side, LEDs (from the link's receive / transmit
- * record: no hook per byte or per transmission). */
-static void line_poll(modcp_cp_t *cp, uint32_t now_us)
+ * record: no hook per byte or per transmission). Returns SF as shown (publish() shows
+ * the same: nothing after this in the poll changes it). */
+static bool line_poll(modcp_cp_t *cp, uint32_t now_us)
 {
     /* (the poll always has its backplane: modcp_job_poll and publish() use it too) */
     uint32_t req = atomic_load_explicit(&cp->job.bp->systat_req, memory_order_acquire);
@@ -80,7 +81,9 @@ static void line_poll(modcp_cp_t *cp, uint32_t now_us)
         cp->published = false; /* (the character may have been a stored one: see
                                   modcp_cp_on_rx) */
     }
-    modcp_leds_poll(&cp->leds, sf_on(cp), &cp->link, now_us);
+    const bool sf = sf_on(cp);
+    modcp_leds_poll(&cp->leds, sf, &cp->link, now_us);
+    return sf;
 }
 
 void modcp_cp_on_signals(modcp_cp_t *cp, bool cts, bool dsr, uint32_t now_us)
@@ -146,8 +149,13 @@ static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, modcp_frame
     if (f != NULL) {
         uint8_t *const req = f->pdu; /* in cp->buf, after the address */
         a = modcp_pdu_request(&cp->pdu, env, f->addr, req, f->pdu_len, f->pdu_cap, &out_len);
+#if MODCP_PDU_COMPLETE_FINISHES
+        if (a != MODCP_PDU_JOB) { /* (modcp_pdu_complete accounts for the others) */
+            modcp_pdu_finished(&cp->pdu, env, a, now_us); /* FC11/12 accounting, comm loss */
+        }
+#endif
     } else {
-        a = modcp_pdu_complete(&cp->pdu, env, cp->job.event, pdu, &out_len);
+        a = modcp_pdu_complete(&cp->pdu, env, cp->job.event, pdu, &out_len, now_us);
     }
     while (a == MODCP_PDU_JOB) { /* a job's first blocks go out at once */
         modcp_event_t ev = modcp_job_start(&cp->job, &cp->pdu.job, cp->pdu.wdata, cp->pdu.rdata,
@@ -156,10 +164,12 @@ static MODCP_SIZE_NOINLINE_SPEED_INLINE void advance(modcp_cp_t *cp, modcp_frame
             cp->request_pending = true;
             return;
         }
-        a = modcp_pdu_complete(&cp->pdu, env, ev, pdu, &out_len);
+        a = modcp_pdu_complete(&cp->pdu, env, ev, pdu, &out_len, now_us);
     }
 #if MODCP_WITH_EXTENDED
+#if !MODCP_PDU_COMPLETE_FINISHES
     modcp_pdu_finished(&cp->pdu, env, a, now_us); /* FC11/12 accounting, comm loss */
+#endif
     uint8_t delim;
     if (modcp_ext_take_delimiter(&cp->ext, &delim)) { /* FC08 sub 03 / 01 */
         modcp_link_set_delimiter(&cp->link, delim); /* the ASCII input delimiter */
@@ -489,8 +499,28 @@ _Static_assert(ST_CPDIAG(diag_irq_count, irq_count) && ST_CPDIAG(systat_ack, sys
                    ST_SIZE(modcp_cp_status_t, systat) == 16u,
                "status area: diag_irq ... systat_ack as in modcp_cpdiag_t");
 
+/* A run of the status area from its owner's struct (the static asserts above), 16
+ * bytes at a time, then the rest: built for size a memcpy of the whole run is a byte
+ * loop (newlib-nano's memcpy; x86's rep movsb), 16 bytes a couple of loads and stores.
+ * Both runs start with a uint32_t on both sides: 4-aligned. */
+#if defined(__GNUC__)
+#define ALIGNED4(p) __builtin_assume_aligned((p), 4)
+#else
+#define ALIGNED4(p) (p)
+#endif
+static MODCP_ALWAYS_INLINE void copy_run(uint8_t *dst, const uint8_t *src, size_t n)
+{
+    size_t k = 0;
+    for (; k + 16u <= n; k += 16u) {
+        (void)memcpy(ALIGNED4(dst + k), ALIGNED4(src + k), 16);
+    }
+    for (; k < n; k++) {
+        dst[k] = src[k];
+    }
+}
+
 /* Publish the status area, written in place under the seqlock (no copy of it). */
-static MODCP_SIZE_NOINLINE void publish(modcp_cp_t *cp)
+static MODCP_SIZE_NOINLINE void publish(modcp_cp_t *cp, bool sf)
 {
     modcp_cp_status_t *st = &cp->job.bp->status; /* only the CP writes it */
     uint32_t ext = ext_flags(cp);
@@ -503,12 +533,12 @@ static MODCP_SIZE_NOINLINE void publish(modcp_cp_t *cp)
     (void)modcp_bp_status_begin(cp->job.bp);
     st->flags = (cp->configured ? MODCP_CPST_CONFIGURED : 0u) |
                 (modcp_cp_ready(cp) ? MODCP_CPST_READY : 0u) |
-                (sf_on(cp) ? MODCP_CPST_SF : 0u) | ext |
+                (sf ? MODCP_CPST_SF : 0u) | ext |
                 (cp->cpdiag.wire_break ? MODCP_CPST_WIRE_BREAK : 0u) |
                 (cp->cpdiag.param_error ? MODCP_CPST_PARAM_ERROR : 0u);
     st->leds = leds;
-    (void)memcpy((uint8_t *)&st->events_total, (const uint8_t *)&cp->diag.events_total,
-                 ST_DIAG_RUN);
+    copy_run((uint8_t *)st + ST_AT(events_total),
+             (const uint8_t *)&cp->diag + offsetof(modcp_diag_t, events_total), ST_DIAG_RUN);
     (void)memcpy(st->diag_irq, cp->cpdiag.irq, ST_CPDIAG_RUN);
     st->param_event = cp->param_event;
 #if MODCP_WITH_RS232_SIGNALS
@@ -556,7 +586,7 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
 #endif
         }
     }
-    line_poll(cp, now_us);
+    const bool sf = line_poll(cp, now_us);
 #if MODCP_WITH_EXTENDED
     /* comm-loss time; the flags are published from ext / diag (ext_flags) */
     uint32_t reset = atomic_load_explicit(&cp->job.bp->commloss_reset, memory_order_acquire);
@@ -565,5 +595,5 @@ void modcp_cp_poll(modcp_cp_t *cp, uint32_t now_us)
         modcp_commloss_poll(&cp->ext, &cp->params, &cp->diag, reset, now_us);
     }
 #endif
-    publish(cp);
+    publish(cp, sf);
 }

@@ -47,7 +47,7 @@ bool modcp_job_busy(const modcp_job_t *j)
     return j->state != (uint8_t)MODCP_JOBST_IDLE;
 }
 
-static void push_blocks(modcp_job_t *j);
+static MODCP_SPEED_INLINE void push_blocks(modcp_job_t *j);
 
 /* An unexpected block (kind: MODCP_JOB_ERR_*): counted, and its kind kept for the owner. */
 static MODCP_NOINLINE void proto_error(modcp_job_t *j, unsigned kind)
@@ -170,7 +170,7 @@ static void push_data(modcp_job_t *j)
 }
 
 /* The header block, once the ring is empty (see the top of this file), then the data. */
-static void push_blocks(modcp_job_t *j)
+static MODCP_SPEED_INLINE void push_blocks(modcp_job_t *j)
 {
     modcp_ring_t *r = &j->bp->to_cpu;
     if (!j->hdr_sent) {
@@ -203,6 +203,12 @@ static void push_blocks(modcp_job_t *j)
         }
         hand_over(j, b, modcp_block_word(n, MODCP_BP_JOB, flags, j->tag));
     }
+#if !defined(__OPTIMIZE_SIZE__) /* -O2: no call when the header block held the whole job
+                                   (-Os: push_data is inline here, its loop tests it) */
+    if (j->state != (uint8_t)MODCP_JOBST_SENDING) {
+        return;
+    }
+#endif
     push_data(j);
 }
 
@@ -338,6 +344,21 @@ static MODCP_ALWAYS_INLINE bool rx_reply_alone(const modcp_job_t *j, const modcp
 }
 #endif
 
+#if !defined(__OPTIMIZE_SIZE__)
+/* Take the reply rx_reply_alone found: the job is done. */
+static MODCP_ALWAYS_INLINE modcp_jobp_t take_reply_alone(modcp_job_t *j, const modcp_block_t *b)
+{
+    j->rx_seq = (uint8_t)(j->rx_seq + 1u);
+    modcp_event_t ev = modcp_bp_get16(b->data);
+    if (ev != MODCP_EV_NONE) {
+        return finish(j, ev, modcp_bp_get16(b->data + 2));
+    }
+    j->rexpect = modcp_bp_get16(b->data + 4);
+    j->rlen = 0;
+    return finish_reply(j);
+}
+#endif
+
 static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b, modcp_bp_init_t *init)
 {
 #if !defined(__OPTIMIZE_SIZE__)
@@ -345,14 +366,7 @@ static modcp_jobp_t rx_block(modcp_job_t *j, const modcp_block_t *b, modcp_bp_in
         return MODCP_JOBP_NOTHING;
     }
     if (rx_reply_alone(j, b)) {
-        j->rx_seq = (uint8_t)(j->rx_seq + 1u);
-        modcp_event_t ev = modcp_bp_get16(b->data);
-        if (ev != MODCP_EV_NONE) {
-            return finish(j, ev, modcp_bp_get16(b->data + 2));
-        }
-        j->rexpect = modcp_bp_get16(b->data + 4);
-        j->rlen = 0;
-        return finish_reply(j);
+        return take_reply_alone(j, b);
     }
 #endif
     if (b->seq != j->rx_seq && j->rx_synced) { /* (the first block seen syncs) */
@@ -401,7 +415,9 @@ static bool params_wait(const modcp_job_t *j, const modcp_block_t *next)
 }
 #endif
 
-modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us, modcp_bp_init_t *init)
+/* modcp_job_poll's loop over the blocks in, then the timeout and the blocks out. */
+static MODCP_SPEED_NOINLINE modcp_jobp_t poll_blocks(modcp_job_t *j, uint32_t now_us,
+                                                     modcp_bp_init_t *init)
 {
     modcp_ring_t *in = &j->bp->to_cp;
     const modcp_block_t *b;
@@ -428,4 +444,24 @@ modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us, modcp_bp_init_t *in
         push_blocks(j);
     }
     return MODCP_JOBP_NOTHING;
+}
+
+modcp_jobp_t modcp_job_poll(modcp_job_t *j, uint32_t now_us, modcp_bp_init_t *init)
+{
+#if !defined(__OPTIMIZE_SIZE__)
+    /* built for speed, the reply of a write (FC05 / FC06) at the ring's tail is taken
+     * before anything else, as poll_blocks would take it first, without its stack frame
+     * (-Os: poll_blocks takes it) */
+    modcp_ring_t *in = &j->bp->to_cp;
+    const modcp_block_t *b = modcp_ring_peek(in);
+    if (b != NULL && rx_reply_alone(j, b)) {
+#if MODCP_SHARED_PARAMS_BUFFER
+        j->msg_granted = false; /* a grant covers the one block it was asked for */
+#endif
+        modcp_jobp_t r = take_reply_alone(j, b); /* the job is done */
+        modcp_ring_release(in);
+        return r;
+    }
+#endif
+    return poll_blocks(j, now_us, init);
 }

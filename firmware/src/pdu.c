@@ -30,6 +30,8 @@
 #include "fc_table_internal.h"
 #include "ext_internal.h"
 #include "quantity_internal.h"
+#include "inline_internal.h"
+#include "pdu_rw_internal.h"
 
 /* ---- the function-code table (fc_table.c) ------------------------------------------ */
 
@@ -270,6 +272,11 @@ static modcp_pdu_action_t dispatch(modcp_pdu_t *s, const modcp_pdu_env_t *env, u
             return modcp_pdu_err(s, MODCP_EV_BYTE_COUNT, MODCP_EXC_ILLEGAL_VALUE);
         }
     }
+#if defined(__GNUC__) && defined(__OPTIMIZE__) && !defined(__OPTIMIZE_SIZE__)
+    if (h == modcp_pdu_rw) { /* built for speed: the reads and writes without a call */
+        return modcp_pdu_rw_inline(s, env, pdu, len, cap);
+    }
+#endif
     return h(s, env, pdu, len, cap, out_len);
 }
 
@@ -294,31 +301,26 @@ modcp_pdu_action_t modcp_pdu_request(modcp_pdu_t *s, const modcp_pdu_env_t *env,
     return a == MODCP_PDU_JOB ? a : settle(s, env, a, pdu, out_len);
 }
 
-modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env,
-                                      modcp_event_t ev, uint8_t *pdu, uint16_t *out_len)
+/* What a job's result other than plain success means: exception 04 for an error,
+ * the next job of a sequence (FC22, FC23, scanner), or done. */
+static modcp_pdu_action_t job_result(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_event_t ev,
+                                     bool sequence, uint8_t *pdu)
 {
-    *out_len = 0;
-#if MODCP_WITH_EXTENDED
-    const bool sequence = s->x.seq != 0u;
-#else
-    const bool sequence = false;
-#endif
-    if (ev == MODCP_EV_NONE && !sequence && s->job.op != 0u) {
-        return encode(s, env, pdu, out_len); /* the single job of the manual set */
-    }
-    modcp_pdu_action_t a;
+    (void)env; /* (the manual set has no sequence) */
+    (void)pdu;
+    (void)sequence;
     if (ev != MODCP_EV_NONE) {
-        a = modcp_pdu_err(s, ev, MODCP_EXC_DEVICE_FAILURE); /* whatever the CPU side said */
-    } else if (s->job.op == 0u) {
-        a = modcp_pdu_err(s, MODCP_EV_INTERNAL_SEND, MODCP_EXC_DEVICE_FAILURE); /* no job ran */
-#if MODCP_WITH_EXTENDED
-    } else if (sequence) {
-        a = modcp_pdu_seq_next(s, env, pdu); /* FC22, FC23, scanner: next job */
-#endif
-    } else {
-        a = MODCP_PDU_DONE;
+        return modcp_pdu_err(s, ev, MODCP_EXC_DEVICE_FAILURE); /* whatever the CPU side said */
     }
-    return settle(s, env, a, pdu, out_len);
+    if (s->job.op == 0u) {
+        return modcp_pdu_err(s, MODCP_EV_INTERNAL_SEND, MODCP_EXC_DEVICE_FAILURE); /* no job ran */
+    }
+#if MODCP_WITH_EXTENDED
+    if (sequence) {
+        return modcp_pdu_seq_next(s, env, pdu); /* FC22, FC23, scanner: next job */
+    }
+#endif
+    return MODCP_PDU_DONE;
 }
 
 /* ---- end of a request (extended set) ------------------------------------------------ */
@@ -349,10 +351,10 @@ static uint8_t send_event(const modcp_pdu_t *s, const modcp_comm_t *c)
     return ev;
 }
 
-void modcp_pdu_finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_pdu_action_t a,
-                        uint32_t now_us)
+/* modcp_pdu_finished; built for speed inline in modcp_pdu_complete, where nearly every
+ * request ends (no call of its own). */
+static MODCP_SPEED_INLINE void finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, uint32_t now_us)
 {
-    (void)a;
     modcp_diag_t *d = env->diag;
     modcp_ext_t *x = env->ext;
     if (x != NULL && !s->broadcast) {
@@ -383,4 +385,42 @@ void modcp_pdu_finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_pdu_ac
         break;
     }
 }
+
+void modcp_pdu_finished(modcp_pdu_t *s, const modcp_pdu_env_t *env, modcp_pdu_action_t a,
+                        uint32_t now_us)
+{
+    (void)a;
+    finished(s, env, now_us);
+}
 #endif
+
+/* The job's result (MODCP_PDU_COMPLETE_FINISHES: and the request's accounting). */
+modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env,
+                                      modcp_event_t ev, uint8_t *pdu, uint16_t *out_len,
+                                      uint32_t now_us)
+{
+    *out_len = 0;
+#if MODCP_WITH_EXTENDED
+    const bool sequence = s->x.seq != 0u;
+#else
+    const bool sequence = false;
+#endif
+#if MODCP_PDU_COMPLETE_FINISHES
+    modcp_pdu_action_t a;
+    if (ev == MODCP_EV_NONE && !sequence && s->job.op != 0u) {
+        a = encode(s, env, pdu, out_len); /* the single job of the manual set */
+    } else {
+        a = settle(s, env, job_result(s, env, ev, sequence, pdu), pdu, out_len);
+    }
+    if (a != MODCP_PDU_JOB) {
+        finished(s, env, now_us);
+    }
+    return a;
+#else
+    (void)now_us; /* the CP accounts for the request (modcp_pdu_finished) */
+    if (ev == MODCP_EV_NONE && !sequence && s->job.op != 0u) {
+        return encode(s, env, pdu, out_len); /* the single job of the manual set */
+    }
+    return settle(s, env, job_result(s, env, ev, sequence, pdu), pdu, out_len);
+#endif
+}
