@@ -143,7 +143,7 @@
       "`pdu.c dispatch`, `form_ok`", "`test_cp_examples.c: test_exception_03`")                   \
     E(COIL_VALUE, 0x08, 0x34, 3, "",                                                              \
       "illegal coding for set/reset bit (FC 05)", "use only 0000H or FF00H",                      \
-      "FC05 value not FF00/0000", "`pdu_rw.c modcp_pdu_rw`",                                      \
+      "FC05 value not FF00/0000", "`pdu_rw_internal.h modcp_pdu_rw`",                                      \
       "`test_cp_examples.c: test_exception_03`")                                                  \
     E(DIAG_SUBFC, 0x08, 0x35, 3, " / 01",                                                         \
       "illegal diagnostic sub-function or data field (FC 08)",                                    \
