@@ -107,7 +107,7 @@ void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag
     l->hal = hal;
     l->diag = diag;
     l->buf = buf;
-    l->size = buf != NULL ? cap : 0u;
+    l->size = cap;
     l->cap = l->size < MODCP_ADU_MAX ? l->size : (uint16_t)MODCP_ADU_MAX;
     l->rx_at = buf; /* nothing stored, nothing to store */
     l->rx_end = buf;

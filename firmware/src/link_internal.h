@@ -188,7 +188,8 @@ static inline void link_frame_too_long(modcp_link_t *l)
 
 /* Moved from modcp/link.h: the core's own interface. */
 /* hal: the port's (never NULL, see link_arm); diag: where the link counts and reports,
- * never NULL. */
+ * never NULL; buf: the frame buffer of cap bytes, never NULL (the receive write pointers
+ * start at it: arithmetic on a null pointer would be undefined). */
 void modcp_link_init(modcp_link_t *l, const modcp_hal_t *hal, modcp_diag_t *diag, uint8_t *buf,
                      uint16_t cap);
 /* Apply parameters (framing, address, timing, interface) and enable. */

@@ -84,7 +84,11 @@ typedef struct {
  * stay in the record (encoded as zeros, skipped by the decoder), nothing validates it.
  * MODCP_PARAM_OFF(member) is the member's offset, or MODCP_PARAM_ABSENT for a member
  * listed as MODCP_PX_ABSENT_<member> below (chosen by the preprocessor, so offsetof never
- * names a missing member). */
+ * names a missing member). The absent members are one run in record order, the scanner's
+ * group first: its row (params.c ROW_SKIP) stands for the whole run
+ * (MODCP_PARAM_ABSENT_BYTES), the ID strings' rows add nothing; a build that left out
+ * only some of them would need a row of its own per run (unit.test_cp_manual and the
+ * other manual-core tests decode the manual build's record through it). */
 #define MODCP_PARAM_ABSENT 0xFFu
 #if !MODCP_WITH_EXTENDED
 #define MODCP_PX_ABSENT_scan MODCP_PX_PROBE
