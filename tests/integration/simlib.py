@@ -217,6 +217,28 @@ class Checks:
         return 0 if self.failed == 0 else 1
 
 
+def run_checks(prefix, tools, steps):
+    """The main() of a test that needs the simulator (--sim) and a configuration
+    (--config), the line tools `tools` and a scratch folder: each step(a, t, tmp) in turn,
+    the folder removed after; exit status of Checks.done() (1 when a tool is missing)."""
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--sim", required=True)
+    ap.add_argument("--config", required=True)
+    a = ap.parse_args()
+    for tool in tools:
+        if shutil.which(tool) is None:
+            print("%s missing: tools/install-deps installs it" % tool)
+            return 1
+    t = Checks()
+    tmp = tempfile.mkdtemp(prefix=prefix)
+    try:
+        for step in steps:
+            step(a, t, tmp)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    return t.done()
+
+
 def crc16(data):
     crc = 0xFFFF
     for b in data:

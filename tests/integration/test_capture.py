@@ -19,17 +19,14 @@
 
     test_capture.py --sim PATH/modcp-sim --config configs/default.ini
 """
-import argparse
 import os
 import re
-import shutil
 import subprocess
 import sys
-import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from simlib import Checks, RawLine, Sim, member_configs, with_crc  # noqa: E402
+from simlib import run_checks, RawLine, Sim, member_configs, with_crc  # noqa: E402
 
 T35_9600_US = 4010  # 3.5 characters of 11 bits at 9600 baud (timing.c: 3.5 * 1146 us)
 
@@ -175,23 +172,7 @@ def ascii_frames(a, t, tmp):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--sim", required=True)
-    ap.add_argument("--config", required=True)
-    a = ap.parse_args()
-    for tool in ("tshark", "sigrok-cli"):
-        if shutil.which(tool) is None:
-            print("%s missing: tools/install-deps installs it" % tool)
-            return 1
-    t = Checks()
-    tmp = tempfile.mkdtemp(prefix="modcp-capture-")
-    try:
-        one_slave(a, t, tmp)
-        bus(a, t, tmp)
-        ascii_frames(a, t, tmp)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
-    return t.done()
+    return run_checks("modcp-capture-", ("tshark", "sigrok-cli"), [one_slave, bus, ascii_frames])
 
 
 if __name__ == "__main__":

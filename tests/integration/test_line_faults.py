@@ -28,16 +28,13 @@ counted in `status` (its faults line once it had one); for each, what the manual
 
     test_line_faults.py --sim PATH/modcp-sim --config configs/default.ini
 """
-import argparse
 import os
-import shutil
 import subprocess
 import sys
-import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from simlib import Checks, RawLine, Sim, with_crc  # noqa: E402
+from simlib import run_checks, RawLine, Sim, with_crc  # noqa: E402
 
 REQ = with_crc("05 03 00 50 00 02")
 RSP = bytes.fromhex("05 03 04 87 65 43 21 76 70")
@@ -198,21 +195,7 @@ def t15_on(a, t):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--sim", required=True)
-    ap.add_argument("--config", required=True)
-    a = ap.parse_args()
-    if shutil.which("tshark") is None:
-        print("tshark missing: tools/install-deps installs it")
-        return 1
-    t = Checks()
-    tmp = tempfile.mkdtemp(prefix="modcp-linefaults-")
-    try:
-        master_direction(a, t, tmp)
-        t15_on(a, t)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
-    return t.done()
+    return run_checks("modcp-linefaults-", ("tshark",), [master_direction, lambda a, t, tmp: t15_on(a, t)])
 
 
 if __name__ == "__main__":

@@ -16,17 +16,14 @@ the same order, and the events and console answers in time order with them.
 
     test_trace.py --sim PATH/modcp-sim --config configs/default.ini
 """
-import argparse
 import os
 import re
-import shutil
 import subprocess
 import sys
-import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from simlib import Checks, RawLine, Sim, member_configs, with_crc  # noqa: E402
+from simlib import run_checks, RawLine, Sim, member_configs, with_crc  # noqa: E402
 
 FRAME = re.compile(r"\[\s*(\d+)\.(\d{6})\] (master|slave \d+|@\w+ slave \d+) ((?:[0-9A-F]{2} )*[0-9A-F]{2}) \| (.*)")
 
@@ -139,21 +136,7 @@ def bus(a, t, tmp):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--sim", required=True)
-    ap.add_argument("--config", required=True)
-    a = ap.parse_args()
-    if shutil.which("tshark") is None:
-        print("tshark missing: tools/install-deps installs it")
-        return 1
-    t = Checks()
-    tmp = tempfile.mkdtemp(prefix="modcp-trace-")
-    try:
-        one_slave(a, t, tmp)
-        bus(a, t, tmp)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
-    return t.done()
+    return run_checks("modcp-trace-", ("tshark",), [one_slave, bus])
 
 
 if __name__ == "__main__":
