@@ -51,6 +51,7 @@
 #include <string.h>
 
 #include "params_internal.h"
+#include "../unit/support/example_params.h"
 
 static const uint32_t rates[11] = {300,   600,   1200,  2400,  4800,  9600,
                                    19200, 38400, 57600, 76800, 115200};
@@ -336,24 +337,14 @@ void fuzz_cfg_build(const uint8_t *h, const modcp_params_t *base, modcp_params_t
     stats->whole = 1;
 }
 
-/* The base parameter set of the line targets and the differential harness: the manual's example (slave 5, windows onto M, Q, T, C and I,
- * holding registers from DB 700, input registers from DB 900, write limits), with the
- * 32-bit ranges and scanner entries the input can switch on. */
+/* The base parameter set of the line targets and the differential harness: the manual's
+ * example (example_params.h: slave 5, windows onto M, Q, T, C and I, input registers
+ * from DB 900, write limits) with holding registers from DB 700, and the 32-bit ranges
+ * and scanner entries the input can switch on. */
 void fuzz_cfg_base(modcp_params_t *p, bool ascii)
 {
-    modcp_params_defaults(p);
-    p->slave_addr = 5;
-    p->coils[0] = (modcp_bitwin_t){MODCP_AREA_M, 0, 2047, 1000, 0};
-    p->coils[1] = (modcp_bitwin_t){MODCP_AREA_Q, 2048, 2559, 256, 0};
-    p->coils[2] = (modcp_bitwin_t){MODCP_AREA_T, 4096, 4607, 100, 0};
-    p->coils[3] = (modcp_bitwin_t){MODCP_AREA_C, 4608, 5119, 200, 0};
-    p->inputs[0] = (modcp_bitwin_t){MODCP_AREA_M, 0, 4095, 2000, 0};
-    p->inputs[1] = (modcp_bitwin_t){MODCP_AREA_I, 4096, 5119, 128, 0};
+    example_params(p);
     p->hr_base_db = 700; /* registers 0..511 -> DB 700 (not writable), 512.. -> DB 701 (missing) */
-    p->ir_base_db = 900;
-    p->lim_db = (modcp_limit_t){800, 899};
-    p->lim_m = (modcp_limit_t){1000, 1255};
-    p->lim_q = (modcp_limit_t){256, 319};
     p->cpu_timeout_ms = 50;
     p->r32[MODCP_R32_INT16] = (modcp_r32range_t){3000, 3199, 800};
     p->r32[MODCP_R32_INT32] = (modcp_r32range_t){5000, 5099, 801};

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "example_params.h"
 #include "frames.h"
 #include "diag_internal.h"
 
@@ -43,19 +44,7 @@ static void fake_rx_preset(void *ctx, uint8_t preset)
 
 void world_example_params(modcp_params_t *p)
 {
-    modcp_params_defaults(p);
-    p->slave_addr = 5;
-    p->coils[0] = (modcp_bitwin_t){MODCP_AREA_M, 0, 2047, 1000, 0};
-    p->coils[1] = (modcp_bitwin_t){MODCP_AREA_Q, 2048, 2559, 256, 0};
-    p->coils[2] = (modcp_bitwin_t){MODCP_AREA_T, 4096, 4607, 100, 0};
-    p->coils[3] = (modcp_bitwin_t){MODCP_AREA_C, 4608, 5119, 200, 0};
-    p->inputs[0] = (modcp_bitwin_t){MODCP_AREA_M, 0, 4095, 2000, 0};
-    p->inputs[1] = (modcp_bitwin_t){MODCP_AREA_I, 4096, 5119, 128, 0};
-    p->hr_base_db = 800;
-    p->ir_base_db = 900;
-    p->lim_db = (modcp_limit_t){800, 899};
-    p->lim_m = (modcp_limit_t){1000, 1255};
-    p->lim_q = (modcp_limit_t){256, 319};
+    example_params(p);
 }
 
 world_t *world_new(const modcp_params_t *p)

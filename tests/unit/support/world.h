@@ -49,10 +49,7 @@ typedef struct {
     modcp_fb_out_t fb_out;
 } world_t;
 
-/* The [RTU-2003] §9 parameter set: slave 5; coils M 0-2047 @ MB1000, Q 2048-2559 @ QB256,
- * T 4096-4607 @ T100, C 4608-5119 @ C200; inputs M 0-4095 @ MB2000, I 4096-5119 @
- * IB128; holding base DB 800, input base DB 900; write limits DB 800-899,
- * MB 1000-1255, QB 256-319 (admit the examples). */
+/* The [RTU-2003] §9 parameter set (example_params.h). */
 void world_example_params(modcp_params_t *p);
 
 /* Allocate a world with params p (NULL: the example set), not yet started. */
