@@ -458,9 +458,9 @@ static void take_init(modcp_cp_t *cp, const modcp_bp_init_t *init)
  * state: every entry point that can change it (a character the link does not store
  * as it is, a line error, a timer, a transmission complete, RS232 inputs), the end of a
  * wire break and every job result, PARAMS or INIT taken by a poll clear it. What
- * changes without any of them — with time or from the CPU side — is compared with the published values, a few words: LEDs (time), comm-loss /
- * listen-only flags (time), the event count (an event logged by a poll: comm loss,
- * backplane errors) and the SYSTAT answer / diagnostic interrupt count.
+ * changes without any of them (time, the CPU side) is compared with the published
+ * values, a few words: LEDs, comm-loss / listen-only flags, the event count (an event
+ * logged by a poll: comm loss, backplane errors), the SYSTAT / diagnostic interrupt count.
  * A publication is a few copies: the flags and LEDs, the diagnostics' run (event count,
  * counters, line error counts, STATUS word, diagnostic buffer) and the CP diagnostics'
  * run (diagnostic interrupt record, SYSTAT answer and image) each as one copy — the

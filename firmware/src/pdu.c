@@ -405,22 +405,18 @@ modcp_pdu_action_t modcp_pdu_complete(modcp_pdu_t *s, const modcp_pdu_env_t *env
 #else
     const bool sequence = false;
 #endif
-#if MODCP_PDU_COMPLETE_FINISHES
     modcp_pdu_action_t a;
     if (ev == MODCP_EV_NONE && !sequence && s->job.op != 0u) {
         a = encode(s, env, pdu, out_len); /* the single job of the manual set */
     } else {
         a = settle(s, env, job_result(s, env, ev, sequence, pdu), pdu, out_len);
     }
+#if MODCP_PDU_COMPLETE_FINISHES
     if (a != MODCP_PDU_JOB) {
         finished(s, env, now_us);
     }
-    return a;
 #else
     (void)now_us; /* the CP accounts for the request (modcp_pdu_finished) */
-    if (ev == MODCP_EV_NONE && !sequence && s->job.op != 0u) {
-        return encode(s, env, pdu, out_len); /* the single job of the manual set */
-    }
-    return settle(s, env, job_result(s, env, ev, sequence, pdu), pdu, out_len);
 #endif
+    return a;
 }
