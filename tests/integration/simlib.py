@@ -78,7 +78,8 @@ class Sim:
         self.proc = subprocess.Popen(self.args, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                      stderr=subprocess.STDOUT, text=True, bufsize=1,
                                      preexec_fn=_die_with_parent)
-        threading.Thread(target=self._reader, daemon=True).start()
+        self.reader = threading.Thread(target=self._reader, daemon=True)
+        self.reader.start()
         deadline = time.monotonic() + self.start_timeout
         ready = False
         while time.monotonic() < deadline:
@@ -124,6 +125,9 @@ class Sim:
         except subprocess.TimeoutExpired:
             self.proc.kill()
             rc = self.proc.wait()
+        # the process has ended, but what it printed last may still be in the pipe: the
+        # reader has read all of it when it reaches the end of the output
+        self.reader.join(timeout=timeout)
         gone = not os.path.lexists(self.link)
         self._cleanup()
         return rc, gone
