@@ -9,11 +9,15 @@
 #include "modcp/backplane.h"
 
 /* On a little-endian target the backplane's headers are laid out as their structs lie
- * in memory (static asserts at each codec): encoding and decoding them are copies. */
+ * in memory (static asserts at each codec): encoding and decoding them are copies. Any
+ * other target encodes them field by field; a build may ask for that path with
+ * MODCP_BP_LE=0 (modcp_core_natural: the unit tests run it on the host). */
+#ifndef MODCP_BP_LE
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
 #define MODCP_BP_LE 1
 #else
 #define MODCP_BP_LE 0
+#endif
 #endif
 
 /* CP side: publish the status area. */
