@@ -110,8 +110,10 @@ static void fb_cycle(void)
     advance(1000);
 }
 
-/* The example parameter set (tests/fuzz/fuzz_line.c's, in a smaller memory). */
-static void example_params(modcp_params_t *p)
+/* A small parameter set for this target's smaller memory (slave 5, coils on M and Q,
+ * inputs on I, registers in DB 100 / 200); not the manuals' example set of
+ * tests/unit/support/example_params.h, which needs the larger areas of the unit world. */
+static void small_params(modcp_params_t *p)
 {
     modcp_params_defaults(p);
     p->slave_addr = 5;
@@ -239,7 +241,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     static size_t base_len;
     if (base_len == 0) {
         modcp_params_t p;
-        example_params(&p);
+        small_params(&p);
         base_len = modcp_params_encode(&p, base, sizeof base);
         if (base_len <= HEADER + 2u) {
             die("example record");
